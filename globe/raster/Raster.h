@@ -1,0 +1,104 @@
+// A georeferenced raster on WGS84 geographic coordinates. Pixels come from
+// OpenImageIO (kept out of this header), georeferencing from GeoTIFF tags
+// (libtiff), an ESRI world file, or the caller's "global equirectangular".
+// Small rasters are held in memory; big ones stream through OpenImageIO's
+// ImageCache with a bounded cache.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace geocean::raster {
+
+// Every failure to open or read a raster: the message names the file, the
+// field and the offending value.
+class RasterError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Maps pixel (column, row) <-> (lonDeg, latDeg). Pixel (i, j) covers
+// [i, i+1) x [j, j+1) in pixel space; (i + 0.5, j + 0.5) is its centre.
+struct GeoTransform {
+  double originLonDeg = -180.0;  // longitude of pixel-space x = 0 (left edge of column 0)
+  double originLatDeg = 90.0;    // latitude of pixel-space y = 0 (top edge of row 0)
+  double lonStepDeg = 1.0;       // degrees per pixel along x (> 0)
+  double latStepDeg = -1.0;      // degrees per pixel along y (< 0: north up; > 0: south up)
+  bool global = false;           // columns span 360 degrees: longitude wraps
+
+  double pixelX(double lonDeg) const;  // continuous pixel-space x, wrapping if global
+  double pixelY(double latDeg) const;
+  double lonOf(double px) const { return originLonDeg + px * lonStepDeg; }
+  double latOf(double py) const { return originLatDeg + py * latStepDeg; }
+};
+
+enum class Georef {
+  FromFile,           // GeoTIFF tags, or a world file beside PNG/JPEG
+  GlobalEquirect,     // the caller says: whole Earth, north up, column 0 at -180
+};
+
+struct OpenOptions {
+  Georef georef = Georef::FromFile;
+  // Rasters whose decoded pixels need more than this are read through the
+  // ImageCache instead of being loaded; their memory is bounded by cacheBytes.
+  std::size_t inMemoryLimitBytes = std::size_t(256) << 20;
+  std::size_t cacheBytes = std::size_t(64) << 20;
+  std::optional<double> nodata;  // overrides GDAL_NODATA from the file
+  // Absurd dimensions are rejected before any allocation.
+  std::int64_t maxPixels = std::int64_t(1) << 34;
+};
+
+class Raster {
+ public:
+  static std::shared_ptr<const Raster> open(const std::string& path, const OpenOptions& options = {});
+  // An in-memory raster from values (row-major, channels interleaved).
+  static std::shared_ptr<const Raster> fromPixels(std::vector<float> pixels, int width, int height,
+                                                  int channels, const GeoTransform& transform,
+                                                  std::optional<double> nodata = std::nullopt,
+                                                  std::string name = "<memory>");
+  virtual ~Raster();
+
+  const std::string& path() const { return path_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int channels() const { return channels_; }
+  const GeoTransform& transform() const { return transform_; }
+  std::optional<double> nodata() const { return nodata_; }
+  bool inMemory() const { return !pixels_.empty(); }
+  // In-memory pixels as float, row-major, channels interleaved (empty if cached).
+  const std::vector<float>& pixels() const { return pixels_; }
+
+  // Value of pixel (x, y) clamped to the raster; NaN for nodata.
+  float pixel(int x, int y, int channel = 0) const;
+  // Nearest-pixel and bilinear samples at (lat, lon); NaN outside a
+  // non-global raster or where nodata. Bilinear ignores nodata neighbours.
+  // Longitudes wrap for global rasters; latitudes clamp at the poles.
+  float sampleNearest(double latDeg, double lonDeg, int channel = 0) const;
+  float sampleBilinear(double latDeg, double lonDeg, int channel = 0) const;
+  // Batches: sorted by tile internally when cached (coherent ImageCache access).
+  void sampleNearestBatch(const double* latDeg, const double* lonDeg, std::size_t n, float* out,
+                          int channel = 0) const;
+  void sampleBilinearBatch(const double* latDeg, const double* lonDeg, std::size_t n, float* out,
+                           int channel = 0) const;
+
+  // Bytes this raster holds (pixels, or the cache bound).
+  std::size_t memoryBytes() const;
+
+ protected:
+  Raster() = default;
+  struct CacheImpl;
+  std::string path_;
+  int width_ = 0, height_ = 0, channels_ = 1;
+  GeoTransform transform_;
+  std::optional<double> nodata_;
+  std::vector<float> pixels_;
+  std::unique_ptr<CacheImpl> cache_;
+  std::size_t cacheBytes_ = 0;
+};
+
+}  // namespace geocean::raster
