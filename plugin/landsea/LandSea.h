@@ -5,10 +5,15 @@
 
 #include "globe/raster/Raster.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace geocean::ocean {
 
@@ -44,10 +49,32 @@ class LandSea {
   const raster::Raster* elevation() const { return elevation_.get(); }
 
  private:
+  Surface classOfValue(float maskValue) const;
+  Surface fromElevation(float elevationM) const;
+
+  // Nearest-cell index into classes_, or -1 outside the mask / for NaN.
+  struct FastIndex {
+    double invLonStep = 0, invLatStep = 0, originLon = 0, originLat = 0;
+    int width = 0, height = 0;
+    bool global = false;
+    int index(double latDeg, double lonDeg) const {
+      double x = (lonDeg - originLon) * invLonStep;
+      const double y = (latDeg - originLat) * invLatStep;
+      if (global) x -= std::floor(x / width) * width;
+      // Negated comparisons also reject NaN.
+      if (!(x >= 0.0 && x < width)) return -1;
+      if (!(y > -1.0 && y < height + 1.0)) return -1;  // one cell of slack at the poles
+      const int ix = static_cast<int>(x);
+      const int iy = std::clamp(static_cast<int>(std::floor(y)), 0, height - 1);
+      return iy * width + ix;
+    }
+  };
+
   std::shared_ptr<const raster::Raster> mask_, elevation_;
   MaskEncoding encoding_;
   // In-memory mask as class bytes: the fast path (no float conversion).
   std::vector<std::uint8_t> classes_;
+  FastIndex fast_;
 };
 
 }  // namespace geocean::ocean

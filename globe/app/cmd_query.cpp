@@ -1,0 +1,246 @@
+// `geocean query`: surface class and terrain elevation at points, one point
+// from the command line or a stream of CSV rows.
+#include "globe/app/Command.h"
+#include "globe/app/QueryIo.h"
+#include "globe/raster/World.h"
+#include "plugin/landsea/LandSea.h"
+
+#include <tbb/parallel_for.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace geocean::app {
+namespace {
+
+struct QueryOptions {
+  std::vector<std::string> latLon;  // positional LAT LON
+  std::string points;               // CSV file or "-"
+  std::string format = "text";
+  std::string mask, elevation, maskEncoding;
+  bool global = false;
+};
+
+void appendDouble(std::string& s, double v) {
+  char b[32];
+  auto r = std::to_chars(b, b + sizeof b, v);
+  s.append(b, r.ptr);
+}
+void appendFloat(std::string& s, float v) {
+  if (std::isnan(v)) {
+    s += "null";
+    return;
+  }
+  char b[32];
+  auto r = std::to_chars(b, b + sizeof b, v);
+  s.append(b, r.ptr);
+}
+
+struct Results {
+  std::vector<ocean::Surface> surface;
+  std::vector<float> elevationM;
+};
+
+class Querier {
+ public:
+  Querier(const QueryOptions& o, bool batch) : format_(o.format) {
+    const auto world = raster::defaultWorld();
+    raster::OpenOptions ro;
+    if (o.global) ro.georef = raster::Georef::GlobalEquirect;
+    // A single point reads one tile through the cache; batches load the
+    // (small) default rasters into memory for throughput.
+    if (!batch) ro.inMemoryLimitBytes = 0;
+    auto mask = raster::Raster::open(o.mask.empty() ? world.mask : o.mask, ro);
+    auto elev = raster::Raster::open(o.elevation.empty() ? world.elevation : o.elevation, ro);
+    const ocean::MaskEncoding enc = o.maskEncoding.empty() ? ocean::MaskEncoding() : ocean::MaskEncoding::parse(o.maskEncoding);
+    landSea_ = std::make_unique<ocean::LandSea>(mask, elev, enc);
+  }
+
+  void run(const std::vector<PointRow>& pts, Results& r) const {
+    const std::size_t n = pts.size();
+    r.surface.resize(n);
+    r.elevationM.resize(n);
+    std::vector<double> lat(n), lon(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      lat[i] = pts[i].latDeg;
+      lon[i] = pts[i].lonDeg;
+    }
+    constexpr std::size_t kGrain = 4096;
+    tbb::parallel_for(std::size_t(0), (n + kGrain - 1) / kGrain, [&](std::size_t b) {
+      const std::size_t s = b * kGrain, m = std::min(kGrain, n - s);
+      landSea_->classifyBatch(lat.data() + s, lon.data() + s, m, r.surface.data() + s);
+      landSea_->elevationBatch(lat.data() + s, lon.data() + s, m, r.elevationM.data() + s);
+    });
+  }
+
+  void header(std::string& out) const {
+    if (format_ == "text") out += "lat,lon,surface,elevation_m\n";
+  }
+
+  void format(const PointRow& p, ocean::Surface s, float elev, std::string& out) const {
+    if (format_ == "json") {
+      out += "{\"lat\":";
+      appendDouble(out, p.latDeg);
+      out += ",\"lon\":";
+      appendDouble(out, p.lonDeg);
+      if (p.timeS) {
+        out += ",\"time_s\":";
+        appendDouble(out, *p.timeS);
+      }
+      out += ",\"surface\":\"";
+      out += ocean::toString(s);
+      out += "\",\"elevation_m\":";
+      appendFloat(out, elev);
+      out += "}\n";
+    } else {
+      appendDouble(out, p.latDeg);
+      out += ',';
+      appendDouble(out, p.lonDeg);
+      out += ',';
+      out += ocean::toString(s);
+      out += ',';
+      appendFloat(out, elev);
+      out += '\n';
+    }
+  }
+
+ private:
+  std::string format_;
+  std::unique_ptr<ocean::LandSea> landSea_;
+};
+
+int runQuery(const QueryOptions& o) {
+  if (o.format != "text" && o.format != "json") {
+    std::fprintf(stderr, "geocean query: --format '%s' is not text or json\n", o.format.c_str());
+    return kExitBadInput;
+  }
+  const bool batch = !o.points.empty();
+  if (batch == !o.latLon.empty()) {
+    std::fprintf(stderr, "geocean query: give either LAT LON or --points FILE\n");
+    return kExitBadInput;
+  }
+  std::vector<PointRow> single;
+  if (!batch) {
+    if (o.latLon.size() != 2) {
+      std::fprintf(stderr, "geocean query: expected LAT LON, got %zu values\n", o.latLon.size());
+      return kExitBadInput;
+    }
+    const auto lat = parseNumber(o.latLon[0]), lon = parseNumber(o.latLon[1]);
+    if (!lat || !lon) {
+      std::fprintf(stderr, "geocean query: %s '%s' is not a finite number\n", lat ? "LON" : "LAT",
+                   (lat ? o.latLon[1] : o.latLon[0]).c_str());
+      return kExitBadInput;
+    }
+    if (auto e = checkLatLon(*lat, *lon, "geocean query"); !e.empty()) {
+      std::fprintf(stderr, "%s\n", e.c_str());
+      return kExitBadInput;
+    }
+    single.push_back({*lat, *lon, std::nullopt});
+  }
+
+  std::unique_ptr<Querier> q;
+  try {
+    q = std::make_unique<Querier>(o, batch);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "geocean query: %s\n", e.what());
+    return kExitDataError;
+  }
+
+  std::string out;
+  Results res;
+  q->header(out);
+  if (!batch) {
+    q->run(single, res);
+    q->format(single[0], res.surface[0], res.elevationM[0], out);
+    std::fwrite(out.data(), 1, out.size(), stdout);
+    return kExitOk;
+  }
+
+  std::ifstream file;
+  std::istream* in = &std::cin;
+  if (o.points != "-") {
+    file.open(o.points);
+    if (!file) {
+      std::fprintf(stderr, "geocean query: --points %s: cannot open\n", o.points.c_str());
+      return kExitDataError;
+    }
+    in = &file;
+  }
+  std::ios::sync_with_stdio(false);
+  // Stream in chunks: parse, compute in parallel, print in input order.
+  constexpr std::size_t kChunk = 1 << 16;
+  std::vector<std::string> lines;
+  std::vector<PointRow> pts;
+  long row = 0;
+  std::string line, error;
+  bool more = true;
+  while (more) {
+    lines.clear();
+    while (lines.size() < kChunk && (more = static_cast<bool>(std::getline(*in, line)))) {
+      ++row;
+      if (row == 1 && isHeaderRow(line)) continue;
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;  // blank line
+      lines.push_back(std::move(line));
+    }
+    const long firstRow = row - static_cast<long>(lines.size());
+    pts.assign(lines.size(), {});
+    std::vector<std::string> errs(lines.size());
+    tbb::parallel_for(std::size_t(0), lines.size(), [&](std::size_t i) {
+      errs[i] = parsePointRow(lines[i], firstRow + long(i) + 1, pts[i]);
+    });
+    std::size_t good = lines.size();
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      if (!errs[i].empty()) {
+        error = errs[i];
+        good = i;
+        break;
+      }
+    pts.resize(good);
+    q->run(pts, res);
+    std::vector<std::string> parts((good + 4095) / 4096);
+    tbb::parallel_for(std::size_t(0), parts.size(), [&](std::size_t b) {
+      for (std::size_t i = b * 4096; i < std::min(good, (b + 1) * 4096); ++i)
+        q->format(pts[i], res.surface[i], res.elevationM[i], parts[b]);
+    });
+    for (const auto& p : parts) out += p;
+    std::fwrite(out.data(), 1, out.size(), stdout);
+    out.clear();
+    if (!error.empty()) break;
+  }
+  std::fflush(stdout);
+  if (!error.empty()) {
+    // Rows before the bad one were answered; the batch stops loudly here.
+    std::fprintf(stderr, "geocean query: --points %s: %s\n", o.points.c_str(), error.c_str());
+    return kExitBadInput;
+  }
+  if (in->bad()) {
+    std::fprintf(stderr, "geocean query: --points %s: read error after row %ld\n", o.points.c_str(), row);
+    return kExitDataError;
+  }
+  return kExitOk;
+}
+
+const Register kRegister{{"query", "Surface class (ocean/land/lake) and terrain elevation at points",
+                          [](CLI::App& sub) -> std::function<int()> {
+                            auto o = std::make_shared<QueryOptions>();
+                            sub.add_option("coords", o->latLon, "LAT LON in degrees (negative values are fine)")
+                                ->expected(0, 2);
+                            sub.add_option("--points", o->points, "CSV rows lat,lon[,time] (optional header); - for stdin");
+                            sub.add_option("--format", o->format, "text (CSV) or json (one object per line)");
+                            sub.add_option("--mask", o->mask, "land/sea mask raster (default: data/landmask_5m.tif)");
+                            sub.add_option("--elevation", o->elevation, "elevation raster (default: data/etopo_20m.tif)");
+                            sub.add_option("--mask-encoding", o->maskEncoding,
+                                           "mask values, e.g. 0=ocean,1=land,2=lake (the default)");
+                            sub.add_flag("--global", o->global, "rasters are whole-Earth equirectangular without georeferencing");
+                            sub.positionals_at_end(false);
+                            return [o] { return runQuery(*o); };
+                          }}};
+
+}  // namespace
+}  // namespace geocean::app

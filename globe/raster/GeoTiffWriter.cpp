@@ -1,0 +1,126 @@
+#include "globe/raster/GeoTiffWriter.h"
+
+#include <tiffio.h>
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+namespace geocean::raster {
+
+namespace {
+// libtiff knows the GeoTIFF tags for reading; register them for writing.
+void registerGeoTags() {
+  static const TIFFFieldInfo info[] = {
+      {33550, -1, -1, TIFF_DOUBLE, FIELD_CUSTOM, 1, 1, const_cast<char*>("ModelPixelScaleTag")},
+      {33922, -1, -1, TIFF_DOUBLE, FIELD_CUSTOM, 1, 1, const_cast<char*>("ModelTiepointTag")},
+      {34264, -1, -1, TIFF_DOUBLE, FIELD_CUSTOM, 1, 1, const_cast<char*>("ModelTransformationTag")},
+      {34735, -1, -1, TIFF_SHORT, FIELD_CUSTOM, 1, 1, const_cast<char*>("GeoKeyDirectoryTag")},
+      {42113, -1, -1, TIFF_ASCII, FIELD_CUSTOM, 1, 0, const_cast<char*>("GDAL_NODATA")},
+  };
+  static TIFFExtendProc parent = nullptr;
+  static bool done = false;
+  if (done) return;
+  done = true;
+  parent = TIFFSetTagExtender([](TIFF* tif) {
+    TIFFMergeFieldInfo(tif, info, sizeof(info) / sizeof(info[0]));
+    if (parent) parent(tif);
+  });
+}
+}  // namespace
+
+void writeGeoTiff(const std::string& path, const void* data, int width, int height, int channels, SampleType type,
+                  const GeoTiffWriteOptions& o) {
+  registerGeoTags();
+  TIFFSetWarningHandler(nullptr);
+  TIFF* tif = TIFFOpen(path.c_str(), (std::size_t(width) * height * channels > (std::size_t(1) << 31)) ? "w8" : "w");
+  if (!tif) throw RasterError(path + ": cannot create file");
+  const int bytesPerSample = type == SampleType::U8 ? 1 : type == SampleType::I16 ? 2 : 4;
+  TIFFSetField(tif, TIFFTAG_IMAGEWIDTH, uint32_t(width));
+  TIFFSetField(tif, TIFFTAG_IMAGELENGTH, uint32_t(height));
+  TIFFSetField(tif, TIFFTAG_SAMPLESPERPIXEL, uint16_t(channels));
+  TIFFSetField(tif, TIFFTAG_BITSPERSAMPLE, uint16_t(8 * bytesPerSample));
+  TIFFSetField(tif, TIFFTAG_SAMPLEFORMAT,
+               uint16_t(type == SampleType::F32 ? SAMPLEFORMAT_IEEEFP : type == SampleType::I16 ? SAMPLEFORMAT_INT : SAMPLEFORMAT_UINT));
+  TIFFSetField(tif, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+  const bool jpeg = o.compression == Compression::Jpeg;
+  if (jpeg) {
+    TIFFSetField(tif, TIFFTAG_COMPRESSION, COMPRESSION_JPEG);
+    TIFFSetField(tif, TIFFTAG_JPEGQUALITY, o.jpegQuality);
+    if (channels == 3) {
+      TIFFSetField(tif, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_YCBCR);
+      TIFFSetField(tif, TIFFTAG_JPEGCOLORMODE, JPEGCOLORMODE_RGB);
+    } else {
+      TIFFSetField(tif, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
+    }
+  } else {
+    TIFFSetField(tif, TIFFTAG_COMPRESSION, o.compression == Compression::Deflate ? COMPRESSION_ADOBE_DEFLATE : COMPRESSION_NONE);
+    if (o.compression == Compression::Deflate) TIFFSetField(tif, TIFFTAG_PREDICTOR, type == SampleType::F32 ? 1 : 2);
+    TIFFSetField(tif, TIFFTAG_PHOTOMETRIC, channels >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
+  }
+
+  // Georeferencing.
+  const GeoTransform& t = o.transform;
+  const double sx = t.lonStepDeg, sy = -t.latStepDeg;
+  if (o.rotationTerm != 0.0) {
+    const double m[16] = {sx, o.rotationTerm, 0, t.originLonDeg, 0, -sy, 0, t.originLatDeg, 0, 0, 0, 0, 0, 0, 0, 1};
+    TIFFSetField(tif, 34264, 16, m);
+  } else {
+    const double scale[3] = {sx, sy, 0.0};
+    const double shift = o.pixelIsPoint ? 0.5 : 0.0;
+    const double tie[6] = {0, 0, 0, t.originLonDeg + shift * sx, t.originLatDeg - shift * sy, 0};
+    TIFFSetField(tif, 33550, 3, scale);
+    TIFFSetField(tif, 33922, 6, tie);
+  }
+  if (o.writeGeoKeys) {
+    std::vector<uint16_t> keys = {1, 1, 0, 0};
+    auto add = [&](uint16_t id, uint16_t v) { keys.insert(keys.end(), {id, 0, 1, v}); };
+    if (o.projectedEpsg) {
+      add(1024, 1);
+      add(1025, uint16_t(o.pixelIsPoint ? 2 : 1));
+      add(3072, uint16_t(*o.projectedEpsg));
+    } else {
+      add(1024, 2);
+      add(1025, uint16_t(o.pixelIsPoint ? 2 : 1));
+      add(2048, 4326);
+      add(2054, 9102);
+    }
+    keys[3] = uint16_t((keys.size() - 4) / 4);
+    TIFFSetField(tif, 34735, uint32_t(keys.size()), keys.data());
+  }
+  if (o.nodata) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", *o.nodata);
+    TIFFSetField(tif, 42113, buf);
+  }
+
+  const auto* src = static_cast<const unsigned char*>(data);
+  const std::size_t pixelBytes = std::size_t(bytesPerSample) * channels;
+  bool ok = true;
+  if (o.tileSize > 0) {
+    const int ts = o.tileSize;
+    TIFFSetField(tif, TIFFTAG_TILEWIDTH, uint32_t(ts));
+    TIFFSetField(tif, TIFFTAG_TILELENGTH, uint32_t(ts));
+    std::vector<unsigned char> tile(std::size_t(ts) * ts * pixelBytes);
+    for (int ty = 0; ty < height && ok; ty += ts)
+      for (int tx = 0; tx < width && ok; tx += ts) {
+        std::fill(tile.begin(), tile.end(), 0);
+        const int w = std::min(ts, width - tx), h = std::min(ts, height - ty);
+        for (int y = 0; y < h; ++y)
+          std::memcpy(&tile[std::size_t(y) * ts * pixelBytes], src + (std::size_t(ty + y) * width + tx) * pixelBytes,
+                      std::size_t(w) * pixelBytes);
+        ok = TIFFWriteTile(tif, tile.data(), uint32_t(tx), uint32_t(ty), 0, 0) >= 0;
+      }
+  } else {
+    TIFFSetField(tif, TIFFTAG_ROWSPERSTRIP, uint32_t(jpeg ? 16 : 64));
+    std::vector<unsigned char> row(std::size_t(width) * pixelBytes);
+    for (int y = 0; y < height && ok; ++y) {
+      std::memcpy(row.data(), src + std::size_t(y) * width * pixelBytes, row.size());
+      ok = TIFFWriteScanline(tif, row.data(), uint32_t(y), 0) >= 0;
+    }
+  }
+  TIFFClose(tif);
+  if (!ok) throw RasterError(path + ": writing pixel data failed (disk full?)");
+}
+
+}  // namespace geocean::raster

@@ -1,0 +1,36 @@
+// Writes tiled, compressed GeoTIFFs (libtiff) in geographic WGS84. Used by
+// geocean-import-world to make data/, and by tests to make fixtures,
+// including deliberately unsupported ones (projected CRS, rotated transform).
+#pragma once
+
+#include "globe/raster/Raster.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace geocean::raster {
+
+enum class SampleType { U8, I16, F32 };
+enum class Compression { None, Deflate, Jpeg };
+
+struct GeoTiffWriteOptions {
+  GeoTransform transform;        // pixel-area registration
+  bool pixelIsPoint = false;     // write the tie point at the centre of pixel (0, 0)
+  int tileSize = 256;            // 0: strips instead of tiles
+  Compression compression = Compression::Deflate;
+  int jpegQuality = 90;
+  std::optional<double> nodata;  // GDAL_NODATA
+  // Test fixtures only: a projected CRS code (ProjectedCSTypeGeoKey) or a
+  // rotation term in ModelTransformation.
+  std::optional<int> projectedEpsg;
+  double rotationTerm = 0.0;
+  bool writeGeoKeys = true;
+};
+
+// `data` is row-major, north row first, channels interleaved. Throws
+// RasterError naming the file on failure.
+void writeGeoTiff(const std::string& path, const void* data, int width, int height, int channels,
+                  SampleType type, const GeoTiffWriteOptions& options);
+
+}  // namespace geocean::raster

@@ -1,0 +1,365 @@
+#include "globe/raster/Raster.h"
+
+#include "globe/raster/GeoTiff.h"
+
+#include <OpenImageIO/imagecache.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <numeric>
+
+namespace geocean::raster {
+
+namespace {
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// OpenImageIO normalises integers when converting to float (uint8 255 ->
+// 1.0); rasters carry physical values, so read the native type and convert.
+template <class T>
+void widen(const void* src, std::size_t n, float* dst) {
+  const T* s = static_cast<const T*>(src);
+  for (std::size_t i = 0; i < n; ++i) dst[i] = static_cast<float>(s[i]);
+}
+
+bool toFloat(OIIO::TypeDesc type, const void* src, std::size_t n, float* dst) {
+  switch (type.basetype) {
+    case OIIO::TypeDesc::UINT8: widen<std::uint8_t>(src, n, dst); return true;
+    case OIIO::TypeDesc::INT8: widen<std::int8_t>(src, n, dst); return true;
+    case OIIO::TypeDesc::UINT16: widen<std::uint16_t>(src, n, dst); return true;
+    case OIIO::TypeDesc::INT16: widen<std::int16_t>(src, n, dst); return true;
+    case OIIO::TypeDesc::UINT32: widen<std::uint32_t>(src, n, dst); return true;
+    case OIIO::TypeDesc::INT32: widen<std::int32_t>(src, n, dst); return true;
+    case OIIO::TypeDesc::FLOAT: widen<float>(src, n, dst); return true;
+    case OIIO::TypeDesc::DOUBLE: widen<double>(src, n, dst); return true;
+    default: return false;
+  }
+}
+}  // namespace
+
+double GeoTransform::pixelX(double lonDeg) const {
+  double x = (lonDeg - originLonDeg) / lonStepDeg;
+  if (global) {
+    const double w = 360.0 / lonStepDeg;
+    x -= std::floor(x / w) * w;
+    if (x >= w) x = 0.0;  // rounding of values just below a multiple of w
+  }
+  return x;
+}
+
+double GeoTransform::pixelY(double latDeg) const { return (latDeg - originLatDeg) / latStepDeg; }
+
+// ImageCache-backed pixels: a private cache bounded by cacheBytes.
+struct Raster::CacheImpl {
+  OIIO::ImageCache* cache = nullptr;
+  OIIO::ustring file;
+  OIIO::TypeDesc type;
+  int tileW = 256, tileH = 256;
+  ~CacheImpl() {
+    if (cache) OIIO::ImageCache::destroy(cache);
+  }
+  bool read(int x0, int x1, int y0, int y1, int channel, float* out) const {
+    const std::size_t n = std::size_t(x1 - x0) * std::size_t(y1 - y0);
+    if (type.basetype == OIIO::TypeDesc::FLOAT)
+      return cache->get_pixels(file, 0, 0, x0, x1, y0, y1, 0, 1, channel, channel + 1, type, out);
+    if (type.size() > sizeof(float)) {
+      std::vector<double> tmp(n);
+      if (!cache->get_pixels(file, 0, 0, x0, x1, y0, y1, 0, 1, channel, channel + 1, type, tmp.data())) return false;
+      return toFloat(type, tmp.data(), n, out);
+    }
+    thread_local std::vector<unsigned char> tmp;
+    tmp.resize(n * type.size());
+    if (!cache->get_pixels(file, 0, 0, x0, x1, y0, y1, 0, 1, channel, channel + 1, type, tmp.data())) return false;
+    return toFloat(type, tmp.data(), n, out);
+  }
+};
+
+Raster::~Raster() = default;
+
+std::shared_ptr<const Raster> Raster::open(const std::string& path, const OpenOptions& options) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw RasterError(path + ": no such file");
+  if (fs::is_directory(path, ec)) throw RasterError(path + ": is a directory, not a raster");
+
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) {
+    std::string why = OIIO::geterror();
+    throw RasterError(path + ": cannot read as an image (" + (why.empty() ? "unknown format" : why) + ")");
+  }
+  const OIIO::ImageSpec spec = in->spec();
+  const std::int64_t pixelsTotal = std::int64_t(spec.width) * spec.height * std::max(spec.nchannels, 1);
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    throw RasterError(path + ": dimensions " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " x " +
+                      std::to_string(spec.nchannels) + " are not a valid raster");
+  if (pixelsTotal > options.maxPixels)
+    throw RasterError(path + ": dimensions " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " x " +
+                      std::to_string(spec.nchannels) + " exceed the limit of " + std::to_string(options.maxPixels) +
+                      " samples");
+  if (spec.depth > 1) throw RasterError(path + ": volume images (depth " + std::to_string(spec.depth) + ") are not rasters");
+
+  std::shared_ptr<Raster> r(new Raster);
+  r->path_ = path;
+  r->width_ = spec.width;
+  r->height_ = spec.height;
+  r->channels_ = spec.nchannels;
+
+  const std::string fmtName = in->format_name();
+  std::optional<GeoTransform> t;
+  if (fmtName == "tiff") {
+    auto g = detail::readTiffGeoref(path, spec.width, spec.height);
+    t = g.transform;
+    r->nodata_ = g.nodata;
+  }
+  if (!t) t = detail::readWorldFile(path);
+  if (options.georef == Georef::GlobalEquirect) {
+    GeoTransform g;
+    g.lonStepDeg = 360.0 / spec.width;
+    g.latStepDeg = -180.0 / spec.height;
+    t = g;
+  } else if (!t) {
+    throw RasterError(path + ": no georeferencing (no GeoTIFF ModelTiepoint/ModelPixelScale or ModelTransformation, "
+                             "no world file); if it is a whole-Earth equirectangular image, say so (--global)");
+  }
+  t->global = std::abs(spec.width * t->lonStepDeg - 360.0) < 1e-6 * 360.0;
+  r->transform_ = *t;
+  if (options.nodata) r->nodata_ = options.nodata;
+
+  const std::size_t bytes = std::size_t(pixelsTotal) * sizeof(float);
+  if (bytes <= options.inMemoryLimitBytes) {
+    r->pixels_.resize(std::size_t(pixelsTotal));
+    OIIO::TypeDesc native = spec.format;
+    if (native.basetype == OIIO::TypeDesc::HALF) native = OIIO::TypeDesc::FLOAT;  // no normalisation for floats
+    std::vector<unsigned char> raw(std::size_t(pixelsTotal) * native.size());
+    if (!in->read_image(0, 0, 0, spec.nchannels, native, raw.data())) {
+      std::string why = in->geterror();
+      throw RasterError(path + ": pixel data is unreadable (" + (why.empty() ? "truncated or corrupt" : why) + ")");
+    }
+    if (!toFloat(native, raw.data(), raw.size() / native.size(), r->pixels_.data()))
+      throw RasterError(path + ": sample type " + std::string(native.c_str()) + " is not supported");
+    if (r->nodata_) {
+      const float nd = static_cast<float>(*r->nodata_);
+      for (auto& v : r->pixels_)
+        if (v == nd) v = kNaN;
+    }
+  } else {
+    in->close();
+    auto c = std::make_unique<CacheImpl>();
+    c->cache = OIIO::ImageCache::create(/*shared=*/false);
+    c->cache->attribute("max_memory_MB", float(double(options.cacheBytes) / (1 << 20)));
+    c->cache->attribute("autotile", 256);  // scanline files are cached in tiles too
+    c->cache->attribute("max_open_files", 4);
+    c->file = OIIO::ustring(path);
+    c->type = spec.format;
+    if (c->type.basetype == OIIO::TypeDesc::HALF || c->type.basetype == OIIO::TypeDesc::UNKNOWN)
+      c->type = OIIO::TypeDesc::FLOAT;  // floats convert without normalisation
+    if (spec.tile_width > 0) {
+      c->tileW = spec.tile_width;
+      c->tileH = spec.tile_height;
+    }
+    r->cache_ = std::move(c);
+    r->cacheBytes_ = options.cacheBytes;
+    // Probe one pixel so a corrupt file fails now, not in the middle of a batch.
+    float probe = 0;
+    if (!r->cache_->read(0, 1, 0, 1, 0, &probe))
+      throw RasterError(path + ": pixel data is unreadable (" + r->cache_->cache->geterror() + ")");
+  }
+  return r;
+}
+
+std::shared_ptr<const Raster> Raster::fromPixels(std::vector<float> pixels, int width, int height, int channels,
+                                                 const GeoTransform& transform, std::optional<double> nodata,
+                                                 std::string name) {
+  if (width <= 0 || height <= 0 || channels <= 0 ||
+      pixels.size() != std::size_t(width) * std::size_t(height) * std::size_t(channels))
+    throw RasterError(name + ": pixel count " + std::to_string(pixels.size()) + " does not match " +
+                      std::to_string(width) + " x " + std::to_string(height) + " x " + std::to_string(channels));
+  std::shared_ptr<Raster> r(new Raster);
+  r->path_ = std::move(name);
+  r->width_ = width;
+  r->height_ = height;
+  r->channels_ = channels;
+  r->transform_ = transform;
+  r->transform_.global = std::abs(width * transform.lonStepDeg - 360.0) < 1e-6 * 360.0;
+  r->nodata_ = nodata;
+  r->pixels_ = std::move(pixels);
+  if (nodata) {
+    const float nd = static_cast<float>(*nodata);
+    for (auto& v : r->pixels_)
+      if (v == nd) v = kNaN;
+  }
+  return r;
+}
+
+std::size_t Raster::memoryBytes() const { return inMemory() ? pixels_.size() * sizeof(float) : cacheBytes_; }
+
+float Raster::pixel(int x, int y, int channel) const {
+  x = std::clamp(x, 0, width_ - 1);
+  y = std::clamp(y, 0, height_ - 1);
+  channel = std::clamp(channel, 0, channels_ - 1);
+  if (inMemory()) return pixels_[(std::size_t(y) * width_ + x) * channels_ + channel];
+  float v = kNaN;
+  if (!cache_->read(x, x + 1, y, y + 1, channel, &v)) return kNaN;
+  if (nodata_ && v == static_cast<float>(*nodata_)) return kNaN;
+  return v;
+}
+
+namespace {
+// Pixel-space location of a sample: integer cell(s) and weights.
+struct Footprint {
+  bool valid = false;
+  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // bilinear corners (x1/y1 = neighbours)
+  float wx = 0, wy = 0;
+};
+
+Footprint nearestCell(const GeoTransform& t, int w, int h, double lat, double lon) {
+  Footprint f;
+  if (!std::isfinite(lat) || !std::isfinite(lon)) return f;
+  const double x = t.pixelX(lon), y = t.pixelY(lat);
+  if (!t.global && (x < 0 || x >= w)) return f;
+  // Latitudes beyond the raster: clamp only for rasters reaching the poles.
+  const bool polar = std::abs(t.originLatDeg) >= 90.0 - 1e-9 || std::abs(t.latOf(h)) >= 90.0 - 1e-9;
+  if ((y < 0 || y >= h) && !(t.global && polar)) return f;
+  f.valid = true;
+  f.x0 = std::clamp(static_cast<int>(std::floor(x)), 0, w - 1);
+  f.y0 = std::clamp(static_cast<int>(std::floor(y)), 0, h - 1);
+  return f;
+}
+
+Footprint bilinearCell(const GeoTransform& t, int w, int h, double lat, double lon) {
+  Footprint f = nearestCell(t, w, h, lat, lon);
+  if (!f.valid) return f;
+  const double x = t.pixelX(lon) - 0.5, y = std::clamp(t.pixelY(lat) - 0.5, 0.0, double(h - 1));
+  const double fx = std::floor(x), fy = std::floor(y);
+  f.wx = static_cast<float>(x - fx);
+  f.wy = static_cast<float>(y - fy);
+  int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+  int x1 = x0 + 1, y1 = std::min(y0 + 1, h - 1);
+  if (t.global) {
+    x0 = (x0 % w + w) % w;
+    x1 = x1 % w;
+  } else {
+    x0 = std::clamp(x0, 0, w - 1);
+    x1 = std::clamp(x1, 0, w - 1);
+  }
+  f.x0 = x0;
+  f.x1 = x1;
+  f.y0 = y0;
+  f.y1 = y1;
+  return f;
+}
+
+float blend(float v00, float v10, float v01, float v11, float wx, float wy) {
+  const float w[4] = {(1 - wx) * (1 - wy), wx * (1 - wy), (1 - wx) * wy, wx * wy};
+  const float v[4] = {v00, v10, v01, v11};
+  float sum = 0, wsum = 0;
+  for (int i = 0; i < 4; ++i)
+    if (!std::isnan(v[i])) {
+      sum += w[i] * v[i];
+      wsum += w[i];
+    }
+  return wsum > 0 ? sum / wsum : kNaN;
+}
+}  // namespace
+
+float Raster::sampleNearest(double latDeg, double lonDeg, int channel) const {
+  const Footprint f = nearestCell(transform_, width_, height_, latDeg, lonDeg);
+  return f.valid ? pixel(f.x0, f.y0, channel) : kNaN;
+}
+
+float Raster::sampleBilinear(double latDeg, double lonDeg, int channel) const {
+  const Footprint f = bilinearCell(transform_, width_, height_, latDeg, lonDeg);
+  if (!f.valid) return kNaN;
+  return blend(pixel(f.x0, f.y0, channel), pixel(f.x1, f.y0, channel), pixel(f.x0, f.y1, channel),
+               pixel(f.x1, f.y1, channel), f.wx, f.wy);
+}
+
+namespace {
+// Cached batches: visit points grouped by tile so each tile is fetched once
+// per batch (random single-pixel ImageCache lookups cost ~165 us each).
+template <class PerPoint>
+void forEachByTile(std::size_t n, int tileW, int tileH, int w, const Footprint* fp, PerPoint&& fn) {
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  const int tilesX = (w + tileW - 1) / tileW;
+  auto key = [&](std::uint32_t i) -> std::int64_t {
+    if (!fp[i].valid) return -1;
+    return std::int64_t(fp[i].y0 / tileH) * tilesX + fp[i].x0 / tileW;
+  };
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return key(a) < key(b); });
+  std::size_t s = 0;
+  while (s < n) {
+    std::size_t e = s + 1;
+    const auto k = key(order[s]);
+    while (e < n && key(order[e]) == k) ++e;
+    fn(k, order.data() + s, e - s);
+    s = e;
+  }
+}
+}  // namespace
+
+void Raster::sampleNearestBatch(const double* lat, const double* lon, std::size_t n, float* out, int channel) const {
+  if (inMemory() || n < 4) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = sampleNearest(lat[i], lon[i], channel);
+    return;
+  }
+  std::vector<Footprint> fp(n);
+  for (std::size_t i = 0; i < n; ++i) fp[i] = nearestCell(transform_, width_, height_, lat[i], lon[i]);
+  const int tw = cache_->tileW, th = cache_->tileH;
+  std::vector<float> tile(std::size_t(tw) * th);
+  const float nd = nodata_ ? static_cast<float>(*nodata_) : kNaN;
+  forEachByTile(n, tw, th, width_, fp.data(), [&](std::int64_t key, const std::uint32_t* idx, std::size_t m) {
+    if (key < 0) {
+      for (std::size_t j = 0; j < m; ++j) out[idx[j]] = kNaN;
+      return;
+    }
+    const int tx0 = (fp[idx[0]].x0 / tw) * tw, ty0 = (fp[idx[0]].y0 / th) * th;
+    const int tx1 = std::min(tx0 + tw, width_), ty1 = std::min(ty0 + th, height_);
+    const bool ok = cache_->read(tx0, tx1, ty0, ty1, std::clamp(channel, 0, channels_ - 1), tile.data());
+    for (std::size_t j = 0; j < m; ++j) {
+      const Footprint& f = fp[idx[j]];
+      float v = ok ? tile[std::size_t(f.y0 - ty0) * (tx1 - tx0) + (f.x0 - tx0)] : kNaN;
+      out[idx[j]] = (v == nd) ? kNaN : v;
+    }
+  });
+}
+
+void Raster::sampleBilinearBatch(const double* lat, const double* lon, std::size_t n, float* out, int channel) const {
+  if (inMemory() || n < 4) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = sampleBilinear(lat[i], lon[i], channel);
+    return;
+  }
+  std::vector<Footprint> fp(n);
+  for (std::size_t i = 0; i < n; ++i) fp[i] = bilinearCell(transform_, width_, height_, lat[i], lon[i]);
+  const int tw = cache_->tileW, th = cache_->tileH;
+  // Tile plus a one-pixel apron so neighbours inside the image are local.
+  std::vector<float> tile(std::size_t(tw + 1) * (th + 1));
+  const float nd = nodata_ ? static_cast<float>(*nodata_) : kNaN;
+  const int ch = std::clamp(channel, 0, channels_ - 1);
+  forEachByTile(n, tw, th, width_, fp.data(), [&](std::int64_t key, const std::uint32_t* idx, std::size_t m) {
+    if (key < 0) {
+      for (std::size_t j = 0; j < m; ++j) out[idx[j]] = kNaN;
+      return;
+    }
+    const int tx0 = (fp[idx[0]].x0 / tw) * tw, ty0 = (fp[idx[0]].y0 / th) * th;
+    const int tx1 = std::min(tx0 + tw + 1, width_), ty1 = std::min(ty0 + th + 1, height_);
+    const int stride = tx1 - tx0;
+    const bool ok = cache_->read(tx0, tx1, ty0, ty1, ch, tile.data());
+    auto at = [&](int x, int y) -> float {
+      float v;
+      if (ok && x >= tx0 && x < tx1 && y >= ty0 && y < ty1)
+        v = tile[std::size_t(y - ty0) * stride + (x - tx0)];
+      else
+        return pixel(x, y, ch);  // the wrap column of a global raster
+      return v == nd ? kNaN : v;
+    };
+    for (std::size_t j = 0; j < m; ++j) {
+      const Footprint& f = fp[idx[j]];
+      out[idx[j]] = blend(at(f.x0, f.y0), at(f.x1, f.y0), at(f.x0, f.y1), at(f.x1, f.y1), f.wx, f.wy);
+    }
+  });
+}
+
+}  // namespace geocean::raster

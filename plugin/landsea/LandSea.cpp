@@ -1,0 +1,165 @@
+#include "plugin/landsea/LandSea.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace geocean::ocean {
+
+const char* toString(Surface s) {
+  switch (s) {
+    case Surface::Ocean: return "ocean";
+    case Surface::Land: return "land";
+    case Surface::Lake: return "lake";
+  }
+  return "land";
+}
+
+MaskEncoding::MaskEncoding() {
+  classOf.fill(Surface::Land);
+  classOf[0] = Surface::Ocean;
+  classOf[2] = Surface::Lake;
+}
+
+MaskEncoding MaskEncoding::parse(const std::string& spec) {
+  MaskEncoding e;
+  e.classOf.fill(Surface::Land);
+  std::istringstream in(spec);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos) throw std::invalid_argument("mask encoding item '" + item + "' is not VALUE=CLASS");
+    const std::string vs = item.substr(0, eq), cs = item.substr(eq + 1);
+    char* end = nullptr;
+    const long v = std::strtol(vs.c_str(), &end, 10);
+    if (end == vs.c_str() || *end || v < 0 || v > 255)
+      throw std::invalid_argument("mask encoding value '" + vs + "' is not an integer in [0, 255]");
+    if (cs == "ocean") e.classOf[std::size_t(v)] = Surface::Ocean;
+    else if (cs == "land") e.classOf[std::size_t(v)] = Surface::Land;
+    else if (cs == "lake") e.classOf[std::size_t(v)] = Surface::Lake;
+    else throw std::invalid_argument("mask encoding class '" + cs + "' is not ocean, land or lake");
+  }
+  return e;
+}
+
+LandSea::LandSea(std::shared_ptr<const raster::Raster> mask, std::shared_ptr<const raster::Raster> elevation,
+                 MaskEncoding encoding)
+    : mask_(std::move(mask)), elevation_(std::move(elevation)), encoding_(encoding) {
+  if (!mask_ && !elevation_) throw std::invalid_argument("land/sea needs a mask raster, an elevation raster, or both");
+  if (mask_ && mask_->inMemory()) {
+    const auto& px = mask_->pixels();
+    const int c = mask_->channels();
+    classes_.resize(std::size_t(mask_->width()) * mask_->height());
+    for (std::size_t i = 0; i < classes_.size(); ++i) classes_[i] = static_cast<std::uint8_t>(classOfValue(px[i * c]));
+    const auto& t = mask_->transform();
+    fast_.invLonStep = 1.0 / t.lonStepDeg;
+    fast_.invLatStep = 1.0 / t.latStepDeg;
+    fast_.originLon = t.originLonDeg;
+    fast_.originLat = t.originLatDeg;
+    fast_.width = mask_->width();
+    fast_.height = mask_->height();
+    fast_.global = t.global;
+  }
+}
+
+Surface LandSea::classOfValue(float v) const {
+  if (std::isnan(v) || v < 0.0f || v > 255.0f) return Surface::Land;
+  return encoding_.classOf[static_cast<std::size_t>(std::lround(v))];
+}
+
+Surface LandSea::fromElevation(float elevationM) const {
+  return (!std::isnan(elevationM) && elevationM < 0.0f) ? Surface::Ocean : Surface::Land;
+}
+
+Surface LandSea::classify(double latDeg, double lonDeg) const {
+  if (!std::isfinite(latDeg) || !std::isfinite(lonDeg)) return Surface::Land;
+  if (!classes_.empty()) {
+    const int idx = fast_.index(latDeg, lonDeg);
+    if (idx >= 0) return static_cast<Surface>(classes_[std::size_t(idx)]);
+  } else if (mask_) {
+    const float v = mask_->sampleNearest(latDeg, lonDeg);
+    if (!std::isnan(v)) return classOfValue(v);
+  }
+  // No mask here: the elevation decides.
+  return elevation_ ? fromElevation(elevation_->sampleBilinear(latDeg, lonDeg)) : Surface::Land;
+}
+
+void LandSea::classifyBatch(const double* lat, const double* lon, std::size_t n, Surface* out) const {
+  if (!classes_.empty()) {
+    bool allInside = true;
+    const std::uint8_t* cls = classes_.data();
+    for (std::size_t i = 0; i < n; ++i) {
+      const int idx = fast_.index(lat[i], lon[i]);
+      if (idx < 0) {
+        allInside = false;
+        out[i] = Surface::Land;
+        continue;
+      }
+      out[i] = static_cast<Surface>(cls[idx]);
+    }
+    if (allInside || !elevation_) return;
+    for (std::size_t i = 0; i < n; ++i)
+      if (fast_.index(lat[i], lon[i]) < 0 && std::isfinite(lat[i]) && std::isfinite(lon[i]))
+        out[i] = fromElevation(elevation_->sampleBilinear(lat[i], lon[i]));
+    return;
+  }
+  std::vector<float> v(n);
+  if (mask_) {
+    mask_->sampleNearestBatch(lat, lon, n, v.data());
+    for (std::size_t i = 0; i < n; ++i) out[i] = classOfValue(v[i]);
+  }
+  if (!elevation_) return;
+  std::vector<double> la, lo;
+  std::vector<std::size_t> where;
+  for (std::size_t i = 0; i < n; ++i)
+    if ((!mask_ || std::isnan(v[i])) && std::isfinite(lat[i]) && std::isfinite(lon[i])) {
+      la.push_back(lat[i]);
+      lo.push_back(lon[i]);
+      where.push_back(i);
+    }
+  std::vector<float> e(where.size());
+  elevation_->sampleBilinearBatch(la.data(), lo.data(), where.size(), e.data());
+  for (std::size_t j = 0; j < where.size(); ++j) out[where[j]] = fromElevation(e[j]);
+}
+
+float LandSea::waterCoverage(double latDeg, double lonDeg) const {
+  if (!std::isfinite(latDeg) || !std::isfinite(lonDeg)) return 0.0f;
+  if (!mask_) {
+    if (!elevation_) return 0.0f;
+    // Elevation only: coverage ramps over +-50 m around sea level.
+    const float e = elevation_->sampleBilinear(latDeg, lonDeg);
+    return std::isnan(e) ? 0.0f : std::clamp(0.5f - e / 100.0f, 0.0f, 1.0f);
+  }
+  // Bilinear blend of the water indicator of the four nearest mask cells.
+  const auto& t = mask_->transform();
+  const double x = t.pixelX(lonDeg) - 0.5;
+  const double y = std::clamp(t.pixelY(latDeg) - 0.5, 0.0, double(mask_->height() - 1));
+  const double fx = std::floor(x), fy = std::floor(y);
+  const float wx = float(x - fx), wy = float(y - fy);
+  const int w = mask_->width(), h = mask_->height();
+  auto water = [&](int cx, int cy) -> float {
+    if (t.global) cx = ((cx % w) + w) % w;
+    else if (cx < 0 || cx >= w) return classify(latDeg, lonDeg) == Surface::Land ? 0.0f : 1.0f;
+    cy = std::clamp(cy, 0, h - 1);
+    const Surface s = classes_.empty() ? classOfValue(mask_->pixel(cx, cy))
+                                       : static_cast<Surface>(classes_[std::size_t(cy) * w + cx]);
+    return s == Surface::Land ? 0.0f : 1.0f;
+  };
+  const int x0 = int(fx), y0 = int(fy);
+  return (1 - wx) * (1 - wy) * water(x0, y0) + wx * (1 - wy) * water(x0 + 1, y0) +
+         (1 - wx) * wy * water(x0, y0 + 1) + wx * wy * water(x0 + 1, y0 + 1);
+}
+
+float LandSea::elevationM(double latDeg, double lonDeg) const {
+  return elevation_ ? elevation_->sampleBilinear(latDeg, lonDeg) : std::numeric_limits<float>::quiet_NaN();
+}
+
+void LandSea::elevationBatch(const double* lat, const double* lon, std::size_t n, float* out) const {
+  if (!elevation_) {
+    std::fill(out, out + n, std::numeric_limits<float>::quiet_NaN());
+    return;
+  }
+  elevation_->sampleBilinearBatch(lat, lon, n, out);
+}
+
+}  // namespace geocean::ocean
