@@ -29,8 +29,11 @@ void registerGeoTags() {
 }
 }  // namespace
 
-void writeGeoTiff(const std::string& path, const void* data, int width, int height, int channels, SampleType type,
-                  const GeoTiffWriteOptions& o) {
+namespace {
+using TileFill = std::function<void(int, int, void*)>;
+
+void write(const std::string& path, const void* data, const TileFill& fill, int width, int height, int channels,
+           SampleType type, const GeoTiffWriteOptions& o) {
   registerGeoTags();
   TIFFSetWarningHandler(nullptr);
   TIFF* tif = TIFFOpen(path.c_str(), (std::size_t(width) * height * channels > (std::size_t(1) << 31)) ? "w8" : "w");
@@ -55,7 +58,10 @@ void writeGeoTiff(const std::string& path, const void* data, int width, int heig
     }
   } else {
     TIFFSetField(tif, TIFFTAG_COMPRESSION, o.compression == Compression::Deflate ? COMPRESSION_ADOBE_DEFLATE : COMPRESSION_NONE);
-    if (o.compression == Compression::Deflate) TIFFSetField(tif, TIFFTAG_PREDICTOR, type == SampleType::F32 ? 1 : 2);
+    if (o.compression == Compression::Deflate) {
+      TIFFSetField(tif, TIFFTAG_PREDICTOR, type == SampleType::F32 ? 1 : 2);
+      TIFFSetField(tif, TIFFTAG_ZIPQUALITY, o.deflateLevel);
+    }
     TIFFSetField(tif, TIFFTAG_PHOTOMETRIC, channels >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
   }
 
@@ -105,10 +111,14 @@ void writeGeoTiff(const std::string& path, const void* data, int width, int heig
     for (int ty = 0; ty < height && ok; ty += ts)
       for (int tx = 0; tx < width && ok; tx += ts) {
         std::fill(tile.begin(), tile.end(), 0);
-        const int w = std::min(ts, width - tx), h = std::min(ts, height - ty);
-        for (int y = 0; y < h; ++y)
-          std::memcpy(&tile[std::size_t(y) * ts * pixelBytes], src + (std::size_t(ty + y) * width + tx) * pixelBytes,
-                      std::size_t(w) * pixelBytes);
+        if (fill) {
+          fill(tx, ty, tile.data());
+        } else {
+          const int w = std::min(ts, width - tx), h = std::min(ts, height - ty);
+          for (int y = 0; y < h; ++y)
+            std::memcpy(&tile[std::size_t(y) * ts * pixelBytes], src + (std::size_t(ty + y) * width + tx) * pixelBytes,
+                        std::size_t(w) * pixelBytes);
+        }
         ok = TIFFWriteTile(tif, tile.data(), uint32_t(tx), uint32_t(ty), 0, 0) >= 0;
       }
   } else {
@@ -121,6 +131,18 @@ void writeGeoTiff(const std::string& path, const void* data, int width, int heig
   }
   TIFFClose(tif);
   if (!ok) throw RasterError(path + ": writing pixel data failed (disk full?)");
+}
+}  // namespace
+
+void writeGeoTiff(const std::string& path, const void* data, int width, int height, int channels, SampleType type,
+                  const GeoTiffWriteOptions& o) {
+  write(path, data, {}, width, height, channels, type, o);
+}
+
+void writeGeoTiffTiles(const std::string& path, int width, int height, int channels, SampleType type,
+                       const GeoTiffWriteOptions& o, const std::function<void(int, int, void*)>& fillTile) {
+  if (o.tileSize <= 0) throw RasterError(path + ": streaming write needs tileSize > 0");
+  write(path, nullptr, fillTile, width, height, channels, type, o);
 }
 
 }  // namespace geocean::raster

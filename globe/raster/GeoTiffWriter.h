@@ -6,6 +6,7 @@
 #include "globe/raster/Raster.h"
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -20,6 +21,7 @@ struct GeoTiffWriteOptions {
   int tileSize = 256;            // 0: strips instead of tiles
   Compression compression = Compression::Deflate;
   int jpegQuality = 90;
+  int deflateLevel = 6;          // 1 (fast) .. 9 (small)
   std::optional<double> nodata;  // GDAL_NODATA
   // Test fixtures only: a projected CRS code (ProjectedCSTypeGeoKey) or a
   // rotation term in ModelTransformation.
@@ -32,5 +34,12 @@ struct GeoTiffWriteOptions {
 // RasterError naming the file on failure.
 void writeGeoTiff(const std::string& path, const void* data, int width, int height, int channels,
                   SampleType type, const GeoTiffWriteOptions& options);
+
+// Streaming form for rasters too big to hold: `fillTile(x0, y0, tile)` fills
+// one tileSize x tileSize tile (row-major, channels interleaved) whose top-left
+// pixel is (x0, y0). options.tileSize must be > 0.
+void writeGeoTiffTiles(const std::string& path, int width, int height, int channels, SampleType type,
+                       const GeoTiffWriteOptions& options,
+                       const std::function<void(int x0, int y0, void* tile)>& fillTile);
 
 }  // namespace geocean::raster

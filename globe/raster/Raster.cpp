@@ -84,6 +84,10 @@ std::shared_ptr<const Raster> Raster::open(const std::string& path, const OpenOp
   if (!fs::exists(path, ec)) throw RasterError(path + ": no such file");
   if (fs::is_directory(path, ec)) throw RasterError(path + ": is a directory, not a raster");
 
+  // Our maxPixels check below names the dimensions; lift OpenImageIO's own
+  // (unnamed) size guard above it. Nothing is allocated before our check.
+  static const bool limitSet = OIIO::attribute("limits:imagesize_MB", 1 << 30);
+  (void)limitSet;
   auto in = OIIO::ImageInput::open(path);
   if (!in) {
     std::string why = OIIO::geterror();

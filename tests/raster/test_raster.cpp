@@ -1,0 +1,258 @@
+// Raster reading: georeferencing variants, sampling, wrap/poles, nodata and
+// every kind of bad file. Fixtures are written with GeoTiffWriter (libtiff),
+// OpenImageIO (PNG + world file) and, as an independent writer, GMT.
+#include "globe/raster/GeoTiffWriter.h"
+#include "globe/raster/Raster.h"
+#include "tests/support/Subprocess.h"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+using namespace geocean::raster;
+namespace fs = std::filesystem;
+
+namespace {
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    char t[] = "/tmp/geocean-raster-XXXXXX";
+    path = mkdtemp(t);
+  }
+  ~TempDir() { fs::remove_all(path); }
+  std::string operator/(const std::string& f) const { return (path / f).string(); }
+};
+
+// A 36 x 18 global float raster whose value encodes its cell: 100*row + col.
+std::vector<float> cellIds(int w, int h) {
+  std::vector<float> v(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) v[std::size_t(y) * w + x] = float(100 * y + x);
+  return v;
+}
+
+GeoTransform global(int w, int h) {
+  GeoTransform t;
+  t.lonStepDeg = 360.0 / w;
+  t.latStepDeg = -180.0 / h;
+  return t;
+}
+
+std::string openError(const std::string& path, OpenOptions o = {}) {
+  try {
+    Raster::open(path, o);
+  } catch (const RasterError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(Raster, PixelIsAreaGeoTiffSamplesTheRightCell) {
+  TempDir d;
+  auto v = cellIds(36, 18);
+  GeoTiffWriteOptions o;
+  o.transform = global(36, 18);
+  o.tileSize = 16;
+  writeGeoTiff(d / "a.tif", v.data(), 36, 18, 1, SampleType::F32, o);
+  auto r = Raster::open(d / "a.tif");
+  ASSERT_TRUE(r->inMemory());
+  EXPECT_TRUE(r->transform().global);
+  // Cell (col 19, row 4) spans lon [10, 20), lat (40, 50].
+  EXPECT_EQ(r->sampleNearest(45.0, 15.0), 419.0f);
+  EXPECT_EQ(r->sampleNearest(40.0001, 10.0001), 419.0f);
+  // Bilinear at a cell centre is the cell value; halfway between two centres the mean.
+  EXPECT_FLOAT_EQ(r->sampleBilinear(45.0, 15.0), 419.0f);
+  EXPECT_FLOAT_EQ(r->sampleBilinear(45.0, 20.0), 419.5f);
+}
+
+TEST(Raster, LongitudeWrapsAndPolesClamp) {
+  TempDir d;
+  auto v = cellIds(36, 18);
+  GeoTiffWriteOptions o;
+  o.transform = global(36, 18);
+  writeGeoTiff(d / "g.tif", v.data(), 36, 18, 1, SampleType::F32, o);
+  auto r = Raster::open(d / "g.tif");
+  EXPECT_EQ(r->sampleNearest(0.5, 180.0), r->sampleNearest(0.5, -180.0));
+  EXPECT_EQ(r->sampleNearest(0.5, 359.0), r->sampleNearest(0.5, -1.0));
+  // lat 0.5 is in row 8 (lat 0..10); lon 179.999 in column 35, -179.999 in column 0.
+  EXPECT_EQ(r->sampleNearest(0.5, 179.999), 835.0f);
+  EXPECT_EQ(r->sampleNearest(0.5, -179.999), 800.0f);
+  // Bilinear across the antimeridian: continuous, halfway between columns 35 and 0.
+  EXPECT_FLOAT_EQ(r->sampleBilinear(-5.0, 180.0), (935.0f + 900.0f) / 2);
+  EXPECT_NEAR(r->sampleBilinear(-5.0, 179.9999), r->sampleBilinear(-5.0, -179.9999), 0.01);
+  // Poles: the edge row, not NaN.
+  EXPECT_EQ(r->sampleNearest(90.0, 5.0), 18.0f);
+  EXPECT_EQ(r->sampleNearest(-90.0, 5.0), 1700.0f + 18.0f);
+  EXPECT_FLOAT_EQ(r->sampleBilinear(89.99, 5.0), 18.0f);
+  EXPECT_TRUE(std::isnan(r->sampleNearest(NAN, 5.0)));
+  EXPECT_TRUE(std::isnan(r->sampleBilinear(5.0, INFINITY)));
+}
+
+TEST(Raster, PixelIsPointAndNodata) {
+  TempDir d;
+  // 10 x 10 local grid, 0.1 degree, pixel centres tied at (40.0 N, 10.0 E).
+  std::vector<float> v(100, 7.0f);
+  v[55] = -9999.0f;
+  GeoTiffWriteOptions o;
+  o.transform.originLonDeg = 10.0 - 0.05;
+  o.transform.originLatDeg = 40.0 + 0.05;
+  o.transform.lonStepDeg = 0.1;
+  o.transform.latStepDeg = -0.1;
+  o.pixelIsPoint = true;
+  o.nodata = -9999.0;
+  writeGeoTiff(d / "p.tif", v.data(), 10, 10, 1, SampleType::F32, o);
+  auto r = Raster::open(d / "p.tif");
+  EXPECT_FALSE(r->transform().global);
+  EXPECT_NEAR(r->transform().originLonDeg, 9.95, 1e-12);
+  EXPECT_NEAR(r->transform().originLatDeg, 40.05, 1e-12);
+  ASSERT_TRUE(r->nodata());
+  EXPECT_TRUE(std::isnan(r->sampleNearest(39.5, 10.5)));     // pixel (5, 5)
+  EXPECT_FLOAT_EQ(r->sampleBilinear(39.55, 10.5), 7.0f);    // nodata neighbour ignored
+  EXPECT_TRUE(std::isnan(r->sampleNearest(45.0, 10.5)));     // outside a local raster
+}
+
+TEST(Raster, GmtPixelIsPointGridAgreesAtItsNodes) {
+  // GMT writes float32 pixel-is-point GeoTIFFs through GDAL: an independent writer.
+  if (!geocean::test::haveTool("gmt")) GTEST_SKIP() << "gmt not installed";
+  TempDir d;
+  auto g = geocean::test::run("cd " + d.path.string() +
+                              " && gmt grdlandmask -R-10/10/30/50 -I0.5 -Dl -N0/1/0/1/0 -Gm.tif=gd:GTiff"
+                              " && gmt grd2xyz m.tif");
+  ASSERT_EQ(g.exitCode, 0) << g.err;
+  auto r = Raster::open(d / "m.tif");
+  std::istringstream xyz(g.out);
+  double lon, lat, z;
+  int n = 0;
+  while (xyz >> lon >> lat >> z) {
+    ++n;
+    ASSERT_EQ(r->sampleNearest(lat, lon), float(z)) << lat << "," << lon;
+    ASSERT_FLOAT_EQ(r->sampleBilinear(lat, lon), float(z)) << lat << "," << lon;
+  }
+  EXPECT_EQ(n, 41 * 41);
+  EXPECT_EQ(r->sampleNearest(40.4, -3.7), 1.0f);  // Madrid: land
+  EXPECT_EQ(r->sampleNearest(45.0, -5.0), 0.0f);  // Bay of Biscay: sea
+}
+
+TEST(Raster, PngWithWorldFileAndGlobalEquirect) {
+  TempDir d;
+  std::vector<unsigned char> px(8 * 4, 0);
+  px[1 * 8 + 6] = 200;  // row 1, column 6
+  {
+    auto out = OIIO::ImageOutput::create(d / "w.png");
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(8, 4, 1, OIIO::TypeDesc::UINT8);
+    ASSERT_TRUE(out->open(d / "w.png", spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, px.data()));
+    out->close();
+  }
+  EXPECT_NE(openError(d / "w.png").find("no georeferencing"), std::string::npos);
+  OpenOptions eq;
+  eq.georef = Georef::GlobalEquirect;
+  auto g = Raster::open(d / "w.png", eq);
+  // Column 6 of 8 spans lon [90, 135); row 1 of 4 spans lat (0, 45].
+  EXPECT_EQ(g->sampleNearest(20.0, 100.0), 200.0f);  // the raw value, not 200/255
+  std::ofstream(d / "w.pgw") << "0.5\n0\n0\n-0.5\n10.25\n50.75\n";  // centre of UL pixel
+  auto w = Raster::open(d / "w.png");
+  EXPECT_FALSE(w->transform().global);
+  EXPECT_EQ(w->sampleNearest(50.25, 13.25), 200.0f);  // column 6, row 1
+}
+
+TEST(Raster, RejectsWhatItCannotReadWithAClearMessage) {
+  TempDir d;
+  std::vector<float> v(16 * 16, 1.0f);
+  GeoTiffWriteOptions o;
+  o.transform.originLonDeg = 500000;
+  o.transform.originLatDeg = 4649776;
+  o.transform.lonStepDeg = 30;
+  o.transform.latStepDeg = -30;
+  o.projectedEpsg = 32633;  // UTM zone 33N
+  writeGeoTiff(d / "utm.tif", v.data(), 16, 16, 1, SampleType::F32, o);
+  const std::string utm = openError(d / "utm.tif");
+  EXPECT_NE(utm.find("utm.tif"), std::string::npos) << utm;
+  EXPECT_NE(utm.find("projected"), std::string::npos) << utm;
+
+  GeoTiffWriteOptions rot;
+  rot.transform = global(16, 16);
+  rot.rotationTerm = 0.01;
+  writeGeoTiff(d / "rot.tif", v.data(), 16, 16, 1, SampleType::F32, rot);
+  EXPECT_NE(openError(d / "rot.tif").find("rotated"), std::string::npos);
+
+  GeoTiffWriteOptions nokeys;
+  nokeys.transform = o.transform;  // metres but no GeoKeys at all
+  nokeys.writeGeoKeys = false;
+  writeGeoTiff(d / "nokeys.tif", v.data(), 16, 16, 1, SampleType::F32, nokeys);
+  EXPECT_NE(openError(d / "nokeys.tif").find("outside [-90, 90]"), std::string::npos);
+
+  EXPECT_NE(openError(d / "missing.tif").find("no such file"), std::string::npos);
+  std::ofstream(d / "text.tif") << "this is not an image\n";
+  EXPECT_NE(openError(d / "text.tif").find("text.tif"), std::string::npos);
+
+  // Truncated: a real GeoTIFF cut in half.
+  std::vector<float> big(256 * 256);
+  for (std::size_t i = 0; i < big.size(); ++i) big[i] = float(i % 977);
+  GeoTiffWriteOptions g;
+  g.transform = global(256, 256);
+  g.compression = Compression::None;
+  writeGeoTiff(d / "t.tif", big.data(), 256, 256, 1, SampleType::F32, g);
+  fs::resize_file(d / "t.tif", fs::file_size(d / "t.tif") / 2);
+  const std::string trunc = openError(d / "t.tif");
+  EXPECT_NE(trunc.find("t.tif"), std::string::npos);
+  EXPECT_FALSE(trunc.empty());
+  // Truncated and read through the cache: the probe may pass, but samples never crash.
+  try {
+    OpenOptions cached;
+    cached.inMemoryLimitBytes = 0;
+    auto c = Raster::open(d / "t.tif", cached);
+    std::vector<double> la(100, -80.0), lo(100, 170.0);
+    std::vector<float> out(100);
+    c->sampleNearestBatch(la.data(), lo.data(), 100, out.data());
+  } catch (const RasterError&) {
+  }
+}
+
+TEST(Raster, RejectsAbsurdDimensionsBeforeAllocating) {
+  TempDir d;
+  // A header that claims 200000 x 200000 pixels (40 G samples) with one tiny strip.
+  std::vector<unsigned char> row(16, 0);
+  GeoTiffWriteOptions o;
+  o.transform = global(16, 1);
+  o.tileSize = 0;
+  o.compression = Compression::None;
+  writeGeoTiff(d / "small.tif", row.data(), 16, 1, 1, SampleType::U8, o);
+  // Patch ImageWidth/ImageLength (SHORT or LONG entries) in the IFD.
+  std::fstream f(d / "small.tif", std::ios::in | std::ios::out | std::ios::binary);
+  unsigned char hdr[8];
+  f.read(reinterpret_cast<char*>(hdr), 8);
+  ASSERT_EQ(hdr[0], 'I');  // little-endian, as libtiff writes on x86
+  const uint32_t ifd = hdr[4] | hdr[5] << 8 | hdr[6] << 16 | uint32_t(hdr[7]) << 24;
+  f.seekg(ifd);
+  unsigned char cnt[2];
+  f.read(reinterpret_cast<char*>(cnt), 2);
+  const int n = cnt[0] | cnt[1] << 8;
+  for (int i = 0; i < n; ++i) {
+    unsigned char e[12];
+    const std::streamoff at = ifd + 2 + 12 * i;
+    f.seekg(at);
+    f.read(reinterpret_cast<char*>(e), 12);
+    const int tag = e[0] | e[1] << 8;
+    if (tag == 256 || tag == 257) {
+      e[2] = 4;  // type LONG
+      e[3] = 0;
+      const uint32_t v = 200000;
+      std::memcpy(e + 8, &v, 4);
+      f.seekp(at);
+      f.write(reinterpret_cast<char*>(e), 12);
+    }
+  }
+  f.close();
+  const std::string err = openError(d / "small.tif");
+  EXPECT_NE(err.find("exceed"), std::string::npos) << err;
+  EXPECT_NE(err.find("200000"), std::string::npos) << err;
+}
