@@ -48,7 +48,7 @@ std::string parsePointRow(std::string_view line, long row, PointRow& out) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = line.find(',', start);
-    if (n == 4) return "row " + std::to_string(row) + ": more than 3 fields in '" + std::string(trim(line)) + "'";
+    if (n == 3) return "row " + std::to_string(row) + ": more than 3 fields in '" + std::string(trim(line)) + "'";
     fields[n++] = line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
     if (comma == std::string_view::npos) break;
     start = comma + 1;

@@ -1,0 +1,147 @@
+// Land/sea/lake classification on the default world against known places
+// and against GMT's gmtselect (GSHHG polygons, an independent implementation).
+#include "globe/raster/World.h"
+#include "plugin/landsea/LandSea.h"
+#include "tests/support/Subprocess.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <sstream>
+
+using namespace geocean;
+using ocean::Surface;
+
+namespace {
+std::shared_ptr<const raster::Raster> defaultMask() {
+  static auto m = raster::Raster::open(raster::defaultWorld().mask);
+  return m;
+}
+std::shared_ptr<const raster::Raster> defaultElevation() {
+  static auto e = raster::Raster::open(raster::defaultWorld().elevation);
+  return e;
+}
+}  // namespace
+
+TEST(LandSea, KnownPlacesOnTheDefaultWorld) {
+  const ocean::LandSea ls(defaultMask(), defaultElevation());
+  // Spot checks published with the source mask (data/README.md) and a few more.
+  struct Place {
+    const char* name;
+    double lat, lon;
+    Surface s;
+  } places[] = {
+      {"Sahara", 23, 10, Surface::Land},          {"Pacific", 0, -150, Surface::Ocean},
+      {"Lake Victoria", -1, 33, Surface::Lake},   {"Caspian Sea", 42, 50.5, Surface::Lake},
+      {"Lake Superior", 47.7, -87.5, Surface::Lake}, {"Greenland", 75, -40, Surface::Land},
+      {"Atlantic", 30, -40, Surface::Ocean},      {"Mariana Trench", 11.35, 142.2, Surface::Ocean},
+      {"Point Nemo", -48.88, -123.39, Surface::Ocean}, {"Antarctica (South Pole)", -90, 0, Surface::Land},
+      {"Arctic Ocean (North Pole)", 90, 0, Surface::Ocean}, {"Fiji Sea, lon 180", -17, 180, Surface::Ocean},
+      {"Chukotka, lon -180 side", 67, -179.9, Surface::Land}, {"Mount Everest", 27.99, 86.93, Surface::Land},
+  };
+  for (const auto& p : places) EXPECT_EQ(ls.classify(p.lat, p.lon), p.s) << p.name;
+  EXPECT_LT(ls.elevationM(11.35, 142.2), -5000.0f);  // Mariana Trench at 20' resolution
+  EXPECT_GT(ls.elevationM(27.99, 86.93), 3000.0f);   // Himalaya at 20' resolution
+}
+
+TEST(LandSea, AgreesWithGmtSelectAwayFromCoasts) {
+  if (!geocean::test::haveTool("gmt")) GTEST_SKIP() << "gmt not installed";
+  const ocean::LandSea ls(defaultMask(), nullptr);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> z(-1, 1), lon(-180, 180);
+  std::vector<double> la, lo;
+  std::ostringstream pts;
+  pts.precision(10);
+  for (int i = 0; i < 4000; ++i) {  // uniform on the sphere within 60 deg: GSHHG low and high define
+    // Antarctica differently (ice front vs grounding line), so the ice shelves are left out
+    const double lat = std::asin(z(rng) * std::sin(60 * M_PI / 180)) * 180 / M_PI;
+    la.push_back(lat);
+    lo.push_back(lon(rng));
+    pts << lo.back() << ' ' << la.back() << ' ' << i << '\n';
+  }
+  // -Dl: GSHHG low resolution (Debian gmt-gshhg-low); keep only ocean points.
+  auto r = geocean::test::run("gmt gmtselect -Dl -Nk/s/s/s/s -fg", pts.str());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::vector<bool> gmtOcean(la.size(), false);
+  std::istringstream in(r.out);
+  double a, b;
+  int id;
+  while (in >> a >> b >> id) gmtOcean[std::size_t(id)] = true;
+  int disagree = 0, disagreeFar = 0;
+  for (std::size_t i = 0; i < la.size(); ++i) {
+    const bool ours = ls.classify(la[i], lo[i]) == Surface::Ocean;
+    if (ours == gmtOcean[i]) continue;
+    ++disagree;
+    // A point is "away from the coast" if every mask cell within 0.25 deg
+    // has the same class: there the two shorelines cannot differ.
+    bool uniform = true;
+    for (double dy = -0.25; dy <= 0.25; dy += 1.0 / 12)
+      for (double dx = -0.25; dx <= 0.25; dx += 1.0 / 12)
+        uniform &= (ls.classify(la[i] + dy, lo[i] + dx) == Surface::Ocean) == ours;
+    disagreeFar += uniform;
+    if (uniform) ADD_FAILURE() << "far from coast: " << la[i] << "," << lo[i] << " ours ocean=" << ours;
+  }
+  // Near coasts, GSHHG low (~1 km generalised) and the 5' raster of GSHHG high
+  // differ; away from them they must agree exactly (lakes aside: the low
+  // database omits small lakes, which our mask has as lakes, not ocean).
+  EXPECT_EQ(disagreeFar, 0);
+  EXPECT_LT(disagree, 4000 * 3 / 100) << disagree;  // coastal cells: < 3% of the globe at 5'
+}
+
+TEST(LandSea, BatchEqualsSingleAndMaskAloneIsEnough) {
+  const ocean::LandSea maskOnly(defaultMask(), nullptr);
+  const ocean::LandSea both(defaultMask(), defaultElevation());
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> ulat(-90, 90), ulon(-180, 180);
+  std::vector<double> la(10000), lo(10000);
+  for (std::size_t i = 0; i < la.size(); ++i) {
+    la[i] = ulat(rng);
+    lo[i] = ulon(rng);
+  }
+  std::vector<Surface> a(la.size()), b(la.size());
+  maskOnly.classifyBatch(la.data(), lo.data(), la.size(), a.data());
+  both.classifyBatch(la.data(), lo.data(), la.size(), b.data());
+  for (std::size_t i = 0; i < la.size(); ++i) {
+    ASSERT_EQ(a[i], maskOnly.classify(la[i], lo[i]));
+    ASSERT_EQ(a[i], b[i]);  // the mask decides wherever it has data
+  }
+  EXPECT_TRUE(std::isnan(maskOnly.elevationM(0, 0)));
+}
+
+TEST(LandSea, ElevationAloneGivesOceanBelowSeaLevel) {
+  const ocean::LandSea elevOnly(nullptr, defaultElevation());
+  EXPECT_EQ(elevOnly.classify(0, -150), Surface::Ocean);
+  EXPECT_EQ(elevOnly.classify(23, 10), Surface::Land);
+  EXPECT_EQ(elevOnly.classify(11.35, 142.2), Surface::Ocean);
+}
+
+TEST(LandSea, CoverageIsSmoothAcrossTheCoast) {
+  const ocean::LandSea ls(defaultMask(), nullptr);
+  EXPECT_EQ(ls.waterCoverage(0, -150), 1.0f);
+  EXPECT_EQ(ls.waterCoverage(23, 10), 0.0f);
+  // Walk west from Portugal into the Atlantic at 40 N: coverage rises from 0
+  // to 1 in steps no bigger than the step/cell ratio allows (bilinear).
+  float prev = ls.waterCoverage(40.0, -7.0);
+  EXPECT_EQ(prev, 0.0f);
+  const double step = 0.001;  // degrees; one 5' cell is 0.0833 degrees
+  bool crossed = false;
+  for (double lon = -7.0; lon > -11.0; lon -= step) {
+    const float c = ls.waterCoverage(40.0, lon);
+    EXPECT_LE(std::abs(c - prev), 2 * step / (1.0 / 12) + 1e-4) << lon;
+    crossed |= c > 0.5f && prev <= 0.5f;
+    prev = c;
+  }
+  EXPECT_TRUE(crossed);
+  EXPECT_EQ(prev, 1.0f);
+}
+
+TEST(LandSea, MaskEncodingOption) {
+  auto e = ocean::MaskEncoding::parse("5=ocean,7=lake");
+  EXPECT_EQ(e.classOf[5], Surface::Ocean);
+  EXPECT_EQ(e.classOf[7], Surface::Lake);
+  EXPECT_EQ(e.classOf[0], Surface::Land);
+  EXPECT_THROW(ocean::MaskEncoding::parse("5=sea"), std::invalid_argument);
+  EXPECT_THROW(ocean::MaskEncoding::parse("300=ocean"), std::invalid_argument);
+  EXPECT_THROW(ocean::MaskEncoding::parse("x"), std::invalid_argument);
+}
