@@ -226,6 +226,35 @@ int runQuery(const QueryOptions& o) {
   return kExitOk;
 }
 
+// `geocean demo`: the famous-places tour through the same query path.
+int runDemo() {
+  struct Place {
+    const char* name;
+    double lat, lon;
+  };
+  static const Place kPlaces[] = {
+      {"Mariana Trench", 11.35, 142.2},   {"Point Nemo", -48.88, -123.39}, {"Strait of Gibraltar", 35.95, -5.6},
+      {"Sydney offshore", -33.9, 151.5},  {"Sahara", 23.0, 10.0},          {"Mount Everest", 27.99, 86.93},
+      {"Caspian Sea", 42.0, 50.5},        {"Lake Victoria", -1.0, 33.0},   {"Lake Superior", 47.7, -87.5},
+      {"North Pole", 90.0, 0.0},          {"South Pole", -90.0, 0.0},      {"Fiji, lon 180", -17.0, 180.0},
+  };
+  QueryOptions o;
+  Querier q(o, /*batch=*/true);
+  std::vector<PointRow> pts;
+  for (const auto& p : kPlaces) pts.push_back({p.lat, p.lon, std::nullopt});
+  Results r;
+  q.run(pts, r);
+  std::printf("Geocean default world: %s\n", raster::dataDir().c_str());
+  std::printf("%-22s %9s %9s  %-6s %12s\n", "place", "lat", "lon", "class", "elevation_m");
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    std::printf("%-22s %9.3f %9.3f  %-6s %12.1f\n", kPlaces[i].name, pts[i].latDeg, pts[i].lonDeg,
+                ocean::toString(r.surface[i]), double(r.elevationM[i]));
+  return kExitOk;
+}
+
+const Register kDemo{{"demo", "Query a handful of famous places on the default world",
+                      [](CLI::App&) -> std::function<int()> { return [] { return runDemo(); }; }}};
+
 const Register kRegister{{"query", "Surface class (ocean/land/lake) and terrain elevation at points",
                           [](CLI::App& sub) -> std::function<int()> {
                             auto o = std::make_shared<QueryOptions>();
