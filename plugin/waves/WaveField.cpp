@@ -1,0 +1,476 @@
+#include "plugin/waves/WaveField.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+
+namespace geocean::waves {
+
+namespace {
+
+constexpr double kG = 9.80665;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kTwoPi = 2.0 * kPi;
+constexpr double kA = 6378137.0;                 // WGS84 semi-major axis
+constexpr double kF = 1.0 / 298.257223563;
+constexpr double kB = kA * (1.0 - kF);
+constexpr double kE2 = kF * (2.0 - kF);
+constexpr double kMeanRadiusM = 6371008.8;       // IUGG mean radius: arc -> metres for wave phases
+constexpr int kMaxComponents = 64;
+constexpr int kMaxOctaves = 12;
+
+// Standard deviation of one octave of wv_perlin3 / wv_perlin2 over space,
+// measured with 4M random samples (tests/waves/test_noise.cpp re-measures
+// them): the noise models' amplitudes are calibrated to the spectrum's Hs.
+constexpr double kPerlin3Std = 0.27008;
+constexpr double kPerlin2Std = 0.21046;
+// |wv_perlin3| <= |gradient| * |offset to a corner| = sqrt(2) * sqrt(3): a
+// guaranteed (loose) bound because the trilinear weights are a convex blend.
+constexpr double kPerlin3Bound = 2.449489742783178;
+
+double deg2rad(double d) { return d * (kPi / 180.0); }
+
+glm::dvec3 ecefOnEllipsoid(double latDeg, double lonDeg) {
+  const double phi = deg2rad(latDeg), lam = deg2rad(lonDeg);
+  const double sp = std::sin(phi), cp = std::cos(phi);
+  const double n = kA / std::sqrt(1.0 - kE2 * sp * sp);
+  return {n * cp * std::cos(lam), n * cp * std::sin(lam), n * (1.0 - kE2) * sp};
+}
+
+struct Enu {
+  glm::dvec3 e, n, u;
+};
+Enu enuAt(double latDeg, double lonDeg) {
+  const double phi = deg2rad(latDeg), lam = deg2rad(lonDeg);
+  const double sp = std::sin(phi), cp = std::cos(phi), sl = std::sin(lam), cl = std::cos(lam);
+  return {{-sl, cl, 0.0}, {-sp * cl, -sp * sl, cp}, {cp * cl, cp * sl, sp}};
+}
+
+// SplitMix64: deterministic on every platform (unlike std distributions).
+struct Rng {
+  std::uint64_t s;
+  std::uint64_t next() {
+    std::uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  }
+  double uniform() { return double(next() >> 11) * 0x1.0p-53; }  // [0, 1)
+};
+
+double roundToFloat(double x) { return double(float(x)); }
+
+double wrapTwoPi(double x) {
+  double r = std::fmod(x, kTwoPi);
+  return r < 0.0 ? r + kTwoPi : r;
+}
+
+double spectrum(const SeaState& sea, double omega) {
+  return sea.fetchM > 0.0 ? jonswap(omega, sea.windSpeedMps, sea.fetchM)
+                          : piersonMoskowitz(omega, sea.windSpeedMps);
+}
+
+// Simpson integral of the spectrum over [w0, w1].
+double bandVariance(const SeaState& sea, double w0, double w1) {
+  const int n = 64;
+  const double h = (w1 - w0) / n;
+  double s = spectrum(sea, w0) + spectrum(sea, w1);
+  for (int i = 1; i < n; ++i) s += spectrum(sea, w0 + i * h) * (i % 2 ? 4.0 : 2.0);
+  return s * h / 3.0;
+}
+
+kd::WvFrame makeFrame(const glm::dvec3& o) {
+  const double r = glm::length(o);
+  const glm::dvec3 dO(o.x / (kA * kA), o.y / (kA * kA), o.z / (kB * kB));
+  const double ld = glm::length(dO);
+  kd::WvFrame f;
+  f.radial = glm::dvec4(o / r, 1.0 / r);
+  f.up = glm::dvec4(dO / ld, 0.0);
+  f.upScale = glm::dvec4(1.0 / (kA * kA * ld), 1.0 / (kA * kA * ld), 1.0 / (kB * kB * ld), 0.0);
+  return f;
+}
+
+kd::WvOctave octaveAt(const WaveField::Octave& oc, const glm::dvec3& o, double tS) {
+  const glm::dvec3 q(glm::dot(oc.row[0], o) + oc.velocity.x * tS, glm::dot(oc.row[1], o) + oc.velocity.y * tS,
+                     glm::dot(oc.row[2], o) + oc.velocity.z * tS);
+  const glm::dvec3 fl = glm::floor(q);
+  kd::WvOctave w;
+  w.row0 = glm::dvec4(oc.row[0], oc.amplitudeM);
+  w.row1 = glm::dvec4(oc.row[1], double(oc.seed));
+  w.row2 = glm::dvec4(oc.row[2], 0.0);
+  w.fracO = glm::dvec4(q - fl, 0.0);
+  w.cellO = glm::ivec4(glm::ivec3(fl), 0);
+  w.vel = glm::dvec4(oc.velocity, 0.0);
+  return w;
+}
+
+kd::WvWave waveAt(const WaveField::Component& c, const glm::dvec3& radial, double tS) {
+  const double cosT = glm::dot(c.source, radial);
+  glm::dvec3 g = radial * cosT - c.source;  // away from the source, length sin(theta)
+  double sinT = glm::length(g);
+  if (sinT < 1e-15) {  // at the source or its antipode: any tangent (the taper is 0 there)
+    g = glm::normalize(glm::cross(radial, std::abs(radial.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
+    sinT = 0.0;
+  } else {
+    g /= sinT;
+  }
+  const double theta = std::atan2(sinT, cosT);
+  const double kR = c.kRef * kMeanRadiusM;
+  kd::WvWave w;
+  w.dirO = glm::dvec4(g, sinT);
+  w.binO = glm::dvec4(glm::cross(radial, g), cosT);
+  w.phase = glm::dvec4(wrapTwoPi(kR * theta - c.omega * tS + c.phase0), kR, c.omega, c.amplitudeM);
+  w.extra = glm::dvec4(c.kRef, c.choppiness, 0.0, 0.0);
+  return w;
+}
+
+glm::vec4 toF(const glm::dvec4& v) { return glm::vec4(v); }
+
+}  // namespace
+
+const char* toString(Model m) {
+  switch (m) {
+    case Model::Noise: return "noise";
+    case Model::NoisePaper: return "noise-paper";
+    case Model::Gerstner: return "gerstner";
+  }
+  return "?";
+}
+
+std::optional<Model> parseModel(std::string_view name) {
+  if (name == "noise") return Model::Noise;
+  if (name == "noise-paper") return Model::NoisePaper;
+  if (name == "gerstner") return Model::Gerstner;
+  return std::nullopt;
+}
+
+std::optional<SeaState> SeaState::fromBeaufort(int beaufort) {
+  // Middle of each Beaufort class (m/s at 10 m, WMO); class 12 is >= 32.7.
+  static constexpr double kMid[13] = {0.15, 0.9, 2.45, 4.4, 6.7, 9.35, 12.3, 15.5, 18.95, 22.6, 26.45, 30.55, 34.0};
+  if (beaufort < 0 || beaufort > 12) return std::nullopt;
+  SeaState s;
+  s.windSpeedMps = std::max(kMid[beaufort] * 1.026, 0.2);
+  return s;
+}
+
+double piersonMoskowitz(double omega, double windSpeedMps) {
+  if (omega <= 0.0) return 0.0;
+  const double wp = 0.877 * kG / windSpeedMps;
+  return 0.0081 * kG * kG / std::pow(omega, 5.0) * std::exp(-1.25 * std::pow(wp / omega, 4.0));
+}
+
+double jonswap(double omega, double windSpeedMps, double fetchM) {
+  if (omega <= 0.0) return 0.0;
+  const double u = windSpeedMps;
+  const double wp = 22.0 * std::cbrt(kG * kG / (u * fetchM));
+  const double alpha = 0.076 * std::pow(u * u / (fetchM * kG), 0.22);
+  const double sigma = omega <= wp ? 0.07 : 0.09;
+  const double r = std::exp(-(omega - wp) * (omega - wp) / (2.0 * sigma * sigma * wp * wp));
+  return alpha * kG * kG / std::pow(omega, 5.0) * std::exp(-1.25 * std::pow(wp / omega, 4.0)) * std::pow(3.3, r);
+}
+
+double peakOmega(const SeaState& sea) {
+  const double wpPm = 0.877 * kG / sea.windSpeedMps;
+  if (sea.fetchM <= 0.0) return wpPm;
+  // A fetch longer than the fully developed one changes nothing.
+  return std::max(wpPm, 22.0 * std::cbrt(kG * kG / (sea.windSpeedMps * sea.fetchM)));
+}
+
+double waveNumberExact(double omega, double depthM) {
+  const double kDeep = omega * omega / kG;
+  if (!(depthM < 1e6) || kDeep * depthM > 40.0) return kDeep;
+  // f(k) = g k tanh(k h) - w^2 is increasing; bracket then bisect + Newton.
+  double lo = kDeep, hi = std::max(kDeep, omega / std::sqrt(kG * depthM)) * 2.0;
+  while (kG * hi * std::tanh(hi * depthM) < omega * omega) hi *= 2.0;
+  for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (kG * mid * std::tanh(mid * depthM) < omega * omega ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+std::optional<WaveField> WaveField::create(Model model, const SeaState& sea, std::string& error) {
+  auto bad = [&](const char* field, double v, const char* want) {
+    std::ostringstream os;
+    os << "sea state: " << field << " = " << v << " is invalid (" << want << ")";
+    error = os.str();
+    return std::nullopt;
+  };
+  if (!std::isfinite(sea.windSpeedMps) || sea.windSpeedMps < 0.2 || sea.windSpeedMps > 60.0)
+    return bad("windSpeedMps", sea.windSpeedMps, "expected 0.2 .. 60 m/s");
+  if (!std::isfinite(sea.windFromDeg)) return bad("windFromDeg", sea.windFromDeg, "expected a finite angle");
+  if (!std::isfinite(sea.fetchM) || sea.fetchM < 0.0) return bad("fetchM", sea.fetchM, "expected >= 0 m");
+  if (!(sea.anchorLatDeg >= -90.0 && sea.anchorLatDeg <= 90.0))
+    return bad("anchorLatDeg", sea.anchorLatDeg, "expected -90 .. 90");
+  if (!std::isfinite(sea.anchorLonDeg)) return bad("anchorLonDeg", sea.anchorLonDeg, "expected finite");
+  if (!(sea.referenceDepthM > 0.0)) return bad("referenceDepthM", sea.referenceDepthM, "expected > 0 m");
+  if (sea.gerstnerComponents < 1 || sea.gerstnerComponents > kMaxComponents)
+    return bad("gerstnerComponents", sea.gerstnerComponents, "expected 1 .. 64");
+  if (sea.noiseOctaves < 1 || sea.noiseOctaves > kMaxOctaves)
+    return bad("noiseOctaves", sea.noiseOctaves, "expected 1 .. 12");
+
+  WaveField w;
+  w.model_ = model;
+  w.sea_ = sea;
+  w.omegaPeak_ = peakOmega(sea);
+  w.peakWavelengthM_ = kTwoPi * kG / (w.omegaPeak_ * w.omegaPeak_);
+  w.hsM_ = 4.0 * std::sqrt(bandVariance(sea, 0.2 * w.omegaPeak_, 1.5 * w.omegaPeak_) +
+                           bandVariance(sea, 1.5 * w.omegaPeak_, 20.0 * w.omegaPeak_));
+  const Enu a = enuAt(sea.anchorLatDeg, sea.anchorLonDeg);
+  const double travel = deg2rad(sea.windFromDeg + 180.0);
+  w.travelEn_ = {std::sin(travel), std::cos(travel)};
+  w.travelEcef_ = a.e * std::sin(travel) + a.n * std::cos(travel);
+  if (model == Model::Gerstner)
+    w.buildGerstner();
+  else
+    w.buildNoise();
+  w.buildBounds();
+  return w;
+}
+
+void WaveField::buildNoise() {
+  Rng rng{sea_.seed * 0x2545F4914F6CDD1DULL + 1};
+  const int n = sea_.noiseOctaves;
+  double sumSq = 0.0;
+  for (int i = 0; i < n; ++i) sumSq += std::pow(0.25, i);
+  const double unitStd = model_ == Model::Noise ? kPerlin3Std : kPerlin2Std;
+  const double a0 = hsM_ / (4.0 * unitStd * std::sqrt(sumSq));
+  const double cellM = peakWavelengthM_;
+  for (int i = 0; i < n; ++i) {
+    Octave o;
+    const double f = std::ldexp(1.0, i) / cellM;  // lattice units per metre
+    o.frequencyPerM = f;
+    // Random rotation (Shoemake): decorrelates octaves and averages out the
+    // lattice's axis preference, so the density is the same in every direction.
+    const double u1 = rng.uniform(), u2 = rng.uniform() * kTwoPi, u3 = rng.uniform() * kTwoPi;
+    const double qx = std::sqrt(1 - u1) * std::sin(u2), qy = std::sqrt(1 - u1) * std::cos(u2);
+    const double qz = std::sqrt(u1) * std::sin(u3), qw = std::sqrt(u1) * std::cos(u3);
+    const double m[3][3] = {{1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw), 2 * (qx * qz + qy * qw)},
+                            {2 * (qx * qy + qz * qw), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * qw)},
+                            {2 * (qx * qz - qy * qw), 2 * (qy * qz + qx * qw), 1 - 2 * (qx * qx + qy * qy)}};
+    for (int r = 0; r < 3; ++r)
+      o.row[r] = glm::dvec3(roundToFloat(m[r][0] * f), roundToFloat(m[r][1] * f), roundToFloat(m[r][2] * f));
+    o.amplitudeM = roundToFloat(a0 * std::pow(0.5, i));
+    o.seed = std::uint32_t(rng.next() & 0xFFFFFFu);  // exact as a float
+    // Each octave drifts with the deep-water phase speed of its wavelength.
+    const double wavelengthM = 1.0 / f;
+    const double speed = std::sqrt(kG * wavelengthM / kTwoPi);
+    const glm::dvec3 vWorld = model_ == Model::Noise ? travelEcef_ * speed : glm::dvec3(travelEn_ * speed, 0.0);
+    if (model_ == Model::Noise)
+      o.velocity = glm::dvec3(roundToFloat(glm::dot(o.row[0], vWorld)), roundToFloat(glm::dot(o.row[1], vWorld)),
+                              roundToFloat(glm::dot(o.row[2], vWorld)));
+    else
+      o.velocity = vWorld * f;  // 2D lattice velocity of the paper model (no rotation)
+    octaves_.push_back(o);
+  }
+}
+
+void WaveField::buildGerstner() {
+  Rng rng{sea_.seed * 0x9E3779B97F4A7C15ULL + 7};
+  const int n = sea_.gerstnerComponents;
+  const double w0 = 0.6 * omegaPeak_, w1 = 4.0 * omegaPeak_;
+  const Enu a = enuAt(sea_.anchorLatDeg, sea_.anchorLonDeg);
+  const double travel = deg2rad(sea_.windFromDeg + 180.0);
+  for (int j = 0; j < n; ++j) {
+    // Bands equal in log(omega); the frequency is random inside its band so
+    // that no two seas (or components) are commensurate.
+    const double lo = w0 * std::pow(w1 / w0, double(j) / n), hi = w0 * std::pow(w1 / w0, double(j + 1) / n);
+    Component c;
+    c.omega = lo * std::pow(hi / lo, rng.uniform());
+    c.amplitudeM = std::sqrt(2.0 * bandVariance(sea_, lo, hi));
+    c.kRef = waveNumberExact(c.omega, sea_.referenceDepthM);
+    c.phase0 = rng.uniform() * kTwoPi;
+    c.choppiness = 1.0;
+    // Direction: cos^2 spreading about the wind, by rejection.
+    double dth = 0.0;
+    for (;;) {
+      dth = (rng.uniform() - 0.5) * kPi;
+      if (rng.uniform() < std::cos(dth) * std::cos(dth)) break;
+    }
+    const double b = travel + dth;
+    // Source a quarter circumference up-wave of the anchor: at the anchor the
+    // great circle runs exactly along bearing b.
+    c.source = -(a.e * std::sin(b) + a.n * std::cos(b));
+    components_.push_back(c);
+  }
+  // The discretised spectrum keeps > 99% of the variance (the tail above
+  // 4 w_p holds < 0.5%); rescale so the components carry exactly m0.
+  double m0 = 0.0;
+  for (const auto& c : components_) m0 += 0.5 * c.amplitudeM * c.amplitudeM;
+  const double scale = hsM_ / (4.0 * std::sqrt(m0));
+  for (auto& c : components_) c.amplitudeM *= scale;
+}
+
+void WaveField::buildBounds() {
+  if (model_ != Model::Gerstner) {
+    double sum = 0.0;
+    for (const auto& o : octaves_) sum += o.amplitudeM;
+    maxVerticalM_ = kPerlin3Bound * sum;
+    maxHorizontalM_ = 0.0;
+    return;
+  }
+  // Scan depths with the kernel's own formulas (taper <= 1).
+  kd::Kernel k;
+  double vMax = 0.0, hMax = 0.0;
+  for (int i = 0; i <= 600; ++i) {
+    const double depth = i == 600 ? kDeepWaterM : 0.05 * std::pow(1e5, i / 599.0);
+    double sumAz = 0.0, sumAx = 0.0, sumKAx = 0.0;
+    for (const auto& c : components_) {
+      double th = 1.0, ks = 1.0;
+      if (c.omega * c.omega / kG * depth < WV_DEEP_KH) {
+        const double kl = k.wv_waveNumber(c.omega, depth);
+        th = std::tanh(kl * depth);
+        const double nn = 0.5 * (1.0 + kl * depth * (1.0 - th * th) / th);
+        ks = std::sqrt(kG * kl / (2.0 * c.omega * c.omega * nn));
+      }
+      const double az = c.amplitudeM * ks, ax = c.choppiness * az / th;
+      sumAz += az;
+      sumAx += ax;
+      sumKAx += ax * c.kRef;
+    }
+    const double sB = std::min(1.0, 0.39 * depth / sumAz);
+    const double lam = sB * std::min(1.0, 0.9 / (sB * sumKAx));
+    vMax = std::max(vMax, sB * sumAz);
+    hMax = std::max(hMax, lam * sumAx);
+  }
+  // 1% margin for depths between the scan points.
+  maxVerticalM_ = vMax * 1.01;
+  maxHorizontalM_ = hMax * 1.01;
+}
+
+void WaveField::cpuPatch(const glm::dvec3& o, double tS, CpuPatch& out) const {
+  out.frame = makeFrame(o);
+  out.octaves.clear();
+  out.waves.clear();
+  if (model_ == Model::Noise)
+    for (const auto& oc : octaves_) out.octaves.push_back(octaveAt(oc, o, tS));
+  else if (model_ == Model::Gerstner)
+    for (const auto& c : components_) out.waves.push_back(waveAt(c, glm::dvec3(out.frame.radial), tS));
+}
+
+void WaveField::gpuPatch(const glm::dvec3& o, double tS, GpuPatch& out) const {
+  CpuPatch p;
+  cpuPatch(o, tS, p);
+  out.frame = {toF(p.frame.radial), toF(p.frame.up), toF(p.frame.upScale)};
+  out.octaves.clear();
+  out.waves.clear();
+  for (const auto& w : p.octaves)
+    out.octaves.push_back({toF(w.row0), toF(w.row1), toF(w.row2), toF(w.fracO), w.cellO, toF(w.vel)});
+  for (const auto& w : p.waves) out.waves.push_back({toF(w.dirO), toF(w.binO), toF(w.phase), toF(w.extra)});
+}
+
+kd::WvResult WaveField::evaluate(const CpuPatch& p, const glm::dvec3& d, double depthM) const {
+  kd::Kernel k{p.octaves.data(), p.waves.data()};
+  if (model_ == Model::Gerstner) return k.wv_gerstner(0, int(p.waves.size()), d, p.frame, depthM);
+  return k.wv_solidNoise(0, int(p.octaves.size()), d, p.frame);
+}
+
+namespace {
+WaveSample toEnu(const kd::WvResult& r, const Enu& f) {
+  WaveSample s;
+  const glm::dvec3 disp(r.disp);
+  s.displacementEnuM = {glm::dot(disp, f.e), glm::dot(disp, f.n), glm::dot(disp, f.u)};
+  const glm::dvec3 nrm(r.normal);
+  s.normalEnu = {glm::dot(nrm, f.e), glm::dot(nrm, f.n), glm::dot(nrm, f.u)};
+  s.verticalVelocityMps = r.normal.w;
+  const glm::dvec3 hv(r.hvel);
+  s.horizontalVelocityEnuMps = {glm::dot(hv, f.e), glm::dot(hv, f.n), glm::dot(hv, f.u)};
+  return s;
+}
+}  // namespace
+
+WaveSample WaveField::samplePaper(double latDeg, double lonDeg, double tS) const {
+  const double phi = deg2rad(latDeg);
+  double lonW = std::fmod(lonDeg, 360.0);
+  if (lonW >= 180.0) lonW -= 360.0;
+  if (lonW < -180.0) lonW += 360.0;
+  const double lam = deg2rad(lonW);
+  const double sp = std::sin(phi), cp = std::cos(phi);
+  // Paper 002, eq. 4-5: h(lambda cos(beta), beta), scaled to metres.
+  const double x = kMeanRadiusM * lam * cp, y = kMeanRadiusM * phi;
+  kd::Kernel k;
+  double h = 0.0, hx = 0.0, hy = 0.0, dhdt = 0.0;
+  for (const auto& o : octaves_) {
+    const double f = o.frequencyPerM;
+    const glm::dvec2 q(x * f + o.velocity.x * tS, y * f + o.velocity.y * tS);
+    const glm::dvec2 fl = glm::floor(q);
+    const glm::dvec3 nz = k.wv_perlin2(glm::ivec2(fl), q - fl, o.seed);
+    h += o.amplitudeM * nz.x;
+    hx += o.amplitudeM * nz.y * f;
+    hy += o.amplitudeM * nz.z * f;
+    dhdt += o.amplitudeM * (nz.y * o.velocity.x + nz.z * o.velocity.y);
+  }
+  const double w = std::sqrt(1.0 - kE2 * sp * sp);
+  const double nRad = kA / w, mRad = kA * (1.0 - kE2) / (w * w * w);
+  const double dhde = hx * kMeanRadiusM / nRad;
+  const double dhdn = hx * (-kMeanRadiusM * lam * sp / mRad) + hy * kMeanRadiusM / mRad;
+  WaveSample s;
+  s.displacementEnuM = {0.0, 0.0, h};
+  s.normalEnu = glm::normalize(glm::dvec3(-dhde, -dhdn, 1.0));
+  s.verticalVelocityMps = dhdt;
+  return s;
+}
+
+WaveSample WaveField::sample(double latDeg, double lonDeg, double tS, double depthM) const {
+  if (model_ == Model::NoisePaper) return samplePaper(latDeg, lonDeg, tS);
+  const glm::dvec3 p = ecefOnEllipsoid(latDeg, lonDeg);
+  const Enu f = enuAt(latDeg, lonDeg);
+  const kd::WvFrame frame = makeFrame(p);
+  if (model_ == Model::Noise) {
+    std::array<kd::WvOctave, kMaxOctaves> oc;
+    for (std::size_t i = 0; i < octaves_.size(); ++i) oc[i] = octaveAt(octaves_[i], p, tS);
+    kd::Kernel k{oc.data(), nullptr};
+    return toEnu(k.wv_solidNoise(0, int(octaves_.size()), glm::dvec3(0.0), frame), f);
+  }
+  std::array<kd::WvWave, kMaxComponents> wv;
+  const glm::dvec3 radial(frame.radial);
+  for (std::size_t i = 0; i < components_.size(); ++i) wv[i] = waveAt(components_[i], radial, tS);
+  kd::Kernel k{nullptr, wv.data()};
+  return toEnu(k.wv_gerstner(0, int(components_.size()), glm::dvec3(0.0), frame, depthM), f);
+}
+
+SurfacePoint WaveField::surfaceAt(double latDeg, double lonDeg, double tS, double depthM) const {
+  SurfacePoint sp;
+  if (model_ != Model::Gerstner) {
+    const WaveSample s = sample(latDeg, lonDeg, tS, depthM);
+    sp.heightM = s.displacementEnuM.z;
+    sp.normalEnu = s.normalEnu;
+    sp.verticalVelocityMps = s.verticalVelocityMps;
+    return sp;
+  }
+  const glm::dvec3 p = ecefOnEllipsoid(latDeg, lonDeg);
+  const Enu f = enuAt(latDeg, lonDeg);
+  const kd::WvFrame frame = makeFrame(p);
+  std::array<kd::WvWave, kMaxComponents> wv;
+  const glm::dvec3 radial(frame.radial);
+  for (std::size_t i = 0; i < components_.size(); ++i) wv[i] = waveAt(components_[i], radial, tS);
+  kd::Kernel k{nullptr, wv.data()};
+  const int n = int(components_.size());
+  // Find the rest point x (offset d in P's tangent plane) whose particle sits
+  // above P: d + H(d) = 0. Fixed-point iteration d <- -H(d); a contraction
+  // because the kernel keeps |dH/dd| <= 0.9.
+  glm::dvec3 d(0.0);
+  kd::WvResult r = k.wv_gerstner(0, n, d, frame, depthM);
+  int it = 0;
+  for (; it < 200; ++it) {
+    const glm::dvec3 hor = glm::dvec3(r.disp) - k.wv_upAt(frame, d) * r.disp.w;
+    glm::dvec3 miss = d + hor;
+    miss -= glm::dot(miss, f.u) * f.u;
+    if (glm::length(miss) < 1e-4) break;
+    d -= miss;
+    r = k.wv_gerstner(0, n, d, frame, depthM);
+  }
+  const WaveSample s = toEnu(r, f);
+  sp.heightM = r.disp.w;
+  sp.normalEnu = s.normalEnu;
+  // d(eta)/dt at fixed P = w - grad(eta) . v_h, grad(eta) = -n_h / n_u.
+  const glm::dvec2 gradEta = -glm::dvec2(s.normalEnu.x, s.normalEnu.y) / s.normalEnu.z;
+  sp.verticalVelocityMps =
+      s.verticalVelocityMps - glm::dot(gradEta, glm::dvec2(s.horizontalVelocityEnuMps.x, s.horizontalVelocityEnuMps.y));
+  sp.iterations = it;
+  sp.restOffsetEnuM = {glm::dot(d, f.e), glm::dot(d, f.n), glm::dot(d, f.u)};
+  return sp;
+}
+
+}  // namespace geocean::waves

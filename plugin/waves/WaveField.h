@@ -1,0 +1,191 @@
+// The sea surface as one deterministic function of geodetic (lat, lon) and
+// simulation time t (seconds, never a frame count), for the CPU query path
+// and, through the same source (shaders/waves.glsl), for the GPU.
+//
+// Thread safety: a WaveField is immutable after creation; all const methods
+// may be called from any number of threads at once.
+//
+// Contract with the renderer (GPU path):
+//   1. Per frame and per patch (a tile, or the camera's ground point), call
+//      gpuPatch(originEcef, tS, patch). It computes in double everything that
+//      is large at Earth scale at the origin O (noise lattice cells and their
+//      fractions, wave phases reduced mod 2 pi) and returns float structs with
+//      the exact std430 layout of shaders/waves_types.glsl.
+//   2. Upload patch.octaves to an SSBO declared `buffer { WvOctave wvOctaves[]; }`
+//      and patch.waves to `buffer { WvWave wvWaves[]; }`, and patch.frame as a
+//      uniform block / SSBO member of type WvFrame.
+//   3. In the shader: #include "waves_types.glsl", declare those buffers,
+//      #include "waves.glsl", and for a vertex at ECEF position P on the
+//      ellipsoid call, with d = P - O as float (metres, ECEF axes):
+//        model kNoise:    WvResult r = wv_solidNoise(0, patch.octaveCount, d, frame);
+//        model kGerstner: WvResult r = wv_gerstner(0, patch.waveCount, d, frame, depthM);
+//      (depthM: water depth at the vertex in metres, e.g. from a depth texture;
+//      1e30 for deep water). Displaced position = P + r.disp.xyz; normal =
+//      r.normal.xyz (ECEF). Accuracy: within 1 mm of the CPU for |d| up to
+//      ~20 km (tests/waves/test_gpu_parity.cpp); beyond that the float error
+//      grows in proportion to |d| (still far below a pixel for a camera-
+//      relative origin).
+//   The grid engineer's clamp spheres: maxVerticalM() / maxHorizontalM().
+#pragma once
+
+#include "plugin/waves/WaveKernel.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace geocean::waves {
+
+enum class Model : std::uint8_t {
+  Noise,       // "noise": solid fractal noise on the 3D surface point (the default)
+  NoisePaper,  // "noise-paper": paper 002, 2D fractal noise at (lon*cos(lat), lat); CPU only
+  Gerstner,    // "gerstner": paper 003, trochoidal waves from the sea spectrum
+};
+const char* toString(Model m);
+std::optional<Model> parseModel(std::string_view name);  // the CLI names above
+
+inline constexpr double kDeepWaterM = 1e30;  // depth meaning "deep water"
+
+// One sea-state description for all models.
+struct SeaState {
+  // Wind speed (m/s) at 19.5 m, the reference height of Pierson-Moskowitz
+  // (about 1.026 x the 10 m wind).
+  double windSpeedMps = 10.0;
+  // Direction the wind blows FROM, degrees clockwise from north; the waves
+  // travel towards windFromDeg + 180. It holds exactly at the anchor; far
+  // from it Gerstner waves follow great circles, as swell does.
+  double windFromDeg = 270.0;
+  // Fetch (m): 0 = fully developed sea (Pierson-Moskowitz), > 0 = JONSWAP.
+  double fetchM = 0.0;
+  std::uint32_t seed = 1;
+  double anchorLatDeg = 0.0, anchorLonDeg = 0.0;
+  // Depth (m) that sets the Gerstner wave numbers through the dispersion
+  // relation (the local depth passed to sample() sets amplitude and orbits).
+  double referenceDepthM = kDeepWaterM;
+  int gerstnerComponents = 16;  // 1..64
+  int noiseOctaves = 8;         // 1..12
+
+  // Wind speed for a Beaufort number 0..12 (middle of the class, WMO, at
+  // 10 m, converted to 19.5 m). Returns nullopt outside 0..12.
+  static std::optional<SeaState> fromBeaufort(int beaufort);
+};
+
+// A model evaluated at a rest point, in the east-north-up frame of that point.
+struct WaveSample {
+  glm::dvec3 displacementEnuM{0.0};     // horizontal (e, n) and vertical (u)
+  glm::dvec3 normalEnu{0.0, 0.0, 1.0};  // unit normal of the displaced surface
+  double verticalVelocityMps = 0.0;     // of the water particle
+  glm::dvec3 horizontalVelocityEnuMps{0.0};
+};
+
+// The surface exactly above a point (horizontal displacement inverted).
+struct SurfacePoint {
+  double heightM = 0.0;                 // above the ellipsoid
+  glm::dvec3 normalEnu{0.0, 0.0, 1.0};
+  double verticalVelocityMps = 0.0;     // d(height)/dt at this fixed point
+  int iterations = 0;                   // of the horizontal inversion
+  glm::dvec3 restOffsetEnuM{0.0};       // rest point of the particle now above, from the point
+};
+
+// Float data for one GPU patch (see the contract above).
+struct GpuPatch {
+  kf::WvFrame frame{};
+  std::vector<kf::WvOctave> octaves;
+  std::vector<kf::WvWave> waves;
+};
+
+class WaveField {
+ public:
+  // Validates the sea state; on bad input returns nullopt and sets `error`
+  // naming the field and the value.
+  static std::optional<WaveField> create(Model model, const SeaState& sea, std::string& error);
+
+  Model model() const { return model_; }
+  const SeaState& seaState() const { return sea_; }
+
+  // The model at the rest point (latDeg, lonDeg) at time tS; depthM is the
+  // local water depth (m, positive; kDeepWaterM for deep water).
+  WaveSample sample(double latDeg, double lonDeg, double tS, double depthM = kDeepWaterM) const;
+
+  // The displaced surface exactly above (latDeg, lonDeg): the horizontal
+  // displacement is inverted by fixed-point iteration to within 0.1 mm.
+  SurfacePoint surfaceAt(double latDeg, double lonDeg, double tS, double depthM = kDeepWaterM) const;
+
+  // Significant wave height (m) of the sea state's spectrum, 4 sqrt(m0).
+  double spectrumHsM() const { return hsM_; }
+  // Peak wavelength (m) in deep water.
+  double peakWavelengthM() const { return peakWavelengthM_; }
+  // Bounds (m) on |vertical| and |horizontal| displacement at any point,
+  // time and depth: for clamp spheres.
+  double maxVerticalM() const { return maxVerticalM_; }
+  double maxHorizontalM() const { return maxHorizontalM_; }
+  double maxDisplacementM() const { return maxVerticalM_ + maxHorizontalM_; }
+
+  // GPU patch data for origin O (ECEF, m) at time tS. Model NoisePaper has no
+  // GPU form: the patch is then empty.
+  void gpuPatch(const glm::dvec3& originEcef, double tS, GpuPatch& out) const;
+
+  // Double-precision patch data (what the CPU path evaluates; tests use it).
+  struct CpuPatch {
+    kd::WvFrame frame{};
+    std::vector<kd::WvOctave> octaves;
+    std::vector<kd::WvWave> waves;
+  };
+  void cpuPatch(const glm::dvec3& originEcef, double tS, CpuPatch& out) const;
+
+  // Evaluate a patch at offset d (ECEF, m) from its origin: the double twin
+  // of the shader call.
+  kd::WvResult evaluate(const CpuPatch& patch, const glm::dvec3& d, double depthM) const;
+
+  // Internal spectral data, public for tests.
+  struct Octave {
+    glm::dvec3 row[3];     // M rows, lattice units per metre (float-exact)
+    double frequencyPerM;  // lattice units per metre
+    double amplitudeM;
+    std::uint32_t seed;
+    glm::dvec3 velocity;   // lattice units per second
+  };
+  struct Component {
+    glm::dvec3 source;     // unit ECEF direction of the great-circle source
+    double omega;          // rad/s
+    double kRef;           // rad/m at the reference depth
+    double amplitudeM;     // deep water
+    double phase0;         // rad
+    double choppiness;     // 0..1
+  };
+  const std::vector<Octave>& octaves() const { return octaves_; }
+  const std::vector<Component>& components() const { return components_; }
+
+ private:
+  WaveField() = default;
+  void buildNoise();
+  void buildGerstner();
+  void buildBounds();
+  WaveSample samplePaper(double latDeg, double lonDeg, double tS) const;
+
+  Model model_ = Model::Noise;
+  SeaState sea_;
+  double hsM_ = 0.0, peakWavelengthM_ = 0.0, omegaPeak_ = 0.0;
+  double maxVerticalM_ = 0.0, maxHorizontalM_ = 0.0;
+  std::vector<Octave> octaves_;
+  std::vector<Component> components_;
+  glm::dvec3 travelEcef_{0.0};   // wave travel direction at the anchor (unit ECEF)
+  glm::dvec2 travelEn_{0.0};     // same, east/north components
+};
+
+// Sea spectra (omega in rad/s, S in m^2 s).
+double piersonMoskowitz(double omega, double windSpeedMps);
+// JONSWAP for a fetch (m); gamma = 3.3.
+double jonswap(double omega, double windSpeedMps, double fetchM);
+// Peak angular frequency of the sea state's spectrum.
+double peakOmega(const SeaState& sea);
+// Full dispersion relation solved to machine precision (bisection + Newton);
+// the reference the shared kernel's explicit form is tested against.
+double waveNumberExact(double omega, double depthM);
+
+}  // namespace geocean::waves

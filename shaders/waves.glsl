@@ -1,0 +1,223 @@
+// The wave functions, ONE source for the CPU (plugin/waves/WaveKernel.h
+// includes this file inside a C++ struct, WR = double) and the GPU (a shader
+// includes waves_types.glsl, declares
+//   buffer ... { WvOctave wvOctaves[]; };  buffer ... { WvWave wvWaves[]; };
+// and then includes this file, WR = float). Common subset of GLSL and GLM
+// only: see waves_types.glsl. Inputs are patch-relative: d = P - O (m, ECEF)
+// for a patch whose per-octave / per-component data the CPU computed at O.
+#ifndef WAVES_GLSL
+#define WAVES_GLSL
+
+#include "waves_types.glsl"
+
+// ---- hashing and gradient noise ------------------------------------------
+
+uint wv_hash(uint x) {
+  // "lowbias32" integer hash (C. Wellons): good avalanche, two multiplies.
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+uint wv_hashCell3(ivec3 c, uint seed) {
+  return wv_hash(seed ^ (uint(c.x) * 0x8da6b343u) ^ (uint(c.y) * 0xd8163841u) ^ (uint(c.z) * 0xcb1ab31fu));
+}
+
+// Perlin's 12 cube-edge gradients.
+WR3 wv_grad3(uint h) {
+  uint g = h % 12u;
+  WR s1 = (g & 1u) != 0u ? WR(-1) : WR(1);
+  WR s2 = (g & 2u) != 0u ? WR(-1) : WR(1);
+  uint axis = g >> 2;
+  return axis == 0u ? WR3(s1, s2, WR(0)) : (axis == 1u ? WR3(s1, WR(0), s2) : WR3(WR(0), s1, s2));
+}
+
+// 3D gradient noise with quintic fade; returns (value, d/dx, d/dy, d/dz) in
+// lattice units. `f` is the position inside `cell` (0..1).
+WR4 wv_perlin3(ivec3 cell, WR3 f, uint seed) {
+  WR3 u = f * f * f * (f * (f * WR(6) - WR(15)) + WR(10));
+  WR3 du = WR(30) * f * f * (f * (f - WR(2)) + WR(1));
+  WR3 ga = wv_grad3(wv_hashCell3(cell + ivec3(0, 0, 0), seed));
+  WR3 gb = wv_grad3(wv_hashCell3(cell + ivec3(1, 0, 0), seed));
+  WR3 gc = wv_grad3(wv_hashCell3(cell + ivec3(0, 1, 0), seed));
+  WR3 gd = wv_grad3(wv_hashCell3(cell + ivec3(1, 1, 0), seed));
+  WR3 ge = wv_grad3(wv_hashCell3(cell + ivec3(0, 0, 1), seed));
+  WR3 gf = wv_grad3(wv_hashCell3(cell + ivec3(1, 0, 1), seed));
+  WR3 gg = wv_grad3(wv_hashCell3(cell + ivec3(0, 1, 1), seed));
+  WR3 gh = wv_grad3(wv_hashCell3(cell + ivec3(1, 1, 1), seed));
+  WR va = dot(ga, f);
+  WR vb = dot(gb, f - WR3(1, 0, 0));
+  WR vc = dot(gc, f - WR3(0, 1, 0));
+  WR vd = dot(gd, f - WR3(1, 1, 0));
+  WR ve = dot(ge, f - WR3(0, 0, 1));
+  WR vf = dot(gf, f - WR3(1, 0, 1));
+  WR vg = dot(gg, f - WR3(0, 1, 1));
+  WR vh = dot(gh, f - WR3(1, 1, 1));
+  WR k1 = vb - va, k2 = vc - va, k3 = ve - va;
+  WR k4 = va - vb - vc + vd, k5 = va - vc - ve + vg, k6 = va - vb - ve + vf;
+  WR k7 = -va + vb + vc - vd + ve - vf - vg + vh;
+  WR value = va + u.x * k1 + u.y * k2 + u.z * k3 + u.x * u.y * k4 + u.y * u.z * k5 + u.z * u.x * k6 +
+             u.x * u.y * u.z * k7;
+  WR3 grad = ga + u.x * (gb - ga) + u.y * (gc - ga) + u.z * (ge - ga) + u.x * u.y * (ga - gb - gc + gd) +
+             u.y * u.z * (ga - gc - ge + gg) + u.z * u.x * (ga - gb - ge + gf) +
+             u.x * u.y * u.z * (-ga + gb + gc - gd + ge - gf - gg + gh);
+  grad += du * WR3(k1 + u.y * k4 + u.z * k6 + u.y * u.z * k7,
+                   k2 + u.z * k5 + u.x * k4 + u.z * u.x * k7,
+                   k3 + u.x * k6 + u.y * k5 + u.x * u.y * k7);
+  return WR4(value, grad.x, grad.y, grad.z);
+}
+
+// 2D gradient noise (8 gradient directions) for the paper's model; returns
+// (value, d/dx, d/dy).
+WR3 wv_perlin2(ivec2 cell, WR2 f, uint seed) {
+  WR2 u = f * f * f * (f * (f * WR(6) - WR(15)) + WR(10));
+  WR2 du = WR(30) * f * f * (f * (f - WR(2)) + WR(1));
+  WR r = WR(0.70710678118654752);
+  WR2 gr[4];
+  for (int i = 0; i < 4; ++i) {
+    ivec2 c = cell + ivec2(i & 1, i >> 1);
+    uint h = wv_hash(seed ^ (uint(c.x) * 0x8da6b343u) ^ (uint(c.y) * 0xd8163841u)) & 7u;
+    WR sx = (h & 1u) != 0u ? WR(-1) : WR(1);
+    WR sy = (h & 2u) != 0u ? WR(-1) : WR(1);
+    gr[i] = (h & 4u) != 0u ? WR2(sx * r, sy * r) : ((h & 1u) != 0u ? WR2(WR(0), sy) : WR2(sx, WR(0)));
+  }
+  WR va = dot(gr[0], f);
+  WR vb = dot(gr[1], f - WR2(1, 0));
+  WR vc = dot(gr[2], f - WR2(0, 1));
+  WR vd = dot(gr[3], f - WR2(1, 1));
+  WR k1 = vb - va, k2 = vc - va, k4 = va - vb - vc + vd;
+  WR value = va + u.x * k1 + u.y * k2 + u.x * u.y * k4;
+  WR2 grad = gr[0] + u.x * (gr[1] - gr[0]) + u.y * (gr[2] - gr[0]) + u.x * u.y * (gr[0] - gr[1] - gr[2] + gr[3]);
+  grad += du * WR2(k1 + u.y * k4, k2 + u.x * k4);
+  return WR3(value, grad.x, grad.y);
+}
+
+// ---- geometry -------------------------------------------------------------
+
+// Geodetic normal at O + d.
+WR3 wv_upAt(WvFrame fr, WR3 d) { return normalize(WR3(fr.up) + WR3(fr.upScale) * d); }
+
+// ---- model: solid fractal noise (the default) -----------------------------
+
+// Sum of `count` octaves wvOctaves[first ..]: height along the geodetic up,
+// normal from the analytic gradient, vertical velocity from the octaves'
+// drift. No horizontal displacement, so the query needs no inversion.
+WvResult wv_solidNoise(int first, int count, WR3 d, WvFrame fr) {
+  WR h = WR(0);
+  WR dhdt = WR(0);
+  WR3 grad = WR3(0);
+  for (int i = 0; i < count; ++i) {
+    WvOctave o = wvOctaves[first + i];
+    WR3 r0 = WR3(o.row0), r1 = WR3(o.row1), r2 = WR3(o.row2);
+    WR3 q = WR3(o.fracO) + WR3(dot(r0, d), dot(r1, d), dot(r2, d));
+    WR3 fl = floor(q);
+    WR4 n = wv_perlin3(ivec3(o.cellO) + ivec3(fl), q - fl, uint(o.row1.w));
+    WR a = o.row0.w;
+    h += a * n.x;
+    grad += a * (r0 * n.y + r1 * n.z + r2 * n.w);
+    dhdt += a * (n.y * o.vel.x + n.z * o.vel.y + n.w * o.vel.z);
+  }
+  WR3 up = wv_upAt(fr, d);
+  WR3 gs = grad - dot(grad, up) * up;
+  return WvResult(WR4(up * h, h), WR4(normalize(up - gs), dhdt), WR4(0));
+}
+
+// ---- linear wave theory ---------------------------------------------------
+
+// Wave number (rad/m) from the full dispersion relation w^2 = g k tanh(k h):
+// Guo (2002)'s explicit approximation (max error 0.75%) and two Newton steps.
+WR wv_waveNumber(WR omega, WR depthM) {
+  WR x = omega * sqrt(depthM / WR(WV_G));
+  WR kh = x * x * pow(WR(1) - exp(-pow(x, WR(2.4908))), WR(-1) / WR(2.4908));
+  for (int i = 0; i < 2; ++i) {
+    WR t = tanh(min(kh, WR(20)));
+    kh -= (kh * t - x * x) / (t + kh * (WR(1) - t * t));
+  }
+  return kh / depthM;
+}
+
+// ---- model: Gerstner waves on great circles --------------------------------
+
+// Sum of `count` components wvWaves[first ..] at depth `depthM` (m, > 0; use
+// 1e30 for deep water). Each component travels along great circles away from
+// its source; its local wave number follows the dispersion relation at the
+// sea state's reference depth (phase) and its amplitude and orbit shape
+// follow the local depth (shoaling by energy-flux conservation, elliptical
+// orbits, breaking limit H/h <= 0.78).
+WvResult wv_gerstner(int first, int count, WR3 d, WvFrame fr, WR depthM) {
+  WR depth = max(depthM, WR(0.05));
+  WR invR = fr.radial.w;
+  WR3 n0 = WR3(fr.radial);
+  WR3 v = n0 + d * invR;  // P / |O|
+  WR3 ph = normalize(v);
+  WR lenV = length(v);
+  WR3 up = wv_upAt(fr, d);
+  WR3 t1 = normalize(WR3(wvWaves[first].dirO) - dot(WR3(wvWaves[first].dirO), up) * up);
+  WR3 t2 = cross(up, t1);
+  WR en = dot(d, n0) * invR;
+
+  WR z = WR(0), dzdt = WR(0), sumAz = WR(0), sumKAx = WR(0);
+  WR3 hor = WR3(0), hvel = WR3(0), gradZ = WR3(0);
+  WR jxx = WR(0), jxy = WR(0), jyy = WR(0);
+  for (int i = 0; i < count; ++i) {
+    WvWave w = wvWaves[first + i];
+    WR3 g0 = WR3(w.dirO), b0 = WR3(w.binO);
+    WR sO = w.dirO.w, cO = w.binO.w;
+    WR eg = dot(d, g0) * invR, eb = dot(d, b0) * invR;
+    // Arc from the source at P minus arc at O, with the large terms cancelled
+    // analytically so it is accurate in float for small d.
+    WR p = sO * (WR(1) + en) + cO * eg;
+    WR s = sqrt(p * p + eb * eb);
+    WR e = eb * eb / max(s + p, WR(1e-30));
+    WR dTheta = atan(eg + cO * e, WR(1) + en + sO * e);
+    WR psi = w.phase.x + w.phase.y * dTheta;
+    WR3 c = n0 * cO - g0 * sO;  // source direction
+    WR3 dir = ph * dot(c, ph) - c;
+    dir = normalize(dir - dot(dir, up) * up);
+    WR taper = smoothstep(WR(WV_TAPER_RAD), WR(2.0 * WV_TAPER_RAD), s / lenV);
+    WR omega = w.phase.z;
+    WR kDeep = omega * omega / WR(WV_G);
+    WR th = WR(1), ks = WR(1);
+    if (kDeep * depth < WR(WV_DEEP_KH)) {
+      WR kLoc = wv_waveNumber(omega, depth);
+      th = tanh(kLoc * depth);
+      WR n = WR(0.5) * (WR(1) + kLoc * depth * (WR(1) - th * th) / th);
+      ks = sqrt(WR(WV_G) * kLoc / (WR(2) * omega * omega * n));
+    }
+    WR az = w.phase.w * ks * taper;
+    WR ax = w.extra.y * az / th;
+    WR kP = w.extra.x;
+    WR cs = cos(psi), sn = sin(psi);
+    sumAz += az;
+    sumKAx += ax * kP;
+    z += az * cs;
+    dzdt += az * omega * sn;
+    gradZ -= (az * kP * sn) * dir;
+    hor -= (ax * sn) * dir;
+    hvel += (ax * omega * cs) * dir;
+    WR gx = dot(dir, t1), gy = dot(dir, t2), cj = ax * kP * cs;
+    jxx += cj * gx * gx;
+    jxy += cj * gx * gy;
+    jyy += cj * gy * gy;
+  }
+  // Breaking limit on the crest, then keep the horizontal map one-to-one
+  // (Jacobian eigenvalues >= 0.1) so the surface never loops.
+  WR sB = min(WR(1), WR(0.39) * depth / max(sumAz, WR(1e-30)));
+  WR lam = sB * min(WR(1), WR(0.9) / max(sB * sumKAx, WR(1e-30)));
+  z *= sB;
+  dzdt *= sB;
+  gradZ *= sB;
+  hor *= lam;
+  hvel *= lam;
+  WR a11 = WR(1) - lam * jxx, a12 = -lam * jxy, a22 = WR(1) - lam * jyy;
+  WR det = a11 * a22 - a12 * a12;
+  WR gzx = dot(gradZ, t1), gzy = dot(gradZ, t2);
+  WR sx = (a22 * gzx - a12 * gzy) / det, sy = (a11 * gzy - a12 * gzx) / det;
+  WR3 nrm = normalize(up - t1 * sx - t2 * sy);
+  return WvResult(WR4(hor + up * z, z), WR4(nrm, dzdt), WR4(hvel, WR(0)));
+}
+
+#endif

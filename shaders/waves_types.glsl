@@ -1,0 +1,67 @@
+// Wave-field data shared by C++ (GLM) and GLSL: ONE definition.
+// Included by plugin/waves/WaveKernel.h (twice: WR = double for the CPU
+// query path, WR = float for the GPU upload layout) and by shaders that
+// displace the ocean (after which they declare the SSBOs and include
+// waves.glsl). Only the common subset of GLSL and GLM is used here: no
+// swizzles, no out-parameters, no arrays, no global constants.
+//
+// Everything is "patch relative": the CPU computes, in double, each
+// quantity that is large at Earth scale (lattice cells, phases ~1e6 rad) at a
+// patch origin O and reduces it (integer cell + fraction, phase mod 2 pi).
+// The GPU then only adds small float terms for offsets d = P - O of a few km.
+// The CPU query path runs the same algebra in double with O = P (d = 0).
+#ifndef WAVES_TYPES_GLSL
+#define WAVES_TYPES_GLSL
+
+#ifndef WV_CPU
+#define WR float
+#define WR2 vec2
+#define WR3 vec3
+#define WR4 vec4
+#endif
+
+#define WV_G 9.80665
+#define WV_PI 3.14159265358979323846
+// Waves fade out within this arc (rad; 50 km) of their great-circle source
+// and antipode, where wave fronts shrink to points.
+#define WV_TAPER_RAD 0.0078480615
+#define WV_DEEP_KH 12.0
+
+// Patch frame at origin O (ECEF).
+struct WvFrame {
+  WR4 radial;    // xyz: O / |O| (geocentric unit), w: 1 / |O| (1/m)
+  WR4 up;        // xyz: geodetic normal at O, w: 0
+  WR4 upScale;   // xyz: diag(1/a^2, 1/a^2, 1/b^2) / |diag(..) O|: up(O + d) ~ up + upScale * d
+};
+
+// One octave of the solid (3D) fractal noise, seen from a patch origin.
+// Lattice coordinate q(P, t) = M P + v t with M = rotation * frequency
+// (rows stored exactly as floats so CPU and GPU use identical numbers).
+struct WvOctave {
+  WR4 row0;      // xyz: first row of M (lattice units per m), w: amplitude (m)
+  WR4 row1;      // xyz: second row, w: seed (exact small integer as a real)
+  WR4 row2;      // xyz: third row
+  WR4 fracO;     // xyz: fract(q(O, t)), w: 0
+  ivec4 cellO;   // xyz: floor(q(O, t))
+  WR4 vel;       // xyz: v, lattice units per second (for the vertical velocity)
+};
+
+// One Gerstner component travelling along great circles away from a source
+// point c, seen from a patch origin. Phase psi = phaseO + kR * (theta(P) - theta(O)),
+// theta = arc from c.
+struct WvWave {
+  WR4 dirO;      // xyz: propagation direction at O (unit ECEF tangent), w: sin(thetaO)
+  WR4 binO;      // xyz: radial x dir, w: cos(thetaO)
+  WR4 phase;     // x: phase at O and time t (rad, reduced), y: k_ref * Rwave (rad per rad of arc),
+                 // z: omega (rad/s), w: deep-water amplitude (m)
+  WR4 extra;     // x: k_ref (rad/m) of the phase, y: choppiness (0..1), z, w: 0
+};
+
+// Result of evaluating a model at a rest point (Lagrangian).
+struct WvResult {
+  WR4 disp;      // xyz: displacement (ECEF, m), w: vertical part (m, along the geodetic up)
+  WR4 normal;    // xyz: unit surface normal (ECEF), w: vertical particle velocity (m/s)
+  WR4 hvel;      // xyz: horizontal particle velocity (ECEF, m/s), w: 0
+};
+
+#endif
