@@ -5,6 +5,7 @@
 #include "globe/raster/World.h"
 #include "plugin/landsea/LandSea.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <charconv>
@@ -162,37 +163,52 @@ int runQuery(const QueryOptions& o) {
     return kExitOk;
   }
 
-  std::ifstream file;
-  std::istream* in = &std::cin;
+  std::FILE* in = stdin;
   if (o.points != "-") {
-    file.open(o.points);
-    if (!file) {
+    in = std::fopen(o.points.c_str(), "rb");
+    if (!in) {
       std::fprintf(stderr, "geocean query: --points %s: cannot open\n", o.points.c_str());
       return kExitDataError;
     }
-    in = &file;
   }
-  std::ios::sync_with_stdio(false);
-  // Stream in chunks: parse, compute in parallel, print in input order.
-  constexpr std::size_t kChunk = 1 << 16;
-  std::vector<std::string> lines;
+  struct Closer {
+    std::FILE* f;
+    ~Closer() {
+      if (f != stdin) std::fclose(f);
+    }
+  } closer{in};
+
+  // Stream in blocks of whole lines: parse, compute and format in parallel,
+  // print in input order.
+  constexpr std::size_t kBlock = std::size_t(4) << 20;
+  std::string buf, error;
+  std::vector<std::string_view> lines;
+  std::vector<long> rowOf;
   std::vector<PointRow> pts;
   long row = 0;
-  std::string line, error;
-  bool more = true;
-  while (more) {
+  bool eof = false;
+  while (!eof && error.empty()) {
+    const std::size_t keep = buf.size();
+    buf.resize(keep + kBlock);
+    const std::size_t got = std::fread(buf.data() + keep, 1, kBlock, in);
+    buf.resize(keep + got);
+    eof = got < kBlock;
+    if (eof && !buf.empty() && buf.back() != '\n') buf.push_back('\n');
     lines.clear();
-    while (lines.size() < kChunk && (more = static_cast<bool>(std::getline(*in, line)))) {
+    rowOf.clear();
+    std::size_t pos = 0;
+    for (std::size_t nl; (nl = buf.find('\n', pos)) != std::string::npos; pos = nl + 1) {
+      const std::string_view line(buf.data() + pos, nl - pos);
       ++row;
       if (row == 1 && isHeaderRow(line)) continue;
-      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;  // blank line
-      lines.push_back(std::move(line));
+      if (line.find_first_not_of(" \t\r") == std::string_view::npos) continue;  // blank line
+      lines.push_back(line);
+      rowOf.push_back(row);
     }
-    const long firstRow = row - static_cast<long>(lines.size());
     pts.assign(lines.size(), {});
     std::vector<std::string> errs(lines.size());
-    tbb::parallel_for(std::size_t(0), lines.size(), [&](std::size_t i) {
-      errs[i] = parsePointRow(lines[i], firstRow + long(i) + 1, pts[i]);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lines.size(), 4096), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i < r.end(); ++i) errs[i] = parsePointRow(lines[i], rowOf[i], pts[i]);
     });
     std::size_t good = lines.size();
     for (std::size_t i = 0; i < lines.size(); ++i)
@@ -211,7 +227,7 @@ int runQuery(const QueryOptions& o) {
     for (const auto& p : parts) out += p;
     std::fwrite(out.data(), 1, out.size(), stdout);
     out.clear();
-    if (!error.empty()) break;
+    buf.erase(0, pos);  // the partial last line waits for the next block
   }
   std::fflush(stdout);
   if (!error.empty()) {
@@ -219,7 +235,7 @@ int runQuery(const QueryOptions& o) {
     std::fprintf(stderr, "geocean query: --points %s: %s\n", o.points.c_str(), error.c_str());
     return kExitBadInput;
   }
-  if (in->bad()) {
+  if (std::ferror(in)) {
     std::fprintf(stderr, "geocean query: --points %s: read error after row %ld\n", o.points.c_str(), row);
     return kExitDataError;
   }

@@ -50,7 +50,12 @@ LandSea::LandSea(std::shared_ptr<const raster::Raster> mask, std::shared_ptr<con
     const auto& px = mask_->pixels();
     const int c = mask_->channels();
     classes_.resize(std::size_t(mask_->width()) * mask_->height());
-    for (std::size_t i = 0; i < classes_.size(); ++i) classes_[i] = static_cast<std::uint8_t>(classOfValue(px[i * c]));
+    for (std::size_t i = 0; i < classes_.size(); ++i) {
+      const float v = px[i * c];
+      // Integral mask values (the usual case) index the table directly.
+      const bool integral = v >= 0.0f && v <= 255.0f && v == static_cast<float>(static_cast<int>(v));
+      classes_[i] = static_cast<std::uint8_t>(integral ? encoding_.classOf[static_cast<std::size_t>(v)] : classOfValue(v));
+    }
     const auto& t = mask_->transform();
     fast_.invLonStep = 1.0 / t.lonStepDeg;
     fast_.invLatStep = 1.0 / t.latStepDeg;
