@@ -1,0 +1,25 @@
+// Parsing of the render commands' arguments (camera, size, sun), with
+// errors that name the option and the offending value.
+#pragma once
+
+#include "globe/render/ViewPose.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace geocean::render {
+
+class ArgError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// "a,b,c" -> exactly `count` finite doubles; throws ArgError naming `option`.
+std::vector<double> parseNumbers(const std::string& text, std::size_t count, const char* option);
+// "LAT,LON,ALT,HEADING,PITCH" into pose (keeps fov and size).
+void parseCamera(const std::string& text, ViewPose& pose);
+// "WxH" (1..16384 each).
+void parseSize(const std::string& text, ViewPose& pose);
+
+}  // namespace geocean::render

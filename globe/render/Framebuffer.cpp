@@ -1,0 +1,102 @@
+#include "globe/render/Framebuffer.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+namespace geocean::render {
+
+Framebuffer::Framebuffer(int width, int height, bool withDataTarget) : width_(width), height_(height) {
+  if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
+    throw std::runtime_error("framebuffer size " + std::to_string(width) + "x" + std::to_string(height) +
+                             " is out of range (1..16384)");
+  glCreateFramebuffers(1, &fbo_);
+  glCreateRenderbuffers(1, &color_);
+  glNamedRenderbufferStorage(color_, GL_RGBA8, width, height);
+  glNamedFramebufferRenderbuffer(fbo_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
+  if (withDataTarget) {
+    glCreateRenderbuffers(1, &data_);
+    glNamedRenderbufferStorage(data_, GL_RGBA32F, width, height);
+    glNamedFramebufferRenderbuffer(fbo_, GL_COLOR_ATTACHMENT1, GL_RENDERBUFFER, data_);
+    const GLenum bufs[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(fbo_, 2, bufs);
+  }
+  glCreateRenderbuffers(1, &depth_);
+  glNamedRenderbufferStorage(depth_, GL_DEPTH_COMPONENT32F, width, height);
+  glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+  const GLenum status = glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+}
+
+Framebuffer::~Framebuffer() {
+  glDeleteFramebuffers(1, &fbo_);
+  glDeleteRenderbuffers(1, &color_);
+  if (data_) glDeleteRenderbuffers(1, &data_);
+  glDeleteRenderbuffers(1, &depth_);
+}
+
+void Framebuffer::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glViewport(0, 0, width_, height_);
+}
+
+Image Framebuffer::readColor() const {
+  Image img;
+  img.width = width_;
+  img.height = height_;
+  std::vector<std::uint8_t> raw(std::size_t(width_) * height_ * 4);
+  glNamedFramebufferReadBuffer(fbo_, GL_COLOR_ATTACHMENT0);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
+  // GL's first row is the bottom one; images store the top row first.
+  img.rgba.resize(raw.size());
+  const std::size_t row = std::size_t(width_) * 4;
+  for (int y = 0; y < height_; ++y)
+    std::memcpy(img.rgba.data() + row * y, raw.data() + row * (height_ - 1 - y), row);
+  return img;
+}
+
+std::vector<float> Framebuffer::readData() const {
+  if (!data_) return {};
+  std::vector<float> raw(std::size_t(width_) * height_ * 4), out(raw.size());
+  glNamedFramebufferReadBuffer(fbo_, GL_COLOR_ATTACHMENT1);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, raw.data());
+  glNamedFramebufferReadBuffer(fbo_, GL_COLOR_ATTACHMENT0);
+  const std::size_t row = std::size_t(width_) * 4;
+  for (int y = 0; y < height_; ++y)
+    std::memcpy(out.data() + row * y, raw.data() + row * (height_ - 1 - y), row * sizeof(float));
+  return out;
+}
+
+void writePng(const std::string& path, const Image& image) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw std::runtime_error("cannot write image '" + path + "': " + OIIO::geterror());
+  OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
+  if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, image.rgba.data()) || !out->close())
+    throw std::runtime_error("cannot write image '" + path + "': " + out->geterror());
+}
+
+Image readImage(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw std::runtime_error("cannot read image '" + path + "': " + OIIO::geterror());
+  const auto& spec = in->spec();
+  Image img;
+  img.width = spec.width;
+  img.height = spec.height;
+  img.rgba.assign(std::size_t(spec.width) * spec.height * 4, 255);
+  const int nc = std::min(spec.nchannels, 4);
+  std::vector<std::uint8_t> raw(std::size_t(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, raw.data()))
+    throw std::runtime_error("cannot read image '" + path + "': " + in->geterror());
+  for (std::size_t i = 0; i < std::size_t(spec.width) * spec.height; ++i)
+    for (int c = 0; c < 4; ++c)
+      img.rgba[i * 4 + c] = c < nc ? raw[i * spec.nchannels + c] : (c == 3 ? 255 : raw[i * spec.nchannels]);
+  return img;
+}
+
+}  // namespace geocean::render

@@ -1,0 +1,85 @@
+#include "globe/render/GlobeRenderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace geocean::render {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+}  // namespace
+
+GlobeRenderer::GlobeRenderer(std::shared_ptr<const WorldTextures> world, TerrainOptions terrain)
+    : world_(std::move(world)), terrain_(*world_, terrain) {
+  sky_ = GlProgram::graphics("sky.vert", "sky.frag");
+  glCreateVertexArrays(1, &emptyVao_);
+}
+
+double GlobeRenderer::altitudeAboveSurfaceM(const ViewPose& pose) const {
+  const double water = world_->waterAt(pose.latDeg, pose.lonDeg);
+  const double ground = water > 0.5 ? 0.0
+                                    : std::max(0.0, double(world_->elevationAt(pose.latDeg, pose.lonDeg))) *
+                                          terrain_.options().exaggeration;
+  return pose.altM - ground;
+}
+
+ViewMatrices GlobeRenderer::matrices(const ViewPose& pose) const {
+  return viewMatrices(pose, altitudeAboveSurfaceM(pose));
+}
+
+FrameTimes GlobeRenderer::render(const ViewPose& pose, const FrameSettings& settings) {
+  FrameTimes t;
+  const auto t0 = Clock::now();
+  const ViewMatrices vm = matrices(pose);
+  const Lighting light{glm::normalize(settings.sunEcef), settings.timeS};
+
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  glClearDepth(0.0);
+  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  glDepthMask(GL_TRUE);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+  // Sky: every pixel, no depth.
+  auto ts = Clock::now();
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  if (!settings.bare) {
+    sky_.use();
+    const glm::vec3 f(vm.forward), r(vm.right), u(vm.up), sun(light.sunEcef), eyeDir(glm::normalize(vm.eyeEcef));
+    const double tanY = std::tan(0.5 * pose.fovYDeg * 3.14159265358979323846 / 180.0);
+    glUniform3fv(sky_.uniform("uForward"), 1, &f[0]);
+    glUniform3fv(sky_.uniform("uRight"), 1, &r[0]);
+    glUniform3fv(sky_.uniform("uUp"), 1, &u[0]);
+    glUniform2f(sky_.uniform("uTanHalf"), float(tanY * pose.width / pose.height), float(tanY));
+    glUniform3fv(sky_.uniform("uSunDir"), 1, &sun[0]);
+    glUniform3fv(sky_.uniform("uEyeDir"), 1, &eyeDir[0]);
+    glUniform1f(sky_.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
+    glBindVertexArray(emptyVao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  if (settings.timed) glFinish();
+  t.skyMs = msSince(ts);
+
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  ts = Clock::now();
+  t.terrain = terrain_.draw(vm, pose, light, settings.bare);
+  if (settings.timed) glFinish();
+  t.terrainMs = msSince(ts);
+
+  ts = Clock::now();
+  for (auto& l : layers_) l->draw(vm, pose, light, settings.bare);
+  if (settings.timed) glFinish();
+  t.layersMs = msSince(ts);
+  glBindVertexArray(0);
+  glUseProgram(0);
+  if (settings.timed) glFinish();
+  t.totalMs = msSince(t0);
+  return t;
+}
+
+}  // namespace geocean::render

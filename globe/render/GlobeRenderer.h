@@ -1,0 +1,60 @@
+// One frame of the globe: sky, terrain (with distant sea), then any extra
+// layers (the wave-grid ocean from plugin/render) — into whatever
+// framebuffer is bound, from whatever context is current (EGL headless or
+// a GLFW window). Reversed Z: depth cleared to 0, GL_GREATER, float depth.
+#pragma once
+
+#include "globe/render/GlProgram.h"
+#include "globe/render/Terrain.h"
+#include "globe/render/ViewPose.h"
+#include "globe/render/WorldTextures.h"
+
+#include <memory>
+#include <vector>
+
+namespace geocean::render {
+
+// A layer drawn after the terrain (the ocean). Implementations live in
+// plugins; the globe renderer only knows this interface.
+class Layer {
+ public:
+  virtual ~Layer() = default;
+  virtual const char* name() const = 0;
+  virtual void draw(const ViewMatrices& vm, const ViewPose& pose, const Lighting& light, bool bare) = 0;
+};
+
+struct FrameTimes {
+  double skyMs = 0.0, terrainMs = 0.0, layersMs = 0.0, totalMs = 0.0;
+  TerrainStats terrain;
+};
+
+struct FrameSettings {
+  double timeS = 0.0;
+  glm::dvec3 sunEcef{1.0, 0.0, 0.0};
+  bool bare = false;   // trivial shaders: the reference draw for frame-time ratios
+  bool timed = false;  // glFinish between passes so each pass is timed alone
+};
+
+class GlobeRenderer {
+ public:
+  GlobeRenderer(std::shared_ptr<const WorldTextures> world, TerrainOptions terrain = {});
+  void addLayer(std::shared_ptr<Layer> layer) { layers_.push_back(std::move(layer)); }
+
+  // Height of the eye above the terrain or sea under it (for the near plane).
+  double altitudeAboveSurfaceM(const ViewPose& pose) const;
+  ViewMatrices matrices(const ViewPose& pose) const;
+
+  FrameTimes render(const ViewPose& pose, const FrameSettings& settings);
+
+  const WorldTextures& world() const { return *world_; }
+  TerrainRenderer& terrain() { return terrain_; }
+
+ private:
+  std::shared_ptr<const WorldTextures> world_;
+  TerrainRenderer terrain_;
+  GlProgram sky_;
+  GLuint emptyVao_ = 0;
+  std::vector<std::shared_ptr<Layer>> layers_;
+};
+
+}  // namespace geocean::render

@@ -1,0 +1,29 @@
+// A headless rendering session: EGL context, the default world on the GPU,
+// the globe renderer and an offscreen target. Shared by `geocean render`,
+// `geocean fly` and the GL tests.
+#pragma once
+
+#include "globe/gl/HeadlessContext.h"
+#include "globe/render/Framebuffer.h"
+#include "globe/render/GlobeRenderer.h"
+
+#include <memory>
+
+namespace geocean::render {
+
+struct Session {
+  std::unique_ptr<gl::HeadlessContext> context;
+  std::shared_ptr<WorldTextures> world;
+  std::unique_ptr<GlobeRenderer> renderer;
+  std::unique_ptr<Framebuffer> target;
+
+  // Throws std::runtime_error (no GL context) or raster::RasterError (data).
+  static Session headless(const WorldData& data, int width, int height, TerrainOptions terrain = {});
+  FrameTimes render(const ViewPose& pose, const FrameSettings& settings);
+  Image image() const { return target->readColor(); }
+};
+
+// Default sun: `elevationDeg` above the horizon at the camera's nadir, from `azimuthDeg`.
+glm::dvec3 sunForView(const ViewPose& pose, double azimuthDeg = 135.0, double elevationDeg = 55.0);
+
+}  // namespace geocean::render

@@ -1,0 +1,218 @@
+#include "globe/render/Terrain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace geocean::render {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+constexpr int kEdge = TerrainRenderer::kGrid + 2;  // with the skirt ring
+constexpr int kVertsPerTile = kEdge * kEdge;
+constexpr int kFloatsPerVertex = 9;  // local xyz, normal xyz, lon, lat, skirt
+// Highest and lowest terrain on Earth (Everest 8849 m, Challenger Deep 10935 m), with margin.
+constexpr double kMaxTerrainM = 9000.0;
+constexpr double kMinTerrainM = -11000.0;
+}  // namespace
+
+glm::dvec3 sunFromSubsolar(double latDeg, double lonDeg) { return geo::surfaceNormal(latDeg, lonDeg); }
+
+glm::dvec3 sunFromLocal(double latDeg, double lonDeg, double azimuthDeg, double elevationDeg) {
+  const geo::EnuFrame f = geo::enuFrame({latDeg, lonDeg, 0.0});
+  const double az = azimuthDeg * kDeg, el = elevationDeg * kDeg;
+  return glm::normalize(f.toEcef({std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), std::sin(el)}));
+}
+
+TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions options)
+    : world_(world), options_(options) {
+  if (options_.poolTiles < 64) throw std::invalid_argument("terrain pool must hold at least 64 tiles");
+  program_ = GlProgram::graphics("terrain.vert", "terrain.frag");
+  bare_ = GlProgram::graphics("terrain.vert", "bare.frag", {"GEOCEAN_BARE 1"});
+  glCreateVertexArrays(1, &vao_);
+  glCreateBuffers(1, &vbo_);
+  glNamedBufferStorage(vbo_, GLsizeiptr(options_.poolTiles) * kVertsPerTile * kFloatsPerVertex * sizeof(float),
+                       nullptr, GL_DYNAMIC_STORAGE_BIT);
+  std::vector<std::uint32_t> idx;
+  for (int j = 0; j + 1 < kEdge; ++j)
+    for (int i = 0; i + 1 < kEdge; ++i) {
+      const std::uint32_t a = j * kEdge + i, b = a + 1, c = a + kEdge, d = c + 1;
+      idx.insert(idx.end(), {a, c, b, b, c, d});
+    }
+  indexCount_ = GLsizei(idx.size());
+  glCreateBuffers(1, &ibo_);
+  glNamedBufferStorage(ibo_, GLsizeiptr(idx.size() * sizeof(std::uint32_t)), idx.data(), 0);
+  glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, kFloatsPerVertex * sizeof(float));
+  glVertexArrayElementBuffer(vao_, ibo_);
+  const int sizes[] = {3, 3, 2, 1};
+  int offset = 0;
+  for (int a = 0; a < 4; ++a) {
+    glEnableVertexArrayAttrib(vao_, a);
+    glVertexArrayAttribFormat(vao_, a, sizes[a], GL_FLOAT, GL_FALSE, offset * sizeof(float));
+    glVertexArrayAttribBinding(vao_, a, 0);
+    offset += sizes[a];
+  }
+  for (int s = options_.poolTiles - 1; s >= 0; --s) freeSlots_.push_back(s);
+}
+
+TerrainRenderer::~TerrainRenderer() {
+  glDeleteVertexArrays(1, &vao_);
+  glDeleteBuffers(1, &vbo_);
+  glDeleteBuffers(1, &ibo_);
+}
+
+void TerrainRenderer::tileRange(const Key& k, double& lat0, double& lat1, double& lon0, double& lon1) const {
+  const double span = 90.0 / double(1 << k.level);
+  lon0 = -180.0 + k.x * span;
+  lon1 = lon0 + span;
+  lat1 = 90.0 - k.y * span;
+  lat0 = lat1 - span;
+}
+
+TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
+  double lat0, lat1, lon0, lon1;
+  tileRange(k, lat0, lat1, lon0, lon1);
+  Bounds b;
+  b.center = geo::toEcef({0.5 * (lat0 + lat1), 0.5 * (lon0 + lon1), 0.0});
+  const double hi = kMaxTerrainM * std::max(1.0, options_.exaggeration);
+  const double lo = kMinTerrainM * std::max(1.0, options_.exaggeration);
+  double r = 0.0;
+  int n = 0;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const double lat = lat0 + (lat1 - lat0) * j / 2.0, lon = lon0 + (lon1 - lon0) * i / 2.0;
+      const glm::dvec3 top = geo::toEcef({lat, lon, hi});
+      b.samples[n++] = top;
+      r = std::max({r, glm::length(top - b.center), glm::length(geo::toEcef({lat, lon, lo}) - b.center)});
+    }
+  // The surface bulges between samples half a tile apart by R (1 - cos(span / 4)).
+  const double span = (lat1 - lat0) * kDeg;
+  r += geo::kWgs84A * (1.0 - std::cos(span / 4.0)) + 1.0;
+  b.radius = r;
+  return b;
+}
+
+void TerrainRenderer::select(const Key& k, const ViewMatrices& vm, const ViewPose& pose, std::vector<Key>& out,
+                             int depth) {
+  const Bounds b = bounds(k);
+  const glm::dvec3 rel = b.center - vm.eyeEcef;
+  const double dist = glm::length(rel);
+  // Horizon: points no higher than rMax are hidden beyond the angle
+  // acos(rOcc/|E|) + acos(rOcc/rMax) from the eye's nadir direction, for an
+  // occluding sphere rOcc inside the ellipsoid everywhere.
+  const double eyeR = glm::length(vm.eyeEcef);
+  const double rOcc = geo::kWgs84B + kMinTerrainM * std::max(1.0, options_.exaggeration);
+  const double rMax = geo::kWgs84A + kMaxTerrainM * std::max(1.0, options_.exaggeration);
+  if (eyeR > rOcc) {
+    const double limit = std::acos(std::min(1.0, rOcc / eyeR)) + std::acos(rOcc / rMax);
+    const double cR = glm::length(b.center);
+    const double ang = std::acos(std::clamp(glm::dot(b.center, vm.eyeEcef) / (cR * eyeR), -1.0, 1.0));
+    const double angRadius = std::asin(std::min(1.0, b.radius / cR));
+    if (ang - angRadius > limit) return;
+  }
+  // Frustum: side planes through the eye, and in front of it.
+  const double z = glm::dot(rel, vm.forward);
+  if (z < -b.radius) return;
+  const double tanY = std::tan(0.5 * pose.fovYDeg * kDeg), tanX = tanY * pose.width / pose.height;
+  const double x = glm::dot(rel, vm.right), y = glm::dot(rel, vm.up);
+  if (std::abs(x) - z * tanX > b.radius * std::sqrt(1.0 + tanX * tanX)) return;
+  if (std::abs(y) - z * tanY > b.radius * std::sqrt(1.0 + tanY * tanY)) return;
+
+  double lat0, lat1, lon0, lon1;
+  tileRange(k, lat0, lat1, lon0, lon1);
+  const double latEq = (lat0 <= 0.0 && lat1 >= 0.0) ? 0.0 : std::min(std::abs(lat0), std::abs(lat1));
+  const double extentM = std::max((lat1 - lat0), (lon1 - lon0) * std::cos(latEq * kDeg)) * kDeg * geo::kWgs84A;
+  const double pxPerM = pose.height / (2.0 * tanY);
+  const double nearest = std::max(dist - b.radius, vm.nearM);
+  const double cellPx = extentM / (kGrid - 1) / nearest * pxPerM;
+  if (k.level < options_.maxLevel && cellPx > options_.pixelErrorPx && depth < 40) {
+    for (int cy = 0; cy < 2; ++cy)
+      for (int cx = 0; cx < 2; ++cx) select({k.level + 1, 2 * k.x + cx, 2 * k.y + cy}, vm, pose, out, depth + 1);
+    return;
+  }
+  out.push_back(k);
+}
+
+const TerrainRenderer::Slot& TerrainRenderer::acquire(const Key& k, TerrainStats& stats) {
+  auto it = cache_.find(k);
+  if (it != cache_.end()) {
+    lru_.splice(lru_.begin(), lru_, it->second.lru);
+    return it->second;
+  }
+  if (freeSlots_.empty()) {  // evict the least recently used tile
+    const Key old = lru_.back();
+    lru_.pop_back();
+    auto o = cache_.find(old);
+    freeSlots_.push_back(o->second.index);
+    cache_.erase(o);
+  }
+  const int index = freeSlots_.back();
+  freeSlots_.pop_back();
+  double lat0, lat1, lon0, lon1;
+  tileRange(k, lat0, lat1, lon0, lon1);
+  const glm::dvec3 center = geo::toEcef({0.5 * (lat0 + lat1), 0.5 * (lon0 + lon1), 0.0});
+  std::vector<float> v(std::size_t(kVertsPerTile) * kFloatsPerVertex);
+  for (int gj = 0; gj < kEdge; ++gj)
+    for (int gi = 0; gi < kEdge; ++gi) {
+      const int i = std::clamp(gi - 1, 0, kGrid - 1), j = std::clamp(gj - 1, 0, kGrid - 1);
+      const bool skirt = gi != i + 1 || gj != j + 1;
+      const double lat = lat1 - (lat1 - lat0) * j / (kGrid - 1);
+      const double lon = lon0 + (lon1 - lon0) * i / (kGrid - 1);
+      const glm::dvec3 p = geo::toEcef({lat, lon, 0.0}) - center;
+      const glm::dvec3 n = geo::surfaceNormal(lat, lon);
+      float* o = &v[(std::size_t(gj) * kEdge + gi) * kFloatsPerVertex];
+      o[0] = float(p.x), o[1] = float(p.y), o[2] = float(p.z);
+      o[3] = float(n.x), o[4] = float(n.y), o[5] = float(n.z);
+      o[6] = float(lon), o[7] = float(lat), o[8] = skirt ? 1.0f : 0.0f;
+    }
+  glNamedBufferSubData(vbo_, GLintptr(index) * kVertsPerTile * kFloatsPerVertex * sizeof(float),
+                       GLsizeiptr(v.size() * sizeof(float)), v.data());
+  lru_.push_front(k);
+  ++stats.tilesBuilt;
+  return cache_.emplace(k, Slot{index, center, lru_.begin()}).first->second;
+}
+
+TerrainStats TerrainRenderer::draw(const ViewMatrices& vm, const ViewPose& pose, const Lighting& light, bool bare) {
+  TerrainStats stats;
+  std::vector<Key> tiles;
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) select({0, x, y}, vm, pose, tiles, 0);
+  // More visible tiles than slots would thrash: keep the coarsest that fit.
+  if (int(tiles.size()) > options_.poolTiles) tiles.resize(options_.poolTiles);
+
+  const GlProgram& prog = bare ? bare_ : program_;
+  prog.use();
+  world_.bind();
+  glUniformMatrix4fv(prog.uniform("uViewProj"), 1, GL_FALSE, &vm.viewProj[0][0]);
+  glUniform4fv(prog.uniform("uImageryGeo"), 1, &world_.imageryGeo()[0]);
+  glUniform4fv(prog.uniform("uElevationGeo"), 1, &world_.elevationGeo()[0]);
+  glUniform4fv(prog.uniform("uWaterGeo"), 1, &world_.waterGeo()[0]);
+  glUniform1f(prog.uniform("uExaggeration"), float(options_.exaggeration));
+  glUniform1f(prog.uniform("uSeaDropM"), float(options_.seaDropM));
+  const glm::vec3 sun(light.sunEcef);
+  glUniform3fv(prog.uniform("uSunDir"), 1, &sun[0]);
+  // The eye's distance from the Earth's centre and its direction, for the atmosphere.
+  const glm::vec3 eyeDir(glm::normalize(vm.eyeEcef));
+  glUniform3fv(prog.uniform("uEyeDir"), 1, &eyeDir[0]);
+  glUniform1f(prog.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
+  glUniform1f(prog.uniform("uTimeS"), float(light.timeS));
+  const GLint locOffset = prog.uniform("uTileOffset"), locSkirt = prog.uniform("uSkirtM");
+  glBindVertexArray(vao_);
+  for (const Key& k : tiles) {
+    const Slot& s = acquire(k, stats);
+    const glm::vec3 off(s.centerEcef - vm.eyeEcef);  // double difference, then float
+    glUniform3fv(locOffset, 1, &off[0]);
+    // Skirts hang deeper than the largest height error between levels
+    // (a third of a cell: slopes up to 1:3) and the curvature sag of a cell.
+    const double cellM = 90.0 / double(1 << k.level) / (kGrid - 1) * kDeg * geo::kWgs84A;
+    glUniform1f(locSkirt, float(std::max(5.0, 0.35 * cellM * std::max(1.0, options_.exaggeration))));
+    glDrawElementsBaseVertex(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr, s.index * kVertsPerTile);
+    stats.maxLevel = std::max(stats.maxLevel, k.level);
+  }
+  stats.tilesDrawn = int(tiles.size());
+  glBindVertexArray(0);
+  return stats;
+}
+
+}  // namespace geocean::render

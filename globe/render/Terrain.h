@@ -1,0 +1,99 @@
+// The terrain globe: a quadtree of geographic tiles (8 roots of 90 x 90
+// degrees), each a fixed (N+2)^2-vertex grid whose outer ring is a skirt
+// hanging below the tile edge, so neighbours of different levels never show
+// cracks. Vertices are made in double relative to the tile centre; each draw
+// adds (tile centre - eye) computed in double, so nothing absolute reaches
+// the GPU. Heights come from the elevation texture in the vertex shader
+// (vertical exaggeration is a uniform). Water areas sit below the sea
+// surface and are shaded as distant sea (normals + roughness, no geometry).
+#pragma once
+
+#include "globe/render/GlProgram.h"
+#include "globe/render/ViewPose.h"
+#include "globe/render/WorldTextures.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <list>
+#include <unordered_map>
+#include <vector>
+
+namespace geocean::render {
+
+struct Lighting {
+  glm::dvec3 sunEcef{1.0, 0.0, 0.0};  // unit vector towards the sun
+  double timeS = 0.0;
+};
+
+struct TerrainOptions {
+  double exaggeration = 1.0;
+  double pixelErrorPx = 6.0;  // split while a grid cell spans more pixels than this
+  int maxLevel = 16;
+  int poolTiles = 768;        // GPU tile slots: memory stays flat
+  double seaDropM = 30.0;     // water areas of the terrain sit this far below the sea
+};
+
+struct TerrainStats {
+  int tilesDrawn = 0;
+  int tilesBuilt = 0;
+  int maxLevel = 0;
+};
+
+class TerrainRenderer {
+ public:
+  static constexpr int kGrid = 33;  // vertices per tile edge (without skirt)
+
+  explicit TerrainRenderer(const WorldTextures& world, TerrainOptions options = {});
+  ~TerrainRenderer();
+  TerrainRenderer(const TerrainRenderer&) = delete;
+  TerrainRenderer& operator=(const TerrainRenderer&) = delete;
+
+  // Chooses tiles for the view, builds missing ones, draws. `bare` uses
+  // trivial shaders (the reference for frame-time ratios).
+  TerrainStats draw(const ViewMatrices& vm, const ViewPose& pose, const Lighting& light, bool bare = false);
+
+  const TerrainOptions& options() const { return options_; }
+
+ private:
+  struct Key {
+    int level, x, y;
+    bool operator==(const Key& o) const { return level == o.level && x == o.x && y == o.y; }
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const {
+      return std::hash<std::uint64_t>()((std::uint64_t(k.level) << 48) ^ (std::uint64_t(k.x) << 24) ^ std::uint64_t(k.y));
+    }
+  };
+  struct Slot {
+    int index;
+    glm::dvec3 centerEcef;
+    std::list<Key>::iterator lru;
+  };
+  struct Bounds {
+    glm::dvec3 center;
+    double radius;
+    glm::dvec3 samples[9];
+  };
+
+  void select(const Key& k, const ViewMatrices& vm, const ViewPose& pose, std::vector<Key>& out, int depth);
+  Bounds bounds(const Key& k) const;
+  const Slot& acquire(const Key& k, TerrainStats& stats);
+  void tileRange(const Key& k, double& lat0, double& lat1, double& lon0, double& lon1) const;
+
+  const WorldTextures& world_;
+  TerrainOptions options_;
+  GlProgram program_, bare_;
+  GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
+  GLsizei indexCount_ = 0;
+  std::unordered_map<Key, Slot, KeyHash> cache_;
+  std::list<Key> lru_;
+  std::vector<int> freeSlots_;
+};
+
+// The sun direction in ECEF for a subsolar point.
+glm::dvec3 sunFromSubsolar(double latDeg, double lonDeg);
+// The sun for a given elevation/azimuth (degrees) seen from a place.
+glm::dvec3 sunFromLocal(double latDeg, double lonDeg, double azimuthDeg, double elevationDeg);
+
+}  // namespace geocean::render

@@ -1,0 +1,11 @@
+// Full-screen triangle; the view ray per pixel from the eye's basis.
+uniform vec3 uForward;
+uniform vec3 uRight;
+uniform vec3 uUp;
+uniform vec2 uTanHalf;  // tan(fov/2) * aspect, tan(fov/2)
+out vec3 vDir;
+void main() {
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2) * 2.0 - 1.0;
+  vDir = uForward + p.x * uTanHalf.x * uRight + p.y * uTanHalf.y * uUp;
+  gl_Position = vec4(p, 0.0, 1.0);  // depth 0: infinitely far in reversed Z
+}

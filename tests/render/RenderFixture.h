@@ -1,0 +1,32 @@
+// One headless session with the default world for all renderer tests (the
+// world upload costs about a second; GL tests must stay fast).
+#pragma once
+
+#include "globe/render/Session.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+namespace geocean::render::test {
+
+Session& session();
+
+// Image difference in 8-bit units over RGB.
+struct ImageDiff {
+  double mean = 0.0;
+  int max = 0;
+  double fractionOver16 = 0.0;  // share of pixels with any channel off by > 16
+};
+ImageDiff compare(const Image& a, const Image& b);
+
+// Compares with tests/render/golden/<name>.png; GEOCEAN_UPDATE_GOLDEN=1
+// rewrites the golden instead (look at it before committing).
+void expectMatchesGolden(const Image& img, const std::string& name, double maxMean, double maxFractionOver16);
+
+// Pixel (x, y) of the image projected from an ECEF point, or false if behind.
+bool projectToPixel(const ViewMatrices& vm, const ViewPose& pose, const glm::dvec3& ecef, double& x, double& y);
+
+}  // namespace geocean::render::test

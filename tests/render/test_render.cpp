@@ -1,0 +1,175 @@
+// Renders of the real world checked against geometry we know (disc size of
+// the Earth, where land and sea are) and against golden images.
+#include "RenderFixture.h"
+
+#include "globe/render/Framebuffer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+namespace geocean::render::test {
+
+Session& session() {
+  static std::unique_ptr<Session> s = [] {
+    auto p = std::make_unique<Session>(Session::headless(loadDefaultWorld(), 256, 256));
+    return p;
+  }();
+  return *s;
+}
+
+ImageDiff compare(const Image& a, const Image& b) {
+  ImageDiff d;
+  if (a.width != b.width || a.height != b.height) {
+    d.mean = d.max = 255;
+    d.fractionOver16 = 1.0;
+    return d;
+  }
+  std::size_t over = 0;
+  double sum = 0.0;
+  const std::size_t n = std::size_t(a.width) * a.height;
+  for (std::size_t i = 0; i < n; ++i) {
+    int worst = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int e = std::abs(int(a.rgba[i * 4 + c]) - int(b.rgba[i * 4 + c]));
+      sum += e;
+      worst = std::max(worst, e);
+    }
+    d.max = std::max(d.max, worst);
+    over += worst > 16;
+  }
+  d.mean = sum / (3.0 * n);
+  d.fractionOver16 = double(over) / n;
+  return d;
+}
+
+void expectMatchesGolden(const Image& img, const std::string& name, double maxMean, double maxFractionOver16) {
+  const std::string path = std::string(GEOCEAN_GOLDEN_DIR) + "/" + name + ".png";
+  const std::string actual = std::string(::testing::TempDir()) + "/" + name + ".actual.png";
+  writePng(actual, img);
+  if (std::getenv("GEOCEAN_UPDATE_GOLDEN")) {
+    writePng(path, img);
+    GTEST_SKIP() << "golden rewritten: " << path;
+  }
+  ASSERT_TRUE(std::filesystem::exists(path)) << "missing golden " << path << " (actual: " << actual << ")";
+  const ImageDiff d = compare(img, readImage(path));
+  EXPECT_LE(d.mean, maxMean) << name << ": mean difference; actual image " << actual;
+  EXPECT_LE(d.fractionOver16, maxFractionOver16) << name << ": pixels off by > 16; actual " << actual;
+}
+
+bool projectToPixel(const ViewMatrices& vm, const ViewPose& pose, const glm::dvec3& ecef, double& x, double& y) {
+  const glm::dvec4 c = vm.viewProjD * glm::dvec4(ecef - vm.eyeEcef, 1.0);
+  if (c.w <= 0.0) return false;
+  x = (c.x / c.w * 0.5 + 0.5) * pose.width;
+  y = (0.5 - c.y / c.w * 0.5) * pose.height;
+  return true;
+}
+
+namespace {
+
+// Golden thresholds: llvmpipe images are bit-identical between runs and
+// thread counts on this platform (docs: PLATFORM.md); the margin allows a
+// different Mesa/LLVM build to round shading differently: on average under
+// 2 of 255 per channel, and at most 0.5% of pixels visibly (> 16) off.
+constexpr double kGoldenMean = 2.0;
+constexpr double kGoldenOver16 = 0.005;
+
+const std::uint8_t* px(const Image& img, int x, int y) {
+  x = std::clamp(x, 0, img.width - 1);  // a point off screen reads the edge, never outside
+  y = std::clamp(y, 0, img.height - 1);
+  return &img.rgba[(std::size_t(y) * img.width + x) * 4]; }
+bool isBlack(const std::uint8_t* p) { return p[0] + p[1] + p[2] < 12; }
+bool isSea(const std::uint8_t* p) { return p[2] > p[0] + 40 && p[2] > 60; }
+
+ViewPose pose(double lat, double lon, double alt, double heading, double pitch, int size = 256) {
+  ViewPose p;
+  p.latDeg = lat, p.lonDeg = lon, p.altM = alt, p.headingDeg = heading, p.pitchDeg = pitch;
+  p.width = p.height = size;
+  return p;
+}
+
+TEST(Render, WholeEarthFrom20000KmIsADiscOfTheRightSize) {
+  Session& s = session();
+  const ViewPose p = pose(0.0, -150.0, 2.0e7, 0.0, -90.0);
+  FrameSettings fs;
+  fs.sunEcef = sunForView(p);
+  s.render(p, fs);
+  const Image img = s.image();
+  // The Earth's angular radius from distance d to the centre: asin(R / d).
+  // Equatorial radius across the screen's x axis (the view is over the equator).
+  const double d = geo::kWgs84A + 2.0e7;
+  const double tanHalf = std::tan(std::asin(geo::kWgs84A / d));
+  const double fpx = 0.5 * p.height / std::tan(0.5 * p.fovYDeg * 3.14159265358979 / 180.0);
+  const double radiusPx = tanHalf * fpx;
+  const int cx = p.width / 2, cy = p.height / 2;
+  // Inside the disc (2 px margin for anti-aliasing and the limb): lit sea at
+  // the centre of the Pacific; beyond the limb glow (+6 px): black space.
+  EXPECT_TRUE(isSea(px(img, cx, cy)));
+  EXPECT_FALSE(isBlack(px(img, cx + int(radiusPx) - 3, cy)));
+  EXPECT_TRUE(isBlack(px(img, std::min(p.width - 1, cx + int(radiusPx) + 6), cy)));
+  EXPECT_TRUE(isBlack(px(img, 2, 2)));
+  expectMatchesGolden(img, "earth_20000km", kGoldenMean, kGoldenOver16);
+}
+
+TEST(Render, GibraltarFrom50KmShowsLandAndSeaWhereTheyAre) {
+  Session& s = session();
+  const ViewPose p = pose(36.0, -5.45, 5.0e4, 0.0, -90.0);
+  FrameSettings fs;
+  fs.sunEcef = sunForView(p);
+  s.render(p, fs);
+  const Image img = s.image();
+  const ViewMatrices vm = s.renderer->matrices(p);
+  double x, y;
+  // Known places (GSHHG shorelines, `geocean query` agrees): the Strait
+  // between Spain north of the Rock and Jebel Musa in Morocco. The 4' Blue
+  // Marble blurs coastal land towards blue, so land is told from sea by its
+  // colour distance from the sea pixel rather than by hue alone.
+  ASSERT_TRUE(projectToPixel(vm, p, geo::toEcef({35.97, -5.50, 0.0}), x, y));
+  const std::uint8_t* sea = px(img, int(x), int(y));
+  EXPECT_TRUE(isSea(sea)) << x << "," << y;
+  for (const auto& ll : {glm::dvec2(36.17, -5.40), glm::dvec2(35.88, -5.40)}) {
+    ASSERT_TRUE(projectToPixel(vm, p, geo::toEcef({ll.x, ll.y, 0.0}), x, y));
+    const std::uint8_t* land = px(img, int(x), int(y));
+    const int dist = std::abs(land[0] - sea[0]) + std::abs(land[1] - sea[1]) + std::abs(land[2] - sea[2]);
+    EXPECT_GT(dist, 30) << "land at " << ll.x << "," << ll.y << " looks like sea";
+    EXPECT_GT(land[0], sea[0] + 10) << "land is redder than the sea";
+  }
+  expectMatchesGolden(img, "gibraltar_50km", kGoldenMean, kGoldenOver16);
+}
+
+TEST(Render, DepthWorksFromOrbitTo1mWithoutErrors) {
+  Session& s = session();
+  for (double alt : {2.0e7, 1.0e6, 1.0e4, 100.0, 1.0}) {
+    const ViewPose p = pose(10.0, -140.0, alt, 30.0, alt > 1e5 ? -90.0 : -10.0, 64);
+    FrameSettings fs;
+    fs.sunEcef = sunForView(p);
+    const auto t = s.render(p, fs);
+    EXPECT_GT(t.terrain.tilesDrawn, 0) << alt;
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)) << alt;
+    const Image img = s.image();
+    // Straight down from orbit the centre, and just below the horizon
+    // lower down the bottom row, sees the surface: never black space or a hole.
+    EXPECT_FALSE(isBlack(px(img, 32, alt > 1e5 ? 32 : 63))) << alt;
+  }
+}
+
+TEST(Render, EyeMoved1mmAt1mAltitudeGivesTheSameImage) {
+  Session& s = session();
+  ViewPose a = pose(0.0, 179.99, 1.0, 45.0, -20.0);
+  ViewPose b = a;
+  b.lonDeg += 1.0e-3 / (geo::kWgs84A * 3.14159265358979 / 180.0);  // 1 mm east
+  FrameSettings fs;
+  fs.sunEcef = sunForView(a);
+  s.render(a, fs);
+  const Image ia = s.image();
+  s.render(b, fs);
+  const Image ib = s.image();
+  const ImageDiff d = compare(ia, ib);
+  // A 1 mm move changes the view of a surface 1 m away by at most a
+  // hundredth of a pixel: any float jitter would show as many changed pixels.
+  EXPECT_LE(d.mean, 0.5);
+  EXPECT_LE(d.fractionOver16, 0.001);
+}
+
+}  // namespace
+}  // namespace geocean::render::test
