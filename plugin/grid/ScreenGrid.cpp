@@ -1,0 +1,328 @@
+#include "plugin/grid/ScreenGrid.h"
+
+#include "plugin/grid/RayKernels.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace geocean::grid {
+
+namespace {
+constexpr double kMaxRectNdc = 4.0;
+
+struct RowScratch {
+  std::vector<double> dx, dy, dz, t, rx, ry, rz, lat, lon;
+  std::vector<ocean::Surface> surf;
+  void resize(std::size_t n) {
+    for (auto* v : {&dx, &dy, &dz, &t, &rx, &ry, &rz, &lat, &lon}) v->resize(n);
+    surf.resize(n);
+  }
+};
+
+// Horizon offset for rays that miss: the outer clamp ellipsoid, so a mesh
+// lowered by the waves still reaches the true horizon; never above half the
+// eye height (horizonPoint needs the eye outside that surface).
+double horizonOffsetM(const camera::Camera& cam, double maxDisplacementM) {
+  return std::min(maxDisplacementM, 0.5 * std::max(cam.heightM(), 0.0));
+}
+
+// Where a grid point whose ray misses goes: onto the limb (horizon) of the
+// ellipsoid inflated by offsetM, where the grid's own column or row crosses
+// it (whichever crossing is closer in direction to the ray; border columns
+// and rows use their own line first). Columns stay straight up to the
+// horizon and the screen edges keep their horizon corner:
+// geo::horizonPoint (the limb point closest in direction) would pull edge
+// columns towards the nadir and open slits at the screen border. Falls back
+// to horizonPoint when neither line meets the limb. Eye-relative.
+enum class Along { Nearest, Column, Row, Closest };
+glm::dvec3 missPointRel(const camera::Camera& cam, double x, double y, double offsetM, Along along) {
+  const glm::dvec3 d = cam.rayThroughNdc(x, y);
+  if (along == Along::Closest) return geo::horizonPoint(cam.eyeEcef(), d, offsetM) - cam.eyeEcef();
+  const double a = geo::kWgs84A + offsetM, b = geo::kWgs84B + offsetM;
+  const glm::dvec3 toScaled(1.0 / a, 1.0 / a, 1.0 / b), fromScaled(a, a, b);
+  const glm::dvec3 e = cam.eyeEcef() * toScaled;
+  const double r = glm::length(e);
+  if (!(r > 1.0)) return geo::horizonPoint(cam.eyeEcef(), d, offsetM) - cam.eyeEcef();
+  // Limb in scaled space: the circle |p| = 1, p.u = 1/r.
+  const glm::dvec3 u = e / r;
+  const glm::dvec3 c0 = u / r;
+  const double rho = std::sqrt(std::max(0.0, 1.0 - 1.0 / (r * r)));
+  const glm::dvec3 v1 = glm::normalize(glm::cross(u, std::abs(u.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
+  const glm::dvec3 v2 = glm::cross(u, v1);
+  const glm::dvec3 dn = glm::normalize(d);
+  const glm::dvec3 R = cam.right() * cam.tanHalfX(), U = cam.up() * cam.tanHalfY();
+  // Planes through the eye holding the grid column and the grid row; a world
+  // normal n maps to n * fromScaled in scaled space.
+  const glm::dvec3 planes[2] = {glm::cross(cam.forward() + x * R, U), glm::cross(cam.forward() + y * U, R)};
+  double bestDot = -2.0;
+  glm::dvec3 best(0.0);
+  for (int pl = 0; pl < 2; ++pl) {
+    // A border line that meets the limb keeps its vertices on itself.
+    if (pl == 1 && along == Along::Column && bestDot > 0.0) break;
+    if (pl == 0 && along == Along::Row) continue;
+    const glm::dvec3& nw = planes[pl];
+    const glm::dvec3 n = nw * fromScaled;
+    const double A = glm::dot(n, v1), B = glm::dot(n, v2), M = std::sqrt(A * A + B * B);
+    const double k = (glm::dot(n, e) - glm::dot(n, c0)) / rho;
+    if (!(M > 0.0) || std::abs(k) > M) continue;
+    const double phi = std::atan2(B, A), delta = std::acos(k / M);
+    for (double th : {phi + delta, phi - delta}) {
+      const glm::dvec3 p = (c0 + rho * (std::cos(th) * v1 + std::sin(th) * v2)) * fromScaled;
+      const glm::dvec3 rel = p - cam.eyeEcef();
+      const double dot = glm::dot(glm::normalize(rel), dn);
+      if (dot > bestDot) bestDot = dot, best = rel;
+    }
+  }
+  if (along == Along::Row && !(bestDot > 0.0)) return missPointRel(cam, x, y, offsetM, Along::Column);
+  if (bestDot > 0.0) return best;
+  return geo::horizonPoint(cam.eyeEcef(), d, offsetM) - cam.eyeEcef();
+}
+
+// Eye-relative point seen through NDC (x, y) on the base ellipsoid, or on the
+// limb when the ray misses.
+glm::dvec3 basePointRel(const camera::Camera& cam, double x, double y, double horizonOffset, Along along) {
+  const glm::dvec3 d = cam.rayThroughNdc(x, y);
+  const geo::RayHit h = geo::intersectEllipsoid(cam.eyeEcef(), d);
+  if (h.hit) return d * h.tFirst();
+  return missPointRel(cam, x, y, horizonOffset, along);
+}
+
+glm::dvec3 ellipsoidNormal(const glm::dvec3& p) {
+  const double a2 = geo::kWgs84A * geo::kWgs84A, b2 = geo::kWgs84B * geo::kWgs84B;
+  return glm::normalize(glm::dvec3(p.x / a2, p.y / a2, p.z / b2));
+}
+}  // namespace
+
+NdcRect clampRectangle(const camera::Camera& cam, double h) {
+  NdcRect r;
+  if (!(h > 0.0)) return r;
+  const double hOff = horizonOffsetM(cam, h);
+  constexpr int kSamples = 17;
+  // margin[e]: how far (NDC) a displaced border point can move inwards, for
+  // edges left, right, bottom, top.
+  double margin[4] = {0, 0, 0, 0};
+  for (int iter = 0; iter < 2; ++iter) {
+    const NdcRect at = r;
+    for (int e = 0; e < 4; ++e) {
+      const bool vertical = e < 2;  // left/right edges move in x
+      for (int k = 0; k < kSamples; ++k) {
+        const double s = double(k) / (kSamples - 1);
+        const double x = vertical ? (e == 0 ? at.minX : at.maxX) : at.minX + s * (at.maxX - at.minX);
+        const double y = vertical ? at.minY + s * (at.maxY - at.minY) : (e == 2 ? at.minY : at.maxY);
+        const glm::dvec3 p = basePointRel(cam, x, y, hOff, vertical ? Along::Column : Along::Row);
+        const auto q0 = cam.projectEyeRelative(p);
+        if (!q0) continue;
+        const glm::dvec3 n = ellipsoidNormal(cam.eyeEcef() + p);
+        const glm::dvec3 t1 = glm::normalize(glm::cross(n, std::abs(n.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
+        const glm::dvec3 t2 = glm::cross(n, t1);
+        // First-order bound for a displacement of length h in any direction:
+        // the norm of the three per-axis motions.
+        double sum2 = 0.0;
+        for (const glm::dvec3& u : {n, t1, t2}) {
+          double m = 0.0;
+          for (double sign : {-1.0, 1.0}) {
+            const auto q = cam.projectEyeRelative(p + sign * h * u);
+            const double move = !q ? kMaxRectNdc : vertical ? std::abs(q->x - q0->x) : std::abs(q->y - q0->y);
+            m = std::max(m, move);
+          }
+          sum2 += m * m;
+        }
+        margin[e] = std::max(margin[e], std::sqrt(sum2));
+      }
+    }
+    // 10 % over the first-order bound for the curvature of the projection.
+    r.minX = std::max(-kMaxRectNdc, -1.0 - 1.1 * margin[0]);
+    r.maxX = std::min(kMaxRectNdc, 1.0 + 1.1 * margin[1]);
+    r.minY = std::max(-kMaxRectNdc, -1.0 - 1.1 * margin[2]);
+    r.maxY = std::min(kMaxRectNdc, 1.0 + 1.1 * margin[3]);
+  }
+  return r;
+}
+
+std::vector<std::uint32_t> compactIndices(const GridFrame& f) {
+  std::vector<std::uint32_t> out;
+  out.reserve(f.indices.size());
+  for (std::size_t c = 0; c < f.cellSkip.size(); ++c)
+    if (!f.cellSkip[c]) out.insert(out.end(), f.indices.begin() + 6 * c, f.indices.begin() + 6 * c + 6);
+  return out;
+}
+
+struct ScreenGrid::Impl {
+  std::optional<tbb::task_arena> arena;
+  mutable tbb::enumerable_thread_specific<RowScratch> scratch;
+};
+
+ScreenGrid::ScreenGrid(GridOptions o, SurfaceClassifier classifier)
+    : options_(o), classifier_(std::move(classifier)), impl_(std::make_unique<Impl>()) {
+  auto bad = [](const std::string& what) { throw std::invalid_argument("grid: " + what); };
+  if (o.cols < 0 || o.cols == 1 || o.rows < 0 || o.rows == 1 || o.cols > 16384 || o.rows > 16384)
+    bad("cols/rows " + std::to_string(o.cols) + "x" + std::to_string(o.rows) + " must be 0 or in [2, 16384]");
+  if (!(o.cellPx >= 1.0 && o.cellPx <= 4096.0)) bad("cellPx " + std::to_string(o.cellPx) + " must be in [1, 4096]");
+  if (!(o.maxDisplacementM >= 0.0 && o.maxDisplacementM < 1e5))
+    bad("maxDisplacementM " + std::to_string(o.maxDisplacementM) + " must be in [0, 1e5)");
+  if (o.threads < 0) bad("threads " + std::to_string(o.threads) + " must be >= 0");
+  if (o.threads > 0) impl_->arena.emplace(o.threads);
+}
+
+ScreenGrid::~ScreenGrid() = default;
+
+void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
+  const GridOptions& o = options_;
+  NdcRect rect = clampRectangle(cam, o.maxDisplacementM);
+  // One extra cell beyond the rectangle on every side: where the limb leaves
+  // the screen through a corner, the grid's corner vertex can follow only
+  // one border line, and the sliver it leaves must fall off screen.
+  int cols, rows;
+  if (o.cols > 0) {
+    cols = o.cols;
+    const double ext = cols >= 4 ? (rect.maxX - rect.minX) / (cols - 3) : 0.0;
+    rect.minX -= ext, rect.maxX += ext;
+  } else {
+    cols = std::max(2, int(std::ceil(0.5 * (rect.maxX - rect.minX) * cam.widthPx() / o.cellPx)) + 3);
+    const double ext = 2.0 * o.cellPx / cam.widthPx();
+    rect.minX -= ext, rect.maxX += ext;
+  }
+  if (o.rows > 0) {
+    rows = o.rows;
+    const double ext = rows >= 4 ? (rect.maxY - rect.minY) / (rows - 3) : 0.0;
+    rect.minY -= ext, rect.maxY += ext;
+  } else {
+    rows = std::max(2, int(std::ceil(0.5 * (rect.maxY - rect.minY) * cam.heightPx() / o.cellPx)) + 3);
+    const double ext = 2.0 * o.cellPx / cam.heightPx();
+    rect.minY -= ext, rect.maxY += ext;
+  }
+  if (f.cols != cols || f.rows != rows || f.indices.size() != std::size_t(cols - 1) * (rows - 1) * 6) {
+    f.indices.resize(std::size_t(cols - 1) * (rows - 1) * 6);
+    std::size_t k = 0;
+    for (int j = 0; j + 1 < rows; ++j)
+      for (int i = 0; i + 1 < cols; ++i) {
+        const std::uint32_t v00 = std::uint32_t(j * cols + i), v10 = v00 + 1, v01 = v00 + cols, v11 = v01 + 1;
+        for (std::uint32_t v : {v00, v10, v11, v00, v11, v01}) f.indices[k++] = v;
+      }
+  }
+  f.cols = cols;
+  f.rows = rows;
+  f.rect = rect;
+  f.eyeEcef = cam.eyeEcef();
+  f.vertices.resize(std::size_t(cols) * rows);
+  f.cellSkip.resize(std::size_t(cols - 1) * (rows - 1));
+
+  const double eye[3] = {cam.eyeEcef().x, cam.eyeEcef().y, cam.eyeEcef().z};
+  const double hOff = horizonOffsetM(cam, o.maxDisplacementM);
+  const glm::dvec3 F = cam.forward(), R = cam.right() * cam.tanHalfX(), U = cam.up() * cam.tanHalfY();
+  const double dxNdc = (rect.maxX - rect.minX) / (cols - 1), dyNdc = (rect.maxY - rect.minY) / (rows - 1);
+  // ISPG: the plane tangent to the ellipsoid below the eye (paper 000, eq. 5).
+  const geo::Geodetic eyeGeo{0.0, 0.0, cam.heightM()};
+  const geo::Geodetic nadirGeo = o.mode == GridMode::Ispg ? geo::fromEcef(cam.eyeEcef()) : eyeGeo;
+  const glm::dvec3 planeN = geo::surfaceNormal(nadirGeo.latDeg, nadirGeo.lonDeg);
+  const double planeH = nadirGeo.heightM;  // eye height above the plane
+  const double ispgFar = cam.farM();
+
+  auto buildRows = [&](const tbb::blocked_range<int>& range) {
+    RowScratch& s = impl_->scratch.local();
+    s.resize(std::size_t(cols));
+    for (int j = range.begin(); j < range.end(); ++j) {
+      const double y = rect.minY + j * dyNdc;
+      for (int i = 0; i < cols; ++i) {
+        const double x = rect.minX + i * dxNdc;
+        s.dx[i] = F.x + x * R.x + y * U.x;
+        s.dy[i] = F.y + x * R.y + y * U.y;
+        s.dz[i] = F.z + x * R.z + y * U.z;
+      }
+      if (o.mode == GridMode::Direct) {
+        intersectEllipsoidBatch(eye, s.dx.data(), s.dy.data(), s.dz.data(), cols, 0.0, s.t.data());
+        for (int i = 0; i < cols; ++i) {
+          s.rx[i] = s.t[i] * s.dx[i];
+          s.ry[i] = s.t[i] * s.dy[i];
+          s.rz[i] = s.t[i] * s.dz[i];
+        }
+      } else {
+        // Plane hit (or the far point in the plane's horizontal direction),
+        // then the radial map onto the ellipsoid: X_s = X / |X|_w (eq. 7, 8,
+        // with the Earth's centre as the projection centre).
+        for (int i = 0; i < cols; ++i) {
+          glm::dvec3 d(s.dx[i], s.dy[i], s.dz[i]);
+          const double dn = glm::dot(d, planeN);
+          glm::dvec3 rel;
+          if (dn < 0.0 && -planeH / dn * glm::length(d) < ispgFar) {
+            rel = d * (-planeH / dn);
+          } else {
+            rel = glm::normalize(d - dn * planeN) * ispgFar - planeH * planeN;
+          }
+          const glm::dvec3 X = cam.eyeEcef() + rel;
+          const double w = std::sqrt((X.x * X.x + X.y * X.y) / (geo::kWgs84A * geo::kWgs84A) +
+                                     X.z * X.z / (geo::kWgs84B * geo::kWgs84B));
+          const glm::dvec3 Xs = X / w;
+          s.rx[i] = Xs.x - eye[0];
+          s.ry[i] = Xs.y - eye[1];
+          s.rz[i] = Xs.z - eye[2];
+          s.t[i] = 1.0;  // never a miss
+        }
+      }
+      surfaceLatLonBatch(eye, s.rx.data(), s.ry.data(), s.rz.data(), cols, s.lat.data(), s.lon.data());
+      for (int i = 0; i < cols; ++i) {
+        if (!std::isnan(s.t[i])) continue;
+        const Along along = (i == 0 || i == cols - 1) ? Along::Column
+                            : (j == 0 || j == rows - 1) ? Along::Row : Along::Nearest;
+        const glm::dvec3 rp = missPointRel(cam, rect.minX + i * dxNdc, y, hOff, along);
+        s.rx[i] = rp.x;
+        s.ry[i] = rp.y;
+        s.rz[i] = rp.z;
+        const geo::Geodetic g = geo::fromEcef(cam.eyeEcef() + rp);
+        s.lat[i] = g.latDeg;
+        s.lon[i] = g.lonDeg;
+      }
+      if (classifier_) {
+        classifier_(s.lat.data(), s.lon.data(), std::size_t(cols), s.surf.data());
+      } else {
+        std::fill(s.surf.begin(), s.surf.end(), ocean::Surface::Ocean);
+      }
+      GridVertex* out = f.vertices.data() + std::size_t(j) * cols;
+      const bool rowOff = std::abs(y) > 1.0;
+      for (int i = 0; i < cols; ++i) {
+        const double x = rect.minX + i * dxNdc;
+        GridVertex& v = out[i];
+        v.eyeRelM[0] = float(s.rx[i]);
+        v.eyeRelM[1] = float(s.ry[i]);
+        v.eyeRelM[2] = float(s.rz[i]);
+        v.surface = std::uint8_t(s.surf[i]);
+        v.flags = std::uint8_t((std::isnan(s.t[i]) ? kVertexHorizon : 0) |
+                               ((rowOff || std::abs(x) > 1.0) ? kVertexOffscreen : 0));
+        v.reserved = 0;
+        v.latDeg = s.lat[i];
+        v.lonDeg = s.lon[i];
+      }
+    }
+  };
+  auto skipRows = [&](const tbb::blocked_range<int>& range) {
+    for (int j = range.begin(); j < range.end(); ++j) {
+      const GridVertex* a = f.vertices.data() + std::size_t(j) * cols;
+      const GridVertex* b = a + cols;
+      std::uint8_t* skip = f.cellSkip.data() + std::size_t(j) * (cols - 1);
+      constexpr auto kLand = std::uint8_t(ocean::Surface::Land);
+      for (int i = 0; i + 1 < cols; ++i)
+        skip[i] = a[i].surface == kLand && a[i + 1].surface == kLand && b[i].surface == kLand &&
+                  b[i + 1].surface == kLand;
+    }
+  };
+  auto run = [&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, rows, 4), buildRows);
+    tbb::parallel_for(tbb::blocked_range<int>(0, rows - 1, 16), skipRows);
+  };
+  if (impl_->arena) {
+    impl_->arena->execute(run);
+  } else {
+    run();
+  }
+  f.landCells = std::size_t(std::count(f.cellSkip.begin(), f.cellSkip.end(), std::uint8_t(1)));
+}
+
+}  // namespace geocean::grid

@@ -1,0 +1,101 @@
+// The SIMD batch kernels against the scalar double path (geo::intersectEllipsoid,
+// itself tested against long double) and GeographicLib's inverse.
+#include "plugin/grid/RayKernels.h"
+
+#include "globe/geo/Ellipsoid.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+using namespace geocean;
+
+TEST(RayKernels, BatchMatchesScalarIntersection) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1), logAlt(-1.0, 7.3);
+  int hits = 0, compared = 0;
+  for (int e = 0; e < 200; ++e) {
+    const double alt = std::pow(10.0, logAlt(rng));
+    const glm::dvec3 eye = geo::toEcef({90 * u(rng), 180 * u(rng), e % 10 == 0 ? -alt : alt});
+    const double eyeArr[3] = {eye.x, eye.y, eye.z};
+    const std::size_t n = 37;  // odd: exercises the vector remainder
+    std::vector<double> dx(n), dy(n), dz(n), t(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      glm::dvec3 d = glm::dvec3(u(rng), u(rng), u(rng)) - 0.7 * glm::normalize(eye);
+      d *= 0.5 + u(rng) * 0.4;  // not unit: t is in units of |d|
+      dx[i] = d.x, dy[i] = d.y, dz[i] = d.z;
+    }
+    for (double offset : {0.0, 25.0}) {
+      grid::intersectEllipsoidBatch(eyeArr, dx.data(), dy.data(), dz.data(), n, offset, t.data());
+      for (std::size_t i = 0; i < n; ++i) {
+        const glm::dvec3 d(dx[i], dy[i], dz[i]);
+        const geo::RayHit h = geo::intersectEllipsoid(eye, d, offset);
+        // Near-grazing rays may flip between hit and miss; skip the ones whose
+        // closest approach is within 1 m of the surface.
+        const double len = glm::length(d);
+        const geo::RayHit in = geo::intersectEllipsoid(eye, d, offset - 1.0), out = geo::intersectEllipsoid(eye, d, offset + 1.0);
+        if (in.hit != out.hit) continue;
+        ++compared;
+        ASSERT_EQ(h.hit, !std::isnan(t[i])) << e << " " << i;
+        if (!h.hit) continue;
+        ++hits;
+        // 1 mm along the ray (the scalar path is within 1 mm of long double).
+        EXPECT_NEAR(t[i] * len, h.tFirst() * len, 1e-3) << e << " " << i;
+      }
+    }
+  }
+  EXPECT_GT(hits, 2000);
+  EXPECT_GT(compared, 12000);
+}
+
+TEST(RayKernels, OneMetreAboveTheSea) {
+  for (double lat : {0.0, 89.99, -45.0}) {
+    for (double lon : {0.0, 180.0, -179.9999}) {
+      const glm::dvec3 eye = geo::toEcef({lat, lon, 1.0});
+      const glm::dvec3 d = -geo::surfaceNormal(lat, lon);
+      const double e[3] = {eye.x, eye.y, eye.z};
+      double t = 0;
+      grid::intersectEllipsoidBatch(e, &d.x, &d.y, &d.z, 1, 0.0, &t);
+      EXPECT_NEAR(t, 1.0, 1e-6);  // GeographicLib Forward is exact to rounding (~1 nm here)
+    }
+  }
+}
+
+TEST(RayKernels, SurfaceLatLonMatchesGeographicLib) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const glm::dvec3 eye = geo::toEcef({10.0, 20.0, 3e5});
+  const double e[3] = {eye.x, eye.y, eye.z};
+  std::vector<double> rx, ry, rz;
+  std::vector<geo::Geodetic> truth;
+  for (int i = 0; i < 5000; ++i) {
+    geo::Geodetic g{90 * u(rng), 180 * u(rng), 0.0};
+    if (i < 8) g = {i < 4 ? 90.0 : -90.0, 45.0 * i, 0.0};  // poles
+    if (i >= 8 && i < 12) g = {0.0, 180.0 - (i - 8) * 1e-9, 0.0};  // the antimeridian
+    const glm::dvec3 p = geo::toEcef(g);
+    rx.push_back(p.x - eye.x), ry.push_back(p.y - eye.y), rz.push_back(p.z - eye.z);
+    truth.push_back(g);
+  }
+  std::vector<double> lat(rx.size()), lon(rx.size());
+  grid::surfaceLatLonBatch(e, rx.data(), ry.data(), rz.data(), rx.size(), lat.data(), lon.data());
+  for (std::size_t i = 0; i < rx.size(); ++i) {
+    // 1e-11 deg = 1 micrometre: the rounding of the ECEF point (1e-9 m) and a
+    // few ulp of the rational atan; far below the 7 nm of GeographicLib.
+    EXPECT_NEAR(lat[i], truth[i].latDeg, 1e-11) << i;
+    if (std::abs(truth[i].latDeg) < 90.0) {
+      const double dLon = geo::wrapLonDeg(lon[i] - truth[i].lonDeg);
+      EXPECT_NEAR(dLon * std::cos(truth[i].latDeg * M_PI / 180), 0.0, 1e-11) << i;
+    }
+  }
+  const double nan = std::nan(""), zero = 0;
+  double la, lo;
+  grid::surfaceLatLonBatch(e, &nan, &zero, &zero, 1, &la, &lo);
+  EXPECT_TRUE(std::isnan(la) && std::isnan(lo));
+}
+
+TEST(RayKernels, ReportsTheDispatchedIsa) {
+  const std::string isa = grid::kernelIsa();
+  EXPECT_TRUE(isa == "x86-64-v4" || isa == "x86-64-v3" || isa == "baseline") << isa;
+}
