@@ -21,6 +21,7 @@ using glm::ivec3;
 using glm::ivec4;
 // Using-declarations (not a using-directive) so that unqualified calls in the
 // shared code can never pick ::abs(int) and friends from the C library.
+using glm::abs;
 using glm::atan;
 using glm::cos;
 using glm::cross;

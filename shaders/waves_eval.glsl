@@ -1,0 +1,33 @@
+// Compute stage that evaluates the wave kernel at a batch of points: the GPU
+// side of tests/waves/test_gpu_parity.cpp, and a GPU batch evaluator.
+// Assemble with shaders::assemble("waves_eval.glsl", {"WV_MODEL 0"}) (0 solid
+// noise, 1 Gerstner). Buffers: see the bindings below; uniform uCount.
+layout(local_size_x = 64) in;
+
+#include "waves_types.glsl"
+
+struct WvPoint {
+  vec4 d;       // xyz: offset from the patch origin (m, ECEF), w: water depth (m)
+  ivec4 index;  // x: patch (frame), y: first octave/wave, z: count
+};
+
+layout(std430, binding = 0) readonly buffer WvOctaveBuffer { WvOctave wvOctaves[]; };
+layout(std430, binding = 1) readonly buffer WvWaveBuffer { WvWave wvWaves[]; };
+layout(std430, binding = 2) readonly buffer WvFrameBuffer { WvFrame wvFrames[]; };
+layout(std430, binding = 3) readonly buffer WvPointBuffer { WvPoint wvPoints[]; };
+layout(std430, binding = 4) writeonly buffer WvResultBuffer { WvResult wvResults[]; };
+uniform uint uCount;
+
+#include "waves.glsl"
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= uCount) return;
+  WvPoint p = wvPoints[i];
+  WvFrame fr = wvFrames[p.index.x];
+#if WV_MODEL == 1
+  wvResults[i] = wv_gerstner(p.index.y, p.index.z, p.d.xyz, fr, p.d.w);
+#else
+  wvResults[i] = wv_solidNoise(p.index.y, p.index.z, p.d.xyz, fr);
+#endif
+}
