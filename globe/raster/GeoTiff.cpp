@@ -43,10 +43,31 @@ void silenceLibtiff() {
     TIFFSetErrorHandler(nullptr);
   });
 }
+
+TIFFExtendProc gParentExtender = nullptr;
+
+void extendWithGeoTags(TIFF* tif) {
+  // TIFF_VARIABLE2: counts are passed as uint32_t.
+  static const TIFFFieldInfo info[] = {
+      {kModelPixelScale, TIFF_VARIABLE2, TIFF_VARIABLE2, TIFF_DOUBLE, FIELD_CUSTOM, 1, 1, const_cast<char*>("ModelPixelScaleTag")},
+      {kModelTiepoint, TIFF_VARIABLE2, TIFF_VARIABLE2, TIFF_DOUBLE, FIELD_CUSTOM, 1, 1, const_cast<char*>("ModelTiepointTag")},
+      {kModelTransformation, TIFF_VARIABLE2, TIFF_VARIABLE2, TIFF_DOUBLE, FIELD_CUSTOM, 1, 1, const_cast<char*>("ModelTransformationTag")},
+      {kGeoKeyDirectory, TIFF_VARIABLE2, TIFF_VARIABLE2, TIFF_SHORT, FIELD_CUSTOM, 1, 1, const_cast<char*>("GeoKeyDirectoryTag")},
+      {kGdalNodata, -1, -1, TIFF_ASCII, FIELD_CUSTOM, 1, 0, const_cast<char*>("GDAL_NODATA")},
+  };
+  TIFFMergeFieldInfo(tif, info, sizeof(info) / sizeof(info[0]));
+  if (gParentExtender) gParentExtender(tif);
+}
 }  // namespace
+
+void registerGeoTiffTags() {
+  static std::once_flag once;
+  std::call_once(once, [] { gParentExtender = TIFFSetTagExtender(extendWithGeoTags); });
+}
 
 TiffGeoref readTiffGeoref(const std::string& path, int width, int height) {
   silenceLibtiff();
+  registerGeoTiffTags();
   TIFF* tif = TIFFOpen(path.c_str(), "r");
   if (!tif) throw RasterError(path + ": not a readable TIFF file (libtiff could not parse the header)");
   struct Closer {

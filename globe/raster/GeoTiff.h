@@ -19,6 +19,12 @@ struct TiffGeoref {
 // units, rotated/sheared ModelTransformation.
 TiffGeoref readTiffGeoref(const std::string& path, int width, int height);
 
+// Registers the GeoTIFF and GDAL_NODATA tags with libtiff (once per
+// process) so that TIFFGetField/TIFFSetField use the signatures below: the
+// arrays as (uint32_t count, T* values), GDAL_NODATA as (char*). Without it,
+// libtiff treats them as anonymous tags with other signatures.
+void registerGeoTiffTags();
+
 // ESRI world file beside an image (.pgw/.jgw/.tfw/.wld/...); empty if none.
 std::optional<GeoTransform> readWorldFile(const std::string& imagePath);
 

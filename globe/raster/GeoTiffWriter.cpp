@@ -1,5 +1,7 @@
 #include "globe/raster/GeoTiffWriter.h"
 
+#include "globe/raster/GeoTiff.h"
+
 #include <tiffio.h>
 
 #include <algorithm>
@@ -8,33 +10,13 @@
 
 namespace geocean::raster {
 
-namespace {
-// libtiff knows the GeoTIFF tags for reading; register them for writing.
-void registerGeoTags() {
-  static const TIFFFieldInfo info[] = {
-      {33550, -1, -1, TIFF_DOUBLE, FIELD_CUSTOM, 1, 1, const_cast<char*>("ModelPixelScaleTag")},
-      {33922, -1, -1, TIFF_DOUBLE, FIELD_CUSTOM, 1, 1, const_cast<char*>("ModelTiepointTag")},
-      {34264, -1, -1, TIFF_DOUBLE, FIELD_CUSTOM, 1, 1, const_cast<char*>("ModelTransformationTag")},
-      {34735, -1, -1, TIFF_SHORT, FIELD_CUSTOM, 1, 1, const_cast<char*>("GeoKeyDirectoryTag")},
-      {42113, -1, -1, TIFF_ASCII, FIELD_CUSTOM, 1, 0, const_cast<char*>("GDAL_NODATA")},
-  };
-  static TIFFExtendProc parent = nullptr;
-  static bool done = false;
-  if (done) return;
-  done = true;
-  parent = TIFFSetTagExtender([](TIFF* tif) {
-    TIFFMergeFieldInfo(tif, info, sizeof(info) / sizeof(info[0]));
-    if (parent) parent(tif);
-  });
-}
-}  // namespace
 
 namespace {
 using TileFill = std::function<void(int, int, void*)>;
 
 void write(const std::string& path, const void* data, const TileFill& fill, int width, int height, int channels,
            SampleType type, const GeoTiffWriteOptions& o) {
-  registerGeoTags();
+  detail::registerGeoTiffTags();
   TIFFSetWarningHandler(nullptr);
   TIFF* tif = TIFFOpen(path.c_str(), (std::size_t(width) * height * channels > (std::size_t(1) << 31)) ? "w8" : "w");
   if (!tif) throw RasterError(path + ": cannot create file");
