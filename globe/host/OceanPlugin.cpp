@@ -1,0 +1,77 @@
+#include "globe/host/OceanPlugin.h"
+
+#include <dlfcn.h>
+
+namespace geocean::host {
+
+namespace {
+std::string versionText(uint32_t v) { return std::to_string(v >> 16) + "." + std::to_string(v & 0xffffu); }
+
+// dlsym into a typed pointer; false and an error naming the symbol if absent.
+template <class Fn>
+bool resolve(void* handle, const char* name, Fn& out, const std::string& path, std::string& error) {
+  dlerror();
+  void* sym = dlsym(handle, name);
+  if (!sym) {
+    const char* why = dlerror();
+    error = path + ": missing symbol " + name + (why ? std::string(" (") + why + ")" : std::string());
+    return false;
+  }
+  out = reinterpret_cast<Fn>(sym);
+  return true;
+}
+}  // namespace
+
+bool OceanPlugin::compatible(uint32_t host, uint32_t plugin) {
+  return (host >> 16) == (plugin >> 16) && (plugin & 0xffffu) >= (host & 0xffffu);
+}
+
+std::unique_ptr<OceanPlugin> OceanPlugin::load(const std::string& path, std::string& error,
+                                               uint32_t hostAbiVersion) {
+  const std::string file = path.empty() ? kDefaultLibrary : path;
+  // RTLD_LOCAL: the plugin's symbols do not leak into the host's namespace.
+  void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    const char* why = dlerror();
+    error = "cannot load ocean plugin " + file + ": " + (why ? why : "unknown dlopen error");
+    return nullptr;
+  }
+  std::unique_ptr<OceanPlugin> p(new OceanPlugin);
+  p->handle_ = handle;
+  p->path_ = file;
+  OceanApi& a = p->api_;
+  // The version first: a plugin of another major may lack the other symbols.
+  if (!resolve(handle, "geocean_abi_version", a.abiVersion, file, error)) return nullptr;
+  p->pluginAbi_ = a.abiVersion();
+  if (!compatible(hostAbiVersion, p->pluginAbi_)) {
+    error = file + ": plugin ABI " + versionText(p->pluginAbi_) + " cannot serve a host built for ABI " +
+            versionText(hostAbiVersion) + " (need the same major and a minor >= the host's)";
+    return nullptr;
+  }
+  const bool ok = resolve(handle, "geocean_version_string", a.versionString, file, error) &&
+                  resolve(handle, "geocean_last_error", a.lastError, file, error) &&
+                  resolve(handle, "geocean_status_string", a.statusString, file, error) &&
+                  resolve(handle, "geocean_create", a.create, file, error) &&
+                  resolve(handle, "geocean_destroy", a.destroy, file, error) &&
+                  resolve(handle, "geocean_set_mask_file", a.setMaskFile, file, error) &&
+                  resolve(handle, "geocean_set_elevation_file", a.setElevationFile, file, error) &&
+                  resolve(handle, "geocean_set_mask_pixels", a.setMaskPixels, file, error) &&
+                  resolve(handle, "geocean_set_elevation_pixels", a.setElevationPixels, file, error) &&
+                  resolve(handle, "geocean_set_default_world", a.setDefaultWorld, file, error) &&
+                  resolve(handle, "geocean_clear_rasters", a.clearRasters, file, error) &&
+                  resolve(handle, "geocean_query_class", a.queryClass, file, error) &&
+                  resolve(handle, "geocean_query_elevation", a.queryElevation, file, error) &&
+                  resolve(handle, "geocean_sea_state_init", a.seaStateInit, file, error) &&
+                  resolve(handle, "geocean_sea_state_set_beaufort", a.seaStateSetBeaufort, file, error) &&
+                  resolve(handle, "geocean_set_sea_state", a.setSeaState, file, error) &&
+                  resolve(handle, "geocean_query_sea_surface", a.querySeaSurface, file, error) &&
+                  resolve(handle, "geocean_significant_wave_height", a.significantWaveHeight, file, error);
+  if (!ok) return nullptr;
+  return p;
+}
+
+OceanPlugin::~OceanPlugin() {
+  if (handle_) dlclose(handle_);
+}
+
+}  // namespace geocean::host

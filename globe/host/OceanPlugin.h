@@ -1,0 +1,81 @@
+// Host-side loader for the ocean plugin: dlopens libgeocean_ocean.so,
+// checks its ABI version against the header this host was built with, and
+// resolves every function of the C ABI into a table. The host never links
+// the plugin, so it sees exactly what another engine would.
+//
+//   std::string error;
+//   auto plugin = geocean::host::OceanPlugin::load(path, error);  // "" = default name
+//   if (!plugin) { report(error); }
+//   geocean_ocean* ocean = nullptr;
+//   plugin->api().create(GEOCEAN_ABI_VERSION, &ocean);
+//
+// Thread-safety: load() and the destructor are not thread-safe with respect
+// to each other; the function table may be used from any thread (each
+// function's own rules are in the header and docs/PLUGIN_ABI.md).
+#pragma once
+
+#include "geocean/geocean_ocean.h"
+
+#include <memory>
+#include <string>
+
+namespace geocean::host {
+
+// The C ABI as function pointers, one per function of geocean_ocean.h.
+struct OceanApi {
+  uint32_t (*abiVersion)(void) = nullptr;
+  const char* (*versionString)(void) = nullptr;
+  const char* (*lastError)(void) = nullptr;
+  const char* (*statusString)(geocean_status) = nullptr;
+  geocean_status (*create)(uint32_t, geocean_ocean**) = nullptr;
+  void (*destroy)(geocean_ocean*) = nullptr;
+  geocean_status (*setMaskFile)(geocean_ocean*, const char*, geocean_georef) = nullptr;
+  geocean_status (*setElevationFile)(geocean_ocean*, const char*, geocean_georef) = nullptr;
+  geocean_status (*setMaskPixels)(geocean_ocean*, const float*, int32_t, int32_t,
+                                  const geocean_grid_placement*) = nullptr;
+  geocean_status (*setElevationPixels)(geocean_ocean*, const float*, int32_t, int32_t,
+                                       const geocean_grid_placement*) = nullptr;
+  geocean_status (*setDefaultWorld)(geocean_ocean*) = nullptr;
+  geocean_status (*clearRasters)(geocean_ocean*) = nullptr;
+  geocean_status (*queryClass)(const geocean_ocean*, size_t, const double*, const double*, uint8_t*) = nullptr;
+  geocean_status (*queryElevation)(const geocean_ocean*, size_t, const double*, const double*, float*) = nullptr;
+  geocean_status (*seaStateInit)(geocean_sea_state*) = nullptr;
+  geocean_status (*seaStateSetBeaufort)(geocean_sea_state*, int32_t) = nullptr;
+  geocean_status (*setSeaState)(geocean_ocean*, const geocean_sea_state*) = nullptr;
+  geocean_status (*querySeaSurface)(const geocean_ocean*, size_t, const double*, const double*, double, double*,
+                                    double*, uint8_t*) = nullptr;
+  geocean_status (*significantWaveHeight)(const geocean_ocean*, double*) = nullptr;
+};
+
+class OceanPlugin {
+ public:
+  // The file name the loader tries when given no path (found through the
+  // dynamic linker's search path, e.g. LD_LIBRARY_PATH or the install libdir).
+  static constexpr const char* kDefaultLibrary = "libgeocean_ocean.so.1";
+
+  // Loads the plugin at `path` ("" = kDefaultLibrary). On failure returns
+  // nullptr and sets `error`: the dlopen message, the missing symbol, or the
+  // two ABI versions that do not match.
+  static std::unique_ptr<OceanPlugin> load(const std::string& path, std::string& error,
+                                           uint32_t hostAbiVersion = GEOCEAN_ABI_VERSION);
+  ~OceanPlugin();  // dlcloses the library: destroy every ocean first
+  OceanPlugin(const OceanPlugin&) = delete;
+  OceanPlugin& operator=(const OceanPlugin&) = delete;
+
+  const OceanApi& api() const { return api_; }
+  uint32_t pluginAbiVersion() const { return pluginAbi_; }
+  const std::string& path() const { return path_; }
+
+  // True if a plugin of ABI `plugin` serves a host built against `host`:
+  // same major, plugin minor >= host minor.
+  static bool compatible(uint32_t host, uint32_t plugin);
+
+ private:
+  OceanPlugin() = default;
+  void* handle_ = nullptr;
+  OceanApi api_;
+  uint32_t pluginAbi_ = 0;
+  std::string path_;
+};
+
+}  // namespace geocean::host

@@ -1,0 +1,443 @@
+// The C ABI over the C++ plugin libraries. Every entry point runs inside
+// guard(): no exception crosses extern "C", and every failure leaves a
+// status and a thread-local message naming the function.
+#include "geocean/geocean_ocean.h"
+
+#include "globe/raster/Raster.h"
+#include "globe/raster/World.h"
+#include "plugin/landsea/LandSea.h"
+#include "plugin/waves/SeaQuery.h"
+#include "plugin/waves/WaveField.h"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#ifndef GEOCEAN_VERSION_STRING
+#define GEOCEAN_VERSION_STRING "unknown"
+#endif
+
+namespace {
+
+using geocean::raster::Raster;
+using geocean::raster::RasterError;
+
+// The calling thread's last error; geocean_last_error() returns it.
+thread_local std::string tlsLastError;
+
+// A failure with a status, thrown inside an entry point and turned into the
+// return value by guard().
+struct Failure {
+  geocean_status status;
+  std::string message;
+};
+
+[[noreturn]] void fail(geocean_status status, std::string message) { throw Failure{status, std::move(message)}; }
+
+template <class F>
+geocean_status guard(const char* function, F&& body) noexcept {
+  tlsLastError.clear();
+  geocean_status status = GEOCEAN_OK;
+  std::string message;
+  try {
+    body();
+    return GEOCEAN_OK;
+  } catch (const Failure& f) {
+    status = f.status;
+    message = f.message;
+  } catch (const RasterError& e) {
+    status = GEOCEAN_ERROR_RASTER;
+    message = e.what();
+  } catch (const std::invalid_argument& e) {
+    status = GEOCEAN_ERROR_INVALID_ARGUMENT;
+    message = e.what();
+  } catch (const std::bad_alloc&) {
+    status = GEOCEAN_ERROR_OUT_OF_MEMORY;
+    message = "out of memory";
+  } catch (const std::exception& e) {
+    status = GEOCEAN_ERROR_INTERNAL;
+    message = e.what();
+  } catch (...) {
+    status = GEOCEAN_ERROR_INTERNAL;
+    message = "unknown exception";
+  }
+  try {
+    tlsLastError = std::string(function) + ": " + message;
+  } catch (...) {
+    // No memory even for the message: the status still says what happened.
+  }
+  return status;
+}
+
+void requireNonNull(const void* p, const char* what) {
+  if (!p) fail(GEOCEAN_ERROR_NULL_ARGUMENT, std::string(what) + " is NULL");
+}
+
+// Everything a query reads. Immutable once published: setters build a new
+// snapshot and swap the pointer, so queries never lock while they work.
+struct Snapshot {
+  std::shared_ptr<const Raster> mask, elevation;
+  std::shared_ptr<const geocean::ocean::LandSea> landSea;
+  std::shared_ptr<const geocean::waves::WaveField> waves;
+  // The query path shared with `geocean query` (rebuilt when either changes).
+  std::shared_ptr<const geocean::waves::SeaQuery> sea;
+};
+
+geocean::raster::OpenOptions openOptions(geocean_georef georef) {
+  geocean::raster::OpenOptions o;
+  switch (georef) {
+    case GEOCEAN_GEOREF_FROM_FILE: o.georef = geocean::raster::Georef::FromFile; break;
+    case GEOCEAN_GEOREF_GLOBAL_EQUIRECT: o.georef = geocean::raster::Georef::GlobalEquirect; break;
+    default: fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "georef " + std::to_string(int(georef)) + " is not a geocean_georef");
+  }
+  return o;
+}
+
+std::shared_ptr<const Raster> fromMemory(const float* values, int32_t width, int32_t height,
+                                         const geocean_grid_placement* p, const char* name) {
+  requireNonNull(values, "values");
+  requireNonNull(p, "placement");
+  if (width <= 0 || height <= 0)
+    fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
+         "raster size " + std::to_string(width) + " x " + std::to_string(height) + " is not positive");
+  auto finite = [](double v) { return std::isfinite(v); };
+  if (!finite(p->origin_lon_deg) || !finite(p->origin_lat_deg))
+    fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "placement origin is not finite");
+  if (!(p->lon_step_deg > 0.0) || !finite(p->lon_step_deg))
+    fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "placement lon_step_deg " + std::to_string(p->lon_step_deg) + " is not > 0");
+  if (!(p->lat_step_deg != 0.0) || !finite(p->lat_step_deg))
+    fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "placement lat_step_deg " + std::to_string(p->lat_step_deg) + " is not != 0");
+  geocean::raster::GeoTransform t;
+  t.originLonDeg = p->origin_lon_deg;
+  t.originLatDeg = p->origin_lat_deg;
+  t.lonStepDeg = p->lon_step_deg;
+  t.latStepDeg = p->lat_step_deg;
+  t.global = p->global != 0;
+  if (t.global && std::abs(width * p->lon_step_deg - 360.0) > 1e-6 * 360.0)
+    fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "placement is global but width * lon_step_deg = " +
+                                             std::to_string(width * p->lon_step_deg) + ", not 360");
+  std::vector<float> pixels(values, values + std::size_t(width) * std::size_t(height));
+  std::optional<double> nodata;
+  if (p->has_nodata) nodata = p->nodata;
+  return Raster::fromPixels(std::move(pixels), width, height, 1, t, nodata, name);
+}
+
+// <dir of this library>/../share/geocean/data, for an installed plugin
+// (raster::dataDir() looks beside the host executable instead).
+std::string installedDataDir() {
+  namespace fs = std::filesystem;
+  Dl_info info{};
+  if (!dladdr(reinterpret_cast<void*>(&geocean_abi_version), &info) || !info.dli_fname) return {};
+  std::error_code ec;
+  const fs::path lib = fs::canonical(info.dli_fname, ec);
+  if (ec) return {};
+  const fs::path d = lib.parent_path().parent_path() / "share" / "geocean" / "data";
+  return fs::exists(d / "landmask_5m.tif", ec) ? d.string() : std::string();
+}
+
+}  // namespace
+
+struct geocean_ocean {
+  mutable std::mutex mutex;  // guards `snapshot` (the pointer, not its contents)
+  std::shared_ptr<const Snapshot> snapshot = std::make_shared<Snapshot>();
+
+  std::shared_ptr<const Snapshot> current() const {
+    std::lock_guard lock(mutex);
+    return snapshot;
+  }
+  // Applies `edit` to a copy of the current snapshot and publishes it.
+  // Setters are serialised so two concurrent edits cannot lose one another.
+  template <class Edit>
+  void update(Edit&& edit) {
+    std::lock_guard editLock(editMutex);
+    auto next = std::make_shared<Snapshot>(*current());
+    edit(*next);
+    if (next->mask || next->elevation)
+      next->landSea = std::make_shared<geocean::ocean::LandSea>(next->mask, next->elevation);
+    else
+      next->landSea.reset();
+    if (next->waves)
+      next->sea = std::make_shared<geocean::waves::SeaQuery>(*next->waves, next->landSea);
+    else
+      next->sea.reset();
+    std::lock_guard lock(mutex);
+    snapshot = std::move(next);
+  }
+
+ private:
+  std::mutex editMutex;
+};
+
+extern "C" {
+
+GEOCEAN_API uint32_t geocean_abi_version(void) { return GEOCEAN_ABI_VERSION; }
+
+GEOCEAN_API const char* geocean_version_string(void) { return GEOCEAN_VERSION_STRING; }
+
+GEOCEAN_API const char* geocean_last_error(void) { return tlsLastError.c_str(); }
+
+GEOCEAN_API const char* geocean_status_string(geocean_status status) {
+  switch (status) {
+    case GEOCEAN_OK: return "GEOCEAN_OK";
+    case GEOCEAN_ERROR_NULL_ARGUMENT: return "GEOCEAN_ERROR_NULL_ARGUMENT";
+    case GEOCEAN_ERROR_INVALID_ARGUMENT: return "GEOCEAN_ERROR_INVALID_ARGUMENT";
+    case GEOCEAN_ERROR_ABI_VERSION: return "GEOCEAN_ERROR_ABI_VERSION";
+    case GEOCEAN_ERROR_RASTER: return "GEOCEAN_ERROR_RASTER";
+    case GEOCEAN_ERROR_NOT_READY: return "GEOCEAN_ERROR_NOT_READY";
+    case GEOCEAN_ERROR_NO_GL_CONTEXT: return "GEOCEAN_ERROR_NO_GL_CONTEXT";
+    case GEOCEAN_ERROR_GL: return "GEOCEAN_ERROR_GL";
+    case GEOCEAN_ERROR_OUT_OF_MEMORY: return "GEOCEAN_ERROR_OUT_OF_MEMORY";
+    case GEOCEAN_ERROR_INTERNAL: return "GEOCEAN_ERROR_INTERNAL";
+  }
+  return "GEOCEAN_ERROR_UNKNOWN_STATUS";
+}
+
+GEOCEAN_API geocean_status geocean_create(uint32_t host_abi_version, geocean_ocean** out) {
+  return guard("geocean_create", [&] {
+    requireNonNull(out, "out");
+    *out = nullptr;
+    const uint32_t hostMajor = host_abi_version >> 16, hostMinor = host_abi_version & 0xffffu;
+    if (hostMajor != GEOCEAN_ABI_VERSION_MAJOR || hostMinor > GEOCEAN_ABI_VERSION_MINOR)
+      fail(GEOCEAN_ERROR_ABI_VERSION, "host ABI " + std::to_string(hostMajor) + "." + std::to_string(hostMinor) +
+                                          " is not served by this plugin (ABI " +
+                                          std::to_string(GEOCEAN_ABI_VERSION_MAJOR) + "." +
+                                          std::to_string(GEOCEAN_ABI_VERSION_MINOR) + ")");
+    *out = new geocean_ocean;
+  });
+}
+
+GEOCEAN_API void geocean_destroy(geocean_ocean* ocean) {
+  guard("geocean_destroy", [&] { delete ocean; });
+}
+
+GEOCEAN_API geocean_status geocean_set_mask_file(geocean_ocean* ocean, const char* path, geocean_georef georef) {
+  return guard("geocean_set_mask_file", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(path, "path");
+    auto r = Raster::open(path, openOptions(georef));
+    ocean->update([&](Snapshot& s) { s.mask = std::move(r); });
+  });
+}
+
+GEOCEAN_API geocean_status geocean_set_elevation_file(geocean_ocean* ocean, const char* path,
+                                                      geocean_georef georef) {
+  return guard("geocean_set_elevation_file", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(path, "path");
+    auto r = Raster::open(path, openOptions(georef));
+    ocean->update([&](Snapshot& s) { s.elevation = std::move(r); });
+  });
+}
+
+GEOCEAN_API geocean_status geocean_set_mask_pixels(geocean_ocean* ocean, const float* values, int32_t width,
+                                                   int32_t height, const geocean_grid_placement* placement) {
+  return guard("geocean_set_mask_pixels", [&] {
+    requireNonNull(ocean, "ocean");
+    auto r = fromMemory(values, width, height, placement, "<mask from memory>");
+    ocean->update([&](Snapshot& s) { s.mask = std::move(r); });
+  });
+}
+
+GEOCEAN_API geocean_status geocean_set_elevation_pixels(geocean_ocean* ocean, const float* values_m,
+                                                        int32_t width, int32_t height,
+                                                        const geocean_grid_placement* placement) {
+  return guard("geocean_set_elevation_pixels", [&] {
+    requireNonNull(ocean, "ocean");
+    auto r = fromMemory(values_m, width, height, placement, "<elevation from memory>");
+    ocean->update([&](Snapshot& s) { s.elevation = std::move(r); });
+  });
+}
+
+GEOCEAN_API geocean_status geocean_set_default_world(geocean_ocean* ocean) {
+  return guard("geocean_set_default_world", [&] {
+    requireNonNull(ocean, "ocean");
+    std::string dir;
+    if (const char* env = std::getenv("GEOCEAN_DATA"); env && *env) dir = env;
+    if (dir.empty()) dir = installedDataDir();
+    if (dir.empty()) dir = geocean::raster::dataDir();
+    auto mask = Raster::open(dir + "/landmask_5m.tif");
+    auto elevation = Raster::open(dir + "/etopo_20m.tif");
+    ocean->update([&](Snapshot& s) {
+      s.mask = std::move(mask);
+      s.elevation = std::move(elevation);
+    });
+  });
+}
+
+GEOCEAN_API geocean_status geocean_clear_rasters(geocean_ocean* ocean) {
+  return guard("geocean_clear_rasters", [&] {
+    requireNonNull(ocean, "ocean");
+    ocean->update([&](Snapshot& s) {
+      s.mask.reset();
+      s.elevation.reset();
+    });
+  });
+}
+
+GEOCEAN_API geocean_status geocean_query_class(const geocean_ocean* ocean, size_t count, const double* lat_deg,
+                                               const double* lon_deg, uint8_t* out_class) {
+  return guard("geocean_query_class", [&] {
+    requireNonNull(ocean, "ocean");
+    if (count == 0) return;
+    requireNonNull(lat_deg, "lat_deg");
+    requireNonNull(lon_deg, "lon_deg");
+    requireNonNull(out_class, "out_class");
+    const auto snap = ocean->current();
+    if (!snap->landSea)
+      fail(GEOCEAN_ERROR_NOT_READY, "no mask or elevation raster: call geocean_set_mask_* or "
+                                    "geocean_set_elevation_* (or geocean_set_default_world) first");
+    static_assert(sizeof(geocean::ocean::Surface) == sizeof(uint8_t));
+    static_assert(uint8_t(geocean::ocean::Surface::Ocean) == GEOCEAN_SURFACE_OCEAN &&
+                  uint8_t(geocean::ocean::Surface::Land) == GEOCEAN_SURFACE_LAND &&
+                  uint8_t(geocean::ocean::Surface::Lake) == GEOCEAN_SURFACE_LAKE);
+    // Through a buffer: writing uint8_t storage through Surface lvalues would break aliasing rules.
+    constexpr std::size_t kChunk = 1024;
+    geocean::ocean::Surface buf[kChunk];
+    for (std::size_t i = 0; i < count; i += kChunk) {
+      const std::size_t n = std::min(kChunk, count - i);
+      snap->landSea->classifyBatch(lat_deg + i, lon_deg + i, n, buf);
+      for (std::size_t k = 0; k < n; ++k) out_class[i + k] = static_cast<uint8_t>(buf[k]);
+    }
+  });
+}
+
+GEOCEAN_API geocean_status geocean_query_elevation(const geocean_ocean* ocean, size_t count,
+                                                   const double* lat_deg, const double* lon_deg,
+                                                   float* out_elevation_m) {
+  return guard("geocean_query_elevation", [&] {
+    requireNonNull(ocean, "ocean");
+    if (count == 0) return;
+    requireNonNull(lat_deg, "lat_deg");
+    requireNonNull(lon_deg, "lon_deg");
+    requireNonNull(out_elevation_m, "out_elevation_m");
+    const auto snap = ocean->current();
+    if (!snap->elevation)
+      fail(GEOCEAN_ERROR_NOT_READY, "no elevation raster: call geocean_set_elevation_file, "
+                                    "geocean_set_elevation_pixels or geocean_set_default_world first");
+    snap->landSea->elevationBatch(lat_deg, lon_deg, count, out_elevation_m);
+  });
+}
+
+GEOCEAN_API geocean_status geocean_sea_state_init(geocean_sea_state* sea_state) {
+  return guard("geocean_sea_state_init", [&] {
+    requireNonNull(sea_state, "sea_state");
+    const geocean::waves::SeaState d;
+    *sea_state = geocean_sea_state{};
+    sea_state->struct_size = sizeof(geocean_sea_state);
+    sea_state->model = GEOCEAN_WAVES_NOISE;
+    sea_state->wind_speed_mps = d.windSpeedMps;
+    sea_state->wind_from_deg = d.windFromDeg;
+    sea_state->fetch_m = d.fetchM;
+    sea_state->seed = d.seed;
+    sea_state->gerstner_components = d.gerstnerComponents;
+    sea_state->noise_octaves = d.noiseOctaves;
+    sea_state->anchor_lat_deg = d.anchorLatDeg;
+    sea_state->anchor_lon_deg = d.anchorLonDeg;
+    sea_state->reference_depth_m = d.referenceDepthM;
+  });
+}
+
+GEOCEAN_API geocean_status geocean_sea_state_set_beaufort(geocean_sea_state* sea_state, int32_t beaufort) {
+  return guard("geocean_sea_state_set_beaufort", [&] {
+    requireNonNull(sea_state, "sea_state");
+    const auto s = geocean::waves::SeaState::fromBeaufort(beaufort);
+    if (!s) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "beaufort " + std::to_string(beaufort) + " is not in 0 .. 12");
+    sea_state->wind_speed_mps = s->windSpeedMps;
+  });
+}
+
+GEOCEAN_API geocean_status geocean_set_sea_state(geocean_ocean* ocean, const geocean_sea_state* sea_state) {
+  return guard("geocean_set_sea_state", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(sea_state, "sea_state");
+    // Version 1.0 knows this layout only; a smaller size is a host bug.
+    if (sea_state->struct_size < sizeof(geocean_sea_state))
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "sea_state->struct_size " + std::to_string(sea_state->struct_size) +
+                                               " is smaller than " + std::to_string(sizeof(geocean_sea_state)) +
+                                               ": call geocean_sea_state_init first");
+    geocean::waves::Model model;
+    switch (sea_state->model) {
+      case GEOCEAN_WAVES_NOISE: model = geocean::waves::Model::Noise; break;
+      case GEOCEAN_WAVES_NOISE_PAPER: model = geocean::waves::Model::NoisePaper; break;
+      case GEOCEAN_WAVES_GERSTNER: model = geocean::waves::Model::Gerstner; break;
+      default:
+        fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
+             "sea_state->model " + std::to_string(sea_state->model) + " is not a geocean_wave_model");
+    }
+    geocean::waves::SeaState s;
+    s.windSpeedMps = sea_state->wind_speed_mps;
+    s.windFromDeg = sea_state->wind_from_deg;
+    s.fetchM = sea_state->fetch_m;
+    s.seed = sea_state->seed;
+    s.gerstnerComponents = sea_state->gerstner_components;
+    s.noiseOctaves = sea_state->noise_octaves;
+    s.anchorLatDeg = sea_state->anchor_lat_deg;
+    s.anchorLonDeg = sea_state->anchor_lon_deg;
+    s.referenceDepthM = sea_state->reference_depth_m;
+    std::string error;
+    auto field = geocean::waves::WaveField::create(model, s, error);
+    if (!field) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, error);
+    auto shared = std::make_shared<const geocean::waves::WaveField>(std::move(*field));
+    ocean->update([&](Snapshot& snap) { snap.waves = std::move(shared); });
+  });
+}
+
+GEOCEAN_API geocean_status geocean_query_sea_surface(const geocean_ocean* ocean, size_t count,
+                                                     const double* lat_deg, const double* lon_deg, double time_s,
+                                                     double* out_height_m, double* out_normal_enu,
+                                                     uint8_t* out_class) {
+  return guard("geocean_query_sea_surface", [&] {
+    requireNonNull(ocean, "ocean");
+    if (!std::isfinite(time_s))
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "time_s " + std::to_string(time_s) + " is not finite");
+    const auto snap = ocean->current();
+    if (!snap->sea) fail(GEOCEAN_ERROR_NOT_READY, "no sea state: call geocean_set_sea_state first");
+    if (count == 0) return;
+    requireNonNull(lat_deg, "lat_deg");
+    requireNonNull(lon_deg, "lon_deg");
+    requireNonNull(out_height_m, "out_height_m");
+    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    // Chunks bound the result buffer; each chunk runs on all cores (TBB).
+    constexpr std::size_t kChunk = 16384;
+    std::vector<geocean::waves::SeaQueryResult> r(std::min(count, kChunk));
+    for (std::size_t i0 = 0; i0 < count; i0 += kChunk) {
+      const std::size_t n = std::min(kChunk, count - i0);
+      snap->sea->queryBatch(lat_deg + i0, lon_deg + i0, &time_s, false, n, r.data());
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = i0 + k;
+        const bool sea = r[k].surface == geocean::ocean::Surface::Ocean;
+        out_height_m[i] = r[k].seaHeightM;
+        if (out_class) out_class[i] = static_cast<uint8_t>(r[k].surface);
+        if (out_normal_enu) {
+          out_normal_enu[3 * i] = sea ? r[k].normalEnu.x : kNaN;
+          out_normal_enu[3 * i + 1] = sea ? r[k].normalEnu.y : kNaN;
+          out_normal_enu[3 * i + 2] = sea ? r[k].normalEnu.z : kNaN;
+        }
+      }
+    }
+  });
+}
+
+GEOCEAN_API geocean_status geocean_significant_wave_height(const geocean_ocean* ocean, double* out_hs_m) {
+  return guard("geocean_significant_wave_height", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(out_hs_m, "out_hs_m");
+    const auto snap = ocean->current();
+    if (!snap->waves) fail(GEOCEAN_ERROR_NOT_READY, "no sea state: call geocean_set_sea_state first");
+    *out_hs_m = snap->waves->spectrumHsM();
+  });
+}
+
+}  // extern "C"

@@ -1,0 +1,209 @@
+/* Geocean ocean plugin: the whole public surface, as C99.
+ *
+ * A host engine loads libgeocean_ocean.so (dlopen or link), checks the ABI
+ * version, creates an ocean, gives it rasters (mask, elevation) and a sea
+ * state, and queries the sea surface. Nothing C++ crosses this boundary.
+ *
+ * Conventions
+ *   - Every function returning geocean_status returns GEOCEAN_OK (0) on
+ *     success; on failure a status and a message for the calling thread,
+ *     read with geocean_last_error(). Every call that returns a status clears
+ *     the calling thread's message first.
+ *   - Angles are degrees, lengths metres, times seconds (names say so).
+ *     Latitude/longitude are geodetic on WGS84, in double.
+ *   - Thread safety: see each function. In short: create/destroy and the
+ *     setters may be called from any thread; queries may run from any
+ *     number of threads at once, also while a setter runs on another thread
+ *     (a query sees the state before or after the setter, never a mix);
+ *     destroy must not overlap any other call on the same ocean.
+ *
+ * Full reference: docs/PLUGIN_ABI.md. */
+#ifndef GEOCEAN_OCEAN_H
+#define GEOCEAN_OCEAN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(GEOCEAN_OCEAN_BUILD)
+#define GEOCEAN_API __attribute__((visibility("default")))
+#else
+#define GEOCEAN_API
+#endif
+
+/* ABI version: MAJOR changes break compatibility; MINOR adds functions.
+ * A host built against MAJOR.MINOR runs with a plugin of the same MAJOR and
+ * a MINOR at least as high. */
+#define GEOCEAN_ABI_VERSION_MAJOR 1
+#define GEOCEAN_ABI_VERSION_MINOR 0
+#define GEOCEAN_ABI_VERSION ((uint32_t)((GEOCEAN_ABI_VERSION_MAJOR << 16) | GEOCEAN_ABI_VERSION_MINOR))
+
+typedef enum geocean_status {
+  GEOCEAN_OK = 0,
+  GEOCEAN_ERROR_NULL_ARGUMENT = 1,    /* a required pointer or handle was NULL */
+  GEOCEAN_ERROR_INVALID_ARGUMENT = 2, /* a value out of range (the message names it) */
+  GEOCEAN_ERROR_ABI_VERSION = 3,      /* the host's ABI version is not served by this plugin */
+  GEOCEAN_ERROR_RASTER = 4,           /* a raster could not be opened or read (message names the file) */
+  GEOCEAN_ERROR_NOT_READY = 5,        /* called in the wrong order: a prerequisite is missing */
+  GEOCEAN_ERROR_NO_GL_CONTEXT = 6,    /* no OpenGL context is current on the calling thread */
+  GEOCEAN_ERROR_GL = 7,               /* OpenGL failed (shader compile, missing extension) */
+  GEOCEAN_ERROR_OUT_OF_MEMORY = 8,
+  GEOCEAN_ERROR_INTERNAL = 9          /* a bug: please report the message */
+} geocean_status;
+
+/* Surface classes returned by the class queries. */
+typedef enum geocean_surface {
+  GEOCEAN_SURFACE_OCEAN = 0,
+  GEOCEAN_SURFACE_LAND = 1,
+  GEOCEAN_SURFACE_LAKE = 2
+} geocean_surface;
+
+/* How a raster file is placed on the Earth. */
+typedef enum geocean_georef {
+  GEOCEAN_GEOREF_FROM_FILE = 0,       /* GeoTIFF tags, or a world file beside a PNG/JPEG */
+  GEOCEAN_GEOREF_GLOBAL_EQUIRECT = 1  /* whole Earth, north up, column 0 starts at -180 */
+} geocean_georef;
+
+/* Placement of a raster given from memory. Pixel (i, j) covers
+ * [i, i+1) x [j, j+1) in pixel space; pixel-space (0, 0) is at
+ * (origin_lat_deg, origin_lon_deg). */
+typedef struct geocean_grid_placement {
+  double origin_lon_deg; /* longitude of the left edge of column 0 */
+  double origin_lat_deg; /* latitude of the top edge of row 0 */
+  double lon_step_deg;   /* degrees per column, > 0 */
+  double lat_step_deg;   /* degrees per row, != 0 (< 0: north up) */
+  int32_t global;        /* non-zero: the columns span 360 degrees and longitude wraps */
+  int32_t has_nodata;    /* non-zero: pixels equal to nodata mean "no data" */
+  double nodata;
+} geocean_grid_placement;
+
+/* Wave models (docs/ARCHITECTURE.md, plugin/waves). */
+typedef enum geocean_wave_model {
+  GEOCEAN_WAVES_NOISE = 0,       /* solid fractal noise on the 3D surface point (default) */
+  GEOCEAN_WAVES_NOISE_PAPER = 1, /* paper 002's 2D noise at (lon cos(lat), lat); CPU only, has a seam */
+  GEOCEAN_WAVES_GERSTNER = 2     /* trochoidal waves from the sea spectrum, depth-aware */
+} geocean_wave_model;
+
+/* The sea state. Fill with geocean_sea_state_init() first, then change
+ * fields: struct_size lets later minor versions append fields. */
+typedef struct geocean_sea_state {
+  uint32_t struct_size;        /* sizeof(geocean_sea_state), set by geocean_sea_state_init */
+  int32_t model;               /* a geocean_wave_model */
+  double wind_speed_mps;       /* at 19.5 m (Pierson-Moskowitz reference height), 0.2 .. 60 */
+  double wind_from_deg;        /* direction the wind blows FROM, clockwise from north */
+  double fetch_m;              /* 0: fully developed sea (Pierson-Moskowitz); > 0: JONSWAP */
+  uint32_t seed;               /* same seed, same sea */
+  int32_t gerstner_components; /* 1 .. 64 */
+  int32_t noise_octaves;       /* 1 .. 12 */
+  double anchor_lat_deg;       /* where wind_from_deg holds exactly (Gerstner waves follow great circles) */
+  double anchor_lon_deg;
+  double reference_depth_m;    /* depth setting Gerstner wave numbers; 1e30 = deep water */
+} geocean_sea_state;
+
+typedef struct geocean_ocean geocean_ocean; /* opaque */
+
+/* ---- Version and errors ------------------------------------------------ */
+
+/* The plugin's GEOCEAN_ABI_VERSION. Thread-safe; callable before anything. */
+GEOCEAN_API uint32_t geocean_abi_version(void);
+/* "MAJOR.MINOR.PATCH" of the Geocean release. Thread-safe; static string. */
+GEOCEAN_API const char* geocean_version_string(void);
+/* The message of the calling thread's last failed call ("" if the last call
+ * succeeded). Valid until the thread's next geocean_* call. Never NULL. */
+GEOCEAN_API const char* geocean_last_error(void);
+/* A static name for a status, e.g. "GEOCEAN_ERROR_RASTER". Never NULL. */
+GEOCEAN_API const char* geocean_status_string(geocean_status status);
+
+/* ---- Lifetime ----------------------------------------------------------- */
+
+/* Creates an ocean with no rasters and no sea state. host_abi_version: pass
+ * GEOCEAN_ABI_VERSION from the header the host was built with.
+ * Errors: NULL_ARGUMENT (out), ABI_VERSION. *out is NULL on failure. */
+GEOCEAN_API geocean_status geocean_create(uint32_t host_abi_version, geocean_ocean** out);
+/* Destroys an ocean; NULL is allowed and ignored. Must not overlap any other
+ * call on the same ocean. */
+GEOCEAN_API void geocean_destroy(geocean_ocean* ocean);
+
+/* ---- Rasters ------------------------------------------------------------ */
+
+/* Land/sea mask from a raster file: values 0 ocean, 1 land, 2 lake (other
+ * values land). Replaces the previous mask. Errors: NULL_ARGUMENT,
+ * INVALID_ARGUMENT (georef), RASTER (missing, unreadable or not
+ * georeferenced file; the message names the file and the field). */
+GEOCEAN_API geocean_status geocean_set_mask_file(geocean_ocean* ocean, const char* path, geocean_georef georef);
+/* Terrain elevation in metres (ocean depth negative) from a raster file.
+ * Errors as geocean_set_mask_file. */
+GEOCEAN_API geocean_status geocean_set_elevation_file(geocean_ocean* ocean, const char* path,
+                                                      geocean_georef georef);
+/* The same from memory: width x height floats, row-major, copied. Errors:
+ * NULL_ARGUMENT, INVALID_ARGUMENT (size, placement). */
+GEOCEAN_API geocean_status geocean_set_mask_pixels(geocean_ocean* ocean, const float* values, int32_t width,
+                                                   int32_t height, const geocean_grid_placement* placement);
+GEOCEAN_API geocean_status geocean_set_elevation_pixels(geocean_ocean* ocean, const float* values_m,
+                                                        int32_t width, int32_t height,
+                                                        const geocean_grid_placement* placement);
+/* Loads Geocean's default world (5' mask, 20' ETOPO elevation) from
+ * $GEOCEAN_DATA, else <prefix>/share/geocean/data beside the installed
+ * library, else the build's data directory. Errors: NULL_ARGUMENT, RASTER. */
+GEOCEAN_API geocean_status geocean_set_default_world(geocean_ocean* ocean);
+/* Removes both rasters. Errors: NULL_ARGUMENT. */
+GEOCEAN_API geocean_status geocean_clear_rasters(geocean_ocean* ocean);
+
+/* ---- Queries (thread-safe, any number of threads) ----------------------- */
+
+/* Surface class at count points. Needs a mask or an elevation raster.
+ * out_class: count bytes of geocean_surface. count 0 is allowed (pointers
+ * may then be NULL). Errors: NULL_ARGUMENT, NOT_READY (no raster). */
+GEOCEAN_API geocean_status geocean_query_class(const geocean_ocean* ocean, size_t count, const double* lat_deg,
+                                               const double* lon_deg, uint8_t* out_class);
+/* Terrain elevation (m, bilinear; NaN where no data) at count points.
+ * Errors: NULL_ARGUMENT, NOT_READY (no elevation raster). */
+GEOCEAN_API geocean_status geocean_query_elevation(const geocean_ocean* ocean, size_t count,
+                                                   const double* lat_deg, const double* lon_deg,
+                                                   float* out_elevation_m);
+
+/* ---- Sea state and sea-surface queries ---------------------------------- */
+
+/* Fills *sea_state with the defaults (noise model, 10 m/s from 270 deg,
+ * fully developed, seed 1, 16 Gerstner components, 8 noise octaves, anchor
+ * at (0, 0), deep water). Errors: NULL_ARGUMENT. Thread-safe. */
+GEOCEAN_API geocean_status geocean_sea_state_init(geocean_sea_state* sea_state);
+/* Sets wind_speed_mps for a Beaufort number 0..12 (middle of the WMO class
+ * at 10 m, converted to 19.5 m); other fields untouched. Errors:
+ * NULL_ARGUMENT, INVALID_ARGUMENT (beaufort). Thread-safe. */
+GEOCEAN_API geocean_status geocean_sea_state_set_beaufort(geocean_sea_state* sea_state, int32_t beaufort);
+/* Sets the sea state, replacing the previous one. Errors: NULL_ARGUMENT,
+ * INVALID_ARGUMENT (struct_size, model or a field out of range: the message
+ * names the field and the value); the previous sea state stays. */
+GEOCEAN_API geocean_status geocean_set_sea_state(geocean_ocean* ocean, const geocean_sea_state* sea_state);
+
+/* The displaced sea surface exactly above count points at simulation time
+ * time_s (seconds; the same t always gives the same surface):
+ *   out_height_m[i]      height above the WGS84 ellipsoid (m) of the surface
+ *                        above the point (horizontal displacement inverted to
+ *                        0.1 mm); NaN on land and lakes.
+ *   out_normal_enu[3i..] unit normal, east-north-up at the point; NaN on land
+ *                        and lakes. May be NULL.
+ *   out_class[i]         geocean_surface. May be NULL.
+ * Classes and water depth come from the rasters; with none, every point is
+ * deep ocean. Depth is -elevation, at least 1 m where the mask says ocean
+ * (coarse relief and mask disagree along coasts). Large batches run on all
+ * cores. Needs a sea state.
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (time_s not finite), NOT_READY
+ * (no sea state). */
+GEOCEAN_API geocean_status geocean_query_sea_surface(const geocean_ocean* ocean, size_t count,
+                                                     const double* lat_deg, const double* lon_deg, double time_s,
+                                                     double* out_height_m, double* out_normal_enu,
+                                                     uint8_t* out_class);
+/* Significant wave height (m) of the current sea state's spectrum, 4 sqrt(m0).
+ * Errors: NULL_ARGUMENT, NOT_READY (no sea state). */
+GEOCEAN_API geocean_status geocean_significant_wave_height(const geocean_ocean* ocean, double* out_hs_m);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* GEOCEAN_OCEAN_H */

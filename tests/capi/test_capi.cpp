@@ -1,0 +1,433 @@
+// The C ABI through the run-time loader (globe/host), as a host engine sees
+// it: version checks, misuse (NULL handles, wrong order, bad rasters, bad
+// arguments), results at known places, thread-local errors.
+#include "globe/host/OceanPlugin.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using geocean::host::OceanPlugin;
+
+const OceanPlugin& plugin() {
+  static std::unique_ptr<OceanPlugin> p = [] {
+    std::string error;
+    auto loaded = OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error);
+    if (!loaded) ADD_FAILURE() << error;
+    return loaded;
+  }();
+  return *p;
+}
+
+// An ocean that is destroyed at scope exit.
+struct Ocean {
+  geocean_ocean* h = nullptr;
+  Ocean() { EXPECT_EQ(plugin().api().create(GEOCEAN_ABI_VERSION, &h), GEOCEAN_OK); }
+  ~Ocean() { plugin().api().destroy(h); }
+};
+
+std::string lastError() { return plugin().api().lastError(); }
+
+geocean_grid_placement globalPlacement(int width, int height) {
+  return {-180.0, 90.0, 360.0 / width, -180.0 / height, 1, 0, 0.0};
+}
+
+TEST(CapiLoader, LoadsTheBuiltPluginAndChecksItsVersion) {
+  EXPECT_EQ(plugin().pluginAbiVersion(), GEOCEAN_ABI_VERSION);
+  EXPECT_STREQ(plugin().api().versionString(), "0.1.0");
+}
+
+TEST(CapiLoader, RefusesAHostOfAnotherMajorOrANewerMinor) {
+  std::string error;
+  EXPECT_EQ(OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error, 2u << 16), nullptr);
+  EXPECT_NE(error.find("plugin ABI 1.0 cannot serve a host built for ABI 2.0"), std::string::npos) << error;
+  error.clear();
+  EXPECT_EQ(OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error, GEOCEAN_ABI_VERSION + 1), nullptr);
+  EXPECT_NE(error.find("ABI 1.1"), std::string::npos) << error;
+  // An older minor of the same major is served.
+  EXPECT_TRUE(OceanPlugin::compatible(1u << 16, (1u << 16) | 3u));
+  EXPECT_FALSE(OceanPlugin::compatible((1u << 16) | 3u, 1u << 16));
+}
+
+TEST(CapiLoader, NamesAMissingLibrary) {
+  std::string error;
+  EXPECT_EQ(OceanPlugin::load("/nonexistent/libgeocean_ocean.so", error), nullptr);
+  EXPECT_NE(error.find("/nonexistent/libgeocean_ocean.so"), std::string::npos) << error;
+}
+
+TEST(CapiMisuse, CreateRefusesAWrongAbiVersion) {
+  geocean_ocean* h = reinterpret_cast<geocean_ocean*>(&h);  // garbage that must be overwritten
+  EXPECT_EQ(plugin().api().create(0, &h), GEOCEAN_ERROR_ABI_VERSION);
+  EXPECT_EQ(h, nullptr);
+  EXPECT_NE(lastError().find("host ABI 0.0 is not served by this plugin (ABI 1.0)"), std::string::npos);
+  EXPECT_EQ(plugin().api().create(GEOCEAN_ABI_VERSION, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_NE(lastError().find("geocean_create: out is NULL"), std::string::npos) << lastError();
+}
+
+TEST(CapiMisuse, EveryFunctionRejectsANullOcean) {
+  const auto& a = plugin().api();
+  const double lat = 0, lon = 0;
+  uint8_t c = 0;
+  float e = 0;
+  const float px = 0;
+  const auto pl = globalPlacement(1, 1);
+  const std::vector<std::pair<const char*, geocean_status>> calls = {
+      {"geocean_set_mask_file", a.setMaskFile(nullptr, "x.tif", GEOCEAN_GEOREF_FROM_FILE)},
+      {"geocean_set_elevation_file", a.setElevationFile(nullptr, "x.tif", GEOCEAN_GEOREF_FROM_FILE)},
+      {"geocean_set_mask_pixels", a.setMaskPixels(nullptr, &px, 1, 1, &pl)},
+      {"geocean_set_elevation_pixels", a.setElevationPixels(nullptr, &px, 1, 1, &pl)},
+      {"geocean_set_default_world", a.setDefaultWorld(nullptr)},
+      {"geocean_clear_rasters", a.clearRasters(nullptr)},
+      {"geocean_query_class", a.queryClass(nullptr, 1, &lat, &lon, &c)},
+      {"geocean_query_elevation", a.queryElevation(nullptr, 1, &lat, &lon, &e)},
+  };
+  for (const auto& [name, status] : calls) EXPECT_EQ(status, GEOCEAN_ERROR_NULL_ARGUMENT) << name;
+  // The message names the last function called.
+  EXPECT_EQ(lastError(), "geocean_query_elevation: ocean is NULL");
+  a.destroy(nullptr);  // allowed
+}
+
+TEST(CapiMisuse, NullArraysAreRejectedUnlessCountIsZero) {
+  Ocean o;
+  const auto& a = plugin().api();
+  const auto pl = globalPlacement(1, 1);
+  const float zero = 0.0f;
+  ASSERT_EQ(a.setMaskPixels(o.h, &zero, 1, 1, &pl), GEOCEAN_OK);
+  ASSERT_EQ(a.setElevationPixels(o.h, &zero, 1, 1, &pl), GEOCEAN_OK);
+  const double lat = 0, lon = 0;
+  uint8_t c = 0;
+  float e = 0;
+  EXPECT_EQ(a.queryElevation(o.h, 1, &lat, nullptr, &e), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(a.queryClass(o.h, 1, nullptr, &lon, &c), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(lastError(), "geocean_query_class: lat_deg is NULL");
+  EXPECT_EQ(a.queryClass(o.h, 1, &lat, nullptr, &c), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(a.queryClass(o.h, 1, &lat, &lon, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(a.queryElevation(o.h, 1, &lat, &lon, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(lastError(), "geocean_query_elevation: out_elevation_m is NULL");
+  EXPECT_EQ(a.queryClass(o.h, 0, nullptr, nullptr, nullptr), GEOCEAN_OK);
+  EXPECT_EQ(a.queryElevation(o.h, 0, nullptr, nullptr, nullptr), GEOCEAN_OK);
+  EXPECT_EQ(a.setMaskFile(o.h, nullptr, GEOCEAN_GEOREF_FROM_FILE), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(a.setMaskPixels(o.h, nullptr, 1, 1, &pl), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(a.setMaskPixels(o.h, &zero, 1, 1, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(lastError(), "geocean_set_mask_pixels: placement is NULL");
+}
+
+TEST(CapiMisuse, QueriesBeforeRastersSayWhatIsMissing) {
+  Ocean o;
+  const auto& a = plugin().api();
+  const double lat = 0, lon = 0;
+  uint8_t c = 0;
+  float e = 0;
+  EXPECT_EQ(a.queryClass(o.h, 1, &lat, &lon, &c), GEOCEAN_ERROR_NOT_READY);
+  EXPECT_NE(lastError().find("no mask or elevation raster"), std::string::npos) << lastError();
+  const auto pl = globalPlacement(1, 1);
+  const float one = 1.0f;
+  ASSERT_EQ(a.setMaskPixels(o.h, &one, 1, 1, &pl), GEOCEAN_OK);
+  EXPECT_EQ(lastError(), "");  // success clears the thread's message
+  EXPECT_EQ(a.queryClass(o.h, 1, &lat, &lon, &c), GEOCEAN_OK);
+  EXPECT_EQ(c, GEOCEAN_SURFACE_LAND);
+  // A mask alone gives classes but no elevation.
+  EXPECT_EQ(a.queryElevation(o.h, 1, &lat, &lon, &e), GEOCEAN_ERROR_NOT_READY);
+  EXPECT_NE(lastError().find("no elevation raster"), std::string::npos) << lastError();
+  ASSERT_EQ(a.clearRasters(o.h), GEOCEAN_OK);
+  EXPECT_EQ(a.queryClass(o.h, 1, &lat, &lon, &c), GEOCEAN_ERROR_NOT_READY);
+}
+
+TEST(CapiMisuse, BadRasterFileNamesTheFileAndKeepsThePreviousRaster) {
+  Ocean o;
+  const auto& a = plugin().api();
+  const auto pl = globalPlacement(1, 1);
+  const float lake = 2.0f;
+  ASSERT_EQ(a.setMaskPixels(o.h, &lake, 1, 1, &pl), GEOCEAN_OK);
+  EXPECT_EQ(a.setMaskFile(o.h, "/nonexistent/mask.tif", GEOCEAN_GEOREF_FROM_FILE), GEOCEAN_ERROR_RASTER);
+  EXPECT_EQ(lastError().rfind("geocean_set_mask_file: ", 0), 0u) << lastError();
+  EXPECT_NE(lastError().find("/nonexistent/mask.tif"), std::string::npos) << lastError();
+  // A file that exists but is not an image.
+  const std::string notImage = std::string(GEOCEAN_SOURCE_DIR) + "/tests/capi/test_capi.cpp";
+  EXPECT_EQ(a.setElevationFile(o.h, notImage.c_str(), GEOCEAN_GEOREF_FROM_FILE), GEOCEAN_ERROR_RASTER);
+  EXPECT_NE(lastError().find("test_capi.cpp"), std::string::npos) << lastError();
+  const double lat = 10, lon = 20;
+  uint8_t c = 0;
+  EXPECT_EQ(a.queryClass(o.h, 1, &lat, &lon, &c), GEOCEAN_OK);
+  EXPECT_EQ(c, GEOCEAN_SURFACE_LAKE);
+  EXPECT_EQ(a.setMaskFile(o.h, "x.tif", static_cast<geocean_georef>(7)), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(lastError(), "geocean_set_mask_file: georef 7 is not a geocean_georef");
+}
+
+TEST(CapiMisuse, BadPlacementsNameTheField) {
+  Ocean o;
+  const auto& a = plugin().api();
+  const std::vector<float> px(8, 0.0f);
+  auto pl = globalPlacement(4, 2);
+  EXPECT_EQ(a.setMaskPixels(o.h, px.data(), 0, 2, &pl), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("raster size 0 x 2"), std::string::npos) << lastError();
+  pl.lon_step_deg = -90.0;
+  EXPECT_EQ(a.setMaskPixels(o.h, px.data(), 4, 2, &pl), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("lon_step_deg"), std::string::npos) << lastError();
+  pl = globalPlacement(4, 2);
+  pl.lat_step_deg = NAN;
+  EXPECT_EQ(a.setMaskPixels(o.h, px.data(), 4, 2, &pl), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("lat_step_deg"), std::string::npos) << lastError();
+  pl = globalPlacement(4, 2);
+  pl.lon_step_deg = 45.0;  // 4 x 45 = 180: not a global raster
+  EXPECT_EQ(a.setMaskPixels(o.h, px.data(), 4, 2, &pl), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("not 360"), std::string::npos) << lastError();
+}
+
+// Elevation from memory: a plane in (lon, lat) is reproduced exactly by
+// bilinear interpolation, so the answer is known without our code.
+TEST(CapiQuery, ElevationFromMemoryInterpolatesAPlane) {
+  Ocean o;
+  const auto& a = plugin().api();
+  const int w = 20, h = 10;  // 1-degree cells over lon [0, 20), lat (40, 50]
+  std::vector<float> z(w * h);
+  auto plane = [](double lonDeg, double latDeg) { return 100.0 * lonDeg - 30.0 * latDeg; };
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) z[j * w + i] = float(plane(i + 0.5, 50.0 - (j + 0.5)));
+  const geocean_grid_placement pl{0.0, 50.0, 1.0, -1.0, 0, 0, 0.0};
+  ASSERT_EQ(a.setElevationPixels(o.h, z.data(), w, h, &pl), GEOCEAN_OK) << lastError();
+  const std::vector<double> lat = {45.0, 41.3, 49.25}, lon = {10.0, 3.7, 18.5};
+  std::vector<float> e(3);
+  ASSERT_EQ(a.queryElevation(o.h, 3, lat.data(), lon.data(), e.data()), GEOCEAN_OK) << lastError();
+  // Float pixel values and float output: relative 1e-6 of ~2000 m (float has 24 bits).
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(e[k], plane(lon[k], lat[k]), 2e-3) << k;
+  // Elevation alone classifies: below 0 is ocean.
+  std::vector<uint8_t> c(3);
+  const std::vector<double> latC = {49.5, 40.5}, lonC = {0.5, 19.5};  // z = -1485, +735
+  ASSERT_EQ(a.queryClass(o.h, 2, latC.data(), lonC.data(), c.data()), GEOCEAN_OK);
+  EXPECT_EQ(c[0], GEOCEAN_SURFACE_OCEAN);
+  EXPECT_EQ(c[1], GEOCEAN_SURFACE_LAND);
+}
+
+// The default world at places whose nature is not in doubt.
+TEST(CapiQuery, DefaultWorldAtKnownPlaces) {
+  setenv("GEOCEAN_DATA", GEOCEAN_DATA_DIR, 1);
+  Ocean o;
+  const auto& a = plugin().api();
+  ASSERT_EQ(a.setDefaultWorld(o.h), GEOCEAN_OK) << lastError();
+  // Mid-Atlantic, Sahara, Lake Superior, Challenger Deep, Everest.
+  const std::vector<double> lat = {30.0, 23.0, 47.6, 11.35, 27.99}, lon = {-40.0, 10.0, -87.5, 142.2, 86.93};
+  const std::vector<uint8_t> expected = {GEOCEAN_SURFACE_OCEAN, GEOCEAN_SURFACE_LAND, GEOCEAN_SURFACE_LAKE,
+                                         GEOCEAN_SURFACE_OCEAN, GEOCEAN_SURFACE_LAND};
+  std::vector<uint8_t> c(5);
+  std::vector<float> e(5);
+  ASSERT_EQ(a.queryClass(o.h, 5, lat.data(), lon.data(), c.data()), GEOCEAN_OK);
+  ASSERT_EQ(a.queryElevation(o.h, 5, lat.data(), lon.data(), e.data()), GEOCEAN_OK);
+  for (int k = 0; k < 5; ++k) EXPECT_EQ(c[k], expected[k]) << k;
+  // 20' cells average the extremes (-10994 m, 8849 m) away: loose bounds.
+  EXPECT_LT(e[3], -5000.0f);
+  EXPECT_GT(e[4], 4000.0f);
+  EXPECT_LT(e[0], -2000.0f);  // the Atlantic there is 4-5 km deep
+}
+
+TEST(CapiErrors, MessagesAreThreadLocal) {
+  const auto& a = plugin().api();
+  ASSERT_EQ(a.create(0, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  std::string other = "unset";
+  std::thread t([&] {
+    geocean_ocean* h = nullptr;
+    EXPECT_EQ(a.create(GEOCEAN_ABI_VERSION, &h), GEOCEAN_OK);
+    other = a.lastError();
+    a.destroy(h);
+  });
+  t.join();
+  EXPECT_EQ(other, "");
+  EXPECT_EQ(lastError(), "geocean_create: out is NULL");
+  EXPECT_STREQ(a.statusString(static_cast<geocean_status>(42)), "GEOCEAN_ERROR_UNKNOWN_STATUS");
+}
+
+// Queries from several threads while another thread replaces the mask: each
+// batch must see one mask or the other, never a mix or a torn state.
+TEST(CapiThreads, QueriesSeeWholeStatesWhileTheMaskIsReplaced) {
+  Ocean o;
+  const auto& a = plugin().api();
+  const int w = 360, h = 180;
+  const std::vector<float> ocean(w * h, 0.0f), land(w * h, 1.0f);
+  const auto pl = globalPlacement(w, h);
+  ASSERT_EQ(a.setMaskPixels(o.h, ocean.data(), w, h, &pl), GEOCEAN_OK);
+  const std::size_t n = 20000;
+  std::vector<double> lat(n), lon(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    lat[i] = -89.5 + 179.0 * double(i) / n;
+    lon[i] = -180.0 + 360.0 * double((i * 7919) % n) / n;
+  }
+  std::atomic<bool> stop{false};
+  std::atomic<int> mixed{0}, failed{0}, sawOcean{0}, sawLand{0};
+  std::vector<std::thread> readers;
+  for (int t = 0; t < 3; ++t)
+    readers.emplace_back([&] {
+      std::vector<uint8_t> c(n);
+      while (!stop) {
+        if (a.queryClass(o.h, n, lat.data(), lon.data(), c.data()) != GEOCEAN_OK) ++failed;
+        const auto ones = std::count(c.begin(), c.end(), uint8_t(1));
+        if (ones != 0 && ones != std::ptrdiff_t(n)) ++mixed;
+        (ones ? sawLand : sawOcean)++;
+      }
+    });
+  for (int k = 0; k < 200 || sawOcean + sawLand < 30; ++k)
+    ASSERT_EQ(a.setMaskPixels(o.h, (k % 2 ? ocean : land).data(), w, h, &pl), GEOCEAN_OK) << lastError();
+  stop = true;
+  for (auto& r : readers) r.join();
+  EXPECT_EQ(failed, 0);
+  EXPECT_EQ(mixed, 0);
+  EXPECT_GT(sawOcean, 0);  // both states were seen: the test exercised the swap
+  EXPECT_GT(sawLand, 0);
+}
+
+geocean_sea_state seaState(double windMps, geocean_wave_model model = GEOCEAN_WAVES_NOISE) {
+  geocean_sea_state s;
+  EXPECT_EQ(plugin().api().seaStateInit(&s), GEOCEAN_OK);
+  s.wind_speed_mps = windMps;
+  s.model = model;
+  return s;
+}
+
+TEST(CapiSea, QueriesNeedASeaStateAndBadOnesNameTheField) {
+  Ocean o;
+  const auto& a = plugin().api();
+  const double lat = 0, lon = 0;
+  double h = 0, hs = 0;
+  EXPECT_EQ(a.querySeaSurface(o.h, 1, &lat, &lon, 0.0, &h, nullptr, nullptr), GEOCEAN_ERROR_NOT_READY);
+  EXPECT_EQ(lastError(), "geocean_query_sea_surface: no sea state: call geocean_set_sea_state first");
+  EXPECT_EQ(a.significantWaveHeight(o.h, &hs), GEOCEAN_ERROR_NOT_READY);
+  auto s = seaState(100.0);
+  EXPECT_EQ(a.setSeaState(o.h, &s), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("windSpeedMps = 100"), std::string::npos) << lastError();
+  s = seaState(10.0);
+  s.model = 9;
+  EXPECT_EQ(a.setSeaState(o.h, &s), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("sea_state->model 9"), std::string::npos) << lastError();
+  s = seaState(10.0);
+  s.struct_size = 8;  // a host that never called geocean_sea_state_init
+  EXPECT_EQ(a.setSeaState(o.h, &s), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("struct_size 8"), std::string::npos) << lastError();
+  EXPECT_EQ(a.setSeaState(o.h, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(a.seaStateSetBeaufort(&s, 13), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(a.seaStateInit(nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  s = seaState(10.0);
+  ASSERT_EQ(a.setSeaState(o.h, &s), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(a.querySeaSurface(o.h, 1, &lat, &lon, NAN, &h, nullptr, nullptr), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(a.querySeaSurface(o.h, 1, &lat, &lon, 0.0, nullptr, nullptr, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(a.querySeaSurface(nullptr, 1, &lat, &lon, 0.0, &h, nullptr, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+}
+
+TEST(CapiSea, BeaufortSixIsAStrongBreeze) {
+  geocean_sea_state s = seaState(1.0);
+  ASSERT_EQ(plugin().api().seaStateSetBeaufort(&s, 6), GEOCEAN_OK);
+  // WMO Beaufort 6: 10.8 .. 13.8 m/s at 10 m; at 19.5 m about 1.026 x that.
+  EXPECT_GT(s.wind_speed_mps, 10.8);
+  EXPECT_LT(s.wind_speed_mps, 13.8 * 1.03);
+}
+
+// Physics, not our code: a fully developed sea has Hs ~ 0.21 U^2 / g
+// (Pierson-Moskowitz), and 4 std(height) of the simulated sea estimates Hs.
+TEST(CapiSea, HeightsHaveThePiersonMoskowitzSignificantHeight) {
+  const auto& a = plugin().api();
+  for (auto model : {GEOCEAN_WAVES_NOISE, GEOCEAN_WAVES_GERSTNER}) {
+    Ocean o;  // no rasters: deep ocean everywhere
+    const double windMps = 12.0, hsPm = 0.21 * windMps * windMps / 9.80665;
+    const auto s = seaState(windMps, model);
+    ASSERT_EQ(a.setSeaState(o.h, &s), GEOCEAN_OK) << lastError();
+    double hs = 0;
+    ASSERT_EQ(a.significantWaveHeight(o.h, &hs), GEOCEAN_OK);
+    EXPECT_NEAR(hs, hsPm, 0.10 * hsPm) << model;  // the 10% goal for the spectrum
+    // Points 1..20 km apart over a 2 x 2 degree box and 8 times: many independent waves.
+    const std::size_t n = 8000;
+    std::vector<double> lat(n), lon(n), h(n), nrm(3 * n);
+    std::vector<uint8_t> c(n);
+    double sum = 0, sum2 = 0;
+    for (int t = 0; t < 8; ++t) {
+      for (std::size_t i = 0; i < n; ++i) {
+        lat[i] = 10.0 + 2.0 * double((i * 37) % n) / n;
+        lon[i] = -30.0 + 2.0 * double((i * 101) % n) / n;
+      }
+      ASSERT_EQ(a.querySeaSurface(o.h, n, lat.data(), lon.data(), 100.0 * t, h.data(), nrm.data(), c.data()),
+                GEOCEAN_OK)
+          << lastError();
+      for (std::size_t i = 0; i < n; ++i) {
+        ASSERT_EQ(c[i], GEOCEAN_SURFACE_OCEAN);
+        sum += h[i];
+        sum2 += h[i] * h[i];
+        const double len = std::hypot(nrm[3 * i], nrm[3 * i + 1], nrm[3 * i + 2]);
+        ASSERT_NEAR(len, 1.0, 1e-9);  // unit normal, double rounding only
+        ASSERT_GT(nrm[3 * i + 2], 0.0);
+      }
+    }
+    const double m = 8.0 * n, mean = sum / m, sd = std::sqrt(sum2 / m - mean * mean);
+    // 64k samples of a smooth field are not independent: allow 15% around the 10% model goal.
+    EXPECT_NEAR(4.0 * sd, hsPm, 0.15 * hsPm) << model;
+    EXPECT_NEAR(mean, 0.0, 0.1 * hsPm) << model;
+  }
+}
+
+TEST(CapiSea, LandAndLakesAreNotSea) {
+  setenv("GEOCEAN_DATA", GEOCEAN_DATA_DIR, 1);
+  Ocean o;
+  const auto& a = plugin().api();
+  ASSERT_EQ(a.setDefaultWorld(o.h), GEOCEAN_OK) << lastError();
+  const auto s = seaState(10.0, GEOCEAN_WAVES_GERSTNER);
+  ASSERT_EQ(a.setSeaState(o.h, &s), GEOCEAN_OK) << lastError();
+  const std::vector<double> lat = {30.0, 23.0, 47.6}, lon = {-40.0, 10.0, -87.5};  // Atlantic, Sahara, Superior
+  std::vector<double> h(3), n(9);
+  std::vector<uint8_t> c(3);
+  ASSERT_EQ(a.querySeaSurface(o.h, 3, lat.data(), lon.data(), 12.5, h.data(), n.data(), c.data()), GEOCEAN_OK);
+  EXPECT_EQ(c[0], GEOCEAN_SURFACE_OCEAN);
+  EXPECT_TRUE(std::isfinite(h[0]));
+  EXPECT_LT(std::abs(h[0]), 10.0);  // 10 m/s: Hs ~ 2 m, crests far below 10 m
+  EXPECT_EQ(c[1], GEOCEAN_SURFACE_LAND);
+  EXPECT_TRUE(std::isnan(h[1]) && std::isnan(n[3]));
+  EXPECT_EQ(c[2], GEOCEAN_SURFACE_LAKE);
+  EXPECT_TRUE(std::isnan(h[2]));
+  // Deterministic in t: asking again gives the same bits.
+  double again = 0;
+  ASSERT_EQ(a.querySeaSurface(o.h, 1, lat.data(), lon.data(), 12.5, &again, nullptr, nullptr), GEOCEAN_OK);
+  EXPECT_EQ(again, h[0]);
+}
+
+// Sea-surface queries from several threads while the sea state is replaced:
+// each batch equals, bit for bit, the answer of one whole sea state.
+TEST(CapiThreads, SeaQueriesSeeWholeSeaStatesWhileTheStateIsReplaced) {
+  Ocean o;
+  const auto& a = plugin().api();
+  const std::size_t n = 2000;
+  std::vector<double> lat(n), lon(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    lat[i] = -60.0 + 120.0 * double(i) / n;
+    lon[i] = -180.0 + 360.0 * double((i * 613) % n) / n;
+  }
+  const auto calm = seaState(5.0), storm = seaState(20.0);
+  std::vector<double> refCalm(n), refStorm(n);
+  ASSERT_EQ(a.setSeaState(o.h, &storm), GEOCEAN_OK);
+  ASSERT_EQ(a.querySeaSurface(o.h, n, lat.data(), lon.data(), 3.0, refStorm.data(), nullptr, nullptr), GEOCEAN_OK);
+  ASSERT_EQ(a.setSeaState(o.h, &calm), GEOCEAN_OK);
+  ASSERT_EQ(a.querySeaSurface(o.h, n, lat.data(), lon.data(), 3.0, refCalm.data(), nullptr, nullptr), GEOCEAN_OK);
+  ASSERT_NE(refCalm, refStorm);
+  std::atomic<bool> stop{false};
+  std::atomic<int> bad{0}, batches{0};
+  std::vector<std::thread> readers;
+  for (int t = 0; t < 3; ++t)
+    readers.emplace_back([&] {
+      std::vector<double> h(n);
+      while (!stop) {
+        if (a.querySeaSurface(o.h, n, lat.data(), lon.data(), 3.0, h.data(), nullptr, nullptr) != GEOCEAN_OK ||
+            (h != refCalm && h != refStorm))
+          ++bad;
+        ++batches;
+      }
+    });
+  // Keep replacing until the readers have finished enough batches (the machine may be busy).
+  for (int k = 0; k < 100 || batches < 30; ++k) ASSERT_EQ(a.setSeaState(o.h, k % 2 ? &calm : &storm), GEOCEAN_OK);
+  stop = true;
+  for (auto& r : readers) r.join();
+  EXPECT_EQ(bad, 0);
+}
+
+}  // namespace
