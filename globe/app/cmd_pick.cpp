@@ -1,0 +1,250 @@
+// `geocean pick`: the first hit on terrain or sea along a ray, through the
+// Embree scene of plugin/grid/Picker.h (double-refined).
+#include "globe/app/Command.h"
+#include "globe/app/QueryIo.h"
+#include "globe/camera/Camera.h"
+#include "globe/raster/World.h"
+#include "plugin/grid/Picker.h"
+#include "plugin/landsea/LandSea.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace geocean::app {
+namespace {
+
+struct PickOptions {
+  std::string ray, rays, cameraPose, size = "1280x720", pixel, format = "text";
+  std::string elevation, mask;
+  double fovDeg = 60.0;
+  bool noTerrain = false, global = false;
+};
+
+// Splits "a,b,c" into exactly n finite numbers; the error names the option and the value.
+std::string parseList(const std::string& text, std::size_t n, const char* what, std::vector<double>& out) {
+  out.clear();
+  std::size_t pos = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', pos);
+    const std::string tok = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    const auto v = parseNumber(tok);
+    if (!v) return std::string(what) + ": '" + tok + "' in '" + text + "' is not a finite number";
+    out.push_back(*v);
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  if (out.size() != n)
+    return std::string(what) + ": expected " + std::to_string(n) + " comma-separated numbers, got " +
+           std::to_string(out.size()) + " in '" + text + "'";
+  return {};
+}
+
+void appendDouble(std::string& s, double v) {
+  char b[32];
+  auto r = std::to_chars(b, b + sizeof b, v);
+  s.append(b, r.ptr);
+}
+
+void format(const grid::PickResult& r, const std::string& fmt, std::string& out) {
+  if (fmt == "json") {
+    out += "{\"hit\":";
+    out += r.hit ? "true" : "false";
+    const char* keys[] = {",\"lat\":", ",\"lon\":", ",\"height_m\":", ",\"distance_m\":"};
+    const double vals[] = {r.latDeg, r.lonDeg, r.heightM, r.distanceM};
+    for (int k = 0; k < 4; ++k) {
+      out += keys[k];
+      if (r.hit) {
+        appendDouble(out, vals[k]);
+      } else {
+        out += "null";
+      }
+    }
+    out += ",\"surface\":";
+    if (r.hit) {
+      out += '"';
+      out += ocean::toString(r.surface);
+      out += '"';
+    } else {
+      out += "null";
+    }
+    out += "}\n";
+  } else {
+    out += r.hit ? "true," : "false,";
+    const double vals[] = {r.latDeg, r.lonDeg, r.heightM, r.distanceM};
+    for (double v : vals) {
+      if (r.hit) appendDouble(out, v);
+      out += ',';
+    }
+    if (r.hit) out += ocean::toString(r.surface);
+    out += '\n';
+  }
+}
+
+struct World {
+  std::shared_ptr<const raster::Raster> elevation;
+  grid::SurfaceClassifier classifier;
+};
+
+World openWorld(const PickOptions& o) {
+  const auto files = raster::defaultWorld();
+  raster::OpenOptions ro;
+  if (o.global) ro.georef = raster::Georef::GlobalEquirect;
+  World w;
+  auto mask = raster::Raster::open(o.mask.empty() ? files.mask : o.mask, ro);
+  if (!o.noTerrain) w.elevation = raster::Raster::open(o.elevation.empty() ? files.elevation : o.elevation, ro);
+  w.classifier = grid::classifierFor(std::make_shared<ocean::LandSea>(mask, w.elevation));
+  return w;
+}
+
+int runPick(const PickOptions& o) {
+  if (o.format != "text" && o.format != "json") {
+    std::fprintf(stderr, "geocean pick: --format '%s' is not text or json\n", o.format.c_str());
+    return kExitBadInput;
+  }
+  const int modes = !o.ray.empty() + !o.rays.empty() + !o.cameraPose.empty();
+  if (modes != 1) {
+    std::fprintf(stderr, "geocean pick: give exactly one of --ray, --rays or --camera\n");
+    return kExitBadInput;
+  }
+  std::vector<grid::PickRay> rays;
+  std::vector<double> v;
+  if (!o.ray.empty()) {
+    if (auto e = parseList(o.ray, 6, "--ray", v); !e.empty()) {
+      std::fprintf(stderr, "geocean pick: %s\n", e.c_str());
+      return kExitBadInput;
+    }
+    rays.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}});
+    if (!(glm::length(rays[0].dir) > 0.0)) {
+      std::fprintf(stderr, "geocean pick: --ray direction %g,%g,%g is zero\n", v[3], v[4], v[5]);
+      return kExitBadInput;
+    }
+  } else if (!o.cameraPose.empty()) {
+    if (auto e = parseList(o.cameraPose, 5, "--camera", v); !e.empty()) {
+      std::fprintf(stderr, "geocean pick: %s\n", e.c_str());
+      return kExitBadInput;
+    }
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(o.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0) {
+      std::fprintf(stderr, "geocean pick: --size '%s' is not WIDTHxHEIGHT with positive integers\n", o.size.c_str());
+      return kExitBadInput;
+    }
+    std::vector<double> px;
+    if (o.pixel.empty()) {
+      std::fprintf(stderr, "geocean pick: --camera needs --pixel X,Y\n");
+      return kExitBadInput;
+    }
+    if (auto e = parseList(o.pixel, 2, "--pixel", px); !e.empty()) {
+      std::fprintf(stderr, "geocean pick: %s\n", e.c_str());
+      return kExitBadInput;
+    }
+    if (px[0] < 0 || px[0] > w || px[1] < 0 || px[1] > h) {
+      std::fprintf(stderr, "geocean pick: --pixel %g,%g is outside the %dx%d viewport\n", px[0], px[1], w, h);
+      return kExitBadInput;
+    }
+    try {
+      const camera::Camera cam = camera::Camera::fromGeodetic({v[0], v[1], v[2], v[3], v[4], 0.0}, o.fovDeg, w, h);
+      // Pixel coordinates name pixels: X,Y is the centre of pixel (X, Y).
+      rays.push_back({cam.eyeEcef(), cam.pixelRay(px[0] + 0.5, px[1] + 0.5)});
+    } catch (const std::invalid_argument& e) {
+      std::fprintf(stderr, "geocean pick: --camera/--fov: %s\n", e.what());
+      return kExitBadInput;
+    }
+  }
+
+  std::unique_ptr<World> world;
+  try {
+    world = std::make_unique<World>(openWorld(o));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "geocean pick: %s\n", e.what());
+    return kExitDataError;
+  }
+  std::string out;
+  if (o.format == "text") out += "hit,lat,lon,height_m,distance_m,surface\n";
+  if (!rays.empty()) {
+    const grid::Picker picker(world->elevation, world->classifier, rays[0].originEcef);
+    format(picker.pick(rays[0]), o.format, out);
+    std::fwrite(out.data(), 1, out.size(), stdout);
+    return kExitOk;
+  }
+
+  // Batch: CSV ox,oy,oz,dx,dy,dz; stream in blocks, one result per row.
+  std::ifstream file;
+  std::istream* in = &std::cin;
+  if (o.rays != "-") {
+    file.open(o.rays);
+    if (!file) {
+      std::fprintf(stderr, "geocean pick: --rays %s: cannot open\n", o.rays.c_str());
+      return kExitDataError;
+    }
+    in = &file;
+  }
+  std::unique_ptr<grid::Picker> picker;
+  std::vector<grid::PickResult> res;
+  std::string line;
+  long row = 0;
+  auto flush = [&] {
+    if (rays.empty()) return;
+    if (!picker) picker = std::make_unique<grid::Picker>(world->elevation, world->classifier, rays[0].originEcef);
+    res.resize(rays.size());
+    picker->pickBatch(rays.data(), rays.size(), res.data());
+    for (const auto& r : res) format(r, o.format, out);
+    std::fwrite(out.data(), 1, out.size(), stdout);
+    out.clear();
+    rays.clear();
+  };
+  while (std::getline(*in, line)) {
+    ++row;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    if (row == 1 && line.find_first_of("abcdefghijklmnopqrstuvwxyz") != std::string::npos &&
+        line.find("ox") != std::string::npos)
+      continue;  // header "ox,oy,oz,dx,dy,dz"
+    const std::string what = "--rays " + o.rays + " row " + std::to_string(row);
+    if (auto e = parseList(line, 6, what.c_str(), v); !e.empty()) {
+      flush();  // rows before the bad one are answered
+      std::fflush(stdout);
+      std::fprintf(stderr, "geocean pick: %s\n", e.c_str());
+      return kExitBadInput;
+    }
+    if (!(glm::length(glm::dvec3(v[3], v[4], v[5])) > 0.0)) {
+      flush();
+      std::fflush(stdout);
+      std::fprintf(stderr, "geocean pick: %s: direction %g,%g,%g is zero\n", what.c_str(), v[3], v[4], v[5]);
+      return kExitBadInput;
+    }
+    rays.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}});
+    if (rays.size() == 8192) flush();
+  }
+  flush();
+  if (picker == nullptr && o.format == "text") std::fwrite(out.data(), 1, out.size(), stdout);
+  std::fflush(stdout);
+  return kExitOk;
+}
+
+const Register reg{{"pick", "first hit on terrain or sea along a ray (Embree, refined in double)",
+                    [](CLI::App& sub) {
+                      auto o = std::make_shared<PickOptions>();
+                      sub.add_option("--ray", o->ray, "OX,OY,OZ,DX,DY,DZ: ECEF origin (m) and direction")
+                          ->allow_extra_args(false);
+                      sub.add_option("--rays", o->rays, "CSV file of ox,oy,oz,dx,dy,dz rows, or - for stdin");
+                      sub.add_option("--camera", o->cameraPose, "LAT,LON,ALT,HEADING,PITCH (deg, m; pitch -90 looks down)");
+                      sub.add_option("--fov", o->fovDeg, "vertical field of view, degrees (default 60)");
+                      sub.add_option("--size", o->size, "viewport WxH in pixels (default 1280x720)");
+                      sub.add_option("--pixel", o->pixel, "X,Y pixel (0,0 = top-left)");
+                      sub.add_option("--format", o->format, "text (CSV) or json");
+                      sub.add_option("--elevation", o->elevation, "terrain raster (default: the world's ETOPO)");
+                      sub.add_option("--mask", o->mask, "land/sea/lake mask raster (default: the world's)");
+                      sub.add_flag("--global", o->global, "rasters are global equirectangular, north up");
+                      sub.add_flag("--no-terrain", o->noTerrain, "pick the sea surface only");
+                      return [o] { return runPick(*o); };
+                    }}};
+
+}  // namespace
+}  // namespace geocean::app
