@@ -54,9 +54,9 @@ class Querier {
     const auto world = raster::defaultWorld();
     raster::OpenOptions ro;
     if (o.global) ro.georef = raster::Georef::GlobalEquirect;
-    // A single point reads one tile through the cache; batches load the
+    // A single point reads only its tiles (libtiff); batches load the
     // (small) default rasters into memory for throughput.
-    if (!batch) ro.inMemoryLimitBytes = 0;
+    if (!batch) ro.fewLookups = true;
     auto mask = raster::Raster::open(o.mask.empty() ? world.mask : o.mask, ro);
     auto elev = raster::Raster::open(o.elevation.empty() ? world.elevation : o.elevation, ro);
     const ocean::MaskEncoding enc = o.maskEncoding.empty() ? ocean::MaskEncoding() : ocean::MaskEncoding::parse(o.maskEncoding);

@@ -1,9 +1,7 @@
 #include "globe/raster/Raster.h"
 
 #include "globe/raster/GeoTiff.h"
-
-#include <OpenImageIO/imagecache.h>
-#include <OpenImageIO/imageio.h>
+#include "globe/raster/PixelSource.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,27 +14,6 @@ namespace geocean::raster {
 namespace {
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-// OpenImageIO normalises integers when converting to float (uint8 255 ->
-// 1.0); rasters carry physical values, so read the native type and convert.
-template <class T>
-void widen(const void* src, std::size_t n, float* dst) {
-  const T* s = static_cast<const T*>(src);
-  for (std::size_t i = 0; i < n; ++i) dst[i] = static_cast<float>(s[i]);
-}
-
-bool toFloat(OIIO::TypeDesc type, const void* src, std::size_t n, float* dst) {
-  switch (type.basetype) {
-    case OIIO::TypeDesc::UINT8: widen<std::uint8_t>(src, n, dst); return true;
-    case OIIO::TypeDesc::INT8: widen<std::int8_t>(src, n, dst); return true;
-    case OIIO::TypeDesc::UINT16: widen<std::uint16_t>(src, n, dst); return true;
-    case OIIO::TypeDesc::INT16: widen<std::int16_t>(src, n, dst); return true;
-    case OIIO::TypeDesc::UINT32: widen<std::uint32_t>(src, n, dst); return true;
-    case OIIO::TypeDesc::INT32: widen<std::int32_t>(src, n, dst); return true;
-    case OIIO::TypeDesc::FLOAT: widen<float>(src, n, dst); return true;
-    case OIIO::TypeDesc::DOUBLE: widen<double>(src, n, dst); return true;
-    default: return false;
-  }
-}
 }  // namespace
 
 double GeoTransform::pixelX(double lonDeg) const {
@@ -51,28 +28,12 @@ double GeoTransform::pixelX(double lonDeg) const {
 
 double GeoTransform::pixelY(double latDeg) const { return (latDeg - originLatDeg) / latStepDeg; }
 
-// ImageCache-backed pixels: a private cache bounded by cacheBytes.
+// Pixels read on demand: OpenImageIO's ImageCache, or libtiff tile reads.
 struct Raster::CacheImpl {
-  OIIO::ImageCache* cache = nullptr;
-  OIIO::ustring file;
-  OIIO::TypeDesc type;
+  std::unique_ptr<detail::TileSource> src;
   int tileW = 256, tileH = 256;
-  ~CacheImpl() {
-    if (cache) OIIO::ImageCache::destroy(cache);
-  }
   bool read(int x0, int x1, int y0, int y1, int channel, float* out) const {
-    const std::size_t n = std::size_t(x1 - x0) * std::size_t(y1 - y0);
-    if (type.basetype == OIIO::TypeDesc::FLOAT)
-      return cache->get_pixels(file, 0, 0, x0, x1, y0, y1, 0, 1, channel, channel + 1, type, out);
-    if (type.size() > sizeof(float)) {
-      std::vector<double> tmp(n);
-      if (!cache->get_pixels(file, 0, 0, x0, x1, y0, y1, 0, 1, channel, channel + 1, type, tmp.data())) return false;
-      return toFloat(type, tmp.data(), n, out);
-    }
-    thread_local std::vector<unsigned char> tmp;
-    tmp.resize(n * type.size());
-    if (!cache->get_pixels(file, 0, 0, x0, x1, y0, y1, 0, 1, channel, channel + 1, type, tmp.data())) return false;
-    return toFloat(type, tmp.data(), n, out);
+    return src->read(x0, x1, y0, y1, channel, out);
   }
 };
 
@@ -84,92 +45,73 @@ std::shared_ptr<const Raster> Raster::open(const std::string& path, const OpenOp
   if (!fs::exists(path, ec)) throw RasterError(path + ": no such file");
   if (fs::is_directory(path, ec)) throw RasterError(path + ": is a directory, not a raster");
 
-  // Our maxPixels check below names the dimensions; lift OpenImageIO's own
-  // (unnamed) size guard above it. Nothing is allocated before our check.
-  static const bool limitSet = OIIO::attribute("limits:imagesize_MB", 1 << 30);
-  (void)limitSet;
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    std::string why = OIIO::geterror();
-    throw RasterError(path + ": cannot read as an image (" + (why.empty() ? "unknown format" : why) + ")");
-  }
-  const OIIO::ImageSpec spec = in->spec();
-  const std::int64_t pixelsTotal = std::int64_t(spec.width) * spec.height * std::max(spec.nchannels, 1);
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    throw RasterError(path + ": dimensions " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " x " +
-                      std::to_string(spec.nchannels) + " are not a valid raster");
-  if (pixelsTotal > options.maxPixels)
-    throw RasterError(path + ": dimensions " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " x " +
-                      std::to_string(spec.nchannels) + " exceed the limit of " + std::to_string(options.maxPixels) +
+  // TIFF through libtiff in process; anything else through OpenImageIO.
+  const bool tiff = detail::isTiff(path);
+  const detail::ImageInfo info = tiff ? detail::tiffInfo(path) : detail::oiioInfo(path);
+  const std::int64_t samples = std::int64_t(info.width) * info.height * std::max(info.channels, 1);
+  const std::string dims =
+      std::to_string(info.width) + " x " + std::to_string(info.height) + " x " + std::to_string(info.channels);
+  if (info.width <= 0 || info.height <= 0 || info.channels <= 0)
+    throw RasterError(path + ": dimensions " + dims + " are not a valid raster");
+  if (samples > options.maxPixels)
+    throw RasterError(path + ": dimensions " + dims + " exceed the limit of " + std::to_string(options.maxPixels) +
                       " samples");
-  if (spec.depth > 1) throw RasterError(path + ": volume images (depth " + std::to_string(spec.depth) + ") are not rasters");
+  if (info.depth > 1) throw RasterError(path + ": volume images (depth " + std::to_string(info.depth) + ") are not rasters");
 
   std::shared_ptr<Raster> r(new Raster);
   r->path_ = path;
-  r->width_ = spec.width;
-  r->height_ = spec.height;
-  r->channels_ = spec.nchannels;
+  r->width_ = info.width;
+  r->height_ = info.height;
+  r->channels_ = info.channels;
 
-  const std::string fmtName = in->format_name();
   std::optional<GeoTransform> t;
-  if (fmtName == "tiff") {
-    auto g = detail::readTiffGeoref(path, spec.width, spec.height);
+  if (tiff) {
+    auto g = detail::readTiffGeoref(path, info.width, info.height);
     t = g.transform;
     r->nodata_ = g.nodata;
   }
   if (!t) t = detail::readWorldFile(path);
   if (options.georef == Georef::GlobalEquirect) {
     GeoTransform g;
-    g.lonStepDeg = 360.0 / spec.width;
-    g.latStepDeg = -180.0 / spec.height;
+    g.lonStepDeg = 360.0 / info.width;
+    g.latStepDeg = -180.0 / info.height;
     t = g;
   } else if (!t) {
     throw RasterError(path + ": no georeferencing (no GeoTIFF ModelTiepoint/ModelPixelScale or ModelTransformation, "
                              "no world file); if it is a whole-Earth equirectangular image, say so (--global)");
   }
-  t->global = std::abs(spec.width * t->lonStepDeg - 360.0) < 1e-6 * 360.0;
+  t->global = std::abs(info.width * t->lonStepDeg - 360.0) < 1e-6 * 360.0;
   r->transform_ = *t;
   if (options.nodata) r->nodata_ = options.nodata;
 
-  const std::size_t bytes = std::size_t(pixelsTotal) * sizeof(float);
-  if (bytes <= options.inMemoryLimitBytes) {
-    r->pixels_.resize(std::size_t(pixelsTotal));
-    OIIO::TypeDesc native = spec.format;
-    if (native.basetype == OIIO::TypeDesc::HALF) native = OIIO::TypeDesc::FLOAT;  // no normalisation for floats
-    std::vector<unsigned char> raw(std::size_t(pixelsTotal) * native.size());
-    if (!in->read_image(0, 0, 0, spec.nchannels, native, raw.data())) {
-      std::string why = in->geterror();
-      throw RasterError(path + ": pixel data is unreadable (" + (why.empty() ? "truncated or corrupt" : why) + ")");
-    }
-    if (!toFloat(native, raw.data(), raw.size() / native.size(), r->pixels_.data()))
-      throw RasterError(path + ": sample type " + std::string(native.c_str()) + " is not supported");
+  const bool libtiffOk = tiff && detail::tiffSupported(path);
+  const std::size_t bytes = std::size_t(samples) * sizeof(float);
+  if (options.fewLookups && libtiffOk && info.tileW > 0) {
+    auto c = std::make_unique<CacheImpl>();
+    c->src = detail::tiffTiles(path, info, std::size_t(4) << 20);
+    c->tileW = c->src->tileW;
+    c->tileH = c->src->tileH;
+    r->cache_ = std::move(c);
+    r->cacheBytes_ = std::size_t(4) << 20;
+  } else if (bytes <= options.inMemoryLimitBytes) {
+    r->pixels_ = libtiffOk ? detail::tiffReadAll(path, info) : detail::oiioReadAll(path, info);
     if (r->nodata_) {
       const float nd = static_cast<float>(*r->nodata_);
       for (auto& v : r->pixels_)
         if (v == nd) v = kNaN;
     }
+    return r;
   } else {
-    in->close();
     auto c = std::make_unique<CacheImpl>();
-    c->cache = OIIO::ImageCache::create(/*shared=*/false);
-    c->cache->attribute("max_memory_MB", float(double(options.cacheBytes) / (1 << 20)));
-    c->cache->attribute("autotile", 256);  // scanline files are cached in tiles too
-    c->cache->attribute("max_open_files", 4);
-    c->file = OIIO::ustring(path);
-    c->type = spec.format;
-    if (c->type.basetype == OIIO::TypeDesc::HALF || c->type.basetype == OIIO::TypeDesc::UNKNOWN)
-      c->type = OIIO::TypeDesc::FLOAT;  // floats convert without normalisation
-    if (spec.tile_width > 0) {
-      c->tileW = spec.tile_width;
-      c->tileH = spec.tile_height;
-    }
+    c->src = detail::oiioCache(path, info, options.cacheBytes);
+    c->tileW = c->src->tileW;
+    c->tileH = c->src->tileH;
     r->cache_ = std::move(c);
     r->cacheBytes_ = options.cacheBytes;
-    // Probe one pixel so a corrupt file fails now, not in the middle of a batch.
-    float probe = 0;
-    if (!r->cache_->read(0, 1, 0, 1, 0, &probe))
-      throw RasterError(path + ": pixel data is unreadable (" + r->cache_->cache->geterror() + ")");
   }
+  // Probe one pixel so a corrupt file fails now, not in the middle of a batch.
+  float probe = 0;
+  if (!r->cache_->read(0, 1, 0, 1, 0, &probe)) throw RasterError(r->cache_->src->error());
   return r;
 }
 

@@ -1,8 +1,12 @@
-// A georeferenced raster on WGS84 geographic coordinates. Pixels come from
-// OpenImageIO (kept out of this header), georeferencing from GeoTIFF tags
-// (libtiff), an ESRI world file, or the caller's "global equirectangular".
-// Small rasters are held in memory; big ones stream through OpenImageIO's
-// ImageCache with a bounded cache.
+// A georeferenced raster on WGS84 geographic coordinates. Pixels of TIFF
+// files are decoded with libtiff, every other format through OpenImageIO
+// (loaded on demand, see PixelSource.h; its types never appear here);
+// georeferencing comes from GeoTIFF tags (libtiff), an ESRI world file, or
+// the caller's "global equirectangular". Small rasters are held in memory;
+// big ones stream through OpenImageIO's ImageCache with a bounded cache.
+//
+// Thread safety: a Raster is immutable after open(); all const methods may
+// be called from any number of threads.
 #pragma once
 
 #include <cstddef>
@@ -49,6 +53,9 @@ struct OpenOptions {
   std::size_t inMemoryLimitBytes = std::size_t(256) << 20;
   std::size_t cacheBytes = std::size_t(64) << 20;
   std::optional<double> nodata;  // overrides GDAL_NODATA from the file
+  // A handful of lookups (one-point queries): read only the tiles they
+  // touch with libtiff, no ImageCache. Tiled TIFFs only; ignored otherwise.
+  bool fewLookups = false;
   // Absurd dimensions are rejected before any allocation.
   std::int64_t maxPixels = std::int64_t(1) << 34;
 };

@@ -1,6 +1,7 @@
 #include "globe/render/Framebuffer.h"
 
-#include <OpenImageIO/imageio.h>
+#include "globe/raster/ImageIo.h"
+#include "globe/raster/Raster.h"
 
 #include <algorithm>
 #include <cstring>
@@ -74,28 +75,28 @@ std::vector<float> Framebuffer::readData() const {
 }
 
 void writePng(const std::string& path, const Image& image) {
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw std::runtime_error("cannot write image '" + path + "': " + OIIO::geterror());
-  OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
-  if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, image.rgba.data()) || !out->close())
-    throw std::runtime_error("cannot write image '" + path + "': " + out->geterror());
+  try {
+    raster::writeImage8(path, image.rgba.data(), image.width, image.height, 4);
+  } catch (const raster::RasterError& e) {
+    throw std::runtime_error(std::string("cannot write image: ") + e.what());
+  }
 }
 
 Image readImage(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw std::runtime_error("cannot read image '" + path + "': " + OIIO::geterror());
-  const auto& spec = in->spec();
+  raster::Image8 in;
+  try {
+    in = raster::readImage8(path);
+  } catch (const raster::RasterError& e) {
+    throw std::runtime_error(std::string("cannot read image: ") + e.what());
+  }
   Image img;
-  img.width = spec.width;
-  img.height = spec.height;
-  img.rgba.assign(std::size_t(spec.width) * spec.height * 4, 255);
-  const int nc = std::min(spec.nchannels, 4);
-  std::vector<std::uint8_t> raw(std::size_t(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, raw.data()))
-    throw std::runtime_error("cannot read image '" + path + "': " + in->geterror());
-  for (std::size_t i = 0; i < std::size_t(spec.width) * spec.height; ++i)
+  img.width = in.width;
+  img.height = in.height;
+  img.rgba.assign(std::size_t(in.width) * in.height * 4, 255);
+  const int nc = std::min(in.channels, 4);
+  for (std::size_t i = 0; i < std::size_t(in.width) * in.height; ++i)
     for (int c = 0; c < 4; ++c)
-      img.rgba[i * 4 + c] = c < nc ? raw[i * spec.nchannels + c] : (c == 3 ? 255 : raw[i * spec.nchannels]);
+      img.rgba[i * 4 + c] = c < nc ? in.pixels[i * in.channels + c] : (c == 3 ? 255 : in.pixels[i * in.channels]);
   return img;
 }
 

@@ -3,9 +3,9 @@
 // compressed GeoTIFFs in data/. Run once by a developer; the product only
 // reads data/.
 #include "globe/raster/GeoTiffWriter.h"
+#include "globe/raster/ImageIo.h"
 
 #include <CLI/CLI.hpp>
-#include <OpenImageIO/imageio.h>
 #include <zlib.h>
 
 #include <cmath>
@@ -90,18 +90,13 @@ void convertEtopo(const fs::path& dir, const fs::path& dst) {
 }
 
 void convertBlueMarble(const fs::path& src, const fs::path& dst) {
-  auto in = OIIO::ImageInput::open(src.string());
-  if (!in) throw std::runtime_error(src.string() + ": " + OIIO::geterror());
-  const auto& spec = in->spec();
-  if (spec.nchannels != 3) throw std::runtime_error(src.string() + ": expected RGB");
-  std::vector<unsigned char> img(std::size_t(spec.width) * spec.height * 3);
-  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, img.data()))
-    throw std::runtime_error(src.string() + ": " + in->geterror());
+  const Image8 img = readImage8(src.string());
+  if (img.channels != 3) throw std::runtime_error(src.string() + ": expected RGB");
   GeoTiffWriteOptions o;
-  o.transform = globalTransform(spec.width, spec.height);
+  o.transform = globalTransform(img.width, img.height);
   o.compression = Compression::Jpeg;
   o.jpegQuality = 90;
-  writeGeoTiff(dst.string(), img.data(), spec.width, spec.height, 3, SampleType::U8, o);
+  writeGeoTiff(dst.string(), img.pixels.data(), img.width, img.height, 3, SampleType::U8, o);
 }
 }  // namespace
 

@@ -1,0 +1,350 @@
+#include "globe/raster/PixelSource.h"
+
+#include "globe/raster/OiioModuleApi.h"
+#include "globe/raster/Raster.h"
+
+#include <dlfcn.h>
+#include <tiffio.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+#include <fstream>
+#include <list>
+#include <mutex>
+#include <unordered_map>
+
+#ifndef GEOCEAN_OIIO_MODULE_BUILD
+#define GEOCEAN_OIIO_MODULE_BUILD ""
+#endif
+#ifndef GEOCEAN_OIIO_MODULE_INSTALL
+#define GEOCEAN_OIIO_MODULE_INSTALL ""
+#endif
+
+namespace geocean::raster::detail {
+
+// ---------------------------------------------------------------- libtiff
+
+namespace {
+struct TiffFile {
+  TIFF* t = nullptr;
+  explicit TiffFile(const std::string& path) {
+    TIFFSetWarningHandler(nullptr);
+    TIFFSetErrorHandler(nullptr);
+    t = TIFFOpen(path.c_str(), "r");
+  }
+  ~TiffFile() {
+    if (t) TIFFClose(t);
+  }
+};
+
+struct TiffLayout {
+  uint16_t spp = 1, bps = 8, format = SAMPLEFORMAT_UINT, planar = PLANARCONFIG_CONTIG, photometric = 1;
+  uint16_t compression = COMPRESSION_NONE;
+  uint32_t w = 0, h = 0, tw = 0, th = 0, rowsPerStrip = 0;
+  bool tiled = false;
+};
+
+TiffLayout layoutOf(TIFF* t) {
+  TiffLayout l;
+  TIFFGetField(t, TIFFTAG_IMAGEWIDTH, &l.w);
+  TIFFGetField(t, TIFFTAG_IMAGELENGTH, &l.h);
+  TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLESPERPIXEL, &l.spp);
+  TIFFGetFieldDefaulted(t, TIFFTAG_BITSPERSAMPLE, &l.bps);
+  TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLEFORMAT, &l.format);
+  TIFFGetFieldDefaulted(t, TIFFTAG_PLANARCONFIG, &l.planar);
+  TIFFGetFieldDefaulted(t, TIFFTAG_PHOTOMETRIC, &l.photometric);
+  TIFFGetFieldDefaulted(t, TIFFTAG_COMPRESSION, &l.compression);
+  l.tiled = TIFFIsTiled(t);
+  if (l.tiled) {
+    TIFFGetField(t, TIFFTAG_TILEWIDTH, &l.tw);
+    TIFFGetField(t, TIFFTAG_TILELENGTH, &l.th);
+  } else {
+    TIFFGetFieldDefaulted(t, TIFFTAG_ROWSPERSTRIP, &l.rowsPerStrip);
+    l.rowsPerStrip = std::min(l.rowsPerStrip, l.h);
+  }
+  // JPEG-in-TIFF stored as YCbCr: let libtiff convert to RGB.
+  if (l.compression == COMPRESSION_JPEG && l.photometric == PHOTOMETRIC_YCBCR)
+    TIFFSetField(t, TIFFTAG_JPEGCOLORMODE, JPEGCOLORMODE_RGB);
+  return l;
+}
+
+std::optional<SampleKind> kindOf(const TiffLayout& l) {
+  if (l.format == SAMPLEFORMAT_IEEEFP) {
+    if (l.bps == 32) return SampleKind::F32;
+    if (l.bps == 64) return SampleKind::F64;
+    return std::nullopt;
+  }
+  const bool s = l.format == SAMPLEFORMAT_INT;
+  if (l.format != SAMPLEFORMAT_UINT && !s) return std::nullopt;
+  switch (l.bps) {
+    case 8: return s ? SampleKind::I8 : SampleKind::U8;
+    case 16: return s ? SampleKind::I16 : SampleKind::U16;
+    case 32: return s ? SampleKind::I32 : SampleKind::U32;
+    default: return std::nullopt;
+  }
+}
+
+bool supported(const TiffLayout& l) {
+  return l.planar == PLANARCONFIG_CONTIG && kindOf(l).has_value() && l.photometric != PHOTOMETRIC_PALETTE &&
+         l.compression != COMPRESSION_OJPEG && (l.tiled ? (l.tw > 0 && l.th > 0) : l.rowsPerStrip > 0);
+}
+
+// Decodes the block (tile or strip) holding pixel row y / column x into
+// `buf` (native samples, blockW x blockH x spp). Returns false on error.
+bool readBlock(TIFF* t, const TiffLayout& l, uint32_t x, uint32_t y, std::vector<unsigned char>& buf,
+               uint32_t& bx0, uint32_t& by0, uint32_t& bw, uint32_t& bh) {
+  const std::size_t px = std::size_t(l.spp) * (l.bps / 8);
+  if (l.tiled) {
+    bx0 = (x / l.tw) * l.tw;
+    by0 = (y / l.th) * l.th;
+    bw = l.tw;
+    bh = l.th;
+    buf.resize(std::size_t(l.tw) * l.th * px);
+    return TIFFReadEncodedTile(t, TIFFComputeTile(t, x, y, 0, 0), buf.data(), tmsize_t(buf.size())) >= 0;
+  }
+  bx0 = 0;
+  by0 = (y / l.rowsPerStrip) * l.rowsPerStrip;
+  bw = l.w;
+  bh = std::min(l.rowsPerStrip, l.h - by0);
+  buf.resize(std::size_t(l.w) * l.rowsPerStrip * px);
+  return TIFFReadEncodedStrip(t, TIFFComputeStrip(t, y, 0), buf.data(), tmsize_t(buf.size())) >= 0;
+}
+}  // namespace
+
+bool isTiff(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  unsigned char m[4] = {};
+  f.read(reinterpret_cast<char*>(m), 4);
+  return (m[0] == 'I' && m[1] == 'I' && (m[2] == 42 || m[2] == 43) && m[3] == 0) ||
+         (m[0] == 'M' && m[1] == 'M' && m[2] == 0 && (m[3] == 42 || m[3] == 43));
+}
+
+ImageInfo tiffInfo(const std::string& path) {
+  TiffFile f(path);
+  if (!f.t) throw RasterError(path + ": not a readable TIFF file (libtiff could not parse the header)");
+  const TiffLayout l = layoutOf(f.t);
+  ImageInfo info;
+  info.width = int(std::min<uint32_t>(l.w, 0x7fffffff));
+  info.height = int(std::min<uint32_t>(l.h, 0x7fffffff));
+  info.channels = l.spp;
+  info.tileW = int(l.tw);
+  info.tileH = int(l.th);
+  info.kind = kindOf(l).value_or(SampleKind::F32);
+  info.format = "tiff";
+  return info;
+}
+
+bool tiffSupported(const std::string& path) {
+  TiffFile f(path);
+  return f.t && supported(layoutOf(f.t));
+}
+
+std::vector<float> tiffReadAll(const std::string& path, const ImageInfo& info) {
+  TiffFile f(path);
+  if (!f.t) throw RasterError(path + ": not a readable TIFF file");
+  const TiffLayout l = layoutOf(f.t);
+  const SampleKind kind = *kindOf(l);
+  const std::size_t spp = l.spp, sb = sampleBytes(kind);
+  std::vector<float> out(std::size_t(info.width) * info.height * spp);
+  std::vector<unsigned char> buf;
+  const uint32_t stepX = l.tiled ? l.tw : l.w, stepY = l.tiled ? l.th : l.rowsPerStrip;
+  for (uint32_t y = 0; y < l.h; y += stepY)
+    for (uint32_t x = 0; x < l.w; x += stepX) {
+      uint32_t bx0, by0, bw, bh;
+      if (!readBlock(f.t, l, x, y, buf, bx0, by0, bw, bh))
+        throw RasterError(path + ": pixel data is unreadable at row " + std::to_string(y) + ", column " +
+                          std::to_string(x) + " (truncated or corrupt)");
+      const uint32_t cw = std::min(bw, l.w - bx0), ch = std::min(bh, l.h - by0);
+      for (uint32_t r = 0; r < ch; ++r)
+        toFloat(kind, buf.data() + std::size_t(r) * bw * spp * sb, std::size_t(cw) * spp,
+                out.data() + (std::size_t(by0 + r) * l.w + bx0) * spp);
+    }
+  return out;
+}
+
+namespace {
+// A handful of decoded tiles kept per raster: enough for single lookups
+// (a query of one point touches one or four tiles).
+class TiffTiles final : public TileSource {
+ public:
+  TiffTiles(const std::string& path, std::size_t cacheBytes) : file_(path), path_(path) {
+    if (!file_.t) throw RasterError(path + ": not a readable TIFF file");
+    layout_ = layoutOf(file_.t);
+    kind_ = *kindOf(layout_);
+    tileW = int(layout_.tiled ? layout_.tw : layout_.w);
+    tileH = int(layout_.tiled ? layout_.th : layout_.rowsPerStrip);
+    const std::size_t tileBytes = std::size_t(tileW) * tileH * layout_.spp * sizeof(float);
+    capacity_ = std::max<std::size_t>(2, cacheBytes / std::max<std::size_t>(tileBytes, 1));
+  }
+  bool read(int x0, int x1, int y0, int y1, int channel, float* out) override {
+    std::lock_guard lock(mutex_);
+    const int spp = layout_.spp;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1;) {
+        const std::vector<float>* t = tile(x, y);
+        if (!t) return false;
+        const int tx0 = (x / tileW) * tileW, ty0 = (y / tileH) * tileH;
+        const int xe = std::min(x1, tx0 + tileW);
+        for (; x < xe; ++x)
+          *out++ = (*t)[(std::size_t(y - ty0) * tileW + (x - tx0)) * spp + channel];
+      }
+    return true;
+  }
+  std::string error() override { return error_; }
+
+ private:
+  const std::vector<float>* tile(int x, int y) {
+    const long key = long(y / tileH) * 1000003L + x / tileW;
+    if (auto it = index_.find(key); it != index_.end()) {
+      lru_.splice(lru_.begin(), lru_, it->second);
+      return &it->second->second;
+    }
+    uint32_t bx0, by0, bw, bh;
+    if (!readBlock(file_.t, layout_, uint32_t(x), uint32_t(y), buf_, bx0, by0, bw, bh)) {
+      error_ = path_ + ": pixel data is unreadable near row " + std::to_string(y) + " (truncated or corrupt)";
+      return nullptr;
+    }
+    if (lru_.size() >= capacity_) {
+      index_.erase(lru_.back().first);
+      lru_.pop_back();
+    }
+    std::vector<float> f(std::size_t(bw) * bh * layout_.spp);
+    toFloat(kind_, buf_.data(), f.size(), f.data());
+    lru_.emplace_front(key, std::move(f));
+    index_[key] = lru_.begin();
+    return &lru_.front().second;
+  }
+
+  TiffFile file_;
+  std::string path_, error_;
+  TiffLayout layout_;
+  SampleKind kind_ = SampleKind::U8;
+  std::size_t capacity_ = 2;
+  std::vector<unsigned char> buf_;
+  std::list<std::pair<long, std::vector<float>>> lru_;
+  std::unordered_map<long, std::list<std::pair<long, std::vector<float>>>::iterator> index_;
+  std::mutex mutex_;
+};
+}  // namespace
+
+std::unique_ptr<TileSource> tiffTiles(const std::string& path, const ImageInfo&, std::size_t cacheBytes) {
+  return std::make_unique<TiffTiles>(path, cacheBytes);
+}
+
+// ---------------------------------------------------------- OpenImageIO
+
+namespace {
+const GeoceanOiioApi* loadModule() {
+  namespace fs = std::filesystem;
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv("GEOCEAN_OIIO_MODULE"); env && *env) candidates.emplace_back(env);
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    candidates.push_back((exe.parent_path() / "geocean_oiio.so").string());
+    candidates.push_back((exe.parent_path().parent_path() / "lib" / "geocean" / "geocean_oiio.so").string());
+  }
+  // Next to the object holding this code: libgeocean_ocean.so inside
+  // another engine installs the module as <libdir>/geocean/geocean_oiio.so.
+  Dl_info self{};
+  if (dladdr(reinterpret_cast<void*>(&oiioInfo), &self) && self.dli_fname) {
+    const fs::path dir = fs::path(self.dli_fname).parent_path();
+    candidates.push_back((dir / "geocean" / "geocean_oiio.so").string());
+    candidates.push_back((dir / "geocean_oiio.so").string());
+  }
+  candidates.emplace_back(GEOCEAN_OIIO_MODULE_BUILD);
+  candidates.emplace_back(GEOCEAN_OIIO_MODULE_INSTALL);
+  std::string tried;
+  for (const auto& c : candidates) {
+    if (c.empty() || !fs::exists(c, ec)) continue;
+    void* h = dlopen(c.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!h) {
+      tried += "\n  " + c + ": " + dlerror();
+      continue;
+    }
+    auto fn = reinterpret_cast<const GeoceanOiioApi* (*)()>(dlsym(h, "geocean_oiio_api"));
+    const GeoceanOiioApi* api = fn ? fn() : nullptr;
+    if (api && api->abi == GEOCEAN_OIIO_MODULE_ABI) return api;
+    tried += "\n  " + c + ": not a compatible geocean_oiio module";
+  }
+  throw RasterError("cannot load the OpenImageIO module geocean_oiio.so (set GEOCEAN_OIIO_MODULE)" +
+                    (tried.empty() ? std::string(": not found next to the executable or in ") +
+                                         GEOCEAN_OIIO_MODULE_INSTALL
+                                   : tried));
+}
+
+const GeoceanOiioApi& oiio() {
+  static const GeoceanOiioApi* api = loadModule();  // thread-safe; throws again next time if it failed
+  return *api;
+}
+
+class OiioCache final : public TileSource {
+ public:
+  OiioCache(const std::string& path, const ImageInfo& info, std::size_t cacheBytes) : path_(path) {
+    char err[512] = {};
+    h_ = oiio().cacheCreate(path.c_str(), double(cacheBytes) / (1 << 20), err, sizeof err);
+    if (!h_) throw RasterError(path + ": cannot open through the image cache (" + err + ")");
+    if (info.tileW > 0) {
+      tileW = info.tileW;
+      tileH = info.tileH;
+    }
+  }
+  ~OiioCache() override { oiio().cacheDestroy(h_); }
+  bool read(int x0, int x1, int y0, int y1, int channel, float* out) override {
+    char err[512] = {};
+    if (oiio().cacheRead(h_, x0, x1, y0, y1, channel, out, err, sizeof err)) return true;
+    std::lock_guard lock(mutex_);
+    error_ = err;
+    return false;
+  }
+  std::string error() override {
+    std::lock_guard lock(mutex_);
+    return path_ + ": " + error_;
+  }
+
+ private:
+  void* h_ = nullptr;
+  std::string path_, error_;
+  std::mutex mutex_;
+};
+}  // namespace
+
+ImageInfo oiioInfo(const std::string& path) {
+  GeoceanOiioInfo i{};
+  char err[512] = {};
+  if (!oiio().info(path.c_str(), &i, err, sizeof err))
+    throw RasterError(path + ": cannot read as an image (" + std::string(err[0] ? err : "unknown format") + ")");
+  ImageInfo info;
+  info.width = i.width;
+  info.height = i.height;
+  info.channels = i.channels;
+  info.depth = i.depth;
+  info.tileW = i.tileW;
+  info.tileH = i.tileH;
+  info.kind = i.kind ? SampleKind(i.kind) : SampleKind::F32;
+  info.format = i.format;
+  return info;
+}
+
+std::vector<float> oiioReadAll(const std::string& path, const ImageInfo& info) {
+  std::vector<float> out(std::size_t(info.width) * info.height * info.channels);
+  char err[512] = {};
+  if (!oiio().readAll(path.c_str(), out.data(), err, sizeof err))
+    throw RasterError(path + ": pixel data is unreadable (" + std::string(err[0] ? err : "truncated or corrupt") + ")");
+  return out;
+}
+
+std::unique_ptr<TileSource> oiioCache(const std::string& path, const ImageInfo& info, std::size_t cacheBytes) {
+  return std::make_unique<OiioCache>(path, info, cacheBytes);
+}
+
+void oiioWrite8(const std::string& path, const unsigned char* data, int width, int height, int channels) {
+  char err[512] = {};
+  if (!oiio().write8(path.c_str(), data, width, height, channels, err, sizeof err))
+    throw RasterError(path + ": cannot write image (" + std::string(err) + ")");
+}
+
+}  // namespace geocean::raster::detail
