@@ -2,6 +2,7 @@
 // every kind of bad file. Fixtures are written with GeoTiffWriter (libtiff),
 // OpenImageIO (PNG + world file) and, as an independent writer, GMT.
 #include "globe/raster/GeoTiffWriter.h"
+#include "globe/raster/ImageIo.h"
 #include "globe/raster/Raster.h"
 #include "tests/support/Subprocess.h"
 
@@ -255,4 +256,38 @@ TEST(Raster, RejectsAbsurdDimensionsBeforeAllocating) {
   const std::string err = openError(d / "small.tif");
   EXPECT_NE(err.find("exceed"), std::string::npos) << err;
   EXPECT_NE(err.find("200000"), std::string::npos) << err;
+}
+
+TEST(Raster, FewLookupsTilesEqualInMemoryAndImagesRoundTrip) {
+  TempDir d;
+  // int16 with negative values through libtiff tiles (no normalisation, sign kept).
+  std::vector<std::int16_t> v(600 * 300);
+  for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::int16_t(int(i % 20011) - 10000);
+  GeoTiffWriteOptions o;
+  o.transform = global(600, 300);
+  o.tileSize = 64;
+  writeGeoTiff(d / "e.tif", v.data(), 600, 300, 1, SampleType::I16, o);
+  auto mem = Raster::open(d / "e.tif");
+  OpenOptions few;
+  few.fewLookups = true;
+  auto tiles = Raster::open(d / "e.tif", few);
+  ASSERT_TRUE(mem->inMemory());
+  ASSERT_FALSE(tiles->inMemory());
+  EXPECT_EQ(mem->pixel(599, 299), float(v[599 + 299 * 600]));
+  for (double lat = -89.9; lat < 90; lat += 7.3)
+    for (double lon = -179.95; lon < 180; lon += 11.1) {
+      ASSERT_EQ(tiles->sampleNearest(lat, lon), mem->sampleNearest(lat, lon)) << lat << "," << lon;
+      ASSERT_EQ(tiles->sampleBilinear(lat, lon), mem->sampleBilinear(lat, lon)) << lat << "," << lon;
+    }
+  // PNG out and back through the OpenImageIO module; TIFF back through libtiff.
+  std::vector<unsigned char> rgb(5 * 3 * 3);
+  for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<unsigned char>(i * 5);
+  writeImage8(d / "x.png", rgb.data(), 5, 3, 3);
+  const Image8 back = readImage8(d / "x.png");
+  EXPECT_EQ(back.width, 5);
+  EXPECT_EQ(back.height, 3);
+  EXPECT_EQ(back.channels, 3);
+  EXPECT_EQ(back.pixels, rgb);
+  EXPECT_THROW(readImage8(d / "none.png"), RasterError);
+  EXPECT_THROW(writeImage8("/nonexistent-dir/x.png", rgb.data(), 5, 3, 3), RasterError);
 }
