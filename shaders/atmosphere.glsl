@@ -13,8 +13,9 @@ vec3 sunLight(float sunMu) {
   return exp(-tau) * smoothstep(-0.05, 0.05, sunMu);
 }
 
-// Sky radiance seen along `dir` from an eye at `eyeAltM` with local up `up`.
-vec3 skyColor(vec3 dir, vec3 up, vec3 sunDir, float eyeAltM, float eyeRadiusM) {
+// Sky radiance seen along `dir` from an eye at `eyeAltM` with local up `up`;
+// discScale 0 leaves out the sun's disc (reflections add their own glint).
+vec3 skyRadiance(vec3 dir, vec3 up, vec3 sunDir, float eyeAltM, float eyeRadiusM, float discScale) {
   float mu = dot(dir, up);
   float sunMu = dot(sunDir, up);
   float cosSun = dot(dir, sunDir);
@@ -26,12 +27,16 @@ vec3 skyColor(vec3 dir, vec3 up, vec3 sunDir, float eyeAltM, float eyeRadiusM) {
   vec3 ground = mix(zenith, horizon, h);
   float mie = 0.08 / pow(1.0001 - 0.92 * cosSun, 1.5) * 0.02;
   vec3 lowSky = ground * light * smoothstep(-0.3, 0.1, sunMu) + mie * light;
-  lowSky += vec3(18.0) * sunLight(sunMu) * smoothstep(0.9996, 0.99985, cosSun);  // the disc
+  lowSky += discScale * vec3(18.0) * sunLight(sunMu) * smoothstep(0.9996, 0.99985, cosSun);  // the disc
   // From space: black, with the limb glowing where the ray grazes the air.
   float closest = mu < 0.0 ? eyeRadiusM * sqrt(max(1.0 - mu * mu, 0.0)) : eyeRadiusM;
   float limb = exp(-max(closest - kEarthRadiusM, 0.0) / 25000.0);
   vec3 space = vec3(0.25, 0.45, 1.0) * limb * light * 0.9;
   return mix(lowSky, space, smoothstep(30000.0, 200000.0, eyeAltM));
+}
+
+vec3 skyColor(vec3 dir, vec3 up, vec3 sunDir, float eyeAltM, float eyeRadiusM) {
+  return skyRadiance(dir, up, sunDir, eyeAltM, eyeRadiusM, 1.0);
 }
 
 // Aerial perspective: optical depth of an exponential atmosphere along a

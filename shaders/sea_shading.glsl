@@ -18,7 +18,7 @@ vec3 seaColor(vec3 n, vec3 v, vec3 up, vec3 sunDir, float depthM, float roughnes
   // Reflections from below the horizon see the sea, not the sky.
   r = normalize(r + up * max(0.0, -dot(r, up)) * 1.05);
   float F = fresnelSchlick(ndv);
-  vec3 sky = skyColor(r, up, sunDir, min(eyeAltM, 20000.0), eyeRadiusM);
+  vec3 sky = skyRadiance(r, up, sunDir, min(eyeAltM, 20000.0), eyeRadiusM, 0.0);
   vec3 light = sunLight(dot(sunDir, up)) + vec3(0.03);
   // Beer-Lambert tint: shallow water shows the bright sea floor.
   float shallow = exp(-max(depthM, 0.0) / 12.0);

@@ -44,7 +44,8 @@ void main() {
   vec3 albedo = texture(uImagery, geoUv(vLonLat, uImageryGeo)).rgb;
   float sunMu = dot(uSunDir, up);
   vec3 sun = sunLight(sunMu);
-  vec3 land = albedo * (sun * max(dot(n, uSunDir), 0.0) * 1.6 + vec3(0.04, 0.045, 0.05));
+  // Skylight fades out on the night side.
+  vec3 land = albedo * (sun * max(dot(n, uSunDir), 0.0) * 1.6 + vec3(0.04, 0.045, 0.05) * smoothstep(-0.25, 0.1, sunMu));
 
   // Water coverage: bilinear mask, 0.5 is the shoreline; smooth over a pixel.
   // Magnified: B-spline (smooth shoreline); minified: the mipmapped average.

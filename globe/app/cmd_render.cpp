@@ -2,6 +2,7 @@
 #include "globe/app/Command.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Session.h"
+#include "plugin/render/OceanRenderer.h"
 
 #include <cstdio>
 #include <string>
@@ -17,6 +18,10 @@ struct RenderArgs {
   double timeS = 0.0;
   double fovDeg = 45.0;
   double exaggeration = 1.0;
+  bool noOcean = false;
+  std::string waves = "noise";
+  double windMps = 10.0;
+  double windFromDeg = 270.0;
 };
 
 int runRender(const RenderArgs& a) {
@@ -51,6 +56,14 @@ int runRender(const RenderArgs& a) {
     std::fprintf(stderr, "geocean render: %s\n", e.what());
     return kExitNoDisplay;
   }
+  if (!a.noOcean) {
+    const std::string err =
+        ocean_render::addDefaultOcean(*s.renderer, s.world, a.waves, a.windMps, a.windFromDeg);
+    if (!err.empty()) {
+      std::fprintf(stderr, "geocean render: %s\n", err.c_str());
+      return kExitBadInput;
+    }
+  }
   render::FrameSettings fs;
   fs.timeS = a.timeS;
   fs.sunEcef = sun;
@@ -74,6 +87,10 @@ const Register reg{{"render", "Render one frame headless to a PNG",
                       sub.add_option("--fov", a->fovDeg, "vertical field of view, degrees");
                       sub.add_option("--sun", a->sun, "AZ,EL of the sun at the camera's nadir, degrees");
                       sub.add_option("--exaggeration", a->exaggeration, "vertical exaggeration of the terrain");
+                      sub.add_flag("--no-ocean", a->noOcean, "terrain and distant-sea shading only");
+                      sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
+                      sub.add_option("--wind", a->windMps, "wind speed, m/s");
+                      sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
                       return [a] { return runRender(*a); };
                     }}};
 

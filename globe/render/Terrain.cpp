@@ -75,8 +75,25 @@ TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
   tileRange(k, lat0, lat1, lon0, lon1);
   Bounds b;
   b.center = geo::toEcef({0.5 * (lat0 + lat1), 0.5 * (lon0 + lon1), 0.0});
-  const double hi = kMaxTerrainM * std::max(1.0, options_.exaggeration);
-  const double lo = kMinTerrainM * std::max(1.0, options_.exaggeration);
+  // Heights as the vertex shader makes them (land >= 0, water at -seaDrop),
+  // from 5 x 5 samples; between samples the bilinear relief can rise further,
+  // by at most the range seen plus a margin, and never above Everest.
+  const double exag = std::max(1.0, options_.exaggeration);
+  double hMin = 1e30, hMax = -1e30;
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 5; ++i) {
+      const double lat = lat0 + (lat1 - lat0) * j / 4.0, lon = lon0 + (lon1 - lon0) * i / 4.0;
+      const double w = world_.waterAt(lat, lon);
+      const double land = std::max(0.0, double(world_.elevationAt(lat, lon))) * exag;
+      const double h = w > 0.55 ? -options_.seaDropM : (w < 0.45 ? land : std::max(land, 0.0));
+      hMin = std::min({hMin, h, w > 0.45 ? -options_.seaDropM : h});
+      hMax = std::max(hMax, h);
+    }
+  const double margin = 0.5 * (hMax - hMin) + 50.0 * exag;
+  const double hi = std::min(hMax + margin, kMaxTerrainM * exag);
+  // Skirts hang below the lowest point.
+  const double cellM = (lat1 - lat0) / (kGrid - 1) * kDeg * geo::kWgs84A;
+  const double lo = std::max(hMin - margin - 0.35 * cellM * exag - 5.0, kMinTerrainM * exag);
   double r = 0.0;
   int n = 0;
   for (int j = 0; j < 3; ++j)

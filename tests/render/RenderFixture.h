@@ -3,6 +3,7 @@
 #pragma once
 
 #include "globe/render/Session.h"
+#include "plugin/render/OceanRenderer.h"
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 
 namespace geocean::render::test {
 
+// The default world with the default ocean (noise waves, 10 m/s wind).
 Session& session();
 
 // Image difference in 8-bit units over RGB.

@@ -13,6 +13,8 @@ namespace geocean::render::test {
 Session& session() {
   static std::unique_ptr<Session> s = [] {
     auto p = std::make_unique<Session>(Session::headless(loadDefaultWorld(), 256, 256));
+    const std::string err = ocean_render::addDefaultOcean(*p->renderer, p->world, "noise", 10.0, 270.0);
+    if (!err.empty()) throw std::runtime_error(err);
     return p;
   }();
   return *s;

@@ -1,0 +1,160 @@
+#include "plugin/render/OceanRenderer.h"
+
+#include "globe/camera/Camera.h"
+#include "globe/raster/World.h"
+
+#include <algorithm>
+#include <cstring>
+#include <cmath>
+#include <stdexcept>
+
+namespace geocean::ocean_render {
+
+std::shared_ptr<const ocean::LandSea> defaultLandSea() {
+  const auto files = raster::defaultWorld();
+  return std::make_shared<ocean::LandSea>(raster::Raster::open(files.mask), raster::Raster::open(files.elevation));
+}
+
+OceanRenderer::OceanRenderer(std::shared_ptr<const render::WorldTextures> world,
+                             std::shared_ptr<const ocean::LandSea> landSea, OceanOptions options)
+    : world_(std::move(world)), options_(options) {
+  std::string err;
+  waves_ = waves::WaveField::create(options_.model, options_.sea, err);
+  if (!waves_) throw std::invalid_argument("sea state: " + err);
+  if (options_.model == waves::Model::NoisePaper)
+    throw std::invalid_argument("--waves noise-paper has no GPU form; render with noise or gerstner");
+  grid::GridOptions go;
+  go.cellPx = options_.cellPx;
+  go.maxDisplacementM = waves_->maxDisplacementM();
+  grid_ = std::make_unique<grid::ScreenGrid>(go, landSea ? grid::classifierFor(landSea) : grid::SurfaceClassifier{});
+  const std::string model = options_.model == waves::Model::Gerstner ? "WV_MODEL 1" : "WV_MODEL 0";
+  program_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", {model});
+  bare_ = render::GlProgram::graphics("ocean.vert", "bare.frag", {model, "GEOCEAN_BARE 1"});
+  glCreateVertexArrays(1, &vao_);
+  glCreateBuffers(1, &vbo_);
+  glCreateBuffers(1, &ibo_);
+  glCreateBuffers(3, ssbo_);
+  // GridVertex: vec3 eyeRel, uint class|flags << 8, dvec2 lat/lon (32 bytes).
+  glEnableVertexArrayAttrib(vao_, 0);
+  glVertexArrayAttribFormat(vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(vao_, 0, 0);
+  glEnableVertexArrayAttrib(vao_, 1);
+  glVertexArrayAttribIFormat(vao_, 1, 1, GL_UNSIGNED_INT, 12);
+  glVertexArrayAttribBinding(vao_, 1, 0);
+  glEnableVertexArrayAttrib(vao_, 2);
+  glVertexArrayAttribLFormat(vao_, 2, 2, GL_DOUBLE, 16);
+  glVertexArrayAttribBinding(vao_, 2, 0);
+  // Octave wavelengths (1 / lattice frequency) for the distance fade.
+  for (const auto& o : waves_->octaves()) octaveWavelengthM_.push_back(float(1.0 / o.frequencyPerM));
+}
+
+OceanRenderer::~OceanRenderer() {
+  glDeleteVertexArrays(1, &vao_);
+  glDeleteBuffers(1, &vbo_);
+  glDeleteBuffers(1, &ibo_);
+  glDeleteBuffers(3, ssbo_);
+}
+
+namespace {
+template <class T>
+void upload(GLuint buf, const std::vector<T>& v) {
+  // Never empty: a zero-size SSBO binding is an error.
+  const std::size_t bytes = std::max<std::size_t>(v.size() * sizeof(T), 64);
+  std::vector<unsigned char> tmp(bytes, 0);
+  if (!v.empty()) std::memcpy(tmp.data(), v.data(), v.size() * sizeof(T));
+  glNamedBufferData(buf, GLsizeiptr(bytes), tmp.data(), GL_STREAM_DRAW);
+}
+}  // namespace
+
+void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose& pose, const render::Lighting& light,
+                         bool bare) {
+  const camera::Camera cam = camera::Camera::fromEcef(vm.eyeEcef, vm.forward, vm.up, pose.fovYDeg, pose.width,
+                                                      pose.height);
+  grid_->build(cam, frame_);
+  const std::vector<std::uint32_t> idx = grid::compactIndices(frame_);
+  if (idx.empty()) return;
+  const std::size_t vbytes = frame_.vertices.size() * sizeof(grid::GridVertex);
+  if (vbytes > vboBytes_) {  // grow only: memory stays flat over a flight
+    vboBytes_ = vbytes;
+    glNamedBufferData(vbo_, GLsizeiptr(vboBytes_), nullptr, GL_STREAM_DRAW);
+  }
+  glNamedBufferSubData(vbo_, 0, GLsizeiptr(vbytes), frame_.vertices.data());
+  const std::size_t ibytes = idx.size() * sizeof(std::uint32_t);
+  if (ibytes > iboBytes_) {
+    iboBytes_ = ibytes;
+    glNamedBufferData(ibo_, GLsizeiptr(iboBytes_), nullptr, GL_STREAM_DRAW);
+  }
+  glNamedBufferSubData(ibo_, 0, GLsizeiptr(ibytes), idx.data());
+  glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, sizeof(grid::GridVertex));
+  glVertexArrayElementBuffer(vao_, ibo_);
+
+  // Wave patch at the ground point under the eye: offsets stay small near
+  // the camera, where precision is visible.
+  const geo::Geodetic g = geo::fromEcef(vm.eyeEcef);
+  const glm::dvec3 origin = geo::toEcef({g.latDeg, g.lonDeg, 0.0});
+  waves_->gpuPatch(origin, light.timeS, patch_);
+  upload(ssbo_[0], patch_.octaves);
+  upload(ssbo_[1], patch_.waves);
+  upload(ssbo_[2], std::vector<waves::kf::WvFrame>{patch_.frame});
+  for (int i = 0; i < 3; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, ssbo_[i]);
+
+  const render::GlProgram& p = bare ? bare_ : program_;
+  p.use();
+  world_->bind();
+  glUniformMatrix4fv(p.uniform("uViewProj"), 1, GL_FALSE, &vm.viewProj[0][0]);
+  const glm::vec3 eyeMinusO(vm.eyeEcef - origin);
+  glUniform3fv(p.uniform("uEyeMinusOrigin"), 1, &eyeMinusO[0]);
+  glUniform1i(p.uniform("uOctaveCount"), int(patch_.octaves.size()));
+  glUniform1i(p.uniform("uWaveCount"), int(patch_.waves.size()));
+  glUniform1fv(p.uniform("uOctaveWavelengthM"), GLsizei(std::min<std::size_t>(octaveWavelengthM_.size(), 16)),
+               octaveWavelengthM_.data());
+  // Metres per pixel at 1 m distance: a cell's footprint is this x cellPx x distance.
+  const double radPerPx = 2.0 * std::tan(0.5 * pose.fovYDeg * 3.14159265358979 / 180.0) / pose.height;
+  glUniform1f(p.uniform("uCellRadians"), float(radPerPx * options_.cellPx));
+  glUniform1f(p.uniform("uMaxVerticalM"), float(waves_->maxVerticalM()));
+  glUniform4fv(p.uniform("uElevationGeo"), 1, &world_->elevationGeo()[0]);
+  glUniform4fv(p.uniform("uWaterGeo"), 1, &world_->waterGeo()[0]);
+  const glm::vec3 sun(light.sunEcef);
+  glUniform3fv(p.uniform("uSunDir"), 1, &sun[0]);
+  glUniform1f(p.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
+  glUniform1f(p.uniform("uEyeAltM"), float(g.heightM));
+  glUniform1f(p.uniform("uTimeS"), float(std::fmod(light.timeS, 3600.0)));
+  glUniform1i(p.uniform("uWriteData"), writeData_ ? 1 : 0);
+
+  glEnable(GL_BLEND);
+  glBlendFunci(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glBlendFunci(1, GL_ONE, GL_ZERO);
+  // The sea wins over coastal terrain at the same depth: pull it towards
+  // the eye by a few hundred float-depth units (reversed Z: positive = nearer).
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(0.0f, 256.0f);
+  glBindVertexArray(vao_);
+  glDrawElements(GL_TRIANGLES, GLsizei(idx.size()), GL_UNSIGNED_INT, nullptr);
+  glBindVertexArray(0);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glDisable(GL_BLEND);
+}
+
+}  // namespace geocean::ocean_render
+
+namespace geocean::ocean_render {
+std::string addDefaultOcean(render::GlobeRenderer& renderer, std::shared_ptr<const render::WorldTextures> world,
+                            const std::string& modelName, double windMps, double windFromDeg,
+                            std::shared_ptr<OceanRenderer>* created) {
+  OceanOptions oo;
+  const auto model = waves::parseModel(modelName);
+  if (!model || *model == waves::Model::NoisePaper)
+    return "--waves '" + modelName + "' is not a GPU wave model (noise, gerstner)";
+  oo.model = *model;
+  oo.sea.windSpeedMps = windMps;
+  oo.sea.windFromDeg = windFromDeg;
+  try {
+    auto o = std::make_shared<OceanRenderer>(std::move(world), defaultLandSea(), oo);
+    renderer.addLayer(o);
+    if (created) *created = o;
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return {};
+}
+}  // namespace geocean::ocean_render

@@ -1,0 +1,66 @@
+// The ocean layer: the screen-subdivision LOD grid (plugin/grid) rebuilt
+// every frame from the camera, displaced in the vertex shader by the shared
+// wave kernel (shaders/waves.glsl through plugin/waves' GPU patch), shaded
+// with the sky's Fresnel reflection, depth colour, sun glint and foam, and
+// cut at the shoreline by the water coverage (anti-aliased). Far away the
+// octaves that would alias are dropped and become roughness.
+#pragma once
+
+#include "globe/render/GlobeRenderer.h"
+#include "plugin/grid/ScreenGrid.h"
+#include "plugin/landsea/LandSea.h"
+#include "plugin/waves/WaveField.h"
+
+#include <memory>
+
+namespace geocean::ocean_render {
+
+struct OceanOptions {
+  double cellPx = 8.0;  // grid vertex spacing on screen
+  waves::Model model = waves::Model::Noise;
+  waves::SeaState sea;
+};
+
+class OceanRenderer : public render::Layer {
+ public:
+  // landSea: classifier for land cells (nullptr: all sea). Throws on a bad
+  // sea state (the message names the field) or a shader error.
+  OceanRenderer(std::shared_ptr<const render::WorldTextures> world, std::shared_ptr<const ocean::LandSea> landSea,
+                OceanOptions options = {});
+  ~OceanRenderer() override;
+
+  const char* name() const override { return "ocean"; }
+  void draw(const render::ViewMatrices& vm, const render::ViewPose& pose, const render::Lighting& light,
+            bool bare) override;
+
+  const waves::WaveField& waves() const { return *waves_; }
+  const grid::GridFrame& lastFrame() const { return frame_; }
+  // Draw the eye-relative surface position into colour attachment 1 (tests).
+  void setWriteData(bool on) { writeData_ = on; }
+
+ private:
+  std::shared_ptr<const render::WorldTextures> world_;
+  OceanOptions options_;
+  std::optional<waves::WaveField> waves_;
+  std::unique_ptr<grid::ScreenGrid> grid_;
+  grid::GridFrame frame_;
+  waves::GpuPatch patch_;
+  render::GlProgram program_, bare_;
+  GLuint vao_ = 0, vbo_ = 0, ibo_ = 0, ssbo_[3] = {0, 0, 0};
+  std::size_t vboBytes_ = 0, iboBytes_ = 0;
+  std::vector<float> octaveWavelengthM_;
+  bool writeData_ = false;
+};
+
+// The default world's classifier (5' mask + ETOPO) for the grid.
+std::shared_ptr<const ocean::LandSea> defaultLandSea();
+
+}  // namespace geocean::ocean_render
+
+namespace geocean::ocean_render {
+// Adds the ocean layer for the default world to a renderer; returns an
+// error message naming the option (empty on success).
+std::string addDefaultOcean(render::GlobeRenderer& renderer, std::shared_ptr<const render::WorldTextures> world,
+                            const std::string& modelName, double windMps, double windFromDeg,
+                            std::shared_ptr<OceanRenderer>* created = nullptr);
+}  // namespace geocean::ocean_render

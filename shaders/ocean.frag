@@ -1,0 +1,63 @@
+// Ocean surface: coverage-cut shoreline (anti-aliased), depth colour from
+// the relief, Fresnel sky reflection, sun glint whose roughness grows with
+// distance, crest foam and the shore foam band of paper 000 (eq. 9-11).
+#include "geo_uv.glsl"
+#include "sea_shading.glsl"
+
+in vec3 vEyeRel;
+in vec3 vNormal;
+in vec3 vUp;
+in vec2 vLonLat;
+in float vHeightM;
+
+uniform vec4 uElevationGeo;
+uniform vec4 uWaterGeo;
+uniform vec3 uSunDir;
+uniform float uEyeRadiusM;
+uniform float uEyeAltM;
+uniform float uMaxVerticalM;
+uniform float uCellRadians;
+uniform float uOctaveWavelengthM[16];
+uniform float uTimeS;
+uniform int uWriteData;
+layout(binding = 1) uniform sampler2D uElevation;
+layout(binding = 2) uniform sampler2D uWater;
+
+layout(location = 0) out vec4 outColor;
+layout(location = 1) out vec4 outData;
+
+// Paper 000 eq. 10: blend factor of one depth curve.
+float depthCurve(float depthM, float tauMin, float tauMax) {
+  return clamp((tauMin - depthM) / (tauMin - tauMax), 0.0, 1.0);
+}
+
+void main() {
+  vec2 uvW = geoUv(vLonLat, uWaterGeo);
+  float texelsPerPixel = length(fwidth(uvW) * vec2(textureSize(uWater, 0)));
+  float w = texelsPerPixel < 1.0 ? textureBSpline(uWater, uvW) : texture(uWater, uvW).r;
+  float aa = clamp(fwidth(w) * 0.75, 1e-3, 0.5);
+  float alpha = smoothstep(0.5 - aa, 0.5 + aa, w);
+  if (alpha <= 0.0) discard;
+
+  // Depth (eq. 9's height): relief, or the coverage where the 20' relief
+  // puts coastal water above sea level.
+  float depth = max(-texture(uElevation, geoUv(vLonLat, uElevationGeo)).r, (w - 0.5) * 120.0);
+  vec3 up = normalize(vUp);
+  vec3 v = normalize(-vEyeRel);
+  float dist = length(vEyeRel);
+  float footprint = dist * uCellRadians;
+  // Distant sea: geometry fades to the mean normal, slopes to roughness.
+  float far = smoothstep(0.02, 0.5, footprint / max(uOctaveWavelengthM[0], 1e-3));
+  vec3 n = normalize(mix(normalize(vNormal), up, far * 0.7));
+  float roughness = mix(0.06, 0.22, far);
+  // Crest foam where the surface nears its highest, and the shore band
+  // (eq. 11: water + sum f_i foam) pulsing with the surf.
+  float crest = smoothstep(0.55, 0.95, vHeightM / max(uMaxVerticalM, 1e-3)) * (1.0 - far);
+  float surf = 0.5 + 0.5 * sin(uTimeS * 0.9 - depth * 1.7);
+  float shore = depthCurve(depth, 4.0, 0.3) * 0.55 * surf + depthCurve(depth, 1.2, 0.0) * 0.4;
+  float foam = clamp(crest * 0.7 + shore, 0.0, 1.0);
+  vec3 c = seaColor(n, v, up, uSunDir, depth, roughness, foam, uEyeAltM, uEyeRadiusM);
+  c = applyHaze(c, dist, uEyeAltM, 0.0, up, uSunDir);
+  outColor = vec4(toDisplay(c), alpha);
+  outData = uWriteData != 0 ? vec4(vEyeRel, 1.0) : vec4(0.0);
+}

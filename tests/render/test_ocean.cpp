@@ -1,0 +1,119 @@
+// The wave-grid ocean: golden views of the open sea at sea level, the
+// rendered surface against the CPU sea-height query, and steadiness.
+#include "RenderFixture.h"
+
+#include "globe/render/Framebuffer.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace geocean::render::test {
+namespace {
+
+ViewPose seaPose(double lat, double lon, double alt, double heading, double pitch, int size = 256) {
+  ViewPose p;
+  p.latDeg = lat, p.lonDeg = lon, p.altM = alt, p.headingDeg = heading, p.pitchDeg = pitch;
+  p.width = p.height = size;
+  return p;
+}
+
+// Same thresholds and reasons as the globe goldens (test_render.cpp).
+constexpr double kGoldenMean = 2.0;
+constexpr double kGoldenOver16 = 0.005;
+
+Image renderAt(const ViewPose& p, double timeS, double sunAz, double sunEl) {
+  Session& s = session();
+  FrameSettings fs;
+  fs.timeS = timeS;
+  fs.sunEcef = sunForView(p, sunAz, sunEl);
+  s.render(p, fs);
+  return s.image();
+}
+
+// Rows above and below the horizon: sky is brighter than the sea under a
+// low sun, and the sea is not one flat colour (there are waves).
+void expectSeaAndSky(const Image& img) {
+  auto lum = [&](int x, int y) {
+    const auto* q = &img.rgba[(std::size_t(y) * img.width + x) * 4];
+    return 0.3 * q[0] + 0.59 * q[1] + 0.11 * q[2];
+  };
+  double seaMin = 1e9, seaMax = -1e9;
+  for (int x = 0; x < img.width; x += 4) {
+    const double l = lum(x, img.height - 20);
+    seaMin = std::min(seaMin, l), seaMax = std::max(seaMax, l);
+  }
+  EXPECT_GT(seaMax - seaMin, 3.0) << "the sea near the camera shows no waves";
+  EXPECT_GT(lum(img.width / 2, 4), lum(img.width / 2, img.height - 4)) << "sky should be brighter than the sea below";
+}
+
+TEST(Ocean, OpenSeaFrom10mWithALowSun) {
+  const Image img = renderAt(seaPose(30.0, -40.0, 10.0, 90.0, -10.0), 100.0, 100.0, 8.0);
+  expectSeaAndSky(img);
+  expectMatchesGolden(img, "sea_10m_low_sun", kGoldenMean, kGoldenOver16);
+}
+
+TEST(Ocean, SeaFrom2mAtTheAntimeridian) {
+  const Image img = renderAt(seaPose(0.0, 179.99, 2.0, 90.0, -8.0), 50.0, 200.0, 30.0);
+  expectSeaAndSky(img);
+  expectMatchesGolden(img, "sea_2m_lon179.99", kGoldenMean, kGoldenOver16);
+}
+
+TEST(Ocean, SeaFrom2mAtLatitude80) {
+  // Lat 80 N, lon 0: the Greenland Sea (open water in the 5' mask).
+  const Image img = renderAt(seaPose(80.0, 0.0, 2.0, 0.0, -8.0), 50.0, 180.0, 20.0);
+  expectSeaAndSky(img);
+  expectMatchesGolden(img, "sea_2m_lat80", kGoldenMean, kGoldenOver16);
+}
+
+TEST(Ocean, JitterFreeAt1mWithWaves) {
+  // Two cameras 1 mm apart at 1 m above the sea, same time: waves, grid and
+  // terrain all move by a hundredth of a pixel at most.
+  ViewPose a = seaPose(0.0, 179.99, 1.0, 45.0, -20.0, 128);
+  ViewPose b = a;
+  b.latDeg += 1.0e-3 / 110574.0;  // 1 mm north (metres per degree of latitude at the equator)
+  const Image ia = renderAt(a, 10.0, 120.0, 40.0);
+  const Image ib = renderAt(b, 10.0, 120.0, 40.0);
+  const ImageDiff d = compare(ia, ib);
+  EXPECT_LE(d.mean, 0.5);
+  EXPECT_LE(d.fractionOver16, 0.002);
+}
+
+TEST(Ocean, RenderedSurfaceMatchesSeaHeightWithin1cm) {
+  Session& s = session();
+  // A fine grid (2 px cells) so every octave is drawn and the triangles'
+  // linear interpolation between vertices stays far below 1 cm.
+  ocean_render::OceanOptions oo;
+  oo.cellPx = 2.0;
+  auto ocean = std::make_shared<ocean_render::OceanRenderer>(s.world, ocean_render::defaultLandSea(), oo);
+  GlobeRenderer renderer(s.world);
+  renderer.addLayer(ocean);
+  ocean->setWriteData(true);
+  const ViewPose p = seaPose(-30.0, -120.0, 10.0, 30.0, -60.0, 128);
+  Framebuffer fb(p.width, p.height, true);
+  fb.bind();
+  FrameSettings fs;
+  fs.timeS = 37.5;
+  fs.sunEcef = sunForView(p);
+  renderer.render(p, fs);
+  const std::vector<float> data = fb.readData();
+  const ViewMatrices vm = renderer.matrices(p);
+  int checked = 0;
+  double worst = 0.0;
+  for (int y = 8; y < p.height; y += 12)
+    for (int x = 8; x < p.width; x += 12) {
+      const float* q = &data[(std::size_t(y) * p.width + x) * 4];
+      if (q[3] != 1.0f) continue;
+      const glm::dvec3 ecef = vm.eyeEcef + glm::dvec3(q[0], q[1], q[2]);
+      const geo::Geodetic g = geo::fromEcef(ecef);
+      const double expected = ocean->waves().surfaceAt(g.latDeg, g.lonDeg, fs.timeS).heightM;
+      worst = std::max(worst, std::abs(g.heightM - expected));
+      ++checked;
+    }
+  std::printf("parity: worst |rendered - seaHeight| = %.5f m over %d pixels\n", worst, checked);
+  EXPECT_GT(checked, 50);
+  // The bound: the picture and the query agree within 1 cm.
+  EXPECT_LT(worst, 0.01) << "over " << checked << " pixels";
+}
+
+}  // namespace
+}  // namespace geocean::render::test
