@@ -35,6 +35,14 @@ case "$mode" in
     ;;
   run)
     ./build/geocean demo
+    # (a) The globe: a window on a display, otherwise a rendered flight from
+    # orbit to 2 m above the Strait of Gibraltar as PNG frames.
+    if [ -n "${DISPLAY:-}" ]; then
+      ./build/geocean view --fly-to 36.0,-5.6
+    else
+      ./build/geocean fly --to 36.0,-5.6 --frames 90 --size 960x540 --out out/flight
+      echo "wrote out/flight/frame_*.png and out/flight/timings.csv (no display: geocean view needs one)"
+    fi
     ;;
   *)
     echo "usage: $0 [run|test]" >&2

@@ -4,6 +4,7 @@
 
 #include "tests/support/Subprocess.h"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace geocean::render::test {
@@ -31,6 +32,35 @@ TEST(RenderCli, RendersAFrameWithNegativeCoordinates) {
   const Image img = readImage(out);
   EXPECT_EQ(img.width, 64);
   EXPECT_EQ(img.height, 48);
+}
+
+}  // namespace
+}  // namespace geocean::render::test
+
+namespace geocean::render::test {
+namespace {
+
+TEST(RenderCli, ViewWithoutADisplaySaysSoAndExits4) {
+  const auto r = geocean::test::run("env -u DISPLAY -u WAYLAND_DISPLAY " + kExe + " view");
+  EXPECT_EQ(r.exitCode, 4);
+  EXPECT_NE(r.err.find("no display"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("geocean render"), std::string::npos) << r.err;
+}
+
+TEST(RenderCli, FlyWritesFramesAndATimingsCsv) {
+  const std::string dir = ::testing::TempDir() + "/cli_flight";
+  std::filesystem::remove_all(dir);
+  const auto r = geocean::test::run(kExe + " fly --to 36.0,-5.6 --frames 3 --size 48x32 --out " + dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (int f = 0; f < 3; ++f)
+    EXPECT_TRUE(std::filesystem::exists(dir + "/frame_0000" + std::to_string(f) + ".png"));
+  const auto csv = geocean::test::run("cat " + dir + "/timings.csv");
+  // Header + one row per frame; the last frame is 2 m above the sea.
+  EXPECT_EQ(std::count(csv.out.begin(), csv.out.end(), '\n'), 4);
+  EXPECT_NE(csv.out.find(",2.000,"), std::string::npos) << csv.out;
+  const auto bad = geocean::test::run(kExe + " fly --to 95,0 --out " + dir);
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("latitude"), std::string::npos) << bad.err;
 }
 
 }  // namespace
