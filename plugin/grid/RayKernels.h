@@ -5,11 +5,12 @@
 // (-march=x86-64-v2, see the top-level CMakeLists.txt); these kernels are
 // multi-versioned with GCC target_clones (baseline, x86-64-v3 = AVX2+FMA,
 // x86-64-v4 = AVX-512) and the best clone is picked once at load time by the
-// ifunc resolver. FP contraction stays off (-std=c++20 implies
-// -ffp-contract=off), so every clone returns bit-identical results.
+// ifunc resolver. FP contraction is off (-ffp-contract=off on the target),
+// so every clone returns bit-identical results.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 namespace geocean::grid {
 
@@ -27,6 +28,31 @@ void intersectEllipsoidBatch(const double eyeEcef[3], const double* dx, const do
 // rx, ry, rz): closed form, exact for points on the surface. NaN in, NaN out.
 void surfaceLatLonBatch(const double eyeEcef[3], const double* rx, const double* ry, const double* rz,
                         std::size_t n, double* latDeg, double* lonDeg);
+
+struct GridVertex;
+
+// Unnormalised ray directions F + (x0 + i dx) R + y U for i in [0, n): one
+// grid row (R, U already scaled by tan(fov/2)).
+void rayRow(const double F[3], const double R[3], const double U[3], double x0, double dx, double y, std::size_t n,
+            double* dirX, double* dirY, double* dirZ);
+
+// intersectEllipsoidBatch (offset 0) fused with the eye-relative hit point
+// r = t d (NaN on a miss).
+void surfaceHitsBatch(const double eyeEcef[3], const double* dx, const double* dy, const double* dz, std::size_t n,
+                      double* tOut, double* rx, double* ry, double* rz);
+
+// ISPG (paper 000 eq. 5, 7, 8) on WGS84: hit of each ray with the plane of
+// normal N at height H below the eye (or, past farM, the far point in the
+// plane's direction), mapped radially from the Earth's centre onto the
+// ellipsoid; eye-relative output, t set to 1 (ISPG never misses).
+void ispgBatch(const double eyeEcef[3], const double N[3], double H, double farM, const double* dx,
+               const double* dy, const double* dz, std::size_t n, double* tOut, double* rx, double* ry, double* rz);
+
+// Packs one row into GridVertex (float eye-relative position, class,
+// flags: horizon where t is NaN, offscreen where |x0 + i dx| > 1 or rowOffscreen).
+void packRow(const double* t, const double* rx, const double* ry, const double* rz, const double* latDeg,
+             const double* lonDeg, const std::uint8_t* surface, double x0, double dx, bool rowOffscreen,
+             std::size_t n, GridVertex* out);
 
 // Which clone the ifunc resolver picked on this CPU: "x86-64-v4",
 // "x86-64-v3" or "baseline" (for logs and benchmark labels).

@@ -41,49 +41,102 @@ double horizonOffsetM(const camera::Camera& cam, double maxDisplacementM) {
 // horizon and the screen edges keep their horizon corner:
 // geo::horizonPoint (the limb point closest in direction) would pull edge
 // columns towards the nadir and open slits at the screen border. Falls back
-// to horizonPoint when neither line meets the limb. Eye-relative.
-enum class Along { Nearest, Column, Row, Closest };
-glm::dvec3 missPointRel(const camera::Camera& cam, double x, double y, double offsetM, Along along) {
-  const glm::dvec3 d = cam.rayThroughNdc(x, y);
-  if (along == Along::Closest) return geo::horizonPoint(cam.eyeEcef(), d, offsetM) - cam.eyeEcef();
-  const double a = geo::kWgs84A + offsetM, b = geo::kWgs84B + offsetM;
-  const glm::dvec3 toScaled(1.0 / a, 1.0 / a, 1.0 / b), fromScaled(a, a, b);
-  const glm::dvec3 e = cam.eyeEcef() * toScaled;
-  const double r = glm::length(e);
-  if (!(r > 1.0)) return geo::horizonPoint(cam.eyeEcef(), d, offsetM) - cam.eyeEcef();
-  // Limb in scaled space: the circle |p| = 1, p.u = 1/r.
-  const glm::dvec3 u = e / r;
-  const glm::dvec3 c0 = u / r;
-  const double rho = std::sqrt(std::max(0.0, 1.0 - 1.0 / (r * r)));
-  const glm::dvec3 v1 = glm::normalize(glm::cross(u, std::abs(u.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
-  const glm::dvec3 v2 = glm::cross(u, v1);
-  const glm::dvec3 dn = glm::normalize(d);
-  const glm::dvec3 R = cam.right() * cam.tanHalfX(), U = cam.up() * cam.tanHalfY();
-  // Planes through the eye holding the grid column and the grid row; a world
-  // normal n maps to n * fromScaled in scaled space.
-  const glm::dvec3 planes[2] = {glm::cross(cam.forward() + x * R, U), glm::cross(cam.forward() + y * U, R)};
-  double bestDot = -2.0;
-  glm::dvec3 best(0.0);
-  for (int pl = 0; pl < 2; ++pl) {
-    // A border line that meets the limb keeps its vertices on itself.
-    if (pl == 1 && along == Along::Column && bestDot > 0.0) break;
-    if (pl == 0 && along == Along::Row) continue;
-    const glm::dvec3& nw = planes[pl];
-    const glm::dvec3 n = nw * fromScaled;
-    const double A = glm::dot(n, v1), B = glm::dot(n, v2), M = std::sqrt(A * A + B * B);
-    const double k = (glm::dot(n, e) - glm::dot(n, c0)) / rho;
-    if (!(M > 0.0) || std::abs(k) > M) continue;
+// to horizonPoint when neither line meets the limb.
+enum class Along { Nearest, Column, Row };
+
+// Up to two limb points on one grid line (a plane through the eye), eye-relative.
+struct LimbLine {
+  int n = 0;
+  glm::dvec3 rel[2];
+  glm::dvec3 dir[2];  // unit directions from the eye
+  double latDeg[2], lonDeg[2];
+};
+
+class LimbSolver {
+ public:
+  LimbSolver(const camera::Camera& cam, double offsetM) : cam_(cam), offsetM_(offsetM) {
+    const double a = geo::kWgs84A + offsetM, b = geo::kWgs84B + offsetM;
+    toScaled_ = {1.0 / a, 1.0 / a, 1.0 / b};
+    fromScaled_ = {a, a, b};
+    e_ = cam.eyeEcef() * toScaled_;
+    const double r = glm::length(e_);
+    valid_ = r > 1.0;
+    if (!valid_) return;
+    // Limb in scaled space: the circle |p| = 1, p.u = 1/r.
+    const glm::dvec3 u = e_ / r;
+    c0_ = u / r;
+    rho_ = std::sqrt(std::max(0.0, 1.0 - 1.0 / (r * r)));
+    v1_ = glm::normalize(glm::cross(u, std::abs(u.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0)));
+    v2_ = glm::cross(u, v1_);
+    R_ = cam.right() * cam.tanHalfX();
+    U_ = cam.up() * cam.tanHalfY();
+  }
+  LimbLine column(double x) const { return line(glm::cross(cam_.forward() + x * R_, U_)); }
+  LimbLine row(double y) const { return line(glm::cross(cam_.forward() + y * U_, R_)); }
+
+  // The chosen limb point for a missed ray (unit direction dn), eye-relative.
+  void choose(const LimbLine& col, const LimbLine& row, const glm::dvec3& dn, Along along, glm::dvec3& rel,
+              double& latDeg, double& lonDeg) const {
+    double best = 0.0;
+    int which = -1;
+    auto consider = [&](const LimbLine& l, int base) {
+      for (int k = 0; k < l.n; ++k) {
+        const double dot = glm::dot(l.dir[k], dn);
+        if (dot > best) best = dot, which = base + k;
+      }
+    };
+    if (along != Along::Row) consider(col, 0);
+    if (along != Along::Column || which < 0) consider(row, 2);
+    if (along == Along::Row && which < 0) consider(col, 0);
+    if (which >= 0) {
+      const LimbLine& l = which < 2 ? col : row;
+      rel = l.rel[which % 2];
+      latDeg = l.latDeg[which % 2];
+      lonDeg = l.lonDeg[which % 2];
+      return;
+    }
+    const glm::dvec3 p = geo::horizonPoint(cam_.eyeEcef(), dn, offsetM_);
+    rel = p - cam_.eyeEcef();
+    const geo::Geodetic g = geo::fromEcef(p);
+    latDeg = g.latDeg;
+    lonDeg = g.lonDeg;
+  }
+
+ private:
+  LimbLine line(const glm::dvec3& normalWorld) const {
+    LimbLine l;
+    if (!valid_) return l;
+    // A world plane normal n maps to n * fromScaled in scaled space.
+    const glm::dvec3 n = normalWorld * fromScaled_;
+    const double A = glm::dot(n, v1_), B = glm::dot(n, v2_), M = std::sqrt(A * A + B * B);
+    const double k = (glm::dot(n, e_) - glm::dot(n, c0_)) / rho_;
+    if (!(M > 0.0) || std::abs(k) > M) return l;
     const double phi = std::atan2(B, A), delta = std::acos(k / M);
     for (double th : {phi + delta, phi - delta}) {
-      const glm::dvec3 p = (c0 + rho * (std::cos(th) * v1 + std::sin(th) * v2)) * fromScaled;
-      const glm::dvec3 rel = p - cam.eyeEcef();
-      const double dot = glm::dot(glm::normalize(rel), dn);
-      if (dot > bestDot) bestDot = dot, best = rel;
+      const glm::dvec3 p = (c0_ + rho_ * (std::cos(th) * v1_ + std::sin(th) * v2_)) * fromScaled_;
+      l.rel[l.n] = p - cam_.eyeEcef();
+      l.dir[l.n] = glm::normalize(l.rel[l.n]);
+      const geo::Geodetic g = geo::fromEcef(p);
+      l.latDeg[l.n] = g.latDeg;
+      l.lonDeg[l.n] = g.lonDeg;
+      ++l.n;
     }
+    return l;
   }
-  if (along == Along::Row && !(bestDot > 0.0)) return missPointRel(cam, x, y, offsetM, Along::Column);
-  if (bestDot > 0.0) return best;
-  return geo::horizonPoint(cam.eyeEcef(), d, offsetM) - cam.eyeEcef();
+
+  const camera::Camera& cam_;
+  double offsetM_;
+  bool valid_ = false;
+  glm::dvec3 toScaled_{1.0}, fromScaled_{1.0}, e_{0.0}, c0_{0.0}, v1_{0.0}, v2_{0.0}, R_{0.0}, U_{0.0};
+  double rho_ = 0.0;
+};
+
+glm::dvec3 missPointRel(const camera::Camera& cam, double x, double y, double offsetM, Along along) {
+  const LimbSolver limb(cam, offsetM);
+  glm::dvec3 rel;
+  double lat, lon;
+  limb.choose(limb.column(x), limb.row(y), glm::normalize(cam.rayThroughNdc(x, y)), along, rel, lat, lon);
+  return rel;
 }
 
 // Eye-relative point seen through NDC (x, y) on the base ellipsoid, or on the
@@ -225,81 +278,60 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
   const glm::dvec3 planeN = geo::surfaceNormal(nadirGeo.latDeg, nadirGeo.lonDeg);
   const double planeH = nadirGeo.heightM;  // eye height above the plane
   const double ispgFar = cam.farM();
+  const double Fa[3] = {F.x, F.y, F.z}, Ra[3] = {R.x, R.y, R.z}, Ua[3] = {U.x, U.y, U.z};
+  const double Na[3] = {planeN.x, planeN.y, planeN.z};
+
+  // Limb crossings of every grid column, needed only if some ray misses: the
+  // rays that hit form a convex cone, so if the four corners hit, all do.
+  const LimbSolver limb(cam, hOff);
+  std::vector<LimbLine> colLines;
+  bool cornersHit = o.mode == GridMode::Ispg;
+  if (!cornersHit) {
+    cornersHit = true;
+    for (double cx : {rect.minX, rect.maxX})
+      for (double cy : {rect.minY, rect.maxY})
+        cornersHit = cornersHit && geo::intersectEllipsoid(cam.eyeEcef(), cam.rayThroughNdc(cx, cy)).hit;
+  }
+  if (!cornersHit) colLines.resize(std::size_t(cols));
 
   auto buildRows = [&](const tbb::blocked_range<int>& range) {
     RowScratch& s = impl_->scratch.local();
     s.resize(std::size_t(cols));
     for (int j = range.begin(); j < range.end(); ++j) {
       const double y = rect.minY + j * dyNdc;
-      for (int i = 0; i < cols; ++i) {
-        const double x = rect.minX + i * dxNdc;
-        s.dx[i] = F.x + x * R.x + y * U.x;
-        s.dy[i] = F.y + x * R.y + y * U.y;
-        s.dz[i] = F.z + x * R.z + y * U.z;
-      }
+      rayRow(Fa, Ra, Ua, rect.minX, dxNdc, y, std::size_t(cols), s.dx.data(), s.dy.data(), s.dz.data());
       if (o.mode == GridMode::Direct) {
-        intersectEllipsoidBatch(eye, s.dx.data(), s.dy.data(), s.dz.data(), cols, 0.0, s.t.data());
-        for (int i = 0; i < cols; ++i) {
-          s.rx[i] = s.t[i] * s.dx[i];
-          s.ry[i] = s.t[i] * s.dy[i];
-          s.rz[i] = s.t[i] * s.dz[i];
-        }
+        surfaceHitsBatch(eye, s.dx.data(), s.dy.data(), s.dz.data(), std::size_t(cols), s.t.data(), s.rx.data(),
+                         s.ry.data(), s.rz.data());
       } else {
-        // Plane hit (or the far point in the plane's horizontal direction),
-        // then the radial map onto the ellipsoid: X_s = X / |X|_w (eq. 7, 8,
-        // with the Earth's centre as the projection centre).
-        for (int i = 0; i < cols; ++i) {
-          glm::dvec3 d(s.dx[i], s.dy[i], s.dz[i]);
-          const double dn = glm::dot(d, planeN);
-          glm::dvec3 rel;
-          if (dn < 0.0 && -planeH / dn * glm::length(d) < ispgFar) {
-            rel = d * (-planeH / dn);
-          } else {
-            rel = glm::normalize(d - dn * planeN) * ispgFar - planeH * planeN;
-          }
-          const glm::dvec3 X = cam.eyeEcef() + rel;
-          const double w = std::sqrt((X.x * X.x + X.y * X.y) / (geo::kWgs84A * geo::kWgs84A) +
-                                     X.z * X.z / (geo::kWgs84B * geo::kWgs84B));
-          const glm::dvec3 Xs = X / w;
-          s.rx[i] = Xs.x - eye[0];
-          s.ry[i] = Xs.y - eye[1];
-          s.rz[i] = Xs.z - eye[2];
-          s.t[i] = 1.0;  // never a miss
-        }
+        ispgBatch(eye, Na, planeH, ispgFar, s.dx.data(), s.dy.data(), s.dz.data(), std::size_t(cols), s.t.data(),
+                  s.rx.data(), s.ry.data(), s.rz.data());
       }
       surfaceLatLonBatch(eye, s.rx.data(), s.ry.data(), s.rz.data(), cols, s.lat.data(), s.lon.data());
-      for (int i = 0; i < cols; ++i) {
-        if (!std::isnan(s.t[i])) continue;
-        const Along along = (i == 0 || i == cols - 1) ? Along::Column
-                            : (j == 0 || j == rows - 1) ? Along::Row : Along::Nearest;
-        const glm::dvec3 rp = missPointRel(cam, rect.minX + i * dxNdc, y, hOff, along);
-        s.rx[i] = rp.x;
-        s.ry[i] = rp.y;
-        s.rz[i] = rp.z;
-        const geo::Geodetic g = geo::fromEcef(cam.eyeEcef() + rp);
-        s.lat[i] = g.latDeg;
-        s.lon[i] = g.lonDeg;
+      bool anyMiss = false;
+      for (int i = 0; i < cols; ++i) anyMiss |= std::isnan(s.t[i]);
+      if (anyMiss) {
+        const LimbLine rowLine = limb.row(y);
+        for (int i = 0; i < cols; ++i) {
+          if (!std::isnan(s.t[i])) continue;
+          const Along along = (i == 0 || i == cols - 1) ? Along::Column
+                              : (j == 0 || j == rows - 1) ? Along::Row : Along::Nearest;
+          const glm::dvec3 dn = glm::normalize(glm::dvec3(s.dx[i], s.dy[i], s.dz[i]));
+          glm::dvec3 rp;
+          limb.choose(colLines[std::size_t(i)], rowLine, dn, along, rp, s.lat[i], s.lon[i]);
+          s.rx[i] = rp.x;
+          s.ry[i] = rp.y;
+          s.rz[i] = rp.z;
+        }
       }
       if (classifier_) {
         classifier_(s.lat.data(), s.lon.data(), std::size_t(cols), s.surf.data());
       } else {
         std::fill(s.surf.begin(), s.surf.end(), ocean::Surface::Ocean);
       }
-      GridVertex* out = f.vertices.data() + std::size_t(j) * cols;
-      const bool rowOff = std::abs(y) > 1.0;
-      for (int i = 0; i < cols; ++i) {
-        const double x = rect.minX + i * dxNdc;
-        GridVertex& v = out[i];
-        v.eyeRelM[0] = float(s.rx[i]);
-        v.eyeRelM[1] = float(s.ry[i]);
-        v.eyeRelM[2] = float(s.rz[i]);
-        v.surface = std::uint8_t(s.surf[i]);
-        v.flags = std::uint8_t((std::isnan(s.t[i]) ? kVertexHorizon : 0) |
-                               ((rowOff || std::abs(x) > 1.0) ? kVertexOffscreen : 0));
-        v.reserved = 0;
-        v.latDeg = s.lat[i];
-        v.lonDeg = s.lon[i];
-      }
+      packRow(s.t.data(), s.rx.data(), s.ry.data(), s.rz.data(), s.lat.data(), s.lon.data(),
+              reinterpret_cast<const std::uint8_t*>(s.surf.data()), rect.minX, dxNdc, std::abs(y) > 1.0,
+              std::size_t(cols), f.vertices.data() + std::size_t(j) * cols);
     }
   };
   auto skipRows = [&](const tbb::blocked_range<int>& range) {
@@ -314,6 +346,8 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
     }
   };
   auto run = [&] {
+    if (!colLines.empty())
+      tbb::parallel_for(0, cols, [&](int i) { colLines[std::size_t(i)] = limb.column(rect.minX + i * dxNdc); });
     tbb::parallel_for(tbb::blocked_range<int>(0, rows, 4), buildRows);
     tbb::parallel_for(tbb::blocked_range<int>(0, rows - 1, 16), skipRows);
   };
