@@ -1,19 +1,23 @@
-// `geocean query`: surface class and terrain elevation at points, one point
-// from the command line or a stream of CSV rows.
+// `geocean query`: surface class, terrain elevation and the sea surface
+// (height above the ellipsoid, normal, vertical velocity) at points, one
+// point from the command line or a stream of CSV rows.
 #include "globe/app/Command.h"
 #include "globe/app/QueryIo.h"
 #include "globe/raster/World.h"
 #include "plugin/landsea/LandSea.h"
+#include "plugin/waves/SeaQuery.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,7 +30,61 @@ struct QueryOptions {
   std::string format = "text";
   std::string mask, elevation, maskEncoding;
   bool global = false;
+  // Sea state (strings: parsed here so that bad values get our messages).
+  std::string waves = "noise", time = "0", wind, beaufort, windDir = "270", fetch = "0", seed = "1",
+              anchor = "0,0";
 };
+
+// The sea state and model from the options, or an error message.
+struct WaveSetup {
+  waves::Model model = waves::Model::Noise;
+  waves::SeaState sea;
+  double timeS = 0.0;
+};
+std::string parseWaveOptions(const QueryOptions& o, WaveSetup& w) {
+  auto number = [](const std::string& opt, const std::string& v, double& out) -> std::string {
+    const auto x = parseNumber(v);
+    if (!x) return opt + " '" + v + "' is not a finite number";
+    out = *x;
+    return {};
+  };
+  const auto model = waves::parseModel(o.waves);
+  if (!model) return "--waves '" + o.waves + "' is not a wave model (noise, noise-paper, gerstner)";
+  w.model = *model;
+  if (auto e = number("--time", o.time, w.timeS); !e.empty()) return e;
+  if (!o.wind.empty() && !o.beaufort.empty()) return "give either --wind or --beaufort, not both";
+  if (!o.beaufort.empty()) {
+    double b = 0.0;
+    if (auto e = number("--beaufort", o.beaufort, b); !e.empty()) return e;
+    const auto sea = b == std::floor(b) ? waves::SeaState::fromBeaufort(int(b)) : std::nullopt;
+    if (!sea) return "--beaufort " + o.beaufort + " is not a Beaufort number 0..12";
+    w.sea = *sea;
+  } else if (!o.wind.empty()) {
+    if (auto e = number("--wind", o.wind, w.sea.windSpeedMps); !e.empty()) return e;
+    if (!(w.sea.windSpeedMps >= 0.2 && w.sea.windSpeedMps <= 60.0))
+      return "--wind " + o.wind + " m/s is outside 0.2 .. 60 m/s";
+  }
+  if (auto e = number("--wind-dir", o.windDir, w.sea.windFromDeg); !e.empty()) return e;
+  if (auto e = number("--fetch", o.fetch, w.sea.fetchM); !e.empty()) return e;
+  if (w.sea.fetchM < 0.0) return "--fetch " + o.fetch + " m is negative";
+  {
+    std::uint32_t seed = 0;
+    const auto [p, ec] = std::from_chars(o.seed.data(), o.seed.data() + o.seed.size(), seed);
+    if (o.seed.empty() || ec != std::errc() || p != o.seed.data() + o.seed.size())
+      return "--seed '" + o.seed + "' is not an integer 0 .. 4294967295";
+    w.sea.seed = seed;
+  }
+  {
+    const auto comma = o.anchor.find(',');
+    const auto lat = comma == std::string::npos ? std::nullopt : parseNumber(std::string_view(o.anchor).substr(0, comma));
+    const auto lon = comma == std::string::npos ? std::nullopt : parseNumber(std::string_view(o.anchor).substr(comma + 1));
+    if (!lat || !lon) return "--anchor '" + o.anchor + "' is not LAT,LON";
+    if (auto e = checkLatLon(*lat, *lon, "--anchor"); !e.empty()) return e;
+    w.sea.anchorLatDeg = *lat;
+    w.sea.anchorLonDeg = *lon;
+  }
+  return {};
+}
 
 void appendDouble(std::string& s, double v) {
   char b[32];
@@ -43,14 +101,22 @@ void appendFloat(std::string& s, float v) {
   s.append(b, r.ptr);
 }
 
+void appendSea(std::string& s, double v, bool sea) {
+  if (!sea || std::isnan(v))
+    s += "null";
+  else
+    appendDouble(s, v);
+}
+
 struct Results {
   std::vector<ocean::Surface> surface;
   std::vector<float> elevationM;
+  std::vector<waves::SeaQueryResult> sea;
 };
 
 class Querier {
  public:
-  Querier(const QueryOptions& o, bool batch) : format_(o.format) {
+  Querier(const QueryOptions& o, bool batch, const WaveSetup& w) : format_(o.format), timeS_(w.timeS) {
     const auto world = raster::defaultWorld();
     raster::OpenOptions ro;
     if (o.global) ro.georef = raster::Georef::GlobalEquirect;
@@ -60,44 +126,71 @@ class Querier {
     auto mask = raster::Raster::open(o.mask.empty() ? world.mask : o.mask, ro);
     auto elev = raster::Raster::open(o.elevation.empty() ? world.elevation : o.elevation, ro);
     const ocean::MaskEncoding enc = o.maskEncoding.empty() ? ocean::MaskEncoding() : ocean::MaskEncoding::parse(o.maskEncoding);
-    landSea_ = std::make_unique<ocean::LandSea>(mask, elev, enc);
+    landSea_ = std::make_shared<ocean::LandSea>(mask, elev, enc);
+    std::string error;
+    auto field = waves::WaveField::create(w.model, w.sea, error);
+    if (!field) throw std::invalid_argument(error);  // parseWaveOptions checked the ranges first
+    sea_ = std::make_unique<waves::SeaQuery>(std::move(*field), landSea_);
   }
 
   void run(const std::vector<PointRow>& pts, Results& r) const {
     const std::size_t n = pts.size();
     r.surface.resize(n);
     r.elevationM.resize(n);
-    std::vector<double> lat(n), lon(n);
+    r.sea.resize(n);
+    std::vector<double> lat(n), lon(n), t(n);
     for (std::size_t i = 0; i < n; ++i) {
       lat[i] = pts[i].latDeg;
       lon[i] = pts[i].lonDeg;
+      t[i] = pts[i].timeS.value_or(timeS_);  // a row's own time overrides --time
     }
     constexpr std::size_t kGrain = 4096;
     tbb::parallel_for(std::size_t(0), (n + kGrain - 1) / kGrain, [&](std::size_t b) {
       const std::size_t s = b * kGrain, m = std::min(kGrain, n - s);
       landSea_->classifyBatch(lat.data() + s, lon.data() + s, m, r.surface.data() + s);
       landSea_->elevationBatch(lat.data() + s, lon.data() + s, m, r.elevationM.data() + s);
+      sea_->queryClassified(lat.data() + s, lon.data() + s, t.data() + s, true, m, r.surface.data() + s,
+                            r.elevationM.data() + s, r.sea.data() + s);
     });
   }
 
   void header(std::string& out) const {
-    if (format_ == "text") out += "lat,lon,surface,elevation_m\n";
+    if (format_ == "text")
+      out += "lat,lon,surface,elevation_m,time_s,sea_height_m,normal_e,normal_n,normal_u,vertical_velocity_mps\n";
   }
 
-  void format(const PointRow& p, ocean::Surface s, float elev, std::string& out) const {
+  // Sea fields are null where there is no sea surface (land, lakes).
+  void format(const PointRow& p, ocean::Surface s, float elev, const waves::SeaQueryResult& w,
+              std::string& out) const {
+    const bool sea = s == ocean::Surface::Ocean && !std::isnan(w.seaHeightM);
+    const double t = p.timeS.value_or(timeS_);
     if (format_ == "json") {
       out += "{\"lat\":";
       appendDouble(out, p.latDeg);
       out += ",\"lon\":";
       appendDouble(out, p.lonDeg);
-      if (p.timeS) {
-        out += ",\"time_s\":";
-        appendDouble(out, *p.timeS);
-      }
+      out += ",\"time_s\":";
+      appendDouble(out, t);
       out += ",\"surface\":\"";
       out += ocean::toString(s);
       out += "\",\"elevation_m\":";
       appendFloat(out, elev);
+      out += ",\"sea_height_m\":";
+      appendSea(out, w.seaHeightM, sea);
+      out += ",\"normal\":";
+      if (sea) {
+        out += '[';
+        appendDouble(out, w.normalEnu.x);
+        out += ',';
+        appendDouble(out, w.normalEnu.y);
+        out += ',';
+        appendDouble(out, w.normalEnu.z);
+        out += ']';
+      } else {
+        out += "null";
+      }
+      out += ",\"vertical_velocity_mps\":";
+      appendSea(out, w.verticalVelocityMps, sea);
       out += "}\n";
     } else {
       appendDouble(out, p.latDeg);
@@ -107,18 +200,31 @@ class Querier {
       out += ocean::toString(s);
       out += ',';
       appendFloat(out, elev);
+      out += ',';
+      appendDouble(out, t);
+      for (double v : {w.seaHeightM, w.normalEnu.x, w.normalEnu.y, w.normalEnu.z, w.verticalVelocityMps}) {
+        out += ',';
+        appendSea(out, v, sea);
+      }
       out += '\n';
     }
   }
 
  private:
   std::string format_;
-  std::unique_ptr<ocean::LandSea> landSea_;
+  double timeS_ = 0.0;
+  std::shared_ptr<ocean::LandSea> landSea_;
+  std::unique_ptr<waves::SeaQuery> sea_;
 };
 
 int runQuery(const QueryOptions& o) {
   if (o.format != "text" && o.format != "json") {
     std::fprintf(stderr, "geocean query: --format '%s' is not text or json\n", o.format.c_str());
+    return kExitBadInput;
+  }
+  WaveSetup waveSetup;
+  if (auto e = parseWaveOptions(o, waveSetup); !e.empty()) {
+    std::fprintf(stderr, "geocean query: %s\n", e.c_str());
     return kExitBadInput;
   }
   const bool batch = !o.points.empty();
@@ -147,7 +253,10 @@ int runQuery(const QueryOptions& o) {
 
   std::unique_ptr<Querier> q;
   try {
-    q = std::make_unique<Querier>(o, batch);
+    q = std::make_unique<Querier>(o, batch, waveSetup);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "geocean query: %s\n", e.what());
+    return kExitBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "geocean query: %s\n", e.what());
     return kExitDataError;
@@ -158,7 +267,7 @@ int runQuery(const QueryOptions& o) {
   q->header(out);
   if (!batch) {
     q->run(single, res);
-    q->format(single[0], res.surface[0], res.elevationM[0], out);
+    q->format(single[0], res.surface[0], res.elevationM[0], res.sea[0], out);
     std::fwrite(out.data(), 1, out.size(), stdout);
     return kExitOk;
   }
@@ -222,7 +331,7 @@ int runQuery(const QueryOptions& o) {
     std::vector<std::string> parts((good + 4095) / 4096);
     tbb::parallel_for(std::size_t(0), parts.size(), [&](std::size_t b) {
       for (std::size_t i = b * 4096; i < std::min(good, (b + 1) * 4096); ++i)
-        q->format(pts[i], res.surface[i], res.elevationM[i], parts[b]);
+        q->format(pts[i], res.surface[i], res.elevationM[i], res.sea[i], parts[b]);
     });
     for (const auto& p : parts) out += p;
     std::fwrite(out.data(), 1, out.size(), stdout);
@@ -255,23 +364,27 @@ int runDemo() {
       {"North Pole", 90.0, 0.0},          {"South Pole", -90.0, 0.0},      {"Fiji, lon 180", -17.0, 180.0},
   };
   QueryOptions o;
-  Querier q(o, /*batch=*/true);
+  Querier q(o, /*batch=*/true, WaveSetup{});
   std::vector<PointRow> pts;
   for (const auto& p : kPlaces) pts.push_back({p.lat, p.lon, std::nullopt});
   Results r;
   q.run(pts, r);
   std::printf("Geocean default world: %s\n", raster::dataDir().c_str());
-  std::printf("%-22s %9s %9s  %-6s %12s\n", "place", "lat", "lon", "class", "elevation_m");
-  for (std::size_t i = 0; i < pts.size(); ++i)
-    std::printf("%-22s %9.3f %9.3f  %-6s %12.1f\n", kPlaces[i].name, pts[i].latDeg, pts[i].lonDeg,
-                ocean::toString(r.surface[i]), double(r.elevationM[i]));
+  std::printf("Sea: noise model, wind 10 m/s from 270 deg, t = 0 s\n");
+  std::printf("%-22s %9s %9s  %-6s %12s %13s\n", "place", "lat", "lon", "class", "elevation_m", "sea_height_m");
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    char sea[32] = "-";
+    if (!std::isnan(r.sea[i].seaHeightM)) std::snprintf(sea, sizeof sea, "%.3f", r.sea[i].seaHeightM);
+    std::printf("%-22s %9.3f %9.3f  %-6s %12.1f %13s\n", kPlaces[i].name, pts[i].latDeg, pts[i].lonDeg,
+                ocean::toString(r.surface[i]), double(r.elevationM[i]), sea);
+  }
   return kExitOk;
 }
 
 const Register kDemo{{"demo", "Query a handful of famous places on the default world",
                       [](CLI::App&) -> std::function<int()> { return [] { return runDemo(); }; }}};
 
-const Register kRegister{{"query", "Surface class (ocean/land/lake) and terrain elevation at points",
+const Register kRegister{{"query", "Surface class (ocean/land/lake), terrain elevation and the sea surface at points",
                           [](CLI::App& sub) -> std::function<int()> {
                             auto o = std::make_shared<QueryOptions>();
                             sub.add_option("coords", o->latLon, "LAT LON in degrees (negative values are fine)")
@@ -283,6 +396,14 @@ const Register kRegister{{"query", "Surface class (ocean/land/lake) and terrain 
                             sub.add_option("--mask-encoding", o->maskEncoding,
                                            "mask values, e.g. 0=ocean,1=land,2=lake (the default)");
                             sub.add_flag("--global", o->global, "rasters are whole-Earth equirectangular without georeferencing");
+                            sub.add_option("--waves", o->waves, "wave model: noise (default), noise-paper, gerstner");
+                            sub.add_option("--time", o->time, "simulation time in s (default 0); a row's own time overrides it");
+                            sub.add_option("--wind", o->wind, "wind speed at 19.5 m, m/s (0.2 .. 60; default 10)");
+                            sub.add_option("--beaufort", o->beaufort, "wind as a Beaufort number 0..12 (instead of --wind)");
+                            sub.add_option("--wind-dir", o->windDir, "direction the wind blows FROM, deg clockwise from north (default 270)");
+                            sub.add_option("--fetch", o->fetch, "fetch in m: 0 = fully developed (Pierson-Moskowitz, default), > 0 = JONSWAP");
+                            sub.add_option("--seed", o->seed, "random seed of the sea (default 1)");
+                            sub.add_option("--anchor", o->anchor, "LAT,LON where --wind-dir holds exactly (default 0,0)");
                             sub.positionals_at_end(false);
                             return [o] { return runQuery(*o); };
                           }}};

@@ -34,11 +34,17 @@ class SeaQuery {
   // at time tS[i] (or tS[0] for every point when timesPerPoint is false).
   void queryBatch(const double* latDeg, const double* lonDeg, const double* tS, bool timesPerPoint, std::size_t n,
                   SeaQueryResult* out) const;
+  // The same for points whose surface class (and, if elevationM is not null,
+  // terrain elevation in m) the caller already looked up, e.g. to print them
+  // too; runs on the calling thread only (callers parallelise by blocks).
+  void queryClassified(const double* latDeg, const double* lonDeg, const double* tS, bool timesPerPoint,
+                       std::size_t n, const ocean::Surface* surface, const float* elevationM,
+                       SeaQueryResult* out) const;
 
   const WaveField& field() const { return field_; }
 
  private:
-  SeaQueryResult atWater(double latDeg, double lonDeg, double tS, ocean::Surface s) const;
+  SeaQueryResult atWater(double latDeg, double lonDeg, double tS, ocean::Surface s, float elevationM) const;
   WaveField field_;
   std::shared_ptr<const ocean::LandSea> landSea_;
 };
