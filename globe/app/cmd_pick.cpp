@@ -237,7 +237,7 @@ const Register reg{{"pick", "first hit on terrain or sea along a ray (Embree, re
                       sub.add_option("--camera", o->cameraPose, "LAT,LON,ALT,HEADING,PITCH (deg, m; pitch -90 looks down)");
                       sub.add_option("--fov", o->fovDeg, "vertical field of view, degrees (default 60)");
                       sub.add_option("--size", o->size, "viewport WxH in pixels (default 1280x720)");
-                      sub.add_option("--pixel", o->pixel, "X,Y pixel (0,0 = top-left)");
+                      sub.add_option("--pixel", o->pixel, "X,Y: pixel column and row (0,0 = top-left); the ray passes through its centre");
                       sub.add_option("--format", o->format, "text (CSV) or json");
                       sub.add_option("--elevation", o->elevation, "terrain raster (default: the world's ETOPO)");
                       sub.add_option("--mask", o->mask, "land/sea/lake mask raster (default: the world's)");

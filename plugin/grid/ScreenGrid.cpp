@@ -3,7 +3,6 @@
 #include "plugin/grid/RayKernels.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -210,7 +209,6 @@ std::vector<std::uint32_t> compactIndices(const GridFrame& f) {
 
 struct ScreenGrid::Impl {
   std::optional<tbb::task_arena> arena;
-  mutable tbb::enumerable_thread_specific<RowScratch> scratch;
 };
 
 ScreenGrid::ScreenGrid(GridOptions o, SurfaceClassifier classifier)
@@ -295,7 +293,9 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
   if (!cornersHit) colLines.resize(std::size_t(cols));
 
   auto buildRows = [&](const tbb::blocked_range<int>& range) {
-    RowScratch& s = impl_->scratch.local();
+    // Per task, not thread-local: a classifier that itself runs TBB work
+    // could make this thread pick up another row task while it waits.
+    RowScratch s;
     s.resize(std::size_t(cols));
     for (int j = range.begin(); j < range.end(); ++j) {
       const double y = rect.minY + j * dyNdc;
