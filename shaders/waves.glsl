@@ -122,7 +122,7 @@ WvResult wv_solidNoise(int first, int count, WR3 d, WvFrame fr) {
   }
   WR3 up = wv_upAt(fr, d);
   WR3 gs = grad - dot(grad, up) * up;
-  return WvResult(WR4(up * h, h), WR4(normalize(up - gs), dhdt), WR4(0));
+  return WvResult(WR4(up * h, h), WR4(normalize(up - gs), dhdt), WR4(0), WR4(1, 0, 1, 1));
 }
 
 // ---- linear wave theory ---------------------------------------------------
@@ -140,6 +140,10 @@ WR wv_waveNumber(WR omega, WR depthM) {
 }
 
 // ---- model: Gerstner waves on great circles --------------------------------
+
+// First axis of the tangent frame (t1, t2 = up x t1) the Jacobian is given in:
+// the first component's direction at the patch origin, made tangent at `up`.
+WR3 wv_tangent1(WR3 dir0, WR3 up) { return normalize(dir0 - dot(dir0, up) * up); }
 
 // atan(y / x) for x > 0, accurate to rounding for small angles: the phase
 // multiplies it by k R ~ 1e6, and GPU atan is not that accurate.
@@ -165,7 +169,7 @@ WvResult wv_gerstner(int first, int count, WR3 d, WvFrame fr, WR depthM) {
   WR3 ph = normalize(v);
   WR lenV = length(v);
   WR3 up = wv_upAt(fr, d);
-  WR3 t1 = normalize(WR3(wvWaves[first].dirO) - dot(WR3(wvWaves[first].dirO), up) * up);
+  WR3 t1 = wv_tangent1(WR3(wvWaves[first].dirO), up);
   WR3 t2 = cross(up, t1);
   WR en = dot(d, n0) * invR;
 
@@ -230,7 +234,7 @@ WvResult wv_gerstner(int first, int count, WR3 d, WvFrame fr, WR depthM) {
   WR gzx = dot(gradZ, t1), gzy = dot(gradZ, t2);
   WR sx = (a22 * gzx - a12 * gzy) / det, sy = (a11 * gzy - a12 * gzx) / det;
   WR3 nrm = normalize(up - t1 * sx - t2 * sy);
-  return WvResult(WR4(hor + up * z, z), WR4(nrm, dzdt), WR4(hvel, WR(0)));
+  return WvResult(WR4(hor + up * z, z), WR4(nrm, dzdt), WR4(hvel, WR(0)), WR4(a11, a12, a22, det));
 }
 
 #endif

@@ -62,6 +62,10 @@ struct WvResult {
   WR4 disp;      // xyz: displacement (ECEF, m), w: vertical part (m, along the geodetic up)
   WR4 normal;    // xyz: unit surface normal (ECEF), w: vertical particle velocity (m/s)
   WR4 hvel;      // xyz: horizontal particle velocity (ECEF, m/s), w: 0
+  // Jacobian of the horizontal map x -> x + H(x) in the tangent frame
+  // (t1, t2) of wv_tangentFrame: (a11, a12, a22, det); identity for the
+  // noise model. The CPU uses it for Newton steps of the sea-height query.
+  WR4 jac;
 };
 
 #endif

@@ -113,7 +113,7 @@ class WaveField {
   WaveSample sample(double latDeg, double lonDeg, double tS, double depthM = kDeepWaterM) const;
 
   // The displaced surface exactly above (latDeg, lonDeg): the horizontal
-  // displacement is inverted by fixed-point iteration to within 0.1 mm.
+  // displacement is inverted by Newton iteration to within 0.01 mm.
   SurfacePoint surfaceAt(double latDeg, double lonDeg, double tS, double depthM = kDeepWaterM) const;
 
   // Significant wave height (m) of the sea state's spectrum, 4 sqrt(m0).

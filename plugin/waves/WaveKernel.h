@@ -78,7 +78,7 @@ using glm::ivec4;
 static_assert(sizeof(WvFrame) == 48 && alignof(WvFrame) <= 16);
 static_assert(sizeof(WvOctave) == 96 && offsetof(WvOctave, cellO) == 64);
 static_assert(sizeof(WvWave) == 64 && offsetof(WvWave, phase) == 32);
-static_assert(sizeof(WvResult) == 48);
+static_assert(sizeof(WvResult) == 64);
 }  // namespace kf
 
 }  // namespace geocean::waves
