@@ -48,7 +48,6 @@ struct LimbLine {
   int n = 0;
   glm::dvec3 rel[2];
   glm::dvec3 dir[2];  // unit directions from the eye
-  double latDeg[2], lonDeg[2];
 };
 
 class LimbSolver {
@@ -74,8 +73,7 @@ class LimbSolver {
   LimbLine row(double y) const { return line(glm::cross(cam_.forward() + y * U_, R_)); }
 
   // The chosen limb point for a missed ray (unit direction dn), eye-relative.
-  void choose(const LimbLine& col, const LimbLine& row, const glm::dvec3& dn, Along along, glm::dvec3& rel,
-              double& latDeg, double& lonDeg) const {
+  glm::dvec3 choose(const LimbLine& col, const LimbLine& row, const glm::dvec3& dn, Along along) const {
     double best = 0.0;
     int which = -1;
     auto consider = [&](const LimbLine& l, int base) {
@@ -87,18 +85,8 @@ class LimbSolver {
     if (along != Along::Row) consider(col, 0);
     if (along != Along::Column || which < 0) consider(row, 2);
     if (along == Along::Row && which < 0) consider(col, 0);
-    if (which >= 0) {
-      const LimbLine& l = which < 2 ? col : row;
-      rel = l.rel[which % 2];
-      latDeg = l.latDeg[which % 2];
-      lonDeg = l.lonDeg[which % 2];
-      return;
-    }
-    const glm::dvec3 p = geo::horizonPoint(cam_.eyeEcef(), dn, offsetM_);
-    rel = p - cam_.eyeEcef();
-    const geo::Geodetic g = geo::fromEcef(p);
-    latDeg = g.latDeg;
-    lonDeg = g.lonDeg;
+    if (which >= 0) return (which < 2 ? col : row).rel[which % 2];
+    return geo::horizonPoint(cam_.eyeEcef(), dn, offsetM_) - cam_.eyeEcef();
   }
 
  private:
@@ -115,9 +103,6 @@ class LimbSolver {
       const glm::dvec3 p = (c0_ + rho_ * (std::cos(th) * v1_ + std::sin(th) * v2_)) * fromScaled_;
       l.rel[l.n] = p - cam_.eyeEcef();
       l.dir[l.n] = glm::normalize(l.rel[l.n]);
-      const geo::Geodetic g = geo::fromEcef(p);
-      l.latDeg[l.n] = g.latDeg;
-      l.lonDeg[l.n] = g.lonDeg;
       ++l.n;
     }
     return l;
@@ -132,10 +117,7 @@ class LimbSolver {
 
 glm::dvec3 missPointRel(const camera::Camera& cam, double x, double y, double offsetM, Along along) {
   const LimbSolver limb(cam, offsetM);
-  glm::dvec3 rel;
-  double lat, lon;
-  limb.choose(limb.column(x), limb.row(y), glm::normalize(cam.rayThroughNdc(x, y)), along, rel, lat, lon);
-  return rel;
+  return limb.choose(limb.column(x), limb.row(y), glm::normalize(cam.rayThroughNdc(x, y)), along);
 }
 
 // Eye-relative point seen through NDC (x, y) on the base ellipsoid, or on the
@@ -307,7 +289,6 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
         ispgBatch(eye, Na, planeH, ispgFar, s.dx.data(), s.dy.data(), s.dz.data(), std::size_t(cols), s.t.data(),
                   s.rx.data(), s.ry.data(), s.rz.data());
       }
-      surfaceLatLonBatch(eye, s.rx.data(), s.ry.data(), s.rz.data(), cols, s.lat.data(), s.lon.data());
       bool anyMiss = false;
       for (int i = 0; i < cols; ++i) anyMiss |= std::isnan(s.t[i]);
       if (anyMiss) {
@@ -317,13 +298,16 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
           const Along along = (i == 0 || i == cols - 1) ? Along::Column
                               : (j == 0 || j == rows - 1) ? Along::Row : Along::Nearest;
           const glm::dvec3 dn = glm::normalize(glm::dvec3(s.dx[i], s.dy[i], s.dz[i]));
-          glm::dvec3 rp;
-          limb.choose(colLines[std::size_t(i)], rowLine, dn, along, rp, s.lat[i], s.lon[i]);
+          const glm::dvec3 rp = limb.choose(colLines[std::size_t(i)], rowLine, dn, along);
           s.rx[i] = rp.x;
           s.ry[i] = rp.y;
           s.rz[i] = rp.z;
         }
       }
+      // Horizon vertices lie on the limb of the ellipsoid inflated by hOff:
+      // the closed form is exact on the surface and off by at most
+      // hOff e^2 / R there (3 cm for 5 m waves), irrelevant at the horizon.
+      surfaceLatLonBatch(eye, s.rx.data(), s.ry.data(), s.rz.data(), cols, s.lat.data(), s.lon.data());
       if (classifier_) {
         classifier_(s.lat.data(), s.lon.data(), std::size_t(cols), s.surf.data());
       } else {
