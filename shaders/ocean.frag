@@ -34,7 +34,10 @@ float depthCurve(float depthM, float tauMin, float tauMax) {
 void main() {
   vec2 uvW = geoUv(vLonLat, uWaterGeo);
   float texelsPerPixel = length(fwidth(uvW) * vec2(textureSize(uWater, 0)));
-  float w = texelsPerPixel < 1.0 ? textureBSpline(uWater, uvW) : texture(uWater, uvW).r;
+  // The B-spline (4 taps) only near a coast: mip level 2 averages 4 x 4
+  // texels, so 1.0 there means open water all round.
+  float wCoarse = textureLod(uWater, uvW, 2.0).r;
+  float w = (texelsPerPixel < 1.0 && wCoarse < 1.0) ? textureBSpline(uWater, uvW) : texture(uWater, uvW).r;
   float aa = clamp(fwidth(w) * 0.75, 1e-3, 0.5);
   float alpha = smoothstep(0.5 - aa, 0.5 + aa, w);
   if (alpha <= 0.0) discard;

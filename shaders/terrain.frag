@@ -16,6 +16,7 @@ uniform float uExaggeration;
 uniform vec3 uSunDir;
 uniform vec3 uEyeDir;
 uniform float uEyeRadiusM;
+uniform int uSeaShading;  // 0: an ocean layer covers the water
 layout(binding = 0) uniform sampler2D uImagery;
 layout(binding = 1) uniform sampler2D uElevation;
 layout(binding = 2) uniform sampler2D uWater;
@@ -47,20 +48,21 @@ void main() {
   // Skylight fades out on the night side.
   vec3 land = albedo * (sun * max(dot(n, uSunDir), 0.0) * 1.6 + vec3(0.04, 0.045, 0.05) * smoothstep(-0.25, 0.1, sunMu));
 
-  // Water coverage: bilinear mask, 0.5 is the shoreline; smooth over a pixel.
-  // Magnified: B-spline (smooth shoreline); minified: the mipmapped average.
-  vec2 uvW = geoUv(vLonLat, uWaterGeo);
-  float texelsPerPixel = length(fwidth(uvW) * vec2(textureSize(uWater, 0)));
-  float w = texelsPerPixel < 1.0 ? textureBSpline(uWater, uvW) : texture(uWater, uvW).r;
-  float aa = clamp(fwidth(w) * 0.75, 1e-3, 0.5);
-  float waterAmt = smoothstep(0.5 - aa, 0.5 + aa, w);
-  // The 20' relief puts coastal cells above the sea: near the shore take
-  // the depth from the coverage instead (about 60 m at full coverage).
-  float depth = max(-texture(uElevation, uvE).r, (w - 0.5) * 120.0);
-  // Distant sea: no wave geometry, the waves' slopes become roughness.
-  vec3 sea = seaColor(up, v, up, uSunDir, depth, 0.18, 0.0, eyeAlt, uEyeRadiusM);
-  vec3 c = mix(land, sea, waterAmt);
-
+  vec3 c = land;
+  if (uSeaShading != 0) {
+    // Water coverage: 0.5 is the shoreline; smooth over a pixel. Magnified:
+    // B-spline (smooth shoreline); minified: the mipmapped average.
+    vec2 uvW = geoUv(vLonLat, uWaterGeo);
+    float texelsPerPixel = length(fwidth(uvW) * vec2(textureSize(uWater, 0)));
+    float w = texelsPerPixel < 1.0 ? textureBSpline(uWater, uvW) : texture(uWater, uvW).r;
+    float aa = clamp(fwidth(w) * 0.75, 1e-3, 0.5);
+    float waterAmt = smoothstep(0.5 - aa, 0.5 + aa, w);
+    // The 20' relief puts coastal cells above the sea: near the shore take
+    // the depth from the coverage instead (about 60 m at full coverage).
+    float depth = max(-texture(uElevation, uvE).r, (w - 0.5) * 120.0);
+    // Distant sea: no wave geometry, the waves' slopes become roughness.
+    if (waterAmt > 0.0) c = mix(land, seaColor(up, v, up, uSunDir, depth, 0.18, 0.0, eyeAlt, uEyeRadiusM), waterAmt);
+  }
   c = applyHaze(c, dist, eyeAlt, max(vHeightM, 0.0), up, uSunDir);
   outColor = vec4(toDisplay(c), 1.0);
 }

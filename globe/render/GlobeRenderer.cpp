@@ -43,10 +43,25 @@ FrameTimes GlobeRenderer::render(const ViewPose& pose, const FrameSettings& sett
   glDepthMask(GL_TRUE);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
-  // Sky: every pixel, no depth.
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
   auto ts = Clock::now();
-  glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
+  // The terrain keeps shading its water as distant sea: the wave grid skips
+  // cells the classifier calls land, and those must not show land imagery.
+  t.terrain = terrain_.draw(vm, pose, light, settings.bare, true);
+  if (settings.timed) glFinish();
+  t.terrainMs = msSince(ts);
+
+  ts = Clock::now();
+  for (auto& l : layers_) l->draw(vm, pose, light, settings.bare);
+  if (settings.timed) glFinish();
+  t.layersMs = msSince(ts);
+  // Sky last, at depth 0 with GL_GEQUAL: only pixels nothing else covered
+  // pass, and the early depth test skips the rest.
+  ts = Clock::now();
+  glDepthFunc(GL_GEQUAL);
+  glDepthMask(GL_FALSE);
   if (!settings.bare) {
     sky_.use();
     const glm::vec3 f(vm.forward), r(vm.right), u(vm.up), sun(light.sunEcef), eyeDir(glm::normalize(vm.eyeEcef));
@@ -61,20 +76,10 @@ FrameTimes GlobeRenderer::render(const ViewPose& pose, const FrameSettings& sett
     glBindVertexArray(emptyVao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
+  glDepthMask(GL_TRUE);
   if (settings.timed) glFinish();
   t.skyMs = msSince(ts);
 
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_GREATER);
-  ts = Clock::now();
-  t.terrain = terrain_.draw(vm, pose, light, settings.bare);
-  if (settings.timed) glFinish();
-  t.terrainMs = msSince(ts);
-
-  ts = Clock::now();
-  for (auto& l : layers_) l->draw(vm, pose, light, settings.bare);
-  if (settings.timed) glFinish();
-  t.layersMs = msSince(ts);
   glBindVertexArray(0);
   glUseProgram(0);
   if (settings.timed) glFinish();

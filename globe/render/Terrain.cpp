@@ -76,14 +76,16 @@ TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
   Bounds b;
   b.center = geo::toEcef({0.5 * (lat0 + lat1), 0.5 * (lon0 + lon1), 0.0});
   // Heights as the vertex shader makes them (land >= 0, water at -seaDrop),
-  // from 5 x 5 samples; between samples the bilinear relief can rise further,
+  // from 9 x 9 samples; between samples the bilinear relief can rise further,
   // by at most the range seen plus a margin, and never above Everest.
   const double exag = std::max(1.0, options_.exaggeration);
   double hMin = 1e30, hMax = -1e30;
-  for (int j = 0; j < 5; ++j)
-    for (int i = 0; i < 5; ++i) {
-      const double lat = lat0 + (lat1 - lat0) * j / 4.0, lon = lon0 + (lon1 - lon0) * i / 4.0;
+  b.allWater = true;
+  for (int j = 0; j < 9; ++j)
+    for (int i = 0; i < 9; ++i) {
+      const double lat = lat0 + (lat1 - lat0) * j / 8.0, lon = lon0 + (lon1 - lon0) * i / 8.0;
       const double w = world_.waterAt(lat, lon);
+      b.allWater = b.allWater && w > 0.55;
       const double land = std::max(0.0, double(world_.elevationAt(lat, lon))) * exag;
       const double h = w > 0.55 ? -options_.seaDropM : (w < 0.45 ? land : std::max(land, 0.0));
       hMin = std::min({hMin, h, w > 0.45 ? -options_.seaDropM : h});
@@ -143,7 +145,11 @@ void TerrainRenderer::select(const Key& k, const ViewMatrices& vm, const ViewPos
   const double pxPerM = pose.height / (2.0 * tanY);
   const double nearest = std::max(dist - b.radius, vm.nearM);
   const double cellPx = extentM / (kGrid - 1) / nearest * pxPerM;
-  if (k.level < options_.maxLevel && cellPx > options_.pixelErrorPx && depth < 40) {
+  // Open water is flat and hidden under the wave grid: level 7 cells (2.4 km)
+  // already follow the ellipsoid within 0.12 m (chord sag s^2 / 8R), far
+  // below the 30 m the water areas sit under the sea.
+  const int maxLevel = b.allWater ? std::min(options_.maxLevel, 7) : options_.maxLevel;
+  if (k.level < maxLevel && cellPx > options_.pixelErrorPx && depth < 40) {
     for (int cy = 0; cy < 2; ++cy)
       for (int cx = 0; cx < 2; ++cx) select({k.level + 1, 2 * k.x + cx, 2 * k.y + cy}, vm, pose, out, depth + 1);
     return;
@@ -190,7 +196,8 @@ const TerrainRenderer::Slot& TerrainRenderer::acquire(const Key& k, TerrainStats
   return cache_.emplace(k, Slot{index, center, lru_.begin()}).first->second;
 }
 
-TerrainStats TerrainRenderer::draw(const ViewMatrices& vm, const ViewPose& pose, const Lighting& light, bool bare) {
+TerrainStats TerrainRenderer::draw(const ViewMatrices& vm, const ViewPose& pose, const Lighting& light, bool bare,
+                                   bool seaShading) {
   TerrainStats stats;
   std::vector<Key> tiles;
   for (int y = 0; y < 2; ++y)
@@ -214,6 +221,7 @@ TerrainStats TerrainRenderer::draw(const ViewMatrices& vm, const ViewPose& pose,
   glUniform3fv(prog.uniform("uEyeDir"), 1, &eyeDir[0]);
   glUniform1f(prog.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
   glUniform1f(prog.uniform("uTimeS"), float(light.timeS));
+  glUniform1i(prog.uniform("uSeaShading"), seaShading ? 1 : 0);
   const GLint locOffset = prog.uniform("uTileOffset"), locSkirt = prog.uniform("uSkirtM");
   glBindVertexArray(vao_);
   for (const Key& k : tiles) {

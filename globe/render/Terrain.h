@@ -28,11 +28,14 @@ struct Lighting {
 
 struct TerrainOptions {
   double exaggeration = 1.0;
-  double pixelErrorPx = 6.0;  // split while a grid cell spans more pixels than this
+  double pixelErrorPx = 8.0;  // split while a grid cell spans more pixels than this
   int maxLevel = 16;
   int poolTiles = 768;        // GPU tile slots: memory stays flat
   double seaDropM = 30.0;     // water areas of the terrain sit this far below the sea
 };
+
+// Whether the terrain shades its water areas as distant sea (no ocean layer)
+// or leaves them to the ocean layer drawn over them (cheap land colour only).
 
 struct TerrainStats {
   int tilesDrawn = 0;
@@ -51,7 +54,8 @@ class TerrainRenderer {
 
   // Chooses tiles for the view, builds missing ones, draws. `bare` uses
   // trivial shaders (the reference for frame-time ratios).
-  TerrainStats draw(const ViewMatrices& vm, const ViewPose& pose, const Lighting& light, bool bare = false);
+  TerrainStats draw(const ViewMatrices& vm, const ViewPose& pose, const Lighting& light, bool bare = false,
+                    bool seaShading = true);
 
   const TerrainOptions& options() const { return options_; }
 
@@ -74,6 +78,7 @@ class TerrainRenderer {
     glm::dvec3 center;
     double radius;
     glm::dvec3 samples[9];
+    bool allWater = false;  // every sample is water: no relief to refine
   };
 
   void select(const Key& k, const ViewMatrices& vm, const ViewPose& pose, std::vector<Key>& out, int depth);
