@@ -237,4 +237,98 @@ WvResult wv_gerstner(int first, int count, WR3 d, WvFrame fr, WR depthM) {
   return WvResult(WR4(hor + up * z, z), WR4(nrm, dzdt), WR4(hvel, WR(0)), WR4(a11, a12, a22, det));
 }
 
+// ---- model: FFT ocean (Tessendorf) laid on the ellipsoid triplanarly -------
+// Only where the includer declares wvFftPlanes[] and wvFftTexels[] and
+// defines WV_FFT (the CPU does; shaders without FFT compile as before).
+#ifdef WV_FFT
+
+WR4 wv_fftTexel(ivec4 cell, int x, int y, int j) {
+  int n = cell.w;
+  return wvFftTexels[(cell.z + (y & (n - 1)) * n + (x & (n - 1))) * 2 + j];
+}
+
+// Weight of the tile projected along axis component c of the up vector:
+// zero below 0.5, so every point has 1 or 2 (rarely 3) planes and each plane
+// is seen at most 60 degrees from its normal (bounded stretch, <= 2x).
+WR wv_fftWeight(WR c) {
+  WR x = max(abs(c) - WR(0.5), WR(0));
+  return x * x;
+}
+
+// Axis of the Jacobian's frame for wv_fft: the ECEF axis most nearly
+// horizontal at `up` (never within 54 degrees of it), made tangent.
+WR3 wv_fftTangent1(WR3 up) {
+  WR3 ax = abs(up);
+  WR3 ref = (ax.x <= ax.y && ax.x <= ax.z) ? WR3(1, 0, 0) : (ax.y <= ax.z ? WR3(0, 1, 0) : WR3(0, 0, 1));
+  return wv_tangent1(ref, up);
+}
+
+// Sum over `planes` x `cascades` entries wvFftPlanes[first ..] (plane-major).
+// Fields are bilinear in each table; slopes and the choppy Jacobian are the
+// exact derivatives of that bilinear surface, so the normal and the vertical
+// velocity belong to exactly the surface whose height is returned (the
+// tables' spectral slopes, texel part 1 xy, are there for smooth shading).
+// The planes are blended with weights normalised in the square (so the
+// variance, hence Hs, is the same everywhere); within a plane the cascades add.
+WvResult wv_fft(int first, int planes, int cascades, WR3 d, WvFrame fr) {
+  WR3 up = wv_upAt(fr, d);
+  WR3 wgt = WR3(wv_fftWeight(up.x), wv_fftWeight(up.y), wv_fftWeight(up.z));
+  WR norm = WR(1) / sqrt(dot(wgt, wgt));
+  WR3 e1 = wv_fftTangent1(up), e2 = cross(up, e1);
+  WR z = WR(0), dzdt = WR(0), g1 = WR(0), g2 = WR(0), j11 = WR(0), j12 = WR(0), j21 = WR(0), j22 = WR(0);
+  WR3 hor = WR3(0), hvel = WR3(0);
+  for (int p = 0; p < planes; ++p) {
+    WvFftPlane p0 = wvFftPlanes[first + p * cascades];
+    WR w = dot(wgt, WR3(p0.axis)) * norm;
+    if (w <= WR(0)) continue;
+    // Per plane: value (h, Dx, Dy, dh/dt), its u and v derivatives (per m),
+    // and (., ., dDx/dt, dDy/dt).
+    WR4 val = WR4(0), du = WR4(0), dv = WR4(0), vel = WR4(0);
+    for (int c = 0; c < cascades; ++c) {
+      WvFftPlane q = wvFftPlanes[first + p * cascades + c];
+      WR tu = q.uAxis.w + dot(WR3(q.uAxis), d), tv = q.vAxis.w + dot(WR3(q.vAxis), d);
+      WR fu = floor(tu), fv = floor(tv);
+      int ix = q.cell.x + int(fu), iy = q.cell.y + int(fv);
+      WR fx = tu - fu, fy = tv - fv, perM = WR(1) / q.axis.w;
+      WR4 a = wv_fftTexel(q.cell, ix, iy, 0), b = wv_fftTexel(q.cell, ix + 1, iy, 0);
+      WR4 cc = wv_fftTexel(q.cell, ix, iy + 1, 0), e = wv_fftTexel(q.cell, ix + 1, iy + 1, 0);
+      val += (a * (WR(1) - fx) + b * fx) * (WR(1) - fy) + (cc * (WR(1) - fx) + e * fx) * fy;
+      du += ((b - a) * (WR(1) - fy) + (e - cc) * fy) * perM;
+      dv += ((cc - a) * (WR(1) - fx) + (e - b) * fx) * perM;
+      WR4 va = wv_fftTexel(q.cell, ix, iy, 1), vb = wv_fftTexel(q.cell, ix + 1, iy, 1);
+      WR4 vc = wv_fftTexel(q.cell, ix, iy + 1, 1), ve = wv_fftTexel(q.cell, ix + 1, iy + 1, 1);
+      vel += (va * (WR(1) - fx) + vb * fx) * (WR(1) - fy) + (vc * (WR(1) - fx) + ve * fx) * fy;
+    }
+    // Unit axes from the first cascade (every cascade shares the plane's
+    // axes); m: gradients of the tile coordinates u, v in the frame (e1, e2).
+    WR3 ua = WR3(p0.uAxis) * p0.axis.w, va3 = WR3(p0.vAxis) * p0.axis.w;
+    WR m11 = dot(ua, e1), m12 = dot(va3, e1), m21 = dot(ua, e2), m22 = dot(va3, e2);
+    z += w * val.x;
+    dzdt += w * val.w;
+    hor += w * (val.y * ua + val.z * va3);
+    hvel += w * (vel.z * ua + vel.w * va3);
+    g1 += w * (du.x * m11 + dv.x * m12);
+    g2 += w * (du.x * m21 + dv.x * m22);
+    // d(horizontal map)/d(e1, e2) = m J m^T, J = d(Dx, Dy)/d(u, v).
+    WR b11 = du.y * m11 + dv.y * m12, b12 = du.y * m21 + dv.y * m22;  // (J m^T) row 1
+    WR b21 = du.z * m11 + dv.z * m12, b22 = du.z * m21 + dv.z * m22;  // (J m^T) row 2
+    j11 += w * (m11 * b11 + m12 * b21);
+    j12 += w * (m11 * b12 + m12 * b22);
+    j21 += w * (m21 * b11 + m22 * b21);
+    j22 += w * (m21 * b12 + m22 * b22);
+  }
+  hor -= dot(hor, up) * up;
+  hvel -= dot(hvel, up) * up;
+  // The displaced surface's slope: A^-T grad h, A = I + dH/dx (frame e1, e2).
+  WR a11 = WR(1) + j11, a22 = WR(1) + j22;
+  WR det = a11 * a22 - j12 * j21;
+  WR s1 = (a22 * g1 - j21 * g2) / det, s2 = (a11 * g2 - j12 * g1) / det;
+  // jac: symmetrised (it only sets the speed of the query's Newton steps).
+  WR js = WR(0.5) * (j12 + j21);
+  return WvResult(WR4(hor + up * z, z), WR4(normalize(up - s1 * e1 - s2 * e2), dzdt), WR4(hvel, WR(0)),
+                  WR4(a11, js, a22, a11 * a22 - js * js));
+}
+
+#endif  // WV_FFT
+
 #endif

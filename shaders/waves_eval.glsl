@@ -1,7 +1,7 @@
 // Compute stage that evaluates the wave kernel at a batch of points: the GPU
 // side of tests/waves/test_gpu_parity.cpp, and a GPU batch evaluator.
 // Assemble with shaders::assemble("waves_eval.glsl", {"WV_MODEL 0"}) (0 solid
-// noise, 1 Gerstner). Buffers: see the bindings below; uniform uCount.
+// noise, 1 Gerstner, 2 FFT: index.z = cascades). Buffers: see the bindings below; uniform uCount.
 layout(local_size_x = 64) in;
 
 #include "waves_types.glsl"
@@ -16,8 +16,11 @@ layout(std430, binding = 1) readonly buffer WvWaveBuffer { WvWave wvWaves[]; };
 layout(std430, binding = 2) readonly buffer WvFrameBuffer { WvFrame wvFrames[]; };
 layout(std430, binding = 3) readonly buffer WvPointBuffer { WvPoint wvPoints[]; };
 layout(std430, binding = 4) writeonly buffer WvResultBuffer { WvResult wvResults[]; };
+layout(std430, binding = 5) readonly buffer WvFftPlaneBuffer { WvFftPlane wvFftPlanes[]; };
+layout(std430, binding = 6) readonly buffer WvFftTexelBuffer { vec4 wvFftTexels[]; };
 uniform uint uCount;
 
+#define WV_FFT 1
 #include "waves.glsl"
 
 void main() {
@@ -25,7 +28,9 @@ void main() {
   if (i >= uCount) return;
   WvPoint p = wvPoints[i];
   WvFrame fr = wvFrames[p.index.x];
-#if WV_MODEL == 1
+#if WV_MODEL == 2
+  wvResults[i] = wv_fft(p.index.y, 3, p.index.z, p.d.xyz, fr);
+#elif WV_MODEL == 1
   wvResults[i] = wv_gerstner(p.index.y, p.index.z, p.d.xyz, fr, p.d.w);
 #else
   wvResults[i] = wv_solidNoise(p.index.y, p.index.z, p.d.xyz, fr);

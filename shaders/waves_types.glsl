@@ -57,6 +57,18 @@ struct WvWave {
   WR4 extra;     // x: k_ref (rad/m) of the phase, y: choppiness (0..1), z, w: 0
 };
 
+// The FFT ocean (Tessendorf): per cascade a periodic N x N table of texels,
+// 2 WR4 each: (h, Dx, Dy, dh/dt), (dh/du, dh/dv, dDx/dt, dDy/dt) in tile
+// coordinates (u, v) (m); h and the choppy displacement D in m. The tile is laid on the ellipsoid triplanarly:
+// each of the 3 ECEF axes e_i projects the point onto the plane normal to
+// it. One WvFftPlane per (axis, cascade), seen from a patch origin O.
+struct WvFftPlane {
+  WR4 uAxis;     // xyz: U axis (unit ECEF) * texels per metre, w: fract of O's u texel coordinate
+  WR4 vAxis;     // xyz: V axis * texels per metre, w: fract of O's v texel coordinate
+  WR4 axis;      // xyz: the plane's normal e_i (unit ECEF), w: metres per texel
+  ivec4 cell;    // x, y: floor of O's texel coordinates mod N, z: first texel of the table, w: N (power of 2)
+};
+
 // Result of evaluating a model at a rest point (Lagrangian).
 struct WvResult {
   WR4 disp;      // xyz: displacement (ECEF, m), w: vertical part (m, along the geodetic up)

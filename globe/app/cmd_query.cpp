@@ -49,7 +49,7 @@ std::string parseWaveOptions(const QueryOptions& o, WaveSetup& w) {
     return {};
   };
   const auto model = waves::parseModel(o.waves);
-  if (!model) return "--waves '" + o.waves + "' is not a wave model (noise, noise-paper, gerstner)";
+  if (!model) return "--waves '" + o.waves + "' is not a wave model (noise, noise-paper, gerstner, fft)";
   w.model = *model;
   if (auto e = number("--time", o.time, w.timeS); !e.empty()) return e;
   if (!o.wind.empty() && !o.beaufort.empty()) return "give either --wind or --beaufort, not both";
@@ -396,7 +396,7 @@ const Register kRegister{{"query", "Surface class (ocean/land/lake), terrain ele
                             sub.add_option("--mask-encoding", o->maskEncoding,
                                            "mask values, e.g. 0=ocean,1=land,2=lake (the default)");
                             sub.add_flag("--global", o->global, "rasters are whole-Earth equirectangular without georeferencing");
-                            sub.add_option("--waves", o->waves, "wave model: noise (default), noise-paper, gerstner");
+                            sub.add_option("--waves", o->waves, "wave model: noise (default), noise-paper, gerstner, fft");
                             sub.add_option("--time", o->time, "simulation time in s (default 0); a row's own time overrides it");
                             sub.add_option("--wind", o->wind, "wind speed at 19.5 m, m/s (0.2 .. 60; default 10)");
                             sub.add_option("--beaufort", o->beaufort, "wind as a Beaufort number 0..12 (instead of --wind)");

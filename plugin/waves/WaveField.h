@@ -31,9 +31,11 @@
 #include "plugin/waves/WaveKernel.h"
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -41,10 +43,13 @@
 
 namespace geocean::waves {
 
+class FftOcean;
+
 enum class Model : std::uint8_t {
   Noise,       // "noise": solid fractal noise on the 3D surface point (the default)
   NoisePaper,  // "noise-paper": paper 002, 2D fractal noise at (lon*cos(lat), lat); CPU only
   Gerstner,    // "gerstner": paper 003, trochoidal waves from the sea spectrum
+  Fft,         // "fft": paper 001, Tessendorf's FFT ocean (2 cascades, choppy), triplanar on the ellipsoid
 };
 const char* toString(Model m);
 std::optional<Model> parseModel(std::string_view name);  // the CLI names above
@@ -97,6 +102,13 @@ struct GpuPatch {
   kf::WvFrame frame{};
   std::vector<kf::WvOctave> octaves;
   std::vector<kf::WvWave> waves;
+  // Model Fft: 3 planes x fftCascades entries for `buffer { WvFftPlane
+  // wvFftPlanes[]; }` and the tables at tS for `buffer { vec4
+  // wvFftTexels[]; }`; call wv_fft(0, 3, fftCascades, d, frame) after
+  // `#define WV_FFT 1` (see shaders/waves.glsl).
+  std::vector<kf::WvFftPlane> fftPlanes;
+  std::vector<glm::vec4> fftTexels;
+  int fftCascades = 0;
 };
 
 class WaveField {
@@ -135,12 +147,17 @@ class WaveField {
     kd::WvFrame frame{};
     std::vector<kd::WvOctave> octaves;
     std::vector<kd::WvWave> waves;
+    std::vector<kd::WvFftPlane> fftPlanes;
+    std::shared_ptr<const std::vector<glm::dvec4>> fftTexels;
   };
   void cpuPatch(const glm::dvec3& originEcef, double tS, CpuPatch& out) const;
 
   // Evaluate a patch at offset d (ECEF, m) from its origin: the double twin
   // of the shader call.
   kd::WvResult evaluate(const CpuPatch& patch, const glm::dvec3& d, double depthM) const;
+
+  // The FFT ocean's synthesis (model Fft; null otherwise).
+  const FftOcean* fftOcean() const { return fft_.get(); }
 
   // Internal spectral data, public for tests.
   struct Octave {
@@ -167,6 +184,7 @@ class WaveField {
   void buildGerstner();
   void buildBounds();
   WaveSample samplePaper(double latDeg, double lonDeg, double tS) const;
+  void fftPlanesAt(const glm::dvec3& originEcef, std::vector<kd::WvFftPlane>& out) const;
 
   Model model_ = Model::Noise;
   SeaState sea_;
@@ -174,6 +192,7 @@ class WaveField {
   double maxVerticalM_ = 0.0, maxHorizontalM_ = 0.0;
   std::vector<Octave> octaves_;
   std::vector<Component> components_;
+  std::shared_ptr<const FftOcean> fft_;
   glm::dvec3 travelEcef_{0.0};   // wave travel direction at the anchor (unit ECEF)
   glm::dvec2 travelEn_{0.0};     // same, east/north components
 };

@@ -14,6 +14,11 @@
 //    sin+cos 40, taper 10, accumulation 69). Per evaluation 200 more; the
 //    query evaluates 1 + iterations times (counter "iter").
 //  - paper noise, per octave: 2D noise 110 + accumulation 20; per query 120.
+//  - FFT: plane entries at the point 120; per evaluation 60 (frame, weights)
+//    + per plane (2 on average at most) 100 + per cascade 140 (8 texel
+//    fetches, bilinear value, u and v derivatives, velocity): 820; the
+//    query evaluates 1 + iterations times. All queries at one time (the
+//    tables are cached per time; BM_FftTables is the cost of a new time).
 #include "plugin/waves/SeaQuery.h"
 
 #include <benchmark/benchmark.h>
@@ -50,6 +55,7 @@ double flopsPerQuery(Model m, double iterations) {
     case Model::Noise: return 200.0 + 8 * 347.0;
     case Model::NoisePaper: return 120.0 + 8 * 130.0;
     case Model::Gerstner: return 16 * 65.0 + (1.0 + iterations) * (200.0 + 16 * 220.0);
+    case Model::Fft: return 120.0 + (1.0 + iterations) * 820.0;
   }
   return 0;
 }
@@ -70,7 +76,7 @@ void BM_Query(benchmark::State& state) {
   std::size_t i = 0;
   double queries = 0, iters = 0;
   for (auto _ : state) {
-    const SurfacePoint s = f.surfaceAt(p.lat[i], p.lon[i], p.t[i]);
+    const SurfacePoint s = f.surfaceAt(p.lat[i], p.lon[i], m == Model::Fft ? 0.0 : p.t[i]);
     benchmark::DoNotOptimize(s.heightM);
     iters += s.iterations;
     queries += 1;
@@ -79,7 +85,7 @@ void BM_Query(benchmark::State& state) {
   state.SetLabel(toString(m));
   report(state, m, queries, iters / queries, 1);
 }
-BENCHMARK(BM_Query)->Arg(int(Model::Noise))->Arg(int(Model::NoisePaper))->Arg(int(Model::Gerstner));
+BENCHMARK(BM_Query)->Arg(int(Model::Noise))->Arg(int(Model::NoisePaper))->Arg(int(Model::Gerstner))->Arg(int(Model::Fft));
 
 // The batch form (no land mask: pure wave cost) on 1 and 2 threads; real time.
 void BM_Batch(benchmark::State& state) {
@@ -92,19 +98,31 @@ void BM_Batch(benchmark::State& state) {
   std::vector<SeaQueryResult> out(n);
   double queries = 0;
   for (auto _ : state) {
-    q.queryBatch(p.lat.data(), p.lon.data(), p.t.data(), true, n, out.data());
+    q.queryBatch(p.lat.data(), p.lon.data(), p.t.data(), m != Model::Fft, n, out.data());
     benchmark::DoNotOptimize(out.data());
     queries += double(n);
   }
   double iters = 0;
-  for (std::size_t i = 0; i < 1024; ++i) iters += q.field().surfaceAt(p.lat[i], p.lon[i], p.t[i]).iterations;
+  for (std::size_t i = 0; i < 1024; ++i)
+    iters += q.field().surfaceAt(p.lat[i], p.lon[i], m == Model::Fft ? p.t[0] : p.t[i]).iterations;
   state.SetLabel(std::string(toString(m)) + " threads=" + std::to_string(threads));
   report(state, m, queries, iters / 1024, threads);
 }
 BENCHMARK(BM_Batch)
     ->Args({int(Model::Noise), 1})->Args({int(Model::Noise), 2})
     ->Args({int(Model::Gerstner), 1})->Args({int(Model::Gerstner), 2})
+    ->Args({int(Model::Fft), 1})->Args({int(Model::Fft), 2})
     ->UseRealTime()->Unit(benchmark::kMillisecond);
+// FFT table synthesis for one new time (2 cascades x 4 inverse 128^2 FFTs).
+void BM_FftTables(benchmark::State& state) {
+  const WaveField f = field(Model::Fft);
+  double t = 0.0;
+  for (auto _ : state) {
+    t += 0.01;  // a new time every iteration: no cache hit
+    benchmark::DoNotOptimize(f.surfaceAt(10.0, 20.0, t).heightM);
+  }
+}
+BENCHMARK(BM_FftTables)->Unit(benchmark::kMillisecond);
 }  // namespace
 
 BENCHMARK_MAIN();

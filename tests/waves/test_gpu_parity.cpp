@@ -11,6 +11,7 @@
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -79,6 +80,9 @@ void runParity(Model model) {
   std::vector<kf::WvFrame> frames;
   std::vector<kf::WvOctave> octaves;
   std::vector<kf::WvWave> waves;
+  std::vector<kf::WvFftPlane> fftPlanes;
+  std::vector<glm::vec4> fftTexels;
+  std::vector<double> fftTimes;  // one uploaded table per distinct time
   std::vector<GpuPoint> points;
   const double mPerDeg = 111320.0;
   for (int p = 0; p < 100; ++p) {
@@ -86,13 +90,27 @@ void runParity(Model model) {
     if (p < 20) lon0 = (p % 2 ? 180.0 : -180.0), lat0 = -70 + 7 * p;  // antimeridian
     if (p >= 20 && p < 25) lat0 = 90.0 - 1e-3 * (p - 20);              // north pole
     if (p >= 25 && p < 30) lat0 = -90.0 + 1e-3 * (p - 25);             // south pole
-    const double t = 1e5 * u01(rng);
+    double t = 1e5 * u01(rng);
+    if (model == Model::Fft) t = std::floor(t / 2.5e4) * 2.5e4 + 0.375;  // 4 times: 4 tables of 1 MB
     GpuPatch gp;
     const glm::dvec3 origin = geo::toEcef({lat0, lon0, 0.0});
     field->gpuPatch(origin, t, gp);
     frames.push_back(gp.frame);
-    const int first = int(model == Model::Gerstner ? waves.size() : octaves.size());
-    const int count = int(model == Model::Gerstner ? gp.waves.size() : gp.octaves.size());
+    int first = int(model == Model::Gerstner ? waves.size() : octaves.size());
+    int count = int(model == Model::Gerstner ? gp.waves.size() : gp.octaves.size());
+    if (model == Model::Fft) {
+      std::size_t table = std::find(fftTimes.begin(), fftTimes.end(), t) - fftTimes.begin();
+      if (table == fftTimes.size()) {
+        fftTimes.push_back(t);
+        fftTexels.insert(fftTexels.end(), gp.fftTexels.begin(), gp.fftTexels.end());
+      }
+      first = int(fftPlanes.size());
+      count = gp.fftCascades;
+      for (auto e : gp.fftPlanes) {
+        e.cell.z += int(table * gp.fftTexels.size() / 2);  // texel index of this time's table
+        fftPlanes.push_back(e);
+      }
+    }
     octaves.insert(octaves.end(), gp.octaves.begin(), gp.octaves.end());
     waves.insert(waves.end(), gp.waves.begin(), gp.waves.end());
     double lat = lat0, lon = lon0;
@@ -114,11 +132,12 @@ void runParity(Model model) {
   }
 
   const std::string src = geocean::shaders::assemble(
-      "waves_eval.glsl", {model == Model::Gerstner ? "WV_MODEL 1" : "WV_MODEL 0"});
+      "waves_eval.glsl",
+      {model == Model::Fft ? "WV_MODEL 2" : model == Model::Gerstner ? "WV_MODEL 1" : "WV_MODEL 0"});
   const GLuint prog = compile(src);
   std::vector<kf::WvResult> results(points.size());
   const GLuint b0 = ssbo(0, octaves), b1 = ssbo(1, waves), b2 = ssbo(2, frames), b3 = ssbo(3, points),
-               b4 = ssbo(4, results);
+               b4 = ssbo(4, results), b5 = ssbo(5, fftPlanes), b6 = ssbo(6, fftTexels);
   glUseProgram(prog);
   glUniform1ui(glGetUniformLocation(prog, "uCount"), GLuint(points.size()));
   glDispatchCompute(GLuint((points.size() + 63) / 64), 1, 1);
@@ -127,6 +146,7 @@ void runParity(Model model) {
   ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 
   double worstDisp = 0, worstNormal = 0, meanDisp = 0;
+  int facetFlips = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const Case& c = cases[i];
     const WaveSample s = field->sample(c.latDeg, c.lonDeg, c.tS, c.depthM);
@@ -140,12 +160,22 @@ void runParity(Model model) {
     ASSERT_LT(dd, 1e-3) << "point " << i << " lat " << c.latDeg << " lon " << c.lonDeg << " t " << c.tS;
     // Normals: float evaluation of slopes ~ O(1) with relative error ~1e-5
     // over km offsets; 1e-4 rad is far below anything visible or physical.
-    ASSERT_LT(dn, 1e-4) << "point " << i;
+    // FFT: the surface is bilinear per texel, so its normal jumps across
+    // texel edges; a point within float rounding (~1e-4 texel at 10 km) of
+    // an edge may land on the neighbouring facet on the GPU: expect ~1e-4 x
+    // 4 edges x 2 cascades x 2 planes of the points, bounded by the kink.
+    if (model == Model::Fft && dn >= 1e-4) {
+      ++facetFlips;
+      ASSERT_LT(dn, 0.05) << "point " << i;
+    } else {
+      ASSERT_LT(dn, 1e-4) << "point " << i;
+    }
   }
-  std::printf("%s: %zu points, displacement |gpu - cpu| max %.3g m mean %.3g m; normal max %.3g\n",
-              toString(model), cases.size(), worstDisp, meanDisp, worstNormal);
-  GLuint bufs[] = {b0, b1, b2, b3, b4};
-  glDeleteBuffers(5, bufs);
+  EXPECT_LE(facetFlips, 20) << "normals on a neighbouring facet";
+  std::printf("%s: %zu points, displacement |gpu - cpu| max %.3g m mean %.3g m; normal max %.3g (%d facet flips)\n",
+              toString(model), cases.size(), worstDisp, meanDisp, worstNormal, facetFlips);
+  GLuint bufs[] = {b0, b1, b2, b3, b4, b5, b6};
+  glDeleteBuffers(7, bufs);
   glDeleteProgram(prog);
 }
 
@@ -153,3 +183,4 @@ void runParity(Model model) {
 
 TEST(WavesGpuParity, SolidNoiseAgreesWithinOneMillimetre) { runParity(Model::Noise); }
 TEST(WavesGpuParity, GerstnerAgreesWithinOneMillimetre) { runParity(Model::Gerstner); }
+TEST(WavesGpuParity, FftAgreesWithinOneMillimetre) { runParity(Model::Fft); }
