@@ -26,13 +26,16 @@ uint wv_hashCell3(ivec3 c, uint seed) {
   return wv_hash(seed ^ (uint(c.x) * 0x8da6b343u) ^ (uint(c.y) * 0xd8163841u) ^ (uint(c.z) * 0xcb1ab31fu));
 }
 
-// Perlin's 12 cube-edge gradients.
+// Perlin's 12 cube-edge gradients: axis 0 (s1, s2, 0), 1 (s1, 0, s2),
+// 2 (0, s1, s2). Branch-free (selects by arithmetic): the hash is random, so
+// branches would be mispredicted half the time on the CPU.
 WR3 wv_grad3(uint h) {
   uint g = h % 12u;
-  WR s1 = (g & 1u) != 0u ? WR(-1) : WR(1);
-  WR s2 = (g & 2u) != 0u ? WR(-1) : WR(1);
+  WR s1 = WR(1) - WR(2) * WR(g & 1u);
+  WR s2 = WR(1) - WR(2) * WR((g >> 1) & 1u);
   uint axis = g >> 2;
-  return axis == 0u ? WR3(s1, s2, WR(0)) : (axis == 1u ? WR3(s1, WR(0), s2) : WR3(WR(0), s1, s2));
+  WR a0 = WR(axis == 0u), a2 = WR(axis == 2u);
+  return WR3(s1 * (WR(1) - a2), s2 * a0 + s1 * a2, s2 * (WR(1) - a0));
 }
 
 // 3D gradient noise with quintic fade; returns (value, d/dx, d/dy, d/dz) in
