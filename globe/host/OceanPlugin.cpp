@@ -67,6 +67,22 @@ std::unique_ptr<OceanPlugin> OceanPlugin::load(const std::string& path, std::str
                   resolve(handle, "geocean_query_sea_surface", a.querySeaSurface, file, error) &&
                   resolve(handle, "geocean_significant_wave_height", a.significantWaveHeight, file, error);
   if (!ok) return nullptr;
+  // ABI 1.1 rendering: required by a 1.1 host, optional (NULL if absent) for a 1.0 host.
+  if ((hostAbiVersion & 0xffffu) >= 1) {
+    const bool ok11 = resolve(handle, "geocean_view_init", a.viewInit, file, error) &&
+                      resolve(handle, "geocean_view_from_pose", a.viewFromPose, file, error) &&
+                      resolve(handle, "geocean_update", a.update, file, error) &&
+                      resolve(handle, "geocean_draw", a.draw, file, error) &&
+                      resolve(handle, "geocean_release_gl", a.releaseGl, file, error);
+    if (!ok11) return nullptr;
+  } else {
+    std::string ignored;
+    resolve(handle, "geocean_view_init", a.viewInit, file, ignored);
+    resolve(handle, "geocean_view_from_pose", a.viewFromPose, file, ignored);
+    resolve(handle, "geocean_update", a.update, file, ignored);
+    resolve(handle, "geocean_draw", a.draw, file, ignored);
+    resolve(handle, "geocean_release_gl", a.releaseGl, file, ignored);
+  }
   return p;
 }
 

@@ -45,6 +45,13 @@ struct OceanApi {
   geocean_status (*querySeaSurface)(const geocean_ocean*, size_t, const double*, const double*, double, double*,
                                     double*, uint8_t*) = nullptr;
   geocean_status (*significantWaveHeight)(const geocean_ocean*, double*) = nullptr;
+  // ABI 1.1 (NULL when a 1.0 host loads a 1.0 plugin).
+  geocean_status (*viewInit)(geocean_view*) = nullptr;
+  geocean_status (*viewFromPose)(geocean_view*, double, double, double, double, double, double, int32_t,
+                                 int32_t) = nullptr;
+  geocean_status (*update)(geocean_ocean*, const geocean_view*) = nullptr;
+  geocean_status (*draw)(geocean_ocean*) = nullptr;
+  geocean_status (*releaseGl)(geocean_ocean*) = nullptr;
 };
 
 class OceanPlugin {

@@ -48,10 +48,10 @@ TEST(CapiLoader, LoadsTheBuiltPluginAndChecksItsVersion) {
 TEST(CapiLoader, RefusesAHostOfAnotherMajorOrANewerMinor) {
   std::string error;
   EXPECT_EQ(OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error, 2u << 16), nullptr);
-  EXPECT_NE(error.find("plugin ABI 1.0 cannot serve a host built for ABI 2.0"), std::string::npos) << error;
+  EXPECT_NE(error.find("plugin ABI 1.1 cannot serve a host built for ABI 2.0"), std::string::npos) << error;
   error.clear();
   EXPECT_EQ(OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error, GEOCEAN_ABI_VERSION + 1), nullptr);
-  EXPECT_NE(error.find("ABI 1.1"), std::string::npos) << error;
+  EXPECT_NE(error.find("ABI 1.2"), std::string::npos) << error;
   // An older minor of the same major is served.
   EXPECT_TRUE(OceanPlugin::compatible(1u << 16, (1u << 16) | 3u));
   EXPECT_FALSE(OceanPlugin::compatible((1u << 16) | 3u, 1u << 16));
@@ -67,7 +67,7 @@ TEST(CapiMisuse, CreateRefusesAWrongAbiVersion) {
   geocean_ocean* h = reinterpret_cast<geocean_ocean*>(&h);  // garbage that must be overwritten
   EXPECT_EQ(plugin().api().create(0, &h), GEOCEAN_ERROR_ABI_VERSION);
   EXPECT_EQ(h, nullptr);
-  EXPECT_NE(lastError().find("host ABI 0.0 is not served by this plugin (ABI 1.0)"), std::string::npos);
+  EXPECT_NE(lastError().find("host ABI 0.0 is not served by this plugin (ABI 1.1)"), std::string::npos);
   EXPECT_EQ(plugin().api().create(GEOCEAN_ABI_VERSION, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
   EXPECT_NE(lastError().find("geocean_create: out is NULL"), std::string::npos) << lastError();
 }
@@ -87,6 +87,12 @@ TEST(CapiMisuse, EveryFunctionRejectsANullOcean) {
       {"geocean_set_default_world", a.setDefaultWorld(nullptr)},
       {"geocean_clear_rasters", a.clearRasters(nullptr)},
       {"geocean_query_class", a.queryClass(nullptr, 1, &lat, &lon, &c)},
+      {"geocean_query_elevation", a.queryElevation(nullptr, 1, &lat, &lon, &e)},
+      {"geocean_update", a.update(nullptr, nullptr)},
+      {"geocean_draw", a.draw(nullptr)},
+      {"geocean_release_gl", a.releaseGl(nullptr)},
+      {"geocean_view_init", a.viewInit(nullptr)},
+      {"geocean_view_from_pose", a.viewFromPose(nullptr, 0, 0, 1, 0, -90, 45, 1, 1)},
       {"geocean_query_elevation", a.queryElevation(nullptr, 1, &lat, &lon, &e)},
   };
   for (const auto& [name, status] : calls) EXPECT_EQ(status, GEOCEAN_ERROR_NULL_ARGUMENT) << name;
@@ -431,3 +437,100 @@ TEST(CapiThreads, SeaQueriesSeeWholeSeaStatesWhileTheStateIsReplaced) {
 }
 
 }  // namespace
+
+namespace {
+geocean_view poseView(double latDeg, double lonDeg, double heightM, double pitchDeg = -90.0) {
+  geocean_view v;
+  EXPECT_EQ(plugin().api().viewInit(&v), GEOCEAN_OK);
+  EXPECT_EQ(plugin().api().viewFromPose(&v, latDeg, lonDeg, heightM, 0.0, pitchDeg, 45.0, 256, 256), GEOCEAN_OK)
+      << lastError();
+  return v;
+}
+}  // namespace
+
+TEST(CapiRenderMisuse, DrawWithoutAGlContextSaysSo) {
+  // This test process never loads EGL or GLX: no context can be current.
+  Ocean o;
+  const auto& a = plugin().api();
+  geocean_sea_state s;
+  ASSERT_EQ(a.seaStateInit(&s), GEOCEAN_OK);
+  ASSERT_EQ(a.setSeaState(o.h, &s), GEOCEAN_OK);
+  const geocean_view v = poseView(30.0, -40.0, 100.0);
+  ASSERT_EQ(a.update(o.h, &v), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(a.draw(o.h), GEOCEAN_ERROR_NO_GL_CONTEXT);
+  EXPECT_NE(lastError().find("geocean_draw: no OpenGL context is current"), std::string::npos) << lastError();
+  // Nothing was created, so there is nothing to release: not an error.
+  EXPECT_EQ(a.releaseGl(o.h), GEOCEAN_OK);
+}
+
+TEST(CapiRenderMisuse, UpdateRejectsBadViewsAndKeepsThePreviousOne) {
+  Ocean o;
+  const auto& a = plugin().api();
+  const geocean_view good = poseView(30.0, -40.0, 100.0);
+  ASSERT_EQ(a.update(o.h, &good), GEOCEAN_OK);
+  EXPECT_EQ(a.update(o.h, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(lastError(), "geocean_update: view is NULL");
+  struct Case {
+    const char* expect;
+    void (*edit)(geocean_view&);
+  };
+  const Case cases[] = {
+      {"view->struct_size 4 is smaller than", [](geocean_view& v) { v.struct_size = 4; }},
+      {"view->eye_ecef_m is not finite", [](geocean_view& v) { v.eye_ecef_m[1] = std::nan(""); }},
+      {"view->time_s inf is not finite", [](geocean_view& v) { v.time_s = INFINITY; }},
+      {"view->view_matrix is not finite", [](geocean_view& v) { v.view_matrix[5] = std::nan(""); }},
+      {"view->projection_matrix is not finite", [](geocean_view& v) { v.projection_matrix[0] = -INFINITY; }},
+      {"view->viewport 0x256 is not within 1 .. 16384", [](geocean_view& v) { v.viewport_width_px = 0; }},
+      {"view->sun_dir_ecef is zero",
+       [](geocean_view& v) { v.sun_dir_ecef[0] = v.sun_dir_ecef[1] = v.sun_dir_ecef[2] = 0.0; }},
+      {"view->view_matrix rotation is not orthonormal",
+       [](geocean_view& v) {
+         for (int i = 0; i < 12; ++i) v.view_matrix[i] *= 2.0;  // a scaled view
+       }},
+      {"view->view_matrix rotation is not orthonormal and right-handed",
+       [](geocean_view& v) {
+         for (int c = 0; c < 3; ++c) v.view_matrix[4 * c] = -v.view_matrix[4 * c];  // mirrored
+       }},
+      {"view->projection_matrix is not a symmetric perspective",
+       [](geocean_view& v) { v.projection_matrix[11] = 0.0; }},  // orthographic
+      {"view->projection_matrix aspect 1.000000 does not match the viewport's 2.000000",
+       [](geocean_view& v) { v.viewport_width_px = 512; }},
+  };
+  for (const Case& c : cases) {
+    geocean_view v = good;
+    c.edit(v);
+    EXPECT_EQ(a.update(o.h, &v), GEOCEAN_ERROR_INVALID_ARGUMENT) << c.expect;
+    EXPECT_NE(lastError().find(c.expect), std::string::npos) << lastError();
+  }
+}
+
+TEST(CapiRenderMisuse, ViewFromPoseNamesTheBadValue) {
+  const auto& a = plugin().api();
+  geocean_view v;
+  ASSERT_EQ(a.viewInit(&v), GEOCEAN_OK);
+  EXPECT_EQ(v.struct_size, sizeof(geocean_view));
+  EXPECT_EQ(a.viewFromPose(&v, 91.0, 0, 1, 0, -90, 45, 256, 256), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("lat_deg 91.000000 is not within -90 .. 90"), std::string::npos) << lastError();
+  EXPECT_EQ(a.viewFromPose(&v, 0, 0, std::nan(""), 0, -90, 45, 256, 256), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("height_m nan"), std::string::npos) << lastError();
+  EXPECT_EQ(a.viewFromPose(&v, 0, 0, 1, 0, -90, 0.5, 256, 256), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("fov_y_deg"), std::string::npos) << lastError();
+  EXPECT_EQ(a.viewFromPose(&v, 0, 0, 1, 0, -90, 45, 256, -3), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("height_px -3"), std::string::npos) << lastError();
+}
+
+TEST(CapiRender, ViewFromPoseLooksWhereThePoseSays) {
+  // Independent of the plugin's math: the eye from GeographicLib's formula
+  // for the equator (N = a), the forward vector of a nadir view is -up.
+  const geocean_view v = poseView(0.0, 90.0, 1000.0);
+  EXPECT_NEAR(v.eye_ecef_m[0], 0.0, 1e-6);
+  EXPECT_NEAR(v.eye_ecef_m[1], 6378137.0 + 1000.0, 1e-6);  // 1e-6 m: double rounding at 6.4e6 m
+  EXPECT_NEAR(v.eye_ecef_m[2], 0.0, 1e-6);
+  // Third row of the view rotation is "back" (-forward) = +Y (up at 0 N 90 E).
+  EXPECT_NEAR(v.view_matrix[2], 0.0, 1e-12);
+  EXPECT_NEAR(v.view_matrix[6], 1.0, 1e-12);
+  EXPECT_NEAR(v.view_matrix[10], 0.0, 1e-12);
+  // 45 deg vertical field of view: P[1][1] = 1 / tan(22.5 deg).
+  EXPECT_NEAR(v.projection_matrix[5], 1.0 / std::tan(22.5 * M_PI / 180.0), 1e-12);
+  EXPECT_EQ(v.projection_matrix[11], -1.0);
+}

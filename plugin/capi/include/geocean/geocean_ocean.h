@@ -17,6 +17,12 @@
  *     (a query sees the state before or after the setter, never a mix);
  *     destroy must not overlap any other call on the same ocean.
  *
+ *   - Rendering (ABI 1.1): geocean_update and geocean_draw run on the
+ *     host's render thread, never overlapping each other, geocean_release_gl
+ *     or geocean_destroy; queries and setters may run on other threads
+ *     meanwhile. GL resources belong to the context current at the first
+ *     draw.
+ *
  * Full reference: docs/PLUGIN_ABI.md. */
 #ifndef GEOCEAN_OCEAN_H
 #define GEOCEAN_OCEAN_H
@@ -38,7 +44,7 @@ extern "C" {
  * A host built against MAJOR.MINOR runs with a plugin of the same MAJOR and
  * a MINOR at least as high. */
 #define GEOCEAN_ABI_VERSION_MAJOR 1
-#define GEOCEAN_ABI_VERSION_MINOR 0
+#define GEOCEAN_ABI_VERSION_MINOR 1
 #define GEOCEAN_ABI_VERSION ((uint32_t)((GEOCEAN_ABI_VERSION_MAJOR << 16) | GEOCEAN_ABI_VERSION_MINOR))
 
 typedef enum geocean_status {
@@ -201,6 +207,69 @@ GEOCEAN_API geocean_status geocean_query_sea_surface(const geocean_ocean* ocean,
 /* Significant wave height (m) of the current sea state's spectrum, 4 sqrt(m0).
  * Errors: NULL_ARGUMENT, NOT_READY (no sea state). */
 GEOCEAN_API geocean_status geocean_significant_wave_height(const geocean_ocean* ocean, double* out_hs_m);
+
+/* ---- Rendering (ABI 1.1) ------------------------------------------------ */
+
+/* The host's camera for one frame. Fill with geocean_view_init() (or
+ * geocean_view_from_pose()) first, then change fields: struct_size lets
+ * later minor versions append fields. Matrices are column-major as in
+ * OpenGL (element (row r, column c) at [4 c + r]). */
+typedef struct geocean_view {
+  uint32_t struct_size;          /* sizeof(geocean_view), set by geocean_view_init */
+  double eye_ecef_m[3];          /* the eye, ECEF metres: double keeps mm at 6400 km */
+  double view_matrix[16];        /* ECEF -> eye space (looking down -z, y up). Only its
+                                    rotation (upper 3x3, orthonormal, right-handed) is read:
+                                    the position is eye_ecef_m, so a float-precision
+                                    translation never costs precision */
+  double projection_matrix[16];  /* eye -> clip space, a symmetric perspective with aspect
+                                    viewport_width_px / viewport_height_px (within 0.1 %).
+                                    The ocean is drawn with exactly this matrix, so its depth
+                                    agrees with the host's own geometry */
+  int32_t viewport_width_px;     /* the viewport the host draws into, 1 .. 16384 */
+  int32_t viewport_height_px;
+  double time_s;                 /* simulation time; the same t gives the same sea as the queries */
+  double sun_dir_ecef[3];        /* towards the sun (any length > 0) */
+} geocean_view;
+
+/* Fills *view with defaults: struct_size, a 1280x720 view 10,000 km above
+ * (0 N, 0 E) looking down, 45 deg field of view, reversed-Z projection,
+ * time 0, sun over (0 N, 0 E). Errors: NULL_ARGUMENT. Thread-safe. */
+GEOCEAN_API geocean_status geocean_view_init(geocean_view* view);
+/* Fills the camera fields of *view (eye, matrices, viewport) from a geodetic
+ * pose, the way Geocean's own viewer does: heading clockwise from north,
+ * pitch up from the horizontal (-90 = straight down), vertical field of
+ * view, and a REVERSED-Z projection with an infinite far plane for
+ * glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE): clear depth to 0 and test
+ * with GL_GREATER. time_s and sun_dir_ecef are untouched. Errors:
+ * NULL_ARGUMENT, INVALID_ARGUMENT (a value not finite or out of range:
+ * |lat| <= 90, fov 1 .. 170, viewport 1 .. 16384; the message names it).
+ * Thread-safe. */
+GEOCEAN_API geocean_status geocean_view_from_pose(geocean_view* view, double lat_deg, double lon_deg,
+                                                  double height_m, double heading_deg, double pitch_deg,
+                                                  double fov_y_deg, int32_t width_px, int32_t height_px);
+/* Sets the camera and time of the next geocean_draw. Needs no GL context.
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (struct_size, a non-finite value,
+ * a view rotation that is not orthonormal, a projection that is not a
+ * symmetric perspective or does not match the viewport's aspect, a zero
+ * sun direction: the message names the field); the previous view stays. */
+GEOCEAN_API geocean_status geocean_update(geocean_ocean* ocean, const geocean_view* view);
+/* Draws the ocean into the framebuffer bound in the calling thread's current
+ * OpenGL (4.5 core) context, with the host's viewport, depth test and depth
+ * buffer as they are set. On the first draw (and after rasters or sea state
+ * change) the plugin creates its GL resources in that context. Every GL
+ * state the draw changes is restored before it returns (see
+ * docs/PLUGIN_ABI.md for the list). Errors: NULL_ARGUMENT, NO_GL_CONTEXT (no
+ * EGL or GLX context current), NOT_READY (no geocean_update yet, or no sea
+ * state), GL (context older than 4.5, a shader failed to build, or the
+ * resources belong to another context: call geocean_release_gl there
+ * first). */
+GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean);
+/* Deletes the GL resources; call with the context of the first draw
+ * current. Nothing to release is not an error. Errors: NULL_ARGUMENT,
+ * NO_GL_CONTEXT, GL (a different context is current). geocean_destroy also
+ * releases them when that context is current; otherwise it leaves them to
+ * the context (they are freed when the host destroys it). */
+GEOCEAN_API geocean_status geocean_release_gl(geocean_ocean* ocean);
 
 #ifdef __cplusplus
 }

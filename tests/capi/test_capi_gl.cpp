@@ -1,0 +1,326 @@
+// The C ABI's rendering (ABI 1.1) in a host's own headless context, through
+// the run-time loader: call order, the host's GL state left as it was,
+// resources tied to their context, queries from other threads while the
+// host draws.
+#include "globe/gl/HeadlessContext.h"
+#include "globe/host/OceanPlugin.h"
+
+#include <epoxy/gl.h>
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using geocean::host::OceanPlugin;
+
+const OceanPlugin& plugin() {
+  static std::unique_ptr<OceanPlugin> p = [] {
+    std::string error;
+    auto loaded = OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error);
+    if (!loaded) ADD_FAILURE() << error;
+    return loaded;
+  }();
+  return *p;
+}
+const geocean::host::OceanApi& api() { return plugin().api(); }
+std::string lastError() { return api().lastError(); }
+
+constexpr int kSize = 128;
+
+// The host: a context and an FBO with colour + float depth, reversed Z.
+struct Host {
+  std::unique_ptr<geocean::gl::HeadlessContext> ctx;
+  GLuint fbo = 0, rb[2] = {0, 0};
+  Host() {
+    std::string error;
+    ctx = geocean::gl::HeadlessContext::create(error);
+    if (!ctx) {
+      ADD_FAILURE() << error;
+      return;
+    }
+    glCreateFramebuffers(1, &fbo);
+    glCreateRenderbuffers(2, rb);
+    glNamedRenderbufferStorage(rb[0], GL_RGBA8, kSize, kSize);
+    glNamedRenderbufferStorage(rb[1], GL_DEPTH_COMPONENT32F, kSize, kSize);
+    glNamedFramebufferRenderbuffer(fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
+    glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
+  }
+  ~Host() {
+    // A context whose display another Host terminated cannot be made current.
+    if (!ctx || !ctx->makeCurrent()) return;
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(2, rb);
+  }
+  void beginFrame() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, kSize, kSize);
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    glClearColor(1.0f, 0.0f, 0.0f, 1.0f);
+    glClearDepth(0.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+  }
+  // Pixels not the red background.
+  int drawnPixels() const {
+    std::vector<unsigned char> px(std::size_t(kSize) * kSize * 4);
+    glReadPixels(0, 0, kSize, kSize, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+    int n = 0;
+    for (std::size_t i = 0; i < px.size(); i += 4) n += !(px[i] == 255 && px[i + 1] == 0 && px[i + 2] == 0);
+    return n;
+  }
+};
+
+struct Ocean {
+  geocean_ocean* h = nullptr;
+  explicit Ocean(bool withSea = true) {
+    EXPECT_EQ(api().create(GEOCEAN_ABI_VERSION, &h), GEOCEAN_OK);
+    if (!withSea) return;
+    geocean_sea_state s;
+    EXPECT_EQ(api().seaStateInit(&s), GEOCEAN_OK);
+    EXPECT_EQ(api().setSeaState(h, &s), GEOCEAN_OK);
+  }
+  ~Ocean() { api().destroy(h); }
+};
+
+geocean_view nadir(double latDeg, double lonDeg, double heightM) {
+  geocean_view v;
+  EXPECT_EQ(api().viewInit(&v), GEOCEAN_OK);
+  EXPECT_EQ(api().viewFromPose(&v, latDeg, lonDeg, heightM, 0.0, -90.0, 45.0, kSize, kSize), GEOCEAN_OK);
+  return v;
+}
+
+TEST(CapiGl, DrawNeedsAnUpdateAndASeaStateFirst) {
+  Host host;
+  ASSERT_TRUE(host.ctx);
+  Ocean noSea(false);
+  host.beginFrame();
+  EXPECT_EQ(api().draw(noSea.h), GEOCEAN_ERROR_NOT_READY);
+  EXPECT_EQ(lastError(), "geocean_draw: no view: call geocean_update first");
+  const geocean_view v = nadir(30.0, -40.0, 500.0);
+  ASSERT_EQ(api().update(noSea.h, &v), GEOCEAN_OK);
+  EXPECT_EQ(api().draw(noSea.h), GEOCEAN_ERROR_NOT_READY);
+  EXPECT_EQ(lastError(), "geocean_draw: no sea state: call geocean_set_sea_state first");
+  // The paper's 2D noise has no GPU form: a clear refusal, not a wrong picture.
+  geocean_sea_state s;
+  ASSERT_EQ(api().seaStateInit(&s), GEOCEAN_OK);
+  s.model = GEOCEAN_WAVES_NOISE_PAPER;
+  ASSERT_EQ(api().setSeaState(noSea.h, &s), GEOCEAN_OK);
+  EXPECT_EQ(api().draw(noSea.h), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("GEOCEAN_WAVES_NOISE_PAPER has no GPU form"), std::string::npos) << lastError();
+  EXPECT_EQ(host.drawnPixels(), 0);
+  // A good state draws: no rasters = all deep ocean, the whole frame is sea.
+  s.model = GEOCEAN_WAVES_GERSTNER;
+  ASSERT_EQ(api().setSeaState(noSea.h, &s), GEOCEAN_OK);
+  ASSERT_EQ(api().draw(noSea.h), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(host.drawnPixels(), kSize * kSize);
+  EXPECT_EQ(api().releaseGl(noSea.h), GEOCEAN_OK);
+}
+
+TEST(CapiGl, TheHostsGlStateIsLeftAsItWas) {
+  Host host;
+  ASSERT_TRUE(host.ctx);
+  Ocean o;
+  host.beginFrame();
+  // Distinctive host state in everything the ocean touches.
+  GLuint vao = 0, tex[3] = {0, 0, 0}, buf = 0;
+  glCreateVertexArrays(1, &vao);
+  glBindVertexArray(vao);
+  glCreateTextures(GL_TEXTURE_2D, 3, tex);
+  for (int u = 0; u < 3; ++u) glBindTextureUnit(GLuint(u), tex[u]);
+  glActiveTexture(GL_TEXTURE5);
+  glCreateBuffers(1, &buf);
+  glNamedBufferData(buf, 1024, nullptr, GL_STATIC_DRAW);
+  glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, buf, 256, 512);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, buf);
+  glEnablei(GL_BLEND, 1);
+  glDisablei(GL_BLEND, 0);
+  glBlendFuncSeparatei(0, GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
+  glPolygonOffset(1.5f, 2.5f);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 8);
+
+  const geocean_view v = nadir(30.0, -40.0, 500.0);
+  ASSERT_EQ(api().update(o.h, &v), GEOCEAN_OK);
+  ASSERT_EQ(api().draw(o.h), GEOCEAN_OK) << lastError();  // first draw: creates resources too
+  ASSERT_EQ(api().draw(o.h), GEOCEAN_OK) << lastError();
+  EXPECT_GT(host.drawnPixels(), kSize * kSize / 2);
+
+  GLint i = 0;
+  glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &i);
+  EXPECT_EQ(GLuint(i), vao);
+  glGetIntegerv(GL_CURRENT_PROGRAM, &i);
+  EXPECT_EQ(i, 0);
+  glGetIntegerv(GL_ACTIVE_TEXTURE, &i);
+  EXPECT_EQ(i, GL_TEXTURE5);
+  for (int u = 0; u < 3; ++u) {
+    glActiveTexture(GLenum(GL_TEXTURE0 + u));
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &i);
+    EXPECT_EQ(GLuint(i), tex[u]) << "unit " << u;
+  }
+  glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, 1, &i);
+  EXPECT_EQ(GLuint(i), buf);
+  GLint64 start = 0, size = 0;
+  glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, 1, &start);
+  glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, 1, &size);
+  EXPECT_EQ(start, 256);
+  EXPECT_EQ(size, 512);
+  glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, 0, &i);
+  EXPECT_EQ(i, 0);
+  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &i);
+  EXPECT_EQ(GLuint(i), buf);
+  EXPECT_FALSE(glIsEnabledi(GL_BLEND, 0));
+  EXPECT_TRUE(glIsEnabledi(GL_BLEND, 1));
+  glGetIntegeri_v(GL_BLEND_SRC_RGB, 0, &i);
+  EXPECT_EQ(i, GL_ONE);
+  glGetIntegeri_v(GL_BLEND_DST_ALPHA, 0, &i);
+  EXPECT_EQ(i, GL_ONE);
+  EXPECT_FALSE(glIsEnabled(GL_POLYGON_OFFSET_FILL));
+  GLfloat f = 0.0f;
+  glGetFloatv(GL_POLYGON_OFFSET_FACTOR, &f);
+  EXPECT_EQ(f, 1.5f);
+  glGetFloatv(GL_POLYGON_OFFSET_UNITS, &f);
+  EXPECT_EQ(f, 2.5f);
+  glGetIntegerv(GL_UNPACK_ALIGNMENT, &i);
+  EXPECT_EQ(i, 8);
+  // The host's depth test and framebuffer are its own.
+  glGetIntegerv(GL_DEPTH_FUNC, &i);
+  EXPECT_EQ(i, GL_GREATER);
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &i);
+  EXPECT_EQ(GLuint(i), host.fbo);
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+
+  EXPECT_EQ(api().releaseGl(o.h), GEOCEAN_OK);
+  glDeleteVertexArrays(1, &vao);
+  glDeleteTextures(3, tex);
+  glDeleteBuffers(1, &buf);
+}
+
+TEST(CapiGl, ResourcesBelongToTheContextOfTheFirstDraw) {
+  Host a, b;  // b was made last, so it is current
+  ASSERT_TRUE(a.ctx && b.ctx);
+  Ocean o;
+  const geocean_view v = nadir(30.0, -40.0, 500.0);
+  ASSERT_EQ(api().update(o.h, &v), GEOCEAN_OK);
+  ASSERT_TRUE(a.ctx->makeCurrent());
+  a.beginFrame();
+  ASSERT_EQ(api().draw(o.h), GEOCEAN_OK) << lastError();
+  ASSERT_TRUE(b.ctx->makeCurrent());
+  b.beginFrame();
+  EXPECT_EQ(api().draw(o.h), GEOCEAN_ERROR_GL);
+  EXPECT_NE(lastError().find("belong to another context"), std::string::npos) << lastError();
+  EXPECT_EQ(api().releaseGl(o.h), GEOCEAN_ERROR_GL);
+  EXPECT_EQ(b.drawnPixels(), 0);
+  ASSERT_TRUE(a.ctx->makeCurrent());
+  EXPECT_EQ(api().releaseGl(o.h), GEOCEAN_OK);
+  // Released: the next draw may be in any context.
+  ASSERT_TRUE(b.ctx->makeCurrent());
+  ASSERT_EQ(api().draw(o.h), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(b.drawnPixels(), kSize * kSize);
+  // destroy (Ocean's destructor) with b current releases them itself.
+}
+
+TEST(CapiGl, ChangingTheSeaStateOrRastersBetweenFramesRebuilds) {
+  Host host;
+  ASSERT_TRUE(host.ctx);
+  Ocean o;
+  // Land everywhere from memory, then ocean everywhere: the frame follows.
+  const geocean_grid_placement pl{-180.0, 90.0, 360.0, -180.0, 1, 0, 0.0};
+  const float land = 1.0f, sea = 0.0f;
+  const geocean_view v = nadir(30.0, -40.0, 500.0);
+  ASSERT_EQ(api().update(o.h, &v), GEOCEAN_OK);
+  ASSERT_EQ(api().setMaskPixels(o.h, &land, 1, 1, &pl), GEOCEAN_OK);
+  host.beginFrame();
+  ASSERT_EQ(api().draw(o.h), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(host.drawnPixels(), 0);
+  ASSERT_EQ(api().setMaskPixels(o.h, &sea, 1, 1, &pl), GEOCEAN_OK);
+  host.beginFrame();
+  ASSERT_EQ(api().draw(o.h), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(host.drawnPixels(), kSize * kSize);
+  EXPECT_EQ(api().releaseGl(o.h), GEOCEAN_OK);
+}
+
+TEST(CapiGl, QueriesFromOtherThreadsWhileTheHostDraws) {
+  Host host;
+  ASSERT_TRUE(host.ctx);
+  Ocean o;
+  ASSERT_EQ(api().setDefaultWorld(o.h), GEOCEAN_OK) << lastError();
+  // Reference answers before any drawing.
+  std::vector<double> lat, lon;
+  for (int i = 0; i < 500; ++i) {
+    lat.push_back(-60.0 + 0.24 * i);
+    lon.push_back(-170.0 + 0.68 * i);
+  }
+  const std::size_t n = lat.size();
+  std::vector<double> refH(n), refN(3 * n);
+  std::vector<uint8_t> refC(n);
+  ASSERT_EQ(api().querySeaSurface(o.h, n, lat.data(), lon.data(), 5.0, refH.data(), refN.data(), refC.data()),
+            GEOCEAN_OK);
+
+  std::atomic<bool> stop{false};
+  std::atomic<int> queries{0}, mismatches{0}, failures{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 3; ++t)
+    threads.emplace_back([&] {
+      std::vector<double> h(n), nrm(3 * n);
+      std::vector<uint8_t> c(n);
+      while (!stop.load()) {
+        if (api().querySeaSurface(o.h, n, lat.data(), lon.data(), 5.0, h.data(), nrm.data(), c.data()) !=
+            GEOCEAN_OK) {
+          ++failures;
+          continue;
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+          // Same inputs, same answer, bit for bit (NaN on land compares by class).
+          const bool same = c[i] == refC[i] && (std::isnan(refH[i]) ? std::isnan(h[i]) : h[i] == refH[i]);
+          if (!same) ++mismatches;
+        }
+        ++queries;
+      }
+    });
+  int drawn = 0;
+  for (int frame = 0; frame < 6; ++frame) {
+    geocean_view v;
+    ASSERT_EQ(api().viewInit(&v), GEOCEAN_OK);
+    ASSERT_EQ(api().viewFromPose(&v, 36.0, -5.5, 20000.0 + 50000.0 * frame, 10.0 * frame, -60.0, 45.0, kSize,
+                                 kSize),
+              GEOCEAN_OK);
+    v.time_s = 0.5 * frame;
+    host.beginFrame();
+    if (api().update(o.h, &v) == GEOCEAN_OK && api().draw(o.h) == GEOCEAN_OK) ++drawn;
+    glFinish();
+  }
+  // Let every thread finish at least one query while frames were in flight.
+  while (queries.load() < 3) std::this_thread::yield();
+  stop = true;
+  for (auto& t : threads) t.join();
+  EXPECT_EQ(drawn, 6) << lastError();
+  EXPECT_EQ(failures.load(), 0);
+  EXPECT_EQ(mismatches.load(), 0);
+  EXPECT_GT(host.drawnPixels(), 0);
+  EXPECT_EQ(api().releaseGl(o.h), GEOCEAN_OK);
+}
+
+TEST(CapiGl, DestroyWithoutTheContextCurrentDoesNotCrash) {
+  auto host = std::make_unique<Host>();
+  ASSERT_TRUE(host->ctx);
+  geocean_ocean* h = nullptr;
+  ASSERT_EQ(api().create(GEOCEAN_ABI_VERSION, &h), GEOCEAN_OK);
+  geocean_sea_state s;
+  ASSERT_EQ(api().seaStateInit(&s), GEOCEAN_OK);
+  ASSERT_EQ(api().setSeaState(h, &s), GEOCEAN_OK);
+  const geocean_view v = nadir(30.0, -40.0, 500.0);
+  ASSERT_EQ(api().update(h, &v), GEOCEAN_OK);
+  host->beginFrame();
+  ASSERT_EQ(api().draw(h), GEOCEAN_OK) << lastError();
+  host.reset();  // the host destroys its context first (it takes the ocean's GL objects with it)
+  api().destroy(h);
+  EXPECT_EQ(lastError(), "");
+}
+
+}  // namespace
