@@ -36,16 +36,24 @@ constexpr double kPerlin3Bound = 2.449489742783178;
 
 double deg2rad(double d) { return d * (kPi / 180.0); }
 
-glm::dvec3 ecefOnEllipsoid(double latDeg, double lonDeg) {
-  const double phi = deg2rad(latDeg), lam = deg2rad(lonDeg);
-  const double sp = std::sin(phi), cp = std::cos(phi);
-  const double n = kA / std::sqrt(1.0 - kE2 * sp * sp);
-  return {n * cp * std::cos(lam), n * cp * std::sin(lam), n * (1.0 - kE2) * sp};
-}
-
 struct Enu {
   glm::dvec3 e, n, u;
 };
+// The point on the ellipsoid and its ENU frame from one set of sines and
+// cosines.
+struct Located {
+  glm::dvec3 p;
+  struct {
+    glm::dvec3 e, n, u;
+  } f;
+};
+Located locate(double latDeg, double lonDeg) {
+  const double phi = deg2rad(latDeg), lam = deg2rad(lonDeg);
+  const double sp = std::sin(phi), cp = std::cos(phi), sl = std::sin(lam), cl = std::cos(lam);
+  const double n = kA / std::sqrt(1.0 - kE2 * sp * sp);
+  return {{n * cp * cl, n * cp * sl, n * (1.0 - kE2) * sp}, {{-sl, cl, 0.0}, {-sp * cl, -sp * sl, cp}, {cp * cl, cp * sl, sp}}};
+}
+
 Enu enuAt(double latDeg, double lonDeg) {
   const double phi = deg2rad(latDeg), lam = deg2rad(lonDeg);
   const double sp = std::sin(phi), cp = std::cos(phi), sl = std::sin(lam), cl = std::cos(lam);
@@ -469,8 +477,9 @@ WaveSample WaveField::samplePaper(double latDeg, double lonDeg, double tS) const
 
 WaveSample WaveField::sample(double latDeg, double lonDeg, double tS, double depthM) const {
   if (model_ == Model::NoisePaper) return samplePaper(latDeg, lonDeg, tS);
-  const glm::dvec3 p = ecefOnEllipsoid(latDeg, lonDeg);
-  const Enu f = enuAt(latDeg, lonDeg);
+  const Located loc = locate(latDeg, lonDeg);
+  const glm::dvec3 p = loc.p;
+  const Enu f{loc.f.e, loc.f.n, loc.f.u};
   const kd::WvFrame frame = makeFrame(p);
   if (model_ == Model::Noise) {
     std::array<kd::WvOctave, kMaxOctaves> oc;
@@ -501,8 +510,9 @@ SurfacePoint WaveField::surfaceAt(double latDeg, double lonDeg, double tS, doubl
     sp.verticalVelocityMps = s.verticalVelocityMps;
     return sp;
   }
-  const glm::dvec3 p = ecefOnEllipsoid(latDeg, lonDeg);
-  const Enu f = enuAt(latDeg, lonDeg);
+  const Located loc = locate(latDeg, lonDeg);
+  const glm::dvec3 p = loc.p;
+  const Enu f{loc.f.e, loc.f.n, loc.f.u};
   const kd::WvFrame frame = makeFrame(p);
   std::array<kd::WvWave, kMaxComponents> wv;
   std::vector<kd::WvFftPlane> planes;
