@@ -4,8 +4,12 @@
 #include "plugin/grid/ScreenGrid.h"
 
 #include <algorithm>
+#include <bit>
+#include <cstddef>
 #include <cmath>
 #include <limits>
+
+#include <immintrin.h>
 
 // One attribute for every hot loop: baseline clone plus AVX2 and AVX-512.
 #define GEOCEAN_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
@@ -147,18 +151,29 @@ void packRow(const double* __restrict t, const double* __restrict rx, const doub
              const double* __restrict rz, const double* __restrict latDeg, const double* __restrict lonDeg,
              const std::uint8_t* __restrict surface, double x0, double dx, bool rowOffscreen, std::size_t n,
              GridVertex* __restrict out) {
+  // Two 16-byte stores per vertex (field by field it was eight, and stores
+  // were the limit): { x, y, z, surface | flags << 8 } and { lat, lon }.
+  static_assert(offsetof(GridVertex, surface) == 12 && offsetof(GridVertex, latDeg) == 16);
+  // Streaming (non-temporal) stores when 16-byte aligned (malloc's
+  // alignment): the buffer is written once and read by the upload, so
+  // reading each line into the cache first (plain stores) only doubles the
+  // memory traffic.
+  const bool aligned = reinterpret_cast<std::uintptr_t>(out) % 16 == 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double x = x0 + double(i) * dx;
-    GridVertex& v = out[i];
-    v.eyeRelM[0] = float(rx[i]);
-    v.eyeRelM[1] = float(ry[i]);
-    v.eyeRelM[2] = float(rz[i]);
-    v.surface = surface[i];
-    v.flags = std::uint8_t((t[i] != t[i] ? kVertexHorizon : 0) | ((rowOffscreen || std::fabs(x) > 1.0) ? kVertexOffscreen : 0));
-    v.reserved = 0;
-    v.latDeg = latDeg[i];
-    v.lonDeg = lonDeg[i];
+    const unsigned flags = (t[i] != t[i] ? kVertexHorizon : 0) | ((rowOffscreen || std::fabs(x) > 1.0) ? kVertexOffscreen : 0);
+    const std::uint32_t word = std::uint32_t(surface[i]) | flags << 8;  // little endian: surface, flags, reserved = 0
+    const __m128 pos = _mm_setr_ps(float(rx[i]), float(ry[i]), float(rz[i]), std::bit_cast<float>(word));
+    auto* dst = reinterpret_cast<char*>(out + i);
+    if (aligned) {
+      _mm_stream_ps(reinterpret_cast<float*>(dst), pos);
+      _mm_stream_pd(reinterpret_cast<double*>(dst + 16), _mm_setr_pd(latDeg[i], lonDeg[i]));
+    } else {
+      _mm_storeu_ps(reinterpret_cast<float*>(dst), pos);
+      _mm_storeu_pd(reinterpret_cast<double*>(dst + 16), _mm_setr_pd(latDeg[i], lonDeg[i]));
+    }
   }
+  _mm_sfence();  // the streamed stores are visible before the row is used
 }
 
 GEOCEAN_CLONES
@@ -174,6 +189,20 @@ void surfaceLatLonBatch(const double eye[3], const double* __restrict rx, const 
     latDeg[i] = atan2Fast(z, e2c * p) * toDeg;
     lonDeg[i] = atan2Fast(y, x) * toDeg;
   }
+}
+
+GEOCEAN_CLONES
+void landCellRow(const std::uint8_t* __restrict below, const std::uint8_t* __restrict above, std::uint8_t land,
+                 std::size_t cols, std::uint8_t* __restrict skip) {
+  for (std::size_t i = 0; i + 1 < cols; ++i)
+    skip[i] = std::uint8_t((below[i] == land) & (below[i + 1] == land) & (above[i] == land) & (above[i + 1] == land));
+}
+
+GEOCEAN_CLONES
+std::size_t countNan(const double* __restrict v, std::size_t n) {
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < n; ++i) k += v[i] != v[i];
+  return k;
 }
 
 const char* kernelIsa() {

@@ -54,6 +54,14 @@ void packRow(const double* t, const double* rx, const double* ry, const double* 
              const double* lonDeg, const std::uint8_t* surface, double x0, double dx, bool rowOffscreen,
              std::size_t n, GridVertex* out);
 
+// skip[i] = 1 where below[i], below[i + 1], above[i], above[i + 1] all
+// equal `land`, else 0, for i in [0, cols - 1): one row of cell flags.
+void landCellRow(const std::uint8_t* below, const std::uint8_t* above, std::uint8_t land, std::size_t cols,
+                 std::uint8_t* skip);
+
+// Number of NaNs in v[0, n).
+std::size_t countNan(const double* v, std::size_t n);
+
 // Which clone the ifunc resolver picked on this CPU: "x86-64-v4",
 // "x86-64-v3" or "baseline" (for logs and benchmark labels).
 const char* kernelIsa();

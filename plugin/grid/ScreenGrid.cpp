@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -48,6 +49,17 @@ struct LimbLine {
   int n = 0;
   glm::dvec3 rel[2];
   glm::dvec3 dir[2];  // unit directions from the eye
+  // surfaceLatLonBatch of each point, so horizon vertices copy them: the
+  // same kernel on the same input, bit-identical to computing them per vertex.
+  double latDeg[2], lonDeg[2];
+  ocean::Surface surface[2];  // filled by the grid build (the classifier is not ours)
+};
+
+// A horizon vertex: eye-relative position and its lat/lon.
+struct LimbPick {
+  glm::dvec3 rel;
+  double latDeg, lonDeg;
+  const ocean::Surface* surface;  // the line's class, or null (horizonPoint fallback)
 };
 
 class LimbSolver {
@@ -72,21 +84,27 @@ class LimbSolver {
   LimbLine column(double x) const { return line(glm::cross(cam_.forward() + x * R_, U_)); }
   LimbLine row(double y) const { return line(glm::cross(cam_.forward() + y * U_, R_)); }
 
-  // The chosen limb point for a missed ray (unit direction dn), eye-relative.
-  glm::dvec3 choose(const LimbLine& col, const LimbLine& row, const glm::dvec3& dn, Along along) const {
+  // The chosen limb point for a missed ray of direction d (any length:
+  // the choice compares dot products with d, which scale together).
+  LimbPick choose(const LimbLine& col, const LimbLine& row, const glm::dvec3& d, Along along) const {
     double best = 0.0;
     int which = -1;
     auto consider = [&](const LimbLine& l, int base) {
       for (int k = 0; k < l.n; ++k) {
-        const double dot = glm::dot(l.dir[k], dn);
+        const double dot = glm::dot(l.dir[k], d);
         if (dot > best) best = dot, which = base + k;
       }
     };
     if (along != Along::Row) consider(col, 0);
     if (along != Along::Column || which < 0) consider(row, 2);
     if (along == Along::Row && which < 0) consider(col, 0);
-    if (which >= 0) return (which < 2 ? col : row).rel[which % 2];
-    return geo::horizonPoint(cam_.eyeEcef(), dn, offsetM_) - cam_.eyeEcef();
+    if (which >= 0) {
+      const LimbLine& l = which < 2 ? col : row;
+      return {l.rel[which % 2], l.latDeg[which % 2], l.lonDeg[which % 2], &l.surface[which % 2]};
+    }
+    LimbPick p{geo::horizonPoint(cam_.eyeEcef(), glm::normalize(d), offsetM_) - cam_.eyeEcef(), 0.0, 0.0, nullptr};
+    surfaceLatLonBatch(eye_, &p.rel.x, &p.rel.y, &p.rel.z, 1, &p.latDeg, &p.lonDeg);
+    return p;
   }
 
  private:
@@ -105,11 +123,14 @@ class LimbSolver {
       l.dir[l.n] = glm::normalize(l.rel[l.n]);
       ++l.n;
     }
+    const double rx[2] = {l.rel[0].x, l.rel[1].x}, ry[2] = {l.rel[0].y, l.rel[1].y}, rz[2] = {l.rel[0].z, l.rel[1].z};
+    surfaceLatLonBatch(eye_, rx, ry, rz, std::size_t(l.n), l.latDeg, l.lonDeg);
     return l;
   }
 
   const camera::Camera& cam_;
   double offsetM_;
+  double eye_[3] = {cam_.eyeEcef().x, cam_.eyeEcef().y, cam_.eyeEcef().z};
   bool valid_ = false;
   glm::dvec3 toScaled_{1.0}, fromScaled_{1.0}, e_{0.0}, c0_{0.0}, v1_{0.0}, v2_{0.0}, R_{0.0}, U_{0.0};
   double rho_ = 0.0;
@@ -117,7 +138,7 @@ class LimbSolver {
 
 glm::dvec3 missPointRel(const camera::Camera& cam, double x, double y, double offsetM, Along along) {
   const LimbSolver limb(cam, offsetM);
-  return limb.choose(limb.column(x), limb.row(y), glm::normalize(cam.rayThroughNdc(x, y)), along);
+  return limb.choose(limb.column(x), limb.row(y), cam.rayThroughNdc(x, y), along).rel;
 }
 
 // Eye-relative point seen through NDC (x, y) on the base ellipsoid, or on the
@@ -273,13 +294,35 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
         cornersHit = cornersHit && geo::intersectEllipsoid(cam.eyeEcef(), cam.rayThroughNdc(cx, cy)).hit;
   }
   if (!cornersHit) colLines.resize(std::size_t(cols));
+  const LimbLine noLine{};
 
-  auto buildRows = [&](const tbb::blocked_range<int>& range) {
+  auto classifyLine = [&](LimbLine& l) {
+    if (classifier_ && l.n > 0) {
+      classifier_(l.latDeg, l.lonDeg, std::size_t(l.n), l.surface);
+    } else {
+      std::fill(std::begin(l.surface), std::end(l.surface), ocean::Surface::Ocean);
+    }
+  };
+  // Cell row j of cellSkip from the classes of vertex rows j and j + 1.
+  auto skipRow = [&](int j, const std::uint8_t* below, const std::uint8_t* above) {
+    landCellRow(below, above, std::uint8_t(ocean::Surface::Land), std::size_t(cols),
+                f.cellSkip.data() + std::size_t(j) * (cols - 1));
+  };
+
+  // Rows in chunks, each touched once: rays, hits, horizon, lat/lon, class,
+  // vertices, and the cell flags between the chunk's rows. A chunk is one
+  // task (sky rows are cheaper than sea rows, so several chunks per thread
+  // balance the load; fewer, larger tasks than TBB's auto partitioner).
+  const int rowsPerChunk = std::max(4, rows / 16);
+  const int chunks = (rows + rowsPerChunk - 1) / rowsPerChunk;
+  auto buildChunk = [&](int c) {
+    const int j0 = c * rowsPerChunk, j1 = std::min(rows, j0 + rowsPerChunk);
     // Per task, not thread-local: a classifier that itself runs TBB work
     // could make this thread pick up another row task while it waits.
     RowScratch s;
     s.resize(std::size_t(cols));
-    for (int j = range.begin(); j < range.end(); ++j) {
+    std::vector<std::uint8_t> prevSurf(static_cast<std::size_t>(cols));
+    for (int j = j0; j < j1; ++j) {
       const double y = rect.minY + j * dyNdc;
       rayRow(Fa, Ra, Ua, rect.minX, dxNdc, y, std::size_t(cols), s.dx.data(), s.dy.data(), s.dz.data());
       if (o.mode == GridMode::Direct) {
@@ -289,56 +332,83 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
         ispgBatch(eye, Na, planeH, ispgFar, s.dx.data(), s.dy.data(), s.dz.data(), std::size_t(cols), s.t.data(),
                   s.rx.data(), s.ry.data(), s.rz.data());
       }
-      bool anyMiss = false;
-      for (int i = 0; i < cols; ++i) anyMiss |= std::isnan(s.t[i]);
-      if (anyMiss) {
-        const LimbLine rowLine = limb.row(y);
+      // The hits of a row are one span (the rays lie in a plane through the
+      // eye); misses get their limb point with its lat/lon and class.
+      int first = 0, last = cols - 1;
+      while (first < cols && std::isnan(s.t[first])) ++first;
+      while (last >= first && std::isnan(s.t[last])) --last;
+      if (last - first + 1 < cols || countNan(s.t.data(), std::size_t(cols)) > 0) {
+        LimbLine rowLine = limb.row(y);
+        classifyLine(rowLine);
         for (int i = 0; i < cols; ++i) {
           if (!std::isnan(s.t[i])) continue;
           const Along along = (i == 0 || i == cols - 1) ? Along::Column
                               : (j == 0 || j == rows - 1) ? Along::Row : Along::Nearest;
-          const glm::dvec3 dn = glm::normalize(glm::dvec3(s.dx[i], s.dy[i], s.dz[i]));
-          const glm::dvec3 rp = limb.choose(colLines[std::size_t(i)], rowLine, dn, along);
-          s.rx[i] = rp.x;
-          s.ry[i] = rp.y;
-          s.rz[i] = rp.z;
+          const LimbLine& colLine = colLines.empty() ? noLine : colLines[std::size_t(i)];  // no copy
+          const LimbPick pick = limb.choose(colLine, rowLine, glm::dvec3(s.dx[i], s.dy[i], s.dz[i]), along);
+          s.rx[i] = pick.rel.x;
+          s.ry[i] = pick.rel.y;
+          s.rz[i] = pick.rel.z;
+          s.lat[i] = pick.latDeg;
+          s.lon[i] = pick.lonDeg;
+          if (pick.surface) {
+            s.surf[i] = *pick.surface;
+          } else if (classifier_) {
+            classifier_(&s.lat[i], &s.lon[i], 1, &s.surf[i]);
+          } else {
+            s.surf[i] = ocean::Surface::Ocean;
+          }
         }
       }
       // Horizon vertices lie on the limb of the ellipsoid inflated by hOff:
       // the closed form is exact on the surface and off by at most
       // hOff e^2 / R there (3 cm for 5 m waves), irrelevant at the horizon.
-      surfaceLatLonBatch(eye, s.rx.data(), s.ry.data(), s.rz.data(), cols, s.lat.data(), s.lon.data());
-      if (classifier_) {
-        classifier_(s.lat.data(), s.lon.data(), std::size_t(cols), s.surf.data());
-      } else {
-        std::fill(s.surf.begin(), s.surf.end(), ocean::Surface::Ocean);
+      // Only the hit span needs the kernel (a miss inside it, if rounding
+      // ever made one, is recomputed from the same input: same bits).
+      if (last >= first) {
+        const std::size_t n = std::size_t(last - first + 1), i0 = std::size_t(first);
+        surfaceLatLonBatch(eye, s.rx.data() + i0, s.ry.data() + i0, s.rz.data() + i0, n, s.lat.data() + i0,
+                           s.lon.data() + i0);
+        if (classifier_) {
+          classifier_(s.lat.data() + i0, s.lon.data() + i0, n, s.surf.data() + i0);
+        } else {
+          std::fill_n(s.surf.begin() + first, n, ocean::Surface::Ocean);
+        }
       }
-      packRow(s.t.data(), s.rx.data(), s.ry.data(), s.rz.data(), s.lat.data(), s.lon.data(),
-              reinterpret_cast<const std::uint8_t*>(s.surf.data()), rect.minX, dxNdc, std::abs(y) > 1.0,
-              std::size_t(cols), f.vertices.data() + std::size_t(j) * cols);
-    }
-  };
-  auto skipRows = [&](const tbb::blocked_range<int>& range) {
-    for (int j = range.begin(); j < range.end(); ++j) {
-      const GridVertex* a = f.vertices.data() + std::size_t(j) * cols;
-      const GridVertex* b = a + cols;
-      std::uint8_t* skip = f.cellSkip.data() + std::size_t(j) * (cols - 1);
-      constexpr auto kLand = std::uint8_t(ocean::Surface::Land);
-      for (int i = 0; i + 1 < cols; ++i)
-        skip[i] = a[i].surface == kLand && a[i + 1].surface == kLand && b[i].surface == kLand &&
-                  b[i + 1].surface == kLand;
+      const auto* surf = reinterpret_cast<const std::uint8_t*>(s.surf.data());
+      packRow(s.t.data(), s.rx.data(), s.ry.data(), s.rz.data(), s.lat.data(), s.lon.data(), surf, rect.minX,
+              dxNdc, std::abs(y) > 1.0, std::size_t(cols), f.vertices.data() + std::size_t(j) * cols);
+      if (j > j0) skipRow(j - 1, prevSurf.data(), surf);
+      std::copy_n(surf, cols, prevSurf.data());
     }
   };
   auto run = [&] {
-    if (!colLines.empty())
-      tbb::parallel_for(0, cols, [&](int i) { colLines[std::size_t(i)] = limb.column(rect.minX + i * dxNdc); });
-    tbb::parallel_for(tbb::blocked_range<int>(0, rows, 4), buildRows);
-    tbb::parallel_for(tbb::blocked_range<int>(0, rows - 1, 16), skipRows);
+    if (!colLines.empty()) {
+      tbb::parallel_for(tbb::blocked_range<int>(0, cols, 32), [&](const tbb::blocked_range<int>& r) {
+        for (int i = r.begin(); i < r.end(); ++i) {
+          colLines[std::size_t(i)] = limb.column(rect.minX + i * dxNdc);
+          classifyLine(colLines[std::size_t(i)]);
+        }
+      });
+    }
+    tbb::parallel_for(tbb::blocked_range<int>(0, chunks, 1), [&](const tbb::blocked_range<int>& r) {
+      for (int c = r.begin(); c < r.end(); ++c) buildChunk(c);
+    }, tbb::simple_partitioner());
   };
   if (impl_->arena) {
     impl_->arena->execute(run);
   } else {
     run();
+  }
+  // The cell rows between chunks.
+  std::vector<std::uint8_t> below(static_cast<std::size_t>(cols)), above(static_cast<std::size_t>(cols));
+  for (int c = 1; c < chunks; ++c) {
+    const int j = c * rowsPerChunk - 1;
+    for (int i = 0; i < cols; ++i) {
+      below[std::size_t(i)] = f.vertices[std::size_t(j) * cols + i].surface;
+      above[std::size_t(i)] = f.vertices[std::size_t(j + 1) * cols + i].surface;
+    }
+    skipRow(j, below.data(), above.data());
   }
   f.landCells = std::size_t(std::count(f.cellSkip.begin(), f.cellSkip.end(), std::uint8_t(1)));
 }

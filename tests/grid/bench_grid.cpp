@@ -55,6 +55,9 @@ void BM_GridBuild(benchmark::State& st) {
   }
   st.counters["vertices/s"] = benchmark::Counter(double(n) * n, benchmark::Counter::kIsIterationInvariantRate);
   st.counters["land_cells"] = double(f.landCells);
+  std::size_t horizon = 0;
+  for (const grid::GridVertex& v : f.vertices) horizon += (v.flags & grid::kVertexHorizon) != 0;
+  st.counters["horizon_frac"] = double(horizon) / double(f.vertices.size());
 }
 
 // The bare loop: the same rays (generation + intersection + store t), nothing else.

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 using namespace geocean;
@@ -189,4 +190,62 @@ TEST(ScreenGrid, BadOptionsNameTheField) {
   o = {};
   o.maxDisplacementM = -1.0;
   EXPECT_THROW(ScreenGrid{o}, std::invalid_argument);
+}
+
+// The build copies lat/lon and class of horizon vertices from their limb
+// point and computes cell flags per row chunk: every vertex's class must
+// still be the classifier's answer for its own lat/lon, horizon lat/lon must
+// be where GeographicLib puts the vertex, flags must agree across chunk
+// boundaries, and the result must not depend on the thread count.
+TEST(ScreenGrid, HorizonVerticesCarryTheirOwnLatLonAndClass) {
+  // A coast along a meridian that crosses the horizon (which spans lon 14 to
+  // 29 here): land west of lon 20.
+  auto classify = [](const double* /*lat*/, const double* lon, std::size_t n, ocean::Surface* out) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = lon[i] < 20.0 ? ocean::Surface::Land : ocean::Surface::Ocean;
+  };
+  // From 500 km looking north-east, 20 deg down: sea, land and sky.
+  const Camera cam = Camera::fromGeodetic({40.0, 0.0, 5e5, 60.0, -20.0, 0.0}, 60.0, 320, 240);
+  GridOptions o;
+  o.cols = 97;
+  o.rows = 203;  // odd sizes: chunks of 12 rows and a short last chunk
+  o.maxDisplacementM = 5.0;
+  o.threads = 1;
+  ScreenGrid g1(o, classify);
+  o.threads = 2;
+  ScreenGrid g2(o, classify);
+  GridFrame f1, f2;
+  g1.build(cam, f1);
+  g2.build(cam, f2);
+  ASSERT_EQ(f1.vertices.size(), f2.vertices.size());
+  EXPECT_EQ(0, std::memcmp(f1.vertices.data(), f2.vertices.data(), f1.vertices.size() * sizeof(grid::GridVertex)));
+  EXPECT_EQ(f1.cellSkip, f2.cellSkip);
+  std::size_t horizon = 0, land = 0, horizonLand = 0;
+  for (const auto& v : f1.vertices) {
+    ocean::Surface want;
+    classify(&v.latDeg, &v.lonDeg, 1, &want);
+    EXPECT_EQ(v.surface, std::uint8_t(want));
+    if (!(v.flags & grid::kVertexHorizon)) continue;
+    ++horizon;
+    horizonLand += want == ocean::Surface::Land;
+    // GeographicLib on the float position: its rounding at ~2500 km is
+    // ~0.15 m = 1.4e-6 deg; a wrong limb point would be kilometres off.
+    // Height: the limb of the ellipsoid inflated by the 5 m displacement.
+    const geo::Geodetic gp = geo::fromEcef(cam.eyeEcef() + rel(v));
+    EXPECT_NEAR(v.latDeg, gp.latDeg, 1e-5);
+    EXPECT_NEAR(geo::wrapLonDeg(v.lonDeg - gp.lonDeg), 0.0, 1e-5);
+    EXPECT_NEAR(gp.heightM, 5.0, 1.0);
+  }
+  for (int j = 0; j + 1 < f1.rows; ++j)
+    for (int i = 0; i + 1 < f1.cols; ++i) {
+      const auto* v = &f1.vertices[std::size_t(j) * f1.cols + i];
+      constexpr auto L = std::uint8_t(ocean::Surface::Land);
+      const bool allLand = v[0].surface == L && v[1].surface == L && v[f1.cols].surface == L && v[f1.cols + 1].surface == L;
+      ASSERT_EQ(f1.cellSkip[std::size_t(j) * (f1.cols - 1) + i], allLand) << i << "," << j;
+      land += allLand;
+    }
+  EXPECT_EQ(f1.landCells, land);
+  // The view must exercise all of it: sky, land cells, land on the horizon.
+  EXPECT_GT(horizon, 500u);
+  EXPECT_GT(land, 100u);
+  EXPECT_GT(horizonLand, 10u);
 }
