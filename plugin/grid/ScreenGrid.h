@@ -49,7 +49,9 @@ struct GridVertex {
 static_assert(sizeof(GridVertex) == 32, "GridVertex is a GPU layout");
 
 // Classifies n points; by default ocean::LandSea::classifyBatch. Called
-// concurrently from several threads, once per grid row.
+// concurrently from several threads: once per grid row on its span of ray
+// hits, and on the limb points (two per grid column or row) whose lat/lon
+// and class the horizon vertices copy. Must be deterministic per point.
 using SurfaceClassifier =
     std::function<void(const double* latDeg, const double* lonDeg, std::size_t n, ocean::Surface* out)>;
 // Header-only so the grid library itself does not link the raster stack.
