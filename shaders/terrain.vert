@@ -28,10 +28,14 @@ void main() {
   float h = -uSkirtM * aSkirt;
 #else
   float elev = textureLod(uElevation, geoUv(aLonLat, uElevationGeo), 0.0).r;
-  float water = textureLod(uWater, geoUv(aLonLat, uWaterGeo), 0.0).r;
+  vec2 uvW = geoUv(aLonLat, uWaterGeo);
+  // The fragment shaders draw the shoreline at B-spline coverage 0.5; the
+  // ground must already be under the sea wherever that can be water, or it
+  // hides the wave grid (seen 2 m above the Strait of Gibraltar).
+  float water = max(textureLod(uWater, uvW, 0.0).r, textureBSpline(uWater, uvW));
   // Land never dips below the sea, water areas sit under the wave grid.
   float land = max(elev, 0.0) * uExaggeration;
-  float h = mix(land, -uSeaDropM, smoothstep(0.45, 0.55, water)) - uSkirtM * aSkirt;
+  float h = mix(land, -uSeaDropM, smoothstep(0.3, 0.45, water)) - uSkirtM * aSkirt;
 #endif
   vec3 p = uTileOffset + aLocal + aNormal * h;
   vEyeRel = p;

@@ -88,7 +88,9 @@ TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
       b.allWater = b.allWater && w > 0.55;
       const double land = std::max(0.0, double(world_.elevationAt(lat, lon))) * exag;
       const double h = w > 0.55 ? -options_.seaDropM : (w < 0.45 ? land : std::max(land, 0.0));
-      hMin = std::min({hMin, h, w > 0.45 ? -options_.seaDropM : h});
+      // The vertex shader drops the ground from coverage 0.3 (B-spline), which
+      // can reach past these bilinear samples: any water at all may go under.
+      hMin = std::min({hMin, h, w > 0.0 ? -options_.seaDropM : h});
       hMax = std::max(hMax, h);
     }
   const double margin = 0.5 * (hMax - hMin) + 50.0 * exag;

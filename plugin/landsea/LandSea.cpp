@@ -127,6 +127,46 @@ void LandSea::classifyBatch(const double* lat, const double* lon, std::size_t n,
   for (std::size_t j = 0; j < where.size(); ++j) out[where[j]] = fromElevation(e[j]);
 }
 
+void LandSea::classifyNearWaterBatch(const double* lat, const double* lon, std::size_t n, Surface* out) const {
+  if (classes_.empty()) {
+    classifyBatch(lat, lon, n, out);
+    return;
+  }
+  std::call_once(nearWaterOnce_, [this] {
+    // Separable dilation of the water cells by two cells (longitude wraps
+    // for a global mask, latitude clamps).
+    const int w = fast_.width, h = fast_.height;
+    constexpr int kR = 2;
+    std::vector<std::uint8_t> rows(classes_.size());
+    for (int y = 0; y < h; ++y) {
+      const std::uint8_t* c = classes_.data() + std::size_t(y) * w;
+      std::uint8_t* r = rows.data() + std::size_t(y) * w;
+      for (int x = 0; x < w; ++x) {
+        std::uint8_t any = 0;
+        for (int d = -kR; d <= kR && !any; ++d) {
+          int xx = x + d;
+          if (fast_.global) xx = (xx % w + w) % w;
+          else if (xx < 0 || xx >= w) continue;
+          any = c[xx] != std::uint8_t(Surface::Land);
+        }
+        r[x] = any;
+      }
+    }
+    nearWater_.assign(classes_.size(), 0);
+    for (int y = 0; y < h; ++y)
+      for (int d = -kR; d <= kR; ++d) {
+        const int yy = std::clamp(y + d, 0, h - 1);
+        const std::uint8_t* src = rows.data() + std::size_t(yy) * w;
+        std::uint8_t* dst = nearWater_.data() + std::size_t(y) * w;
+        for (int x = 0; x < w; ++x) dst[x] |= src[x];
+      }
+  });
+  for (std::size_t i = 0; i < n; ++i) {
+    const int idx = fast_.index(lat[i], lon[i]);
+    out[i] = (idx >= 0 && nearWater_[std::size_t(idx)]) ? Surface::Ocean : Surface::Land;
+  }
+}
+
 float LandSea::waterCoverage(double latDeg, double lonDeg) const {
   if (!std::isfinite(latDeg) || !std::isfinite(lonDeg)) return 0.0f;
   if (!mask_) {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,14 @@ class LandSea {
 
   Surface classify(double latDeg, double lonDeg) const;
   void classifyBatch(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out) const;
+
+  // For drawing water surfaces: Ocean where any mask cell within two cells
+  // is ocean or lake, else Land. The renderers' shoreline is a smooth
+  // (cubic B-spline) blend of the coverage whose support is 4 x 4 cells, so
+  // it can put water up to two cells beyond the nearest-cell class; geometry
+  // skipped by this test is guaranteed dry. Falls back to classifyBatch
+  // without an in-memory mask. The table is built on first use.
+  void classifyNearWaterBatch(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out) const;
 
   // Fraction of water (ocean or lake) around the point, in [0, 1]: the
   // bilinear blend of the four nearest mask cells. 0.5 is the coastline;
@@ -75,6 +84,8 @@ class LandSea {
   // In-memory mask as class bytes: the fast path (no float conversion).
   std::vector<std::uint8_t> classes_;
   FastIndex fast_;
+  mutable std::vector<std::uint8_t> nearWater_;  // 1 = water within two cells
+  mutable std::once_flag nearWaterOnce_;
 };
 
 }  // namespace geocean::ocean

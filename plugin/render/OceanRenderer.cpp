@@ -26,7 +26,15 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const render::WorldTextures> world,
   grid::GridOptions go;
   go.cellPx = options_.cellPx;
   go.maxDisplacementM = waves_->maxDisplacementM();
-  grid_ = std::make_unique<grid::ScreenGrid>(go, landSea ? grid::classifierFor(landSea) : grid::SurfaceClassifier{});
+  // Cells are skipped only where the drawn shoreline cannot reach (the
+  // fragment shader cuts the exact coastline); nearest-cell classes would
+  // drop sea that the smooth shoreline shows as water.
+  grid::SurfaceClassifier classifier;
+  if (landSea)
+    classifier = [ls = landSea](const double* lat, const double* lon, std::size_t n, ocean::Surface* out) {
+      ls->classifyNearWaterBatch(lat, lon, n, out);
+    };
+  grid_ = std::make_unique<grid::ScreenGrid>(go, classifier);
   const std::string model = options_.model == waves::Model::Gerstner ? "WV_MODEL 1" : "WV_MODEL 0";
   program_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", {model});
   bare_ = render::GlProgram::graphics("ocean.vert", "bare.frag", {model, "GEOCEAN_BARE 1"});

@@ -145,3 +145,34 @@ TEST(LandSea, MaskEncodingOption) {
   EXPECT_THROW(ocean::MaskEncoding::parse("300=ocean"), std::invalid_argument);
   EXPECT_THROW(ocean::MaskEncoding::parse("x"), std::invalid_argument);
 }
+
+TEST(LandSea, NearWaterCoversEveryWaterCellAndTwoCellsAround) {
+  const ocean::LandSea ls(defaultMask(), nullptr);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> ulat(-90, 90), ulon(-180, 180);
+  std::vector<double> la(20000), lo(20000);
+  for (std::size_t i = 0; i < la.size(); ++i) {
+    la[i] = ulat(rng);
+    lo[i] = ulon(rng);
+  }
+  std::vector<Surface> near(la.size());
+  ls.classifyNearWaterBatch(la.data(), lo.data(), la.size(), near.data());
+  const double cell = 1.0 / 12;  // the 5' mask
+  for (std::size_t i = 0; i < la.size(); ++i) {
+    // Brute force over the 5 x 5 cell neighbourhood (clamped at the poles).
+    bool water = false;
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx) {
+        const double lat = std::clamp(la[i] + dy * cell, -89.99, 89.99);
+        water |= ls.classify(lat, lo[i] + dx * cell) != Surface::Land;
+      }
+    ASSERT_EQ(near[i] == Surface::Ocean, water) << la[i] << "," << lo[i];
+  }
+  // Tarifa (land at 5', one cell from the Strait) is near water; the central Sahara is not.
+  const double tla[] = {36.04, 23.0}, tlo[] = {-5.6, 10.0};
+  Surface t[2];
+  ls.classifyNearWaterBatch(tla, tlo, 2, t);
+  EXPECT_EQ(ls.classify(36.04, -5.6), Surface::Land);
+  EXPECT_EQ(t[0], Surface::Ocean);
+  EXPECT_EQ(t[1], Surface::Land);
+}
