@@ -270,13 +270,10 @@ void WaveField::buildNoise() {
       o.row[r] = glm::dvec3(roundToFloat(m[r][0] * f), roundToFloat(m[r][1] * f), roundToFloat(m[r][2] * f));
     o.amplitudeM = roundToFloat(a0 * std::pow(0.5, i));
     o.seed = std::uint32_t(rng.next() & 0xFFFFFFu);  // exact as a float
-    // Each octave drifts with the deep-water phase speed of its wavelength.
-    // KNOWN DEFECT: q = M P + v t with v = +M c moves the pattern UPWIND
-    // (eta(P, t) = N(M (P - c t)) needs v = -M c). Kept until the renderer's
-    // ocean goldens (tests/render/golden/sea_*.png, rendered at t != 0) are
-    // regenerated together with the fix: flip the sign of `speed` below.
+    // Each octave drifts downwind with the deep-water phase speed of its
+    // wavelength: eta(P, t) = N(M (P - c t)), so the lattice moves by v = -M c.
     const double wavelengthM = 1.0 / f;
-    const double speed = std::sqrt(kG * wavelengthM / kTwoPi);
+    const double speed = -std::sqrt(kG * wavelengthM / kTwoPi);
     const glm::dvec3 vWorld = model_ == Model::Noise ? travelEcef_ * speed : glm::dvec3(travelEn_ * speed, 0.0);
     if (model_ == Model::Noise)
       o.velocity = glm::dvec3(roundToFloat(glm::dot(o.row[0], vWorld)), roundToFloat(glm::dot(o.row[1], vWorld)),

@@ -209,9 +209,7 @@ TEST(QueryCli, NormalsAreUnitAndWavesTravelDownwind) {
   os.precision(17);
   // 8 times (the FFT model builds one table per distinct time).
   for (int i = 0; i < 1500; ++i) os << d(rng) << ',' << -150 + d(rng) << ',' << 75.0 * (i % 8) + 0.5 << '\n';
-  // The noise models drift upwind (a known defect kept until the renderer's
-  // goldens are regenerated with the fix; see WaveField.cpp buildNoise).
-  for (const char* model : {"gerstner", "fft"}) {
+  for (const char* model : {"noise", "noise-paper", "gerstner", "fft"}) {
     for (int windFrom : {270, 90, 0, 180}) {
       const auto res =
           query(std::string("--waves ") + model + " --anchor 0,-150 --wind-dir " + std::to_string(windFrom), os.str());
