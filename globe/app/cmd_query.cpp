@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -38,6 +39,7 @@ struct QueryOptions {
 // The sea state and model from the options, or an error message.
 struct WaveSetup {
   waves::Model model = waves::Model::Noise;
+  bool noSea = false;  // --waves none: class and elevation only
   waves::SeaState sea;
   double timeS = 0.0;
 };
@@ -49,8 +51,10 @@ std::string parseWaveOptions(const QueryOptions& o, WaveSetup& w) {
     return {};
   };
   const auto model = waves::parseModel(o.waves);
-  if (!model) return "--waves '" + o.waves + "' is not a wave model (noise, noise-paper, gerstner, fft)";
-  w.model = *model;
+  w.noSea = o.waves == "none";
+  if (!model && !w.noSea)
+    return "--waves '" + o.waves + "' is not a wave model (noise, noise-paper, gerstner, fft, none)";
+  if (model) w.model = *model;
   if (auto e = number("--time", o.time, w.timeS); !e.empty()) return e;
   if (!o.wind.empty() && !o.beaufort.empty()) return "give either --wind or --beaufort, not both";
   if (!o.beaufort.empty()) {
@@ -127,6 +131,7 @@ class Querier {
     auto elev = raster::Raster::open(o.elevation.empty() ? world.elevation : o.elevation, ro);
     const ocean::MaskEncoding enc = o.maskEncoding.empty() ? ocean::MaskEncoding() : ocean::MaskEncoding::parse(o.maskEncoding);
     landSea_ = std::make_shared<ocean::LandSea>(mask, elev, enc);
+    if (w.noSea) return;
     std::string error;
     auto field = waves::WaveField::create(w.model, w.sea, error);
     if (!field) throw std::invalid_argument(error);  // parseWaveOptions checked the ranges first
@@ -149,8 +154,11 @@ class Querier {
       const std::size_t s = b * kGrain, m = std::min(kGrain, n - s);
       landSea_->classifyBatch(lat.data() + s, lon.data() + s, m, r.surface.data() + s);
       landSea_->elevationBatch(lat.data() + s, lon.data() + s, m, r.elevationM.data() + s);
-      sea_->queryClassified(lat.data() + s, lon.data() + s, t.data() + s, true, m, r.surface.data() + s,
-                            r.elevationM.data() + s, r.sea.data() + s);
+      if (sea_)
+        sea_->queryClassified(lat.data() + s, lon.data() + s, t.data() + s, true, m, r.surface.data() + s,
+                              r.elevationM.data() + s, r.sea.data() + s);
+      else
+        for (std::size_t i = s; i < s + m; ++i) r.sea[i].seaHeightM = std::numeric_limits<double>::quiet_NaN();
     });
   }
 
@@ -396,7 +404,7 @@ const Register kRegister{{"query", "Surface class (ocean/land/lake), terrain ele
                             sub.add_option("--mask-encoding", o->maskEncoding,
                                            "mask values, e.g. 0=ocean,1=land,2=lake (the default)");
                             sub.add_flag("--global", o->global, "rasters are whole-Earth equirectangular without georeferencing");
-                            sub.add_option("--waves", o->waves, "wave model: noise (default), noise-paper, gerstner, fft");
+                            sub.add_option("--waves", o->waves, "wave model: noise (default), noise-paper, gerstner, fft; none: class and elevation only");
                             sub.add_option("--time", o->time, "simulation time in s (default 0); a row's own time overrides it");
                             sub.add_option("--wind", o->wind, "wind speed at 19.5 m, m/s (0.2 .. 60; default 10)");
                             sub.add_option("--beaufort", o->beaufort, "wind as a Beaufort number 0..12 (instead of --wind)");

@@ -285,7 +285,7 @@ TEST(QueryCli, BadSeaStateValuesExitTwoNamingTheValue) {
       {"--wind -3", "--wind -3 m/s is outside 0.2 .. 60 m/s"},
       {"--wind 61", "--wind 61 m/s is outside"},
       {"--wind abc", "--wind 'abc' is not a finite number"},
-      {"--waves foo", "--waves 'foo' is not a wave model (noise, noise-paper, gerstner, fft)"},
+      {"--waves foo", "--waves 'foo' is not a wave model (noise, noise-paper, gerstner, fft, none)"},
       {"--time nan", "--time 'nan' is not a finite number"},
       {"--time inf", "--time 'inf' is not a finite number"},
       {"--wind-dir inf", "--wind-dir 'inf' is not a finite number"},
@@ -308,4 +308,14 @@ TEST(QueryCli, BadSeaStateValuesExitTwoNamingTheValue) {
   auto r = run(kGeocean + " query --points - --waves gerstner", "0,-150,1\n0,-150,nan\n");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("row 2: time 'nan' is not a finite number"), std::string::npos) << r.err;
+}
+
+TEST(QueryCli, WavesNoneGivesClassAndElevationOnly) {
+  auto r = run(kGeocean + " query --points - --waves none", "0,-150\n23,10\n");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("0,-150,ocean,-4125.25,0,null,null,null,null,null\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("23,10,land,788,0,null,null,null,null,null\n"), std::string::npos) << r.out;
+  r = run(kGeocean + " query 0 0 --waves bogus");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("'bogus'"), std::string::npos) << r.err;
 }
