@@ -9,7 +9,10 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
 
+#include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -295,57 +298,79 @@ int runQuery(const QueryOptions& o) {
     }
   } closer{in};
 
-  // Stream in blocks of whole lines: parse, compute and format in parallel,
-  // print in input order.
-  constexpr std::size_t kBlock = std::size_t(4) << 20;
-  std::string buf, error;
-  std::vector<std::string_view> lines;
-  std::vector<long> rowOf;
-  std::vector<PointRow> pts;
+  // A pipeline over blocks of whole lines: read (in order) -> split, parse,
+  // compute and format (blocks in parallel) -> write (in order), so reading
+  // and writing overlap the work instead of running between its stages.
+  constexpr std::size_t kBlock = std::size_t(1) << 20;
+  struct Block {
+    std::string text;   // whole lines
+    long firstRow = 0;  // row number of the block's first line
+    std::string out, error;
+  };
+  std::string carry, error;
   long row = 0;
-  bool eof = false;
-  while (!eof && error.empty()) {
-    const std::size_t keep = buf.size();
-    buf.resize(keep + kBlock);
-    const std::size_t got = std::fread(buf.data() + keep, 1, kBlock, in);
-    buf.resize(keep + got);
-    eof = got < kBlock;
-    if (eof && !buf.empty() && buf.back() != '\n') buf.push_back('\n');
-    lines.clear();
-    rowOf.clear();
-    std::size_t pos = 0;
-    for (std::size_t nl; (nl = buf.find('\n', pos)) != std::string::npos; pos = nl + 1) {
-      const std::string_view line(buf.data() + pos, nl - pos);
-      ++row;
-      if (row == 1 && isHeaderRow(line)) continue;
-      if (line.find_first_not_of(" \t\r") == std::string_view::npos) continue;  // blank line
-      lines.push_back(line);
-      rowOf.push_back(row);
-    }
-    pts.assign(lines.size(), {});
-    std::vector<std::string> errs(lines.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lines.size(), 4096), [&](const auto& r) {
-      for (std::size_t i = r.begin(); i < r.end(); ++i) errs[i] = parsePointRow(lines[i], rowOf[i], pts[i]);
-    });
-    std::size_t good = lines.size();
-    for (std::size_t i = 0; i < lines.size(); ++i)
-      if (!errs[i].empty()) {
-        error = errs[i];
-        good = i;
-        break;
-      }
-    pts.resize(good);
-    q->run(pts, res);
-    std::vector<std::string> parts((good + 4095) / 4096);
-    tbb::parallel_for(std::size_t(0), parts.size(), [&](std::size_t b) {
-      for (std::size_t i = b * 4096; i < std::min(good, (b + 1) * 4096); ++i)
-        q->format(pts[i], res.surface[i], res.elevationM[i], res.sea[i], parts[b]);
-    });
-    for (const auto& p : parts) out += p;
-    std::fwrite(out.data(), 1, out.size(), stdout);
-    out.clear();
-    buf.erase(0, pos);  // the partial last line waits for the next block
-  }
+  bool eof = false, stop = false;
+  std::fwrite(out.data(), 1, out.size(), stdout);  // the header
+  out.clear();
+  tbb::parallel_pipeline(
+      8,
+      tbb::make_filter<void, std::shared_ptr<Block>>(
+          tbb::filter_mode::serial_in_order,
+          [&](tbb::flow_control& fc) -> std::shared_ptr<Block> {
+            if (eof || stop) {
+              fc.stop();
+              return nullptr;
+            }
+            auto blk = std::make_shared<Block>();
+            blk->text = std::move(carry);
+            carry.clear();
+            const std::size_t keep = blk->text.size();
+            blk->text.resize(keep + kBlock);
+            const std::size_t got = std::fread(blk->text.data() + keep, 1, kBlock, in);
+            blk->text.resize(keep + got);
+            eof = got < kBlock;
+            if (eof && !blk->text.empty() && blk->text.back() != '\n') blk->text.push_back('\n');
+            const std::size_t lastNl = blk->text.rfind('\n');
+            const std::size_t cut = lastNl == std::string::npos ? 0 : lastNl + 1;
+            carry.assign(blk->text, cut, std::string::npos);  // the partial last line waits
+            blk->text.resize(cut);
+            blk->firstRow = row + 1;
+            row += long(std::count(blk->text.begin(), blk->text.end(), '\n'));
+            return blk;
+          }) &
+          tbb::make_filter<std::shared_ptr<Block>, std::shared_ptr<Block>>(
+              tbb::filter_mode::parallel,
+              [&](std::shared_ptr<Block> blk) {
+                std::vector<PointRow> pts;
+                long r = blk->firstRow - 1;
+                std::size_t pos = 0;
+                for (std::size_t nl; (nl = blk->text.find('\n', pos)) != std::string::npos; pos = nl + 1) {
+                  const std::string_view line(blk->text.data() + pos, nl - pos);
+                  ++r;
+                  if (r == 1 && isHeaderRow(line)) continue;
+                  if (line.find_first_not_of(" \t\r") == std::string_view::npos) continue;  // blank line
+                  PointRow p;
+                  if (auto e = parsePointRow(line, r, p); !e.empty()) {
+                    blk->error = std::move(e);
+                    break;
+                  }
+                  pts.push_back(p);
+                }
+                Results br;
+                q->run(pts, br);
+                for (std::size_t i = 0; i < pts.size(); ++i)
+                  q->format(pts[i], br.surface[i], br.elevationM[i], br.sea[i], blk->out);
+                return blk;
+              }) &
+          tbb::make_filter<std::shared_ptr<Block>, void>(tbb::filter_mode::serial_in_order,
+                                                         [&](std::shared_ptr<Block> blk) {
+                                                           if (stop) return;
+                                                           std::fwrite(blk->out.data(), 1, blk->out.size(), stdout);
+                                                           if (!blk->error.empty()) {
+                                                             error = std::move(blk->error);
+                                                             stop = true;  // later blocks are dropped
+                                                           }
+                                                         }));
   std::fflush(stdout);
   if (!error.empty()) {
     // Rows before the bad one were answered; the batch stops loudly here.
