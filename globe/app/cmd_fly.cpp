@@ -4,7 +4,7 @@
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
 #include "globe/render/Session.h"
-#include "plugin/render/OceanRenderer.h"
+#include "globe/host/OceanLayer.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -81,7 +81,7 @@ int runFly(const FlyArgs& a) {
   }
   if (!a.noOcean) {
     const std::string err =
-        ocean_render::addDefaultOcean(*s.renderer, s.world, a.waves, a.windMps, a.windFromDeg);
+        host::addPluginOcean(*s.renderer, a.waves, a.windMps, a.windFromDeg);
     if (!err.empty()) {
       std::fprintf(stderr, "geocean fly: %s\n", err.c_str());
       return kExitBadInput;

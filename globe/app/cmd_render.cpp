@@ -2,7 +2,7 @@
 #include "globe/app/Command.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Session.h"
-#include "plugin/render/OceanRenderer.h"
+#include "globe/host/OceanLayer.h"
 
 #include <cstdio>
 #include <string>
@@ -58,7 +58,7 @@ int runRender(const RenderArgs& a) {
   }
   if (!a.noOcean) {
     const std::string err =
-        ocean_render::addDefaultOcean(*s.renderer, s.world, a.waves, a.windMps, a.windFromDeg);
+        host::addPluginOcean(*s.renderer, a.waves, a.windMps, a.windFromDeg);
     if (!err.empty()) {
       std::fprintf(stderr, "geocean render: %s\n", err.c_str());
       return kExitBadInput;

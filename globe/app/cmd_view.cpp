@@ -1,6 +1,7 @@
 // `geocean view`: the interactive globe in a GLFW window. Without a display
 // it says so and points to the headless commands (exit code 4).
 #include "globe/app/Command.h"
+#include "globe/host/OceanLayer.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
 #include "globe/render/Framebuffer.h"
@@ -112,6 +113,12 @@ int runView(const ViewArgs& a) {
   {
     auto world = std::make_shared<render::WorldTextures>(render::loadDefaultWorld());
     render::GlobeRenderer renderer(world);
+    // The ocean through the plugin's C ABI, as any host engine loads it.
+    if (const std::string oceanErr = host::addPluginOcean(renderer, "noise", 10.0, 270.0); !oceanErr.empty()) {
+      std::fprintf(stderr, "geocean view: %s\n", oceanErr.c_str());
+      rc = kExitBadInput;
+      glfwSetWindowShouldClose(win, GLFW_TRUE);  // leave through the normal cleanup, context still current
+    }
     std::string err;
     auto waves = waves::WaveField::create(waves::Model::Noise, waves::SeaState{}, err);
     glfwSetWindowUserPointer(win, &c);

@@ -2,6 +2,11 @@
 
 #include <dlfcn.h>
 
+#include <cstdlib>
+#include <filesystem>
+#include <system_error>
+#include <vector>
+
 namespace geocean::host {
 
 namespace {
@@ -84,6 +89,32 @@ std::unique_ptr<OceanPlugin> OceanPlugin::load(const std::string& path, std::str
     resolve(handle, "geocean_release_gl", a.releaseGl, file, ignored);
   }
   return p;
+}
+
+std::unique_ptr<OceanPlugin> OceanPlugin::loadForExecutable(std::string& error) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv("GEOCEAN_PLUGIN"); env && *env) candidates.push_back(env);
+  std::error_code ec;
+  const fs::path exeDir = fs::read_symlink("/proc/self/exe", ec).parent_path();
+  if (!ec) {
+    candidates.push_back((exeDir / kDefaultLibrary).string());
+    candidates.push_back((exeDir / GEOCEAN_BIN_TO_LIB / kDefaultLibrary).lexically_normal().string());
+  }
+  candidates.push_back(kDefaultLibrary);
+  std::string tried;
+  for (const std::string& c : candidates) {
+    // A path that does not exist is skipped quietly; the search-path name is always tried.
+    if (c.find('/') != std::string::npos && !fs::exists(c, ec)) {
+      tried += "\n  " + c + ": no such file";
+      continue;
+    }
+    std::string why;
+    if (auto p = load(c, why)) return p;
+    tried += "\n  " + why;
+  }
+  error = "cannot find the ocean plugin " + std::string(kDefaultLibrary) + " (set GEOCEAN_PLUGIN to its path):" + tried;
+  return nullptr;
 }
 
 OceanPlugin::~OceanPlugin() {

@@ -65,6 +65,11 @@ class OceanPlugin {
   // two ABI versions that do not match.
   static std::unique_ptr<OceanPlugin> load(const std::string& path, std::string& error,
                                            uint32_t hostAbiVersion = GEOCEAN_ABI_VERSION);
+  // The plugin for Geocean's own executables, first found of: $GEOCEAN_PLUGIN;
+  // beside the running executable (the build tree); the install libdir
+  // relative to the executable's bindir; kDefaultLibrary on the search
+  // path. On failure `error` lists every place tried and why.
+  static std::unique_ptr<OceanPlugin> loadForExecutable(std::string& error);
   ~OceanPlugin();  // dlcloses the library: destroy every ocean first
   OceanPlugin(const OceanPlugin&) = delete;
   OceanPlugin& operator=(const OceanPlugin&) = delete;

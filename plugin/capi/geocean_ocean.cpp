@@ -360,6 +360,7 @@ struct FrameView {
   geocean::render::ViewMatrices vm;
   geocean::render::ViewPose pose;
   geocean::render::Lighting light;
+  bool reference = false;
 };
 
 FrameView frameViewOf(const geocean_view* v) {
@@ -424,6 +425,9 @@ FrameView frameViewOf(const geocean_view* v) {
   f.pose.height = h;
   f.light.sunEcef = glm::normalize(sun);
   f.light.timeS = v->time_s;
+  if (v->draw_flags & ~GEOCEAN_DRAW_REFERENCE)
+    bad("draw_flags " + std::to_string(v->draw_flags) + " has bits that are not GEOCEAN_DRAW_*");
+  f.reference = (v->draw_flags & GEOCEAN_DRAW_REFERENCE) != 0;
   return f;
 }
 
@@ -442,7 +446,7 @@ void fillView(geocean_view* view, const geocean::render::ViewMatrices& vm, const
   double* p = view->projection_matrix;
   std::fill(p, p + 16, 0.0);
   const double f = 1.0 / std::tan(0.5 * pose.fovYDeg * 3.14159265358979323846 / 180.0);
-  p[0] = f * double(pose.height) / double(pose.width);
+  p[0] = f / (double(pose.width) / double(pose.height));  // as render::viewMatrices, to the last bit
   p[5] = f;
   p[11] = -1.0;      // w = -z_view
   p[14] = vm.nearM;  // reversed Z: depth = near / -z_view
@@ -686,6 +690,7 @@ GEOCEAN_API geocean_status geocean_set_sea_state(geocean_ocean* ocean, const geo
       case GEOCEAN_WAVES_NOISE: model = geocean::waves::Model::Noise; break;
       case GEOCEAN_WAVES_NOISE_PAPER: model = geocean::waves::Model::NoisePaper; break;
       case GEOCEAN_WAVES_GERSTNER: model = geocean::waves::Model::Gerstner; break;
+      case GEOCEAN_WAVES_FFT: model = geocean::waves::Model::Fft; break;
       default:
         fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
              "sea_state->model " + std::to_string(sea_state->model) + " is not a geocean_wave_model");
@@ -847,7 +852,7 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
         gl.renderer = std::make_unique<geocean::ocean_render::OceanRenderer>(gl.world, snap->landSea, o);
       }
       gl.builtFrom = snap;
-      gl.renderer->draw(ocean->view->vm, ocean->view->pose, ocean->view->light, false);
+      gl.renderer->draw(ocean->view->vm, ocean->view->pose, ocean->view->light, ocean->view->reference);
     } catch (const geocean::render::ShaderError& e) {
       fail(GEOCEAN_ERROR_GL, e.what());
     }

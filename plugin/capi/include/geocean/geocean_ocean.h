@@ -90,7 +90,8 @@ typedef struct geocean_grid_placement {
 typedef enum geocean_wave_model {
   GEOCEAN_WAVES_NOISE = 0,       /* solid fractal noise on the 3D surface point (default) */
   GEOCEAN_WAVES_NOISE_PAPER = 1, /* paper 002's 2D noise at (lon cos(lat), lat); CPU only, has a seam */
-  GEOCEAN_WAVES_GERSTNER = 2     /* trochoidal waves from the sea spectrum, depth-aware */
+  GEOCEAN_WAVES_GERSTNER = 2,    /* trochoidal waves from the sea spectrum, depth-aware */
+  GEOCEAN_WAVES_FFT = 3          /* ABI 1.1: Tessendorf FFT ocean (paper 001), 2 cascades, choppy */
 } geocean_wave_model;
 
 /* The sea state. Fill with geocean_sea_state_init() first, then change
@@ -229,7 +230,12 @@ typedef struct geocean_view {
   int32_t viewport_height_px;
   double time_s;                 /* simulation time; the same t gives the same sea as the queries */
   double sun_dir_ecef[3];        /* towards the sun (any length > 0) */
+  uint32_t draw_flags;           /* GEOCEAN_DRAW_* bits, 0 by default */
 } geocean_view;
+
+/* geocean_view.draw_flags: the same geometry with a flat colour, the
+ * reference a host times the full shading against. */
+#define GEOCEAN_DRAW_REFERENCE 1u
 
 /* Fills *view with defaults: struct_size, a 1280x720 view 10,000 km above
  * (0 N, 0 E) looking down, 45 deg field of view, reversed-Z projection,
