@@ -75,11 +75,15 @@ static void BM_QueryOnePointColdProcess(benchmark::State& s) {
 static void BM_QueryMillionPointsCsv(benchmark::State& s) {
   run(s, {kGeocean, "query", "--points", "-"}, millionPoints(), 1e6);
 }
+static void BM_QueryMillionPointsCsvClassElevationOnly(benchmark::State& s) {
+  run(s, {kGeocean, "query", "--points", "-", "--waves", "none"}, millionPoints(), 1e6);
+}
 static void BM_QueryMillionPointsJson(benchmark::State& s) {
   run(s, {kGeocean, "query", "--points", "-", "--format", "json"}, millionPoints(), 1e6);
 }
 BENCHMARK(BM_BareOpenImageIOProcess)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
 BENCHMARK(BM_QueryOnePointColdProcess)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
 BENCHMARK(BM_QueryMillionPointsCsv)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_QueryMillionPointsCsvClassElevationOnly)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 BENCHMARK(BM_QueryMillionPointsJson)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 BENCHMARK_MAIN();
