@@ -3,17 +3,25 @@
 #include "globe/raster/World.h"
 #include "globe/render/WorldTextures.h"
 
+#include <algorithm>
+
 namespace geocean::render {
 
-namespace {
-WorldLayer layerOf(const raster::Raster& r) {
+WorldLayer layerOf(const raster::Raster& r, int channel) {
   if (!r.inMemory())
     throw raster::RasterError(r.path() + ": too large to upload as a texture (read through the cache)");
   WorldLayer l;
   l.width = r.width();
   l.height = r.height();
-  l.channels = r.channels();
-  l.values = r.pixels();
+  if (channel < 0) {
+    l.channels = r.channels();
+    l.values = r.pixels();
+  } else {
+    const auto& px = r.pixels();
+    const std::size_t stride = std::size_t(r.channels()), c = std::size_t(std::min(channel, r.channels() - 1));
+    l.values.resize(std::size_t(l.width) * l.height);
+    for (std::size_t i = 0; i < l.values.size(); ++i) l.values[i] = px[i * stride + c];
+  }
   const auto& t = r.transform();
   l.originLonDeg = t.originLonDeg;
   l.originLatDeg = t.originLatDeg;
@@ -21,7 +29,6 @@ WorldLayer layerOf(const raster::Raster& r) {
   l.latStepDeg = t.latStepDeg;
   return l;
 }
-}  // namespace
 
 WorldData loadDefaultWorld() {
   const raster::WorldFiles files = raster::defaultWorld();

@@ -13,6 +13,10 @@
 #include <string>
 #include <vector>
 
+namespace geocean::raster {
+class Raster;
+}
+
 namespace geocean::render {
 
 // Host-side inputs, row 0 first as stored, any global lon/lat grid.
@@ -28,6 +32,10 @@ struct WorldData {
   WorldLayer elevation;  // metres, ocean negative
   WorldLayer water;      // 1 water (ocean or lake), 0 land
 };
+
+// An in-memory raster as a layer: all channels, or only `channel` (>= 0).
+// Throws raster::RasterError for a cache-backed raster (too big to upload).
+WorldLayer layerOf(const raster::Raster& r, int channel = -1);
 
 // Loads the default world (globe/raster/World.h): imagery, ETOPO relief and
 // the 5' land/sea mask. Throws raster::RasterError naming the file.

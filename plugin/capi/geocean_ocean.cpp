@@ -194,21 +194,6 @@ geocean::render::WorldData worldDataFor(const Snapshot& snap) {
   d.imagery.values = {0.0f, 0.0f, 0.0f};
   d.imagery.lonStepDeg = 360.0;
   d.imagery.latStepDeg = -180.0;
-  auto copy = [](const Raster& r) {
-    WorldLayer l;
-    l.width = r.width();
-    l.height = r.height();
-    l.channels = 1;
-    const auto& px = r.pixels();
-    l.values.resize(std::size_t(l.width) * l.height);
-    for (std::size_t i = 0; i < l.values.size(); ++i) l.values[i] = px[i * std::size_t(r.channels())];
-    const auto& t = r.transform();
-    l.originLonDeg = t.originLonDeg;
-    l.originLatDeg = t.originLatDeg;
-    l.lonStepDeg = t.lonStepDeg;
-    l.latStepDeg = t.latStepDeg;
-    return l;
-  };
   auto directly = [](const std::shared_ptr<const Raster>& r) {
     return r && r->inMemory() && r->transform().global && r->transform().latStepDeg < 0 &&
            std::abs(r->transform().latStepDeg * r->height() + 180.0) < 1e-6;
@@ -235,7 +220,7 @@ geocean::render::WorldData worldDataFor(const Snapshot& snap) {
   };
   std::vector<double> lat, lon;
   if (snap.elevation && directly(snap.elevation)) {
-    d.elevation = copy(*snap.elevation);
+    d.elevation = geocean::render::layerOf(*snap.elevation, 0);
   } else if (snap.elevation) {
     d.elevation = globalGrid(snap.elevation);
     centres(d.elevation, lat, lon);
@@ -249,7 +234,7 @@ geocean::render::WorldData worldDataFor(const Snapshot& snap) {
   for (float& v : d.elevation.values)
     if (v != v) v = 0.0f;
   if (snap.mask && directly(snap.mask)) {
-    d.water = copy(*snap.mask);
+    d.water = geocean::render::layerOf(*snap.mask, 0);
     for (float& v : d.water.values) v = (v == 0.0f || v == 2.0f) ? 1.0f : 0.0f;
   } else if (snap.landSea) {
     d.water = globalGrid(snap.mask ? snap.mask : snap.elevation);
