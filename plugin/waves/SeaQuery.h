@@ -37,6 +37,8 @@ class SeaQuery {
   // The same for points whose surface class (and, if elevationM is not null,
   // terrain elevation in m) the caller already looked up, e.g. to print them
   // too; runs on the calling thread only (callers parallelise by blocks).
+  // Both batch forms use WaveField::surfaceBatch (SIMD); query() the scalar
+  // surfaceAt. They agree to rounding (tests/waves/test_batch.cpp).
   void queryClassified(const double* latDeg, const double* lonDeg, const double* tS, bool timesPerPoint,
                        std::size_t n, const ocean::Surface* surface, const float* elevationM,
                        SeaQueryResult* out) const;
@@ -44,6 +46,7 @@ class SeaQuery {
   const WaveField& field() const { return field_; }
 
  private:
+  double depthAt(double latDeg, double lonDeg, float elevationM) const;  // elevationM NaN: look it up
   SeaQueryResult atWater(double latDeg, double lonDeg, double tS, ocean::Surface s, float elevationM) const;
   WaveField field_;
   std::shared_ptr<const ocean::LandSea> landSea_;

@@ -1,6 +1,7 @@
 #include "plugin/waves/WaveField.h"
 
 #include "plugin/waves/FftOcean.h"
+#include "plugin/waves/WaveBatch.h"
 
 #include <algorithm>
 #include <array>
@@ -569,6 +570,37 @@ SurfacePoint WaveField::surfaceAt(double latDeg, double lonDeg, double tS, doubl
   sp.iterations = it;
   sp.restOffsetEnuM = {glm::dot(d, f.e), glm::dot(d, f.n), glm::dot(d, f.u)};
   return sp;
+}
+
+void WaveField::surfaceBatch(const double* latDeg, const double* lonDeg, const double* tS, bool timesPerPoint,
+                             const double* depthM, std::size_t n, SurfacePoint* out) const {
+  const batch::Points pts{latDeg, lonDeg, tS, timesPerPoint, depthM, n};
+  if (n == 0) return;
+  if (model_ == Model::Noise) {
+    std::array<batch::NoiseOctave, kMaxOctaves> oc{};
+    for (std::size_t i = 0; i < octaves_.size(); ++i) {
+      const Octave& o = octaves_[i];
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) oc[i].row[r][c] = o.row[r][c];
+      for (int c = 0; c < 3; ++c) oc[i].vel[c] = o.velocity[c];
+      oc[i].amplitudeM = o.amplitudeM;
+      oc[i].seed = o.seed;
+    }
+    batch::noise(oc.data(), int(octaves_.size()), pts, out);
+    return;
+  }
+  if (model_ == Model::Gerstner) {
+    std::array<batch::GerstnerComponent, kMaxComponents> gc{};
+    for (std::size_t i = 0; i < components_.size(); ++i) {
+      const Component& c = components_[i];
+      gc[i] = {{c.source.x, c.source.y, c.source.z}, c.omega, c.kRef, c.kRef * kMeanRadiusM, c.amplitudeM,
+               c.phase0, c.choppiness};
+    }
+    batch::gerstner(gc.data(), int(components_.size()), pts, out);
+    return;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = surfaceAt(latDeg[i], lonDeg[i], timesPerPoint ? tS[i] : tS[0], depthM ? depthM[i] : kDeepWaterM);
 }
 
 }  // namespace geocean::waves

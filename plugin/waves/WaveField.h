@@ -33,6 +33,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -127,6 +128,16 @@ class WaveField {
   // The displaced surface exactly above (latDeg, lonDeg): the horizontal
   // displacement is inverted by Newton iteration to within 0.01 mm.
   SurfacePoint surfaceAt(double latDeg, double lonDeg, double tS, double depthM = kDeepWaterM) const;
+
+  // The batch form of surfaceAt: out[i] for (latDeg[i], lonDeg[i]) at time
+  // tS[i] (tS[0] for every point when timesPerPoint is false) and depth
+  // depthM[i] (deep water everywhere when depthM is null). Models noise and
+  // Gerstner run a SIMD path (Highway, 2-8 points per vector, dispatched to
+  // the CPU's widest vectors) that agrees with surfaceAt to rounding
+  // (tests/waves/test_batch.cpp); the others loop over surfaceAt. Runs on the
+  // calling thread.
+  void surfaceBatch(const double* latDeg, const double* lonDeg, const double* tS, bool timesPerPoint,
+                    const double* depthM, std::size_t n, SurfacePoint* out) const;
 
   // Significant wave height (m) of the sea state's spectrum, 4 sqrt(m0).
   double spectrumHsM() const { return hsM_; }
