@@ -1,40 +1,65 @@
-// Sea-height query throughput per model, one thread and the TBB batch on all
-// threads, with each rate as a fraction of the floating-point limit for the
-// operations a query needs. Not run by ctest; results in docs/PERFORMANCE.md.
+// Sea-height query throughput per model: the scalar query (surfaceAt), the
+// SIMD batch (WaveField::surfaceBatch) on one thread, and the TBB batches
+// (SeaQuery::queryBatch = SIMD, and a TBB loop over surfaceAt = scalar) on
+// 1 and 2 threads; each rate as a fraction of this machine's floating-point
+// limit, measured in the same run (BM_FpPeak: FMA chains at the widest
+// dispatched width). Not run by ctest; results in docs/PERFORMANCE.md.
 //
-// Flops per query are counted by hand from shaders/waves.glsl and
-// WaveField.cpp (adds, muls, compares-as-selects each 1; sqrt, division 1;
-// each libm sin/cos/atan2/fmod call 20, about its polynomial's length):
-//  - solid noise, per octave: lattice coordinate at the origin 21, floor and
-//    fraction 6, patch-relative offset 24, wv_perlin3 268 (fade 39, eight
-//    corner dot products 56, interpolation of value 39 and gradient 134),
-//    accumulation 28: 347. Per query: frame, ECEF and ENU 200. 8 octaves: 2976.
-//  - Gerstner, per component: patch data at the point (waveAt) 65; one
-//    kernel evaluation 220 (arc offset 40, small-angle atan 16, direction 45,
-//    sin+cos 40, taper 10, accumulation 69). Per evaluation 200 more; the
-//    query evaluates 1 + iterations times (counter "iter").
-//  - paper noise, per octave: 2D noise 110 + accumulation 20; per query 120.
+// Flops a query needs, counted by hand in the SIMD code (WaveBatch.cpp) per
+// point: add, sub, mul, div, sqrt, floor, min, max 1; FMA 2 (the unit of the
+// peak). Not counted: integer hash ops, compares, selects, conversions,
+// sign-bit xors (the noise query has ~1 700 of those per point).
+//  - noise, per octave: lattice position 27, corner offsets 3, 8 gradient
+//    decodings 48, fade 39, lerp-tree value and gradient 109, accumulation
+//    29: 255. Per query: locate (2 sincos of 39) 97, normal 20. 8 octaves: 2 157.
+//  - Gerstner, per component and query: waveAt (arc, atan2 ~50, phase,
+//    frame) 100. Per evaluation: 69 + 16 x 179 (arc offset 32, small-angle
+//    atan 13, phase 7, direction 32, taper 9, sincos 39, accumulation 47)
+//    + 50 = 2 983; per Newton step 40; frame 124. The query evaluates
+//    1 + iterations times (counter "iter": the mean over points, i.e. what a
+//    query needs; SIMD lanes of one vector run until the slowest converges).
+//  - paper noise, per octave: 2D noise 110 + accumulation 20; per query 120
+//    (scalar only).
 //  - FFT: plane entries at the point 120; per evaluation 60 (frame, weights)
 //    + per plane (2 on average at most) 100 + per cascade 140 (8 texel
 //    fetches, bilinear value, u and v derivatives, velocity): 820; the
-//    query evaluates 1 + iterations times. All queries at one time (the
-//    tables are cached per time; BM_FftTables is the cost of a new time).
+//    query evaluates 1 + iterations times (scalar only). All queries at one
+//    time (the tables are cached per time; BM_FftTables is a new time).
 #include "plugin/waves/SeaQuery.h"
+#include "plugin/waves/WaveBatch.h"
+#include "tests/waves/bench_fp_peak.h"
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
+#include <ctime>
 #include <random>
 #include <vector>
 
 using namespace geocean::waves;
 
 namespace {
-// PLATFORM.md: 65 GFLOP/s double per core with 256-bit FMA (AVX2). The
-// library is built for the x86-64-v2 baseline (SSE4.2, no FMA: 2-wide add +
-// 2-wide mul per cycle, a quarter of that).
-constexpr double kPeakFlopsPerCore = 65e9;
+// FMA peak (flop/s, one core) measured at start-up in CPU time of this
+// thread, like the per-query rates: best of 7 runs of ~0.1 s (the machine
+// is shared; the best run is the least disturbed one).
+double cpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+double measurePeak() {
+  double best = 0;
+  for (int r = 0; r < 7; ++r) {
+    const double t0 = cpuSeconds();
+    const double flops = geocean::waves::bench::fmaChains(20'000'000);
+    best = std::max(best, flops / (cpuSeconds() - t0));
+  }
+  return best;
+}
+const double kPeakFlopsPerCore = measurePeak();
 
 struct Points {
   std::vector<double> lat, lon, t;
@@ -51,11 +76,12 @@ WaveField field(Model m) {
 }
 
 double flopsPerQuery(Model m, double iterations) {
+  const double evals = 1.0 + iterations;
   switch (m) {
-    case Model::Noise: return 200.0 + 8 * 347.0;
+    case Model::Noise: return 117.0 + 8 * 255.0;
     case Model::NoisePaper: return 120.0 + 8 * 130.0;
-    case Model::Gerstner: return 16 * 65.0 + (1.0 + iterations) * (200.0 + 16 * 220.0);
-    case Model::Fft: return 120.0 + (1.0 + iterations) * 820.0;
+    case Model::Gerstner: return 124.0 + 16 * 100.0 + evals * 2983.0 + iterations * 40.0;
+    case Model::Fft: return 120.0 + evals * 820.0;
   }
   return 0;
 }
@@ -65,6 +91,7 @@ void report(benchmark::State& state, Model m, double queries, double iterations,
   state.counters["iter"] = iterations;
   state.counters["flop/query"] = flopsPerQuery(m, iterations);
   // Fraction of the FP limit reached: (queries/s * flops/query) / (cores * peak).
+  state.counters["peak_GFLOPs"] = kPeakFlopsPerCore * 1e-9;
   state.counters["of_fp_limit"] = benchmark::Counter(
       queries * flopsPerQuery(m, iterations) / (threads * kPeakFlopsPerCore), benchmark::Counter::kIsRate);
 }
@@ -87,10 +114,48 @@ void BM_Query(benchmark::State& state) {
 }
 BENCHMARK(BM_Query)->Arg(int(Model::Noise))->Arg(int(Model::NoisePaper))->Arg(int(Model::Gerstner))->Arg(int(Model::Fft));
 
-// The batch form (no land mask: pure wave cost) on 1 and 2 threads; real time.
+// Mean iterations per point of the Newton inversion (what a query needs).
+double meanIterations(const WaveField& f, const Points& p, bool oneTime) {
+  double iters = 0;
+  for (std::size_t i = 0; i < 1024; ++i) iters += f.surfaceAt(p.lat[i], p.lon[i], oneTime ? p.t[0] : p.t[i]).iterations;
+  return iters / 1024;
+}
+
+// The SIMD batch on the calling thread (no TBB, no land mask).
+void BM_SimdBatch(benchmark::State& state) {
+  const Model m = Model(state.range(0));
+  const WaveField f = field(m);
+  const std::size_t n = 4096;
+  const Points p(n);
+  std::vector<SurfacePoint> out(n);
+  double queries = 0;
+  for (auto _ : state) {
+    f.surfaceBatch(p.lat.data(), p.lon.data(), p.t.data(), m != Model::Fft, nullptr, n, out.data());
+    benchmark::DoNotOptimize(out.data());
+    queries += double(n);
+  }
+  // Newton evaluations per vector (the slowest lane of each): the lanes' waste.
+  const std::size_t lanes = geocean::waves::batch::lanes();
+  double vecEvals = 0;
+  for (std::size_t i = 0; i < n; i += lanes) {
+    int mx = 0;
+    for (std::size_t k = i; k < std::min(n, i + lanes); ++k) mx = std::max(mx, out[k].iterations);
+    vecEvals += 1 + mx;
+  }
+  state.counters["vec_evals"] = vecEvals / double((n + lanes - 1) / lanes);
+  state.SetLabel(std::string(toString(m)) + " simd " + geocean::waves::batch::targetName() + " x" +
+                 std::to_string(lanes));
+  report(state, m, queries, meanIterations(f, p, m == Model::Fft), 1);
+}
+BENCHMARK(BM_SimdBatch)->Arg(int(Model::Noise))->Arg(int(Model::Gerstner));
+
+// The batch forms (no land mask: pure wave cost) on 1 and 2 threads, real
+// time: SeaQuery::queryBatch (SIMD for noise and Gerstner) and, for
+// comparison, the same TBB blocks calling the scalar surfaceAt.
 void BM_Batch(benchmark::State& state) {
   const Model m = Model(state.range(0));
   const int threads = int(state.range(1));
+  const bool simd = state.range(2) != 0;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   const SeaQuery q(field(m), nullptr);
   const std::size_t n = 1 << 16;
@@ -98,21 +163,38 @@ void BM_Batch(benchmark::State& state) {
   std::vector<SeaQueryResult> out(n);
   double queries = 0;
   for (auto _ : state) {
-    q.queryBatch(p.lat.data(), p.lon.data(), p.t.data(), m != Model::Fft, n, out.data());
+    if (simd) {
+      q.queryBatch(p.lat.data(), p.lon.data(), p.t.data(), m != Model::Fft, n, out.data());
+    } else {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 512), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i)
+          out[i].seaHeightM = q.field().surfaceAt(p.lat[i], p.lon[i], m == Model::Fft ? p.t[0] : p.t[i]).heightM;
+      });
+    }
     benchmark::DoNotOptimize(out.data());
     queries += double(n);
   }
-  double iters = 0;
-  for (std::size_t i = 0; i < 1024; ++i)
-    iters += q.field().surfaceAt(p.lat[i], p.lon[i], m == Model::Fft ? p.t[0] : p.t[i]).iterations;
-  state.SetLabel(std::string(toString(m)) + " threads=" + std::to_string(threads));
-  report(state, m, queries, iters / 1024, threads);
+  state.SetLabel(std::string(toString(m)) + (simd ? " simd" : " scalar") + " threads=" + std::to_string(threads));
+  report(state, m, queries, meanIterations(q.field(), p, m == Model::Fft), threads);
 }
 BENCHMARK(BM_Batch)
-    ->Args({int(Model::Noise), 1})->Args({int(Model::Noise), 2})
-    ->Args({int(Model::Gerstner), 1})->Args({int(Model::Gerstner), 2})
-    ->Args({int(Model::Fft), 1})->Args({int(Model::Fft), 2})
+    ->Args({int(Model::Noise), 1, 1})->Args({int(Model::Noise), 2, 1})
+    ->Args({int(Model::Noise), 1, 0})->Args({int(Model::Noise), 2, 0})
+    ->Args({int(Model::Gerstner), 1, 1})->Args({int(Model::Gerstner), 2, 1})
+    ->Args({int(Model::Gerstner), 1, 0})->Args({int(Model::Gerstner), 2, 0})
+    ->Args({int(Model::Fft), 1, 0})->Args({int(Model::Fft), 2, 0})
     ->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// The FP limit itself, 1 and 2 threads (per-core peak x 2 if both cores are free).
+void BM_FpPeak(benchmark::State& state) {
+  double flops = 0;
+  for (auto _ : state) flops += geocean::waves::bench::fmaChains(1'000'000);
+  state.counters["GFLOPs"] = benchmark::Counter(flops * 1e-9, benchmark::Counter::kIsRate);
+  state.SetLabel(std::string(geocean::waves::batch::targetName()) + " x" +
+                 std::to_string(geocean::waves::batch::lanes()));
+}
+BENCHMARK(BM_FpPeak)->Threads(1)->Threads(2)->UseRealTime();
+
 // FFT table synthesis for one new time (2 cascades x 4 inverse 128^2 FFTs).
 void BM_FftTables(benchmark::State& state) {
   const WaveField f = field(Model::Fft);
