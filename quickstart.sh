@@ -13,7 +13,7 @@ packages=(
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   proj-bin gmt gmt-gshhg-low xvfb xauth
-  libkissfft-dev libhwy-dev
+  libkissfft-dev libhwy-dev libimgui-dev
 )
 missing=()
 for p in "${packages[@]}"; do

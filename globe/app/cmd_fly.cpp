@@ -4,7 +4,10 @@
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
 #include "globe/render/Session.h"
+#include "globe/gl/Hud.h"
 #include "globe/host/OceanLayer.h"
+
+#include <epoxy/gl.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -29,6 +32,7 @@ struct FlyArgs {
   double windMps = 10.0;
   double windFromDeg = 270.0;
   bool reference = false;
+  bool hud = false;
 };
 
 int runFly(const FlyArgs& a) {
@@ -79,12 +83,21 @@ int runFly(const FlyArgs& a) {
     std::fprintf(stderr, "geocean fly: %s\n", e.what());
     return kExitNoDisplay;
   }
+  std::shared_ptr<host::PluginOceanLayer> ocean;
   if (!a.noOcean) {
-    const std::string err =
-        host::addPluginOcean(*s.renderer, a.waves, a.windMps, a.windFromDeg);
+    const std::string err = host::addPluginOcean(*s.renderer, a.waves, a.windMps, a.windFromDeg, &ocean);
     if (!err.empty()) {
       std::fprintf(stderr, "geocean fly: %s\n", err.c_str());
       return kExitBadInput;
+    }
+  }
+  std::unique_ptr<gl::Hud> hud;  // declared after the session: destroyed while its context lives
+  if (a.hud) {
+    std::string err;
+    hud = gl::Hud::create(err);
+    if (!hud) {
+      std::fprintf(stderr, "geocean fly: --hud: %s\n", err.c_str());
+      return kExitNoDisplay;
     }
   }
   csv << "frame,time_s,lat,lon,alt_m,pitch_deg,tiles,sky_ms,terrain_ms,ocean_ms,total_ms";
@@ -100,6 +113,18 @@ int runFly(const FlyArgs& a) {
     fs.sunEcef = sun;
     fs.timed = true;
     const auto t = s.render(pose, fs);
+    if (hud) {  // drawn after the timed passes, so timings.csv is the same with or without it
+      gl::HudValues hv;
+      hv.latDeg = pose.latDeg, hv.lonDeg = pose.lonDeg, hv.altM = pose.altM;
+      hv.fps = t.totalMs > 0.0 ? 1000.0 / t.totalMs : 0.0;  // of this frame's render alone
+      if (ocean) {
+        double lat = pose.latDeg, lon = pose.lonDeg;
+        hv.seaKnown = ocean->plugin().api().querySeaSurface(ocean->ocean(), 1, &lat, &lon, fs.timeS,
+                                                            &hv.seaHeightM, nullptr, nullptr) == GEOCEAN_OK;
+      }
+      glViewport(0, 0, pose.width, pose.height);
+      hud->draw(pose.width, pose.height, 1.0 / a.fps, hv);
+    }
     if (!a.noImages) {
       char name[64];
       std::snprintf(name, sizeof name, "/frame_%05d.png", f);
@@ -136,6 +161,8 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                       sub.add_flag("--no-images", a->noImages, "time the frames without writing PNGs");
                       sub.add_flag("--reference", a->reference,
                                    "also draw each frame with trivial shaders (the ratio reference)");
+                      sub.add_flag("--hud", a->hud,
+                                   "draw the viewer's HUD (lat, lon, altitude, render fps, sea height) in the frames");
                       sub.add_flag("--no-ocean", a->noOcean, "terrain and distant-sea shading only");
                       sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
                       sub.add_option("--wind", a->windMps, "wind speed, m/s");

@@ -1,5 +1,7 @@
-// `geocean view`: the interactive globe in a GLFW window. Without a display
-// it says so and points to the headless commands (exit code 4).
+// `geocean view`: the interactive globe in a GLFW window with a HUD (lat,
+// lon, altitude, fps, sea height under the camera). Without a display it
+// says so and points to the headless commands (exit code 4). --frames N
+// runs a scripted number of frames and exits (tests under Xvfb, memory).
 #include "globe/app/Command.h"
 #include "globe/host/OceanLayer.h"
 #include "globe/render/CliParse.h"
@@ -7,7 +9,7 @@
 #include "globe/render/Framebuffer.h"
 #include "globe/render/GlDebug.h"
 #include "globe/render/GlobeRenderer.h"
-#include "plugin/waves/WaveField.h"
+#include "globe/gl/Hud.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -17,7 +19,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <string>
+#include <vector>
+
+#include <unistd.h>
 
 namespace geocean::app {
 namespace {
@@ -25,7 +31,23 @@ namespace {
 struct ViewArgs {
   std::string flyTo;  // LAT,LON
   std::string size = "1280x720";
+  double flightS = 30.0;   // interactive --fly-to duration
+  int frames = 0;          // > 0: draw this many frames, then exit
+  std::string screenshot;  // PNG of the last of --frames
+  std::string statsCsv;    // per-frame CSV (position, sea, fps, resident memory)
+  bool noHud = false;
 };
+
+// Height of the drawn sea surface above the ellipsoid exactly under the
+// camera, from the plugin's own query (the same surface geocean_draw
+// displaces). NaN on land or lakes. False if the query fails.
+bool seaHeightUnder(const host::PluginOceanLayer& ocean, double latDeg, double lonDeg, double timeS, double& heightM) {
+  uint8_t cls = 0;
+  if (ocean.plugin().api().querySeaSurface(ocean.ocean(), 1, &latDeg, &lonDeg, timeS, &heightM, nullptr, &cls) !=
+      GEOCEAN_OK)
+    return false;
+  return true;
+}
 
 // Google Earth / Cesium style navigation: left-drag turns the globe under the
 // cursor, the wheel zooms by a fraction of the altitude, right-drag or the
@@ -65,6 +87,32 @@ struct Controller {
   }
 };
 
+// Resident set size of this process in kB (/proc/self/statm), 0 if unknown.
+long residentKb() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return 0;
+  long pages = 0, resident = 0;
+  const int n = std::fscanf(f, "%ld %ld", &pages, &resident);
+  std::fclose(f);
+  return n == 2 ? resident * (sysconf(_SC_PAGESIZE) / 1024) : 0;
+}
+
+// The window's back buffer (what is about to be shown: globe + HUD) as an image.
+render::Image readWindow(int w, int h) {
+  render::Image img;
+  img.width = w, img.height = h;
+  std::vector<std::uint8_t> rows(size_t(w) * size_t(h) * 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+  img.rgba.resize(rows.size());
+  for (int y = 0; y < h; ++y)  // GL's first row is the bottom one
+    std::copy_n(rows.data() + size_t(h - 1 - y) * size_t(w) * 4, size_t(w) * 4, img.rgba.data() + size_t(y) * size_t(w) * 4);
+  for (size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;  // the window has no meaningful alpha
+  return img;
+}
+
 int runView(const ViewArgs& a) {
   const char* display = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
@@ -83,14 +131,29 @@ int runView(const ViewArgs& a) {
     c.pose.latDeg = 20.0, c.pose.lonDeg = -30.0, c.pose.altM = 2.0e7;
     if (!a.flyTo.empty()) {
       const auto v = render::parseNumbers(a.flyTo, 2, "--fly-to LAT,LON");
+      if (std::abs(v[0]) > 90.0)
+        throw render::ArgError("--fly-to: latitude " + std::to_string(v[0]) + " is outside [-90, 90]");
       plan.fromLatDeg = v[0], plan.fromLonDeg = v[1] - 40.0;
       plan.toLatDeg = v[0], plan.toLonDeg = v[1];
       plan.headingDeg = 90.0;
       flying = true;
     }
+    if (a.frames < 0) throw render::ArgError("--frames: " + std::to_string(a.frames) + " must be >= 0 (0: until closed)");
+    if (!(a.flightS > 0.0) || !std::isfinite(a.flightS))
+      throw render::ArgError("--flight-seconds: " + std::to_string(a.flightS) + " must be positive");
+    if (!a.screenshot.empty() && a.frames == 0) throw render::ArgError("--screenshot needs --frames N (the frame it shows)");
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean view: %s\n", e.what());
     return kExitBadInput;
+  }
+  std::ofstream stats;
+  if (!a.statsCsv.empty()) {
+    stats.open(a.statsCsv);
+    if (!stats) {
+      std::fprintf(stderr, "geocean view: cannot write --stats '%s'\n", a.statsCsv.c_str());
+      return kExitBadInput;
+    }
+    stats << "frame,wall_s,lat,lon,alt_m,sea_height_m,fps,rss_kb\n";
   }
   if (!glfwInit()) {
     std::fprintf(stderr, "geocean view: cannot open the display '%s'; use geocean render\n", display ? display : "");
@@ -100,6 +163,7 @@ int runView(const ViewArgs& a) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, render::glDebugWanted() ? GLFW_TRUE : GLFW_FALSE);
+  glfwWindowHint(GLFW_RESIZABLE, a.frames > 0 ? GLFW_FALSE : GLFW_TRUE);  // scripted runs keep their size
   GLFWwindow* win = glfwCreateWindow(c.pose.width, c.pose.height, "Geocean", nullptr, nullptr);
   if (!win) {
     glfwTerminate();
@@ -107,33 +171,43 @@ int runView(const ViewArgs& a) {
     return kExitNoDisplay;
   }
   glfwMakeContextCurrent(win);
-  glfwSwapInterval(1);
+  glfwSwapInterval(a.frames > 0 ? 0 : 1);  // scripted runs go as fast as they can
   render::enableGlDebug();
   int rc = kExitOk;
   {
     auto world = std::make_shared<render::WorldTextures>(render::loadDefaultWorld());
     render::GlobeRenderer renderer(world);
     // The ocean through the plugin's C ABI, as any host engine loads it.
-    if (const std::string oceanErr = host::addPluginOcean(renderer, "noise", 10.0, 270.0); !oceanErr.empty()) {
+    std::shared_ptr<host::PluginOceanLayer> ocean;
+    if (const std::string oceanErr = host::addPluginOcean(renderer, "noise", 10.0, 270.0, &ocean);
+        !oceanErr.empty()) {
       std::fprintf(stderr, "geocean view: %s\n", oceanErr.c_str());
       rc = kExitBadInput;
       glfwSetWindowShouldClose(win, GLFW_TRUE);  // leave through the normal cleanup, context still current
     }
-    std::string err;
-    auto waves = waves::WaveField::create(waves::Model::Noise, waves::SeaState{}, err);
+    std::unique_ptr<gl::Hud> hud;
+    if (!a.noHud) {
+      std::string hudErr;
+      hud = gl::Hud::create(hudErr);
+      if (!hud) std::fprintf(stderr, "geocean view: %s; going on without it\n", hudErr.c_str());
+    }
+    bool showHud = true, hKeyWasDown = false;
     glfwSetWindowUserPointer(win, &c);
     glfwSetScrollCallback(win, [](GLFWwindow* w, double, double dy) {
       static_cast<Controller*>(glfwGetWindowUserPointer(w))->wheel += dy;
     });
-    auto t0 = std::chrono::steady_clock::now(), last = t0;
+    const auto t0 = std::chrono::steady_clock::now();
+    auto last = t0;
     double fpsSmoothed = 0.0, flightS = 0.0;
     std::unique_ptr<render::Framebuffer> fb;
-    while (!glfwWindowShouldClose(win)) {
+    for (int frame = 0; !glfwWindowShouldClose(win) && (a.frames == 0 || frame < a.frames); ++frame) {
       glfwPollEvents();
       const auto now = std::chrono::steady_clock::now();
       const double dt = std::chrono::duration<double>(now - last).count();
       last = now;
-      const double simT = std::chrono::duration<double>(now - t0).count();
+      // Scripted runs (--frames) step time and flight per frame, so they do
+      // not depend on how fast the machine draws; interactive runs use the clock.
+      const double simT = a.frames > 0 ? frame / 30.0 : std::chrono::duration<double>(now - t0).count();
       double x, y;
       glfwGetCursorPos(win, &x, &y);
       const bool l = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
@@ -148,8 +222,14 @@ int runView(const ViewArgs& a) {
              (key(GLFW_KEY_DOWN) ? 200 : 0) * dt - (key(GLFW_KEY_UP) ? 200 : 0) * dt);
       if (key(GLFW_KEY_R) || key(GLFW_KEY_HOME)) c.orbit(), flying = false;
       if (key(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(win, 1);
+      const bool hKey = key(GLFW_KEY_H);
+      if (hKey && !hKeyWasDown) showHud = !showHud;  // H toggles the HUD
+      hKeyWasDown = hKey;
       if (flying) {
-        flightS = std::min(1.0, flightS + dt / 30.0);  // the scripted flight takes 30 s
+        if (a.frames > 0)
+          flightS = a.frames > 1 ? double(frame) / double(a.frames - 1) : 1.0;
+        else
+          flightS = std::min(1.0, flightS + dt / a.flightS);
         c.pose = render::flightPose(plan, flightS, c.pose);
       }
       int w, h;
@@ -166,15 +246,39 @@ int runView(const ViewArgs& a) {
       glBindFramebuffer(GL_READ_FRAMEBUFFER, fb->id());
       glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
       glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+      if (frame > 0 && dt > 0.0)
+        fpsSmoothed = fpsSmoothed == 0.0 ? 1.0 / dt : 0.9 * fpsSmoothed + 0.1 / dt;
+      gl::HudValues hv;
+      hv.latDeg = c.pose.latDeg, hv.lonDeg = c.pose.lonDeg, hv.altM = c.pose.altM, hv.fps = fpsSmoothed;
+      if (ocean) hv.seaKnown = seaHeightUnder(*ocean, c.pose.latDeg, c.pose.lonDeg, simT, hv.seaHeightM);
+      if (hud && showHud) {
+        glViewport(0, 0, w, h);
+        hud->draw(w, h, dt, hv);
+      }
+      if (a.frames > 0 && frame == a.frames - 1 && !a.screenshot.empty()) {
+        try {
+          render::writePng(a.screenshot, readWindow(w, h));
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "geocean view: %s\n", e.what());
+          rc = kExitBadInput;
+        }
+      }
       glfwSwapBuffers(win);
-      fpsSmoothed = fpsSmoothed == 0.0 ? 1.0 / std::max(dt, 1e-6) : 0.9 * fpsSmoothed + 0.1 / std::max(dt, 1e-6);
-      char title[256];
-      std::string sea = "land";
-      if (waves && world->waterAt(c.pose.latDeg, c.pose.lonDeg) > 0.5)
-        sea = std::to_string(waves->surfaceAt(c.pose.latDeg, c.pose.lonDeg, simT).heightM).substr(0, 6) + " m";
-      std::snprintf(title, sizeof title, "Geocean  lat %.5f  lon %.5f  alt %.1f m  sea %s  %.1f fps",
-                    c.pose.latDeg, c.pose.lonDeg, c.pose.altM, sea.c_str(), fpsSmoothed);
-      glfwSetWindowTitle(win, title);
+      if (stats) {
+        char row[256];
+        std::snprintf(row, sizeof row, "%d,%.4f,%.7f,%.7f,%.3f,%.4f,%.2f,%ld\n", frame,
+                      std::chrono::duration<double>(now - t0).count(), c.pose.latDeg, c.pose.lonDeg, c.pose.altM,
+                      hv.seaKnown ? hv.seaHeightM : std::nan(""), fpsSmoothed, residentKb());
+        stats << row;
+      }
+      // The window title repeats the HUD on one line (task bars, window lists).
+      std::string title = "Geocean  " + gl::Hud::text(hv);
+      std::replace(title.begin(), title.end(), '\n', ' ');
+      glfwSetWindowTitle(win, title.c_str());
+    }
+    if (stats && !stats.flush()) {
+      std::fprintf(stderr, "geocean view: writing --stats '%s' failed\n", a.statsCsv.c_str());
+      rc = kExitDataError;
     }
   }
   glfwDestroyWindow(win);
@@ -187,6 +291,14 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                       auto a = std::make_shared<ViewArgs>();
                       sub.add_option("--fly-to", a->flyTo, "LAT,LON: fly from orbit to 2 m above this sea point");
                       sub.add_option("--size", a->size, "window WIDTHxHEIGHT");
+                      sub.add_option("--flight-seconds", a->flightS, "duration of the --fly-to flight (default 30)");
+                      sub.add_option("--frames", a->frames,
+                                     "draw N frames and exit (time and the --fly-to flight then advance per frame: "
+                                     "1/30 s, and the flight ends on the last frame); 0 = until closed");
+                      sub.add_option("--screenshot", a->screenshot, "with --frames: PNG of the last frame as shown");
+                      sub.add_option("--stats", a->statsCsv,
+                                     "CSV per frame: frame,wall_s,lat,lon,alt_m,sea_height_m,fps,rss_kb");
+                      sub.add_flag("--no-hud", a->noHud, "no HUD panel (H toggles it in the window)");
                       return [a] { return runView(*a); };
                     }}};
 

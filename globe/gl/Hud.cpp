@@ -1,0 +1,93 @@
+#include "globe/gl/Hud.h"
+
+#include <imgui.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace geocean::gl {
+
+std::unique_ptr<Hud> Hud::create(std::string& error) {
+  IMGUI_CHECKVERSION();
+  std::unique_ptr<Hud> h(new Hud);
+  ImGuiContext* previous = ImGui::GetCurrentContext();
+  h->ctx_ = ImGui::CreateContext();
+  ImGui::SetCurrentContext(h->ctx_);
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // a HUD has no layout to remember: never write imgui.ini
+  io.LogFilename = nullptr;
+  ImGui::StyleColorsDark();
+  ImGui::GetStyle().WindowRounding = 4.0f;
+  // The backend's own loader (gl3w) resolves GL through libGL.so.1, which
+  // glvnd dispatches to whichever context is current, EGL or GLX.
+  if (!ImGui_ImplOpenGL3_Init("#version 410 core")) {
+    ImGui::DestroyContext(h->ctx_);
+    h->ctx_ = nullptr;
+    ImGui::SetCurrentContext(previous);
+    error = "HUD: the Dear ImGui OpenGL 3 backend could not start (needs libGL.so.1 and a GL 4.1+ core context)";
+    return nullptr;
+  }
+  ImGui::SetCurrentContext(previous);
+  return h;
+}
+
+Hud::~Hud() {
+  if (!ctx_) return;
+  ImGuiContext* previous = ImGui::GetCurrentContext();
+  ImGui::SetCurrentContext(ctx_);
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui::DestroyContext(ctx_);
+  ImGui::SetCurrentContext(previous == ctx_ ? nullptr : previous);
+}
+
+std::string Hud::text(const HudValues& v) {
+  char buf[512];
+  int n = 0;
+  auto add = [&](const char* fmt, auto... args) {
+    if (n < int(sizeof buf)) n += std::snprintf(buf + n, sizeof buf - size_t(n), fmt, args...);
+  };
+  // 5 decimals of a degree: ~1 m on the ground.
+  add("lat %+10.5f\xC2\xB0\n", v.latDeg);
+  add("lon %+10.5f\xC2\xB0\n", v.lonDeg);
+  if (std::abs(v.altM) >= 10000.0)
+    add("alt %10.1f km\n", v.altM / 1000.0);
+  else
+    add("alt %10.2f m\n", v.altM);
+  if (v.seaKnown) {
+    if (std::isfinite(v.seaHeightM) && v.altM < 10000.0)
+      add("sea %+10.3f m  (%.2f m below the camera)\n", v.seaHeightM, v.altM - v.seaHeightM);
+    else if (std::isfinite(v.seaHeightM))
+      add("sea %+10.3f m\n", v.seaHeightM);
+    else
+      add("sea %10s\n", "land");
+  }
+  if (v.fps > 0.0) add("fps %10.1f", v.fps);
+  std::string s(buf, size_t(std::min(n, int(sizeof buf) - 1)));
+  while (!s.empty() && s.back() == '\n') s.pop_back();
+  return s;
+}
+
+void Hud::draw(int widthPx, int heightPx, double dtS, const HudValues& v) {
+  ImGuiContext* previous = ImGui::GetCurrentContext();
+  ImGui::SetCurrentContext(ctx_);
+  ImGuiIO& io = ImGui::GetIO();
+  io.DisplaySize = ImVec2(float(widthPx), float(heightPx));
+  io.DeltaTime = float(std::clamp(dtS, 1e-4, 1.0));  // ImGui asserts a positive step
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui::NewFrame();
+  const float margin = widthPx >= 480 ? 10.0f : 2.0f;
+  ImGui::SetNextWindowPos(ImVec2(margin, margin));
+  ImGui::SetNextWindowBgAlpha(0.45f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                 ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+  if (ImGui::Begin("geocean-hud", nullptr, flags)) ImGui::TextUnformatted(text(v).c_str());
+  ImGui::End();
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  ImGui::SetCurrentContext(previous);
+}
+
+}  // namespace geocean::gl
