@@ -168,6 +168,24 @@ struct Corner {
 HWY_INLINE Corner Grad(VU32 h, V ox, V oy, V oz) {
   const D d;
   const DU64 du;
+#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX3_DL
+  // AVX-512: g = h % 12 in 64-bit lanes (floor(h / 12) = h * 0xAAAAAAAB >> 35,
+  // exact for 32-bit h), then the 12 gradients from two-register permutes.
+  const auto hb = hn::PromoteTo(du, h);
+  const hn::Repartition<uint32_t, DU64> du32x2;
+  const auto q = hn::ShiftRight<35>(hn::MulEven(hn::BitCast(du32x2, hb), hn::Set(du32x2, 0xAAAAAAABu)));
+  const auto g = hn::Sub(hb, hn::Add(hn::ShiftLeft<3>(q), hn::ShiftLeft<2>(q)));
+  // wv_grad3 for g = 0..11: axis g >> 2 = 0: (s1, s2, 0), 1: (s1, 0, s2), 2: (0, s1, s2).
+  const __m512d x0 = _mm512_setr_pd(1, -1, 1, -1, 1, -1, 1, -1), x1 = _mm512_setr_pd(0, 0, 0, 0, 0, 0, 0, 0);
+  const __m512d y0 = _mm512_setr_pd(1, 1, -1, -1, 0, 0, 0, 0), y1 = _mm512_setr_pd(1, -1, 1, -1, 0, 0, 0, 0);
+  const __m512d z0 = _mm512_setr_pd(0, 0, 0, 0, 1, 1, -1, -1), z1 = _mm512_setr_pd(1, 1, -1, -1, 0, 0, 0, 0);
+  Corner c;
+  c.gx = V{_mm512_permutex2var_pd(x0, g.raw, x1)};
+  c.gy = V{_mm512_permutex2var_pd(y0, g.raw, y1)};
+  c.gz = V{_mm512_permutex2var_pd(z0, g.raw, z1)};
+  c.v = hn::MulAdd(c.gz, oz, hn::MulAdd(c.gy, oy, hn::Mul(c.gx, ox)));
+  return c;
+#else
   const DI32 di;
   const auto hb = hn::PromoteTo(du, h);
   const V s1 = hn::BitCast(d, hn::ShiftLeft<63>(hb));
@@ -183,6 +201,7 @@ HWY_INLINE Corner Grad(VU32 h, V ox, V oy, V oz) {
   c.gy = hn::IfThenElse(is0, one2, hn::IfThenElseZero(is2, one1));
   c.gz = hn::IfThenZeroElse(is0, one2);
   return c;
+#endif
 }
 
 HWY_INLINE V Lerp(V a, V b, V t) { return hn::MulAdd(t, hn::Sub(b, a), a); }

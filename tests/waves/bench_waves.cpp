@@ -9,9 +9,11 @@
 // point: add, sub, mul, div, sqrt, floor, min, max 1; FMA 2 (the unit of the
 // peak). Not counted: integer hash ops, compares, selects, conversions,
 // sign-bit xors (the noise query has ~1 700 of those per point).
-//  - noise, per octave: lattice position 27, corner offsets 3, 8 gradient
-//    decodings 48, fade 39, lerp-tree value and gradient 109, accumulation
-//    29: 255. Per query: locate (2 sincos of 39) 97, normal 20. 8 octaves: 2 157.
+//  - noise, per octave: lattice position 27, corner offsets 3, 8 corner
+//    dot products with the permuted gradients 40 (AVX-512; the selects of
+//    the other targets use 48), fade 39, lerp-tree value and gradient 109,
+//    accumulation 29: 247. Per query: locate (2 sincos of 39) 97, normal 20.
+//    8 octaves: 2 093.
 //  - Gerstner, per component and query: waveAt (arc, atan2 ~50, phase,
 //    frame) 100. Per evaluation: 69 + 16 x 179 (arc offset 32, small-angle
 //    atan 13, phase 7, direction 32, taper 9, sincos 39, accumulation 47)
@@ -30,6 +32,7 @@
 #include "tests/waves/bench_fp_peak.h"
 
 #include <benchmark/benchmark.h>
+#include <hwy/targets.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
@@ -78,7 +81,7 @@ WaveField field(Model m) {
 double flopsPerQuery(Model m, double iterations) {
   const double evals = 1.0 + iterations;
   switch (m) {
-    case Model::Noise: return 117.0 + 8 * 255.0;
+    case Model::Noise: return 117.0 + 8 * 247.0;
     case Model::NoisePaper: return 120.0 + 8 * 130.0;
     case Model::Gerstner: return 124.0 + 16 * 100.0 + evals * 2983.0 + iterations * 40.0;
     case Model::Fft: return 120.0 + evals * 820.0;
@@ -124,6 +127,8 @@ double meanIterations(const WaveField& f, const Points& p, bool oneTime) {
 // The SIMD batch on the calling thread (no TBB, no land mask).
 void BM_SimdBatch(benchmark::State& state) {
   const Model m = Model(state.range(0));
+  // range(1): a Highway target to force (HWY_AVX2, HWY_SSE4, ...), 0 = the best this CPU runs.
+  if (state.range(1) != 0) hwy::SetSupportedTargetsForTest(state.range(1));
   const WaveField f = field(m);
   const std::size_t n = 4096;
   const Points p(n);
@@ -146,8 +151,12 @@ void BM_SimdBatch(benchmark::State& state) {
   state.SetLabel(std::string(toString(m)) + " simd " + geocean::waves::batch::targetName() + " x" +
                  std::to_string(lanes));
   report(state, m, queries, meanIterations(f, p, m == Model::Fft), 1);
+  hwy::SetSupportedTargetsForTest(0);
 }
-BENCHMARK(BM_SimdBatch)->Arg(int(Model::Noise))->Arg(int(Model::Gerstner));
+BENCHMARK(BM_SimdBatch)
+    ->Args({int(Model::Noise), 0})->Args({int(Model::Gerstner), 0})
+    ->Args({int(Model::Noise), HWY_AVX2})->Args({int(Model::Gerstner), HWY_AVX2})
+    ->Args({int(Model::Noise), HWY_SSE4})->Args({int(Model::Gerstner), HWY_SSE4});
 
 // The batch forms (no land mask: pure wave cost) on 1 and 2 threads, real
 // time: SeaQuery::queryBatch (SIMD for noise and Gerstner) and, for
