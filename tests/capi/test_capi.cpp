@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <chrono>
 #include <cstdlib>
 #include <string>
 #include <thread>
@@ -278,8 +279,15 @@ TEST(CapiThreads, QueriesSeeWholeStatesWhileTheMaskIsReplaced) {
         (ones ? sawLand : sawOcean)++;
       }
     });
-  for (int k = 0; k < 200 || sawOcean + sawLand < 30; ++k)
+  for (int k = 0; k < 200; ++k) {
     ASSERT_EQ(a.setMaskPixels(o.h, (k % 2 ? ocean : land).data(), w, h, &pl), GEOCEAN_OK) << lastError();
+    // Let each state be seen: 4 more batches among 3 readers means one reader
+    // began a batch after the swap. Without this, on a loaded machine the
+    // readers could see only one state (the test then proves nothing).
+    const int seen = sawOcean + sawLand;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+    while (sawOcean + sawLand < seen + 4 && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+  }
   stop = true;
   for (auto& r : readers) r.join();
   EXPECT_EQ(failed, 0);
