@@ -168,7 +168,8 @@ int runPick(const PickOptions& o) {
   std::string out;
   if (o.format == "text") out += "hit,lat,lon,height_m,distance_m,surface\n";
   if (!rays.empty()) {
-    const grid::Picker picker(world->elevation, world->classifier, rays[0].originEcef);
+    // One ray: only the terrain cells along it (the whole world's mesh takes ~1 s to build).
+    const grid::Picker picker(world->elevation, world->classifier, rays[0].originEcef, rays);
     format(picker.pick(rays[0]), o.format, out);
     std::fwrite(out.data(), 1, out.size(), stdout);
     return kExitOk;

@@ -182,3 +182,56 @@ TEST(Picker, BatchMatchesSingleAndRejectsBadRays) {
   EXPECT_FALSE(res[100].hit);
   EXPECT_FALSE(res[101].hit);
 }
+
+// The CLI's one-ray scene (terrain cells along the ray only) gives the
+// whole-mesh answers: random rays over the plateau, level rays side-on at
+// every height band, rays from below the sea surface down to the -4000 m
+// floor near the poles (polar fans) and across the antimeridian.
+TEST(Picker, TerrainAlongTheRayOnlyGivesTheWholeMeshAnswers) {
+  const auto terrain = syntheticTerrain();
+  const glm::dvec3 origin = geo::toEcef({10, 20, 0});
+  const Picker whole(terrain, classify, origin);
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1, 1), u01(0, 1);
+  std::vector<PickRay> rays;
+  for (int i = 0; i < 60; ++i) {  // onto and around the plateau, from 10 m to 20,000 km
+    const glm::dvec3 target = geo::toEcef({10 + 8 * u(rng), 20 + 8 * u(rng), 0.0});
+    const glm::dvec3 o = geo::toEcef({10 + 30 * u(rng), 20 + 30 * u(rng), std::pow(10.0, 1 + 6.3 * u01(rng))});
+    rays.push_back({o, target - o});
+  }
+  for (int i = 0; i < 40; ++i) {  // level (grazing) rays at 0..6000 m in any direction
+    const geo::EnuFrame f = geo::enuFrame({10 + 6 * u(rng), 20 + 6 * u(rng), 6000 * u01(rng)});
+    const double az = 3.14159265 * u(rng);
+    rays.push_back({f.originEcef, std::cos(az) * f.east + std::sin(az) * f.north});
+  }
+  for (int i = 0; i < 40; ++i) {  // from under the sea surface, near the poles and lon 180
+    const double lat = (i % 2 ? 1 : -1) * (89.0 + 0.99 * u01(rng)), lon = i % 4 < 2 ? 180.0 * u(rng) : 179.9 + 0.2 * u01(rng);
+    const geo::EnuFrame f = geo::enuFrame({i % 3 ? lat : 0.3 * lat, lon, -3000.0 * u01(rng)});
+    rays.push_back({f.originEcef, -f.up + u(rng) * f.east + u(rng) * f.north});
+  }
+  std::vector<grid::PickResult> want(rays.size());
+  whole.pickBatch(rays.data(), rays.size(), want.data());
+  int terrainHits = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const Picker one(terrain, classify, rays[i].originEcef, std::vector<PickRay>{rays[i]});
+    EXPECT_LT(one.terrainTriangles(), whole.terrainTriangles() / 10) << i;
+    const grid::PickResult r = one.pick(rays[i]);
+    ASSERT_EQ(r.hit, want[i].hit) << i;
+    EXPECT_EQ(r.kind, want[i].kind) << i;
+    EXPECT_EQ(r.surface, want[i].surface) << i;
+    // Same double triangles; Embree may report the neighbour across an
+    // edge, whose plane meets the ray at the same point to rounding.
+    EXPECT_NEAR(r.distanceM, want[i].distanceM, 1e-6 * (1.0 + want[i].distanceM)) << i;
+    terrainHits += want[i].kind == grid::HitKind::Terrain;
+  }
+  EXPECT_GT(terrainHits, 60);  // the test exercises the terrain, not only the sea
+  // Several rays in one scene.
+  const Picker some(terrain, classify, origin, rays);
+  std::vector<grid::PickResult> got(rays.size());
+  some.pickBatch(rays.data(), rays.size(), got.data());
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    ASSERT_EQ(got[i].hit, want[i].hit) << i;
+    EXPECT_EQ(got[i].kind, want[i].kind) << i;
+    EXPECT_NEAR(got[i].distanceM, want[i].distanceM, 1e-6 * (1.0 + want[i].distanceM)) << i;
+  }
+}
