@@ -1,0 +1,208 @@
+// `geocean view` in a real window: GLFW on an Xvfb X server (xvfb-run),
+// Mesa llvmpipe through GLX. Scripted runs (--frames N) exit by themselves
+// and leave a screenshot of the window and a per-frame CSV.
+#include "globe/geo/Ellipsoid.h"
+#include "globe/raster/ImageIo.h"
+#include "tests/support/Subprocess.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+const std::string kGeocean = GEOCEAN_EXE;
+
+// Skips (with the reason) when there is no xvfb-run; that is the only reason to skip.
+#define REQUIRE_XVFB()                                                                                       \
+  if (!geocean::test::haveTool("xvfb-run"))                                                                   \
+  GTEST_SKIP() << "xvfb-run is not installed (Debian packages xvfb and xauth, in quickstart.sh): "           \
+                  "geocean view was not run in a window"
+
+geocean::test::ProcessResult view(const std::string& args) {
+  // -a: a free server number, so tests may run in parallel.
+  return geocean::test::run("xvfb-run -a -s '-screen 0 800x600x24' " + kGeocean + " view " + args);
+}
+
+std::string tempPath(const std::string& name) {
+  const std::string dir = ::testing::TempDir() + "/geocean_view";
+  std::filesystem::create_directories(dir);
+  return dir + "/" + name;
+}
+
+struct Rgb {
+  int r, g, b;
+};
+Rgb at(const geocean::raster::Image8& img, int x, int y) {
+  const unsigned char* p = img.pixels.data() + (size_t(y) * size_t(img.width) + size_t(x)) * size_t(img.channels);
+  return {p[0], p[1], p[2]};
+}
+bool isBlack(Rgb c) { return std::max({c.r, c.g, c.b}) < 24; }
+
+struct StatsRow {
+  int frame = 0;
+  double latDeg = 0, lonDeg = 0, altM = 0, seaM = 0, fps = 0;
+  long rssKb = 0;
+};
+std::vector<StatsRow> readStats(const std::string& path) {
+  std::vector<StatsRow> rows;
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "frame,wall_s,lat,lon,alt_m,sea_height_m,fps,rss_kb");
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+    EXPECT_EQ(f.size(), 8u) << line;
+    if (f.size() != 8) continue;
+    rows.push_back({std::stoi(f[0]), std::stod(f[2]), std::stod(f[3]), std::stod(f[4]), std::stod(f[5]),
+                    std::stod(f[6]), std::stol(f[7])});
+  }
+  return rows;
+}
+
+// From 20,000 km the window shows the whole Earth: a disc of angular radius
+// asin(R / d) (geometry, not our renderer) centred in the window, black space
+// around it; the HUD panel sits in the top-left corner.
+TEST(ViewWindow, OrbitScreenshotShowsTheGlobeAndTheHud) {
+  REQUIRE_XVFB();
+  const std::string withHud = tempPath("orbit_hud.png"), noHud = tempPath("orbit_nohud.png");
+  const std::string common = " --size 320x180 --frames 3 --screenshot ";
+  auto r = view(common + withHud);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  r = view(common + noHud + " --no-hud");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto img = geocean::raster::readImage8(withHud), bare = geocean::raster::readImage8(noHud);
+  ASSERT_EQ(img.width, 320);
+  ASSERT_EQ(img.height, 180);
+  ASSERT_GE(img.channels, 3);
+  ASSERT_EQ(bare.width, 320);
+  ASSERT_EQ(bare.channels, img.channels);
+
+  // The view starts over (20 N, 30 W), 20,000 km up, 45 deg vertical field of view.
+  // Ellipsoid radius there (geocentric) and the eye's distance from the centre.
+  const glm::dvec3 eye = geocean::geo::toEcef({20.0, -30.0, 2.0e7});
+  const glm::dvec3 ground = geocean::geo::toEcef({20.0, -30.0, 0.0});
+  const double d = glm::length(eye), radius = glm::length(ground);
+  const double fpx = 0.5 * img.height / std::tan(0.5 * 45.0 * 3.14159265358979 / 180.0);
+  const double discPx = std::tan(std::asin(radius / d)) * fpx;
+  const double cx = img.width / 2.0, cy = img.height / 2.0;
+  // The sun stands 40 deg above the nadir's horizon in the south-east
+  // (azimuth 135): the terminator lies 50 deg of arc from the nadir, inside
+  // the visible cap (76 deg), so the north-west rim is night. The disc is
+  // tested in its south-east half, all of it in daylight.
+  int inside = 0, insideLit = 0, outside = 0, outsideBlack = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const double dx = x + 0.5 - cx, dy = y + 0.5 - cy, rr = std::hypot(dx, dy);
+      // 3 px inside the limb (anti-aliasing); 8 px outside it (the
+      // atmosphere's glow). Outside is counted right of the disc, away from the HUD.
+      if (rr < discPx - 3.0 && dx + dy > 0.0) ++inside, insideLit += !isBlack(at(img, x, y));
+      if (rr > discPx + 8.0 && x > cx) ++outside, outsideBlack += isBlack(at(img, x, y));
+    }
+  ASSERT_GT(inside, 4000);
+  ASSERT_GT(outside, 5000);
+  EXPECT_GT(insideLit, 0.99 * inside) << "disc radius " << discPx << " px";
+  EXPECT_GT(outsideBlack, 0.99 * outside);
+
+  // The HUD: the same frame without it is the same picture away from the
+  // panel (frames are scripted: same poses, same simulation times), and the
+  // panel's text changes many pixels (a line of 10 glyphs lights > 100).
+  int rightDiff = 0, panelText = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const Rgb a = at(img, x, y), b = at(bare, x, y);
+      const int diff = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+      if (x >= img.width / 2) rightDiff = std::max(rightDiff, diff);
+      if (x < 140 && y < 100 && diff > 64) ++panelText;
+    }
+  EXPECT_LE(rightDiff, 1);
+  EXPECT_GT(panelText, 300);
+}
+
+// --fly-to with --frames: the scripted flight ends on the last frame 2 m
+// above the sea at the target; the HUD's sea height is the plugin's query of
+// the drawn surface, checked against `geocean query` (a separate route to
+// the same sea: the CLI's SeaQuery, default sea state = the viewer's).
+TEST(ViewWindow, FlyToEndsTwoMetresAboveTheSeaWithTheQueriedSeaHeight) {
+  REQUIRE_XVFB();
+  const std::string shot = tempPath("flyto.png"), stats = tempPath("flyto.csv");
+  const int frames = 12;
+  const auto r = view("--size 320x180 --fly-to 36.0,-5.6 --frames " + std::to_string(frames) + " --screenshot " +
+                      shot + " --stats " + stats);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto rows = readStats(stats);
+  ASSERT_EQ(int(rows.size()), frames);
+  EXPECT_NEAR(rows.front().altM, 2.0e7, 1.0);
+  const StatsRow& last = rows.back();
+  EXPECT_NEAR(last.latDeg, 36.0, 1e-7);
+  EXPECT_NEAR(last.lonDeg, -5.6, 1e-7);
+  EXPECT_NEAR(last.altM, 2.0, 1e-3);
+  for (size_t i = 1; i < rows.size(); ++i) EXPECT_LT(rows[i].altM, rows[i - 1].altM) << "frame " << i;
+  ASSERT_TRUE(std::isfinite(last.seaM)) << "the Strait of Gibraltar is sea";
+  // Frame f is drawn at simulation time f / 30 s.
+  const std::string t = std::to_string((frames - 1) / 30.0);
+  const auto q = geocean::test::run(kGeocean + " query --waves noise --time " + t + " 36.0 -5.6");
+  ASSERT_EQ(q.exitCode, 0) << q.err;
+  // Second CSV line, sixth field: sea_height_m.
+  std::stringstream qs(q.out);
+  std::string line;
+  std::getline(qs, line);
+  std::getline(qs, line);
+  std::vector<std::string> f;
+  std::stringstream ls(line);
+  for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+  ASSERT_GE(f.size(), 6u) << q.out;
+  // The viewer's CSV prints 4 decimals: 0.05 mm of rounding.
+  EXPECT_NEAR(last.seaM, std::stod(f[5]), 5.1e-5) << q.out;
+
+  // 2 m above the sea looking just below the horizon: sky above, water below.
+  const auto img = geocean::raster::readImage8(shot);
+  ASSERT_EQ(img.width, 320);
+  auto meanOf = [&](int y0, int y1, int x0) {
+    double s[3] = {0, 0, 0};
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < img.width; ++x, ++n) {
+        const Rgb c = at(img, x, y);
+        s[0] += c.r, s[1] += c.g, s[2] += c.b;
+      }
+    return Rgb{int(s[0] / n), int(s[1] / n), int(s[2] / n)};
+  };
+  const Rgb sky = meanOf(0, 20, img.width / 2);  // right of the HUD
+  const Rgb sea = meanOf(img.height * 3 / 4, img.height, 0);
+  EXPECT_GT(sea.b, sea.r + 20) << "sea " << sea.r << "," << sea.g << "," << sea.b;
+  EXPECT_GT(sky.r + sky.g + sky.b, sea.r + sea.g + sea.b + 60)
+      << "sky " << sky.r << "," << sky.g << "," << sky.b << " sea " << sea.r << "," << sea.g << "," << sea.b;
+}
+
+TEST(ViewWindow, BadOptionsExit2NamingTheOption) {
+  REQUIRE_XVFB();
+  auto r = view("--frames 2 --fly-to 95,0");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--fly-to"), std::string::npos) << r.err;
+  r = view("--screenshot x.png");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--screenshot"), std::string::npos) << r.err;
+  r = view("--frames 2 --stats /nonexistent-dir/s.csv");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("/nonexistent-dir/s.csv"), std::string::npos) << r.err;
+}
+
+// No display at all (not even Xvfb): view says so and suggests `render`.
+TEST(ViewWindow, WithoutADisplaySaysSoAndSuggestsRender) {
+  const auto r = geocean::test::run("env -u DISPLAY -u WAYLAND_DISPLAY " + kGeocean + " view --fly-to 36,-5.6");
+  EXPECT_EQ(r.exitCode, 4);
+  EXPECT_NE(r.err.find("no display"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("geocean render"), std::string::npos) << r.err;
+}
+
+}  // namespace
