@@ -15,11 +15,14 @@
 //    accumulation 29: 247. Per query: locate (2 sincos of 39) 97, normal 20.
 //    8 octaves: 2 093.
 //  - Gerstner, per component and query: waveAt (arc, atan2 ~50, phase,
-//    frame) 100. Per evaluation: 69 + 16 x 179 (arc offset 32, small-angle
-//    atan 13, phase 7, direction 32, taper 9, sincos 39, accumulation 47)
-//    + 50 = 2 983; per Newton step 40; frame 124. The query evaluates
-//    1 + iterations times (counter "iter": the mean over points, i.e. what a
-//    query needs; SIMD lanes of one vector run until the slowest converges).
+//    frame) 100. Per evaluation: 69 + 16 x 192 (arc offset 32, small-angle
+//    atan 13, phase 7, direction 32, taper 9, sincos 39, accumulation 47,
+//    second derivatives 13) + 54 = 3 195; per Chebyshev step 62; frame 124.
+//    The query evaluates 1 + iterations times (counter "iter": the mean over
+//    points of the SIMD path's steps, i.e. what a query needs; the lanes of
+//    one vector run until the slowest converges: "vec_evals"). The scalar
+//    path takes Newton steps (more of them, cheaper): its rows are rated
+//    with the same per-query count, the work the batch shows a query needs.
 //  - paper noise, per octave: 2D noise 110 + accumulation 20; per query 120
 //    (scalar only).
 //  - FFT: plane entries at the point 120; per evaluation 60 (frame, weights)
@@ -83,7 +86,7 @@ double flopsPerQuery(Model m, double iterations) {
   switch (m) {
     case Model::Noise: return 117.0 + 8 * 247.0;
     case Model::NoisePaper: return 120.0 + 8 * 130.0;
-    case Model::Gerstner: return 124.0 + 16 * 100.0 + evals * 2983.0 + iterations * 40.0;
+    case Model::Gerstner: return 124.0 + 16 * 100.0 + evals * 3195.0 + iterations * 62.0;
     case Model::Fft: return 120.0 + evals * 820.0;
   }
   return 0;
@@ -99,6 +102,16 @@ void report(benchmark::State& state, Model m, double queries, double iterations,
       queries * flopsPerQuery(m, iterations) / (threads * kPeakFlopsPerCore), benchmark::Counter::kIsRate);
 }
 
+// Mean iterations per point of the Newton inversion (what a query needs).
+// (the batch's steps for noise and Gerstner; surfaceAt's for the others).
+double meanIterations(const WaveField& f, const Points& p, bool oneTime) {
+  std::vector<SurfacePoint> out(1024);
+  f.surfaceBatch(p.lat.data(), p.lon.data(), p.t.data(), !oneTime, nullptr, out.size(), out.data());
+  double iters = 0;
+  for (const SurfacePoint& s : out) iters += s.iterations;
+  return iters / double(out.size());
+}
+
 void BM_Query(benchmark::State& state) {
   const Model m = Model(state.range(0));
   const WaveField f = field(m);
@@ -112,17 +125,11 @@ void BM_Query(benchmark::State& state) {
     queries += 1;
     i = (i + 1) & 4095;
   }
-  state.SetLabel(toString(m));
-  report(state, m, queries, iters / queries, 1);
+  state.SetLabel(std::string(toString(m)) + " scalar");
+  state.counters["scalar_iter"] = iters / queries;
+  report(state, m, queries, meanIterations(f, p, m == Model::Fft), 1);
 }
 BENCHMARK(BM_Query)->Arg(int(Model::Noise))->Arg(int(Model::NoisePaper))->Arg(int(Model::Gerstner))->Arg(int(Model::Fft));
-
-// Mean iterations per point of the Newton inversion (what a query needs).
-double meanIterations(const WaveField& f, const Points& p, bool oneTime) {
-  double iters = 0;
-  for (std::size_t i = 0; i < 1024; ++i) iters += f.surfaceAt(p.lat[i], p.lon[i], oneTime ? p.t[0] : p.t[i]).iterations;
-  return iters / 1024;
-}
 
 // The SIMD batch on the calling thread (no TBB, no land mask).
 void BM_SimdBatch(benchmark::State& state) {
