@@ -9,7 +9,6 @@
 #include <cmath>
 #include <limits>
 
-#include <immintrin.h>
 
 // One attribute for every hot loop: baseline clone plus AVX2 and AVX-512.
 #define GEOCEAN_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
@@ -52,6 +51,16 @@ inline double atan2Fast(double y, double x) {
   r = swap ? (kPiO2 - r) + kMoreBits : r;
   r = x < 0.0 ? (kPi - r) + 2.0 * kMoreBits : r;
   return std::copysign(r, y) + 0.0 * (x + y);  // NaN in, NaN out
+}
+
+// c ? a : b without a branch.
+inline double sel(bool c, double a, double b) {
+  const std::uint64_t m = std::uint64_t(0) - std::uint64_t(c);
+  return std::bit_cast<double>((std::bit_cast<std::uint64_t>(a) & m) | (std::bit_cast<std::uint64_t>(b) & ~m));
+}
+inline std::uint8_t sel8(bool c, std::uint8_t a, std::uint8_t b) {
+  const std::uint8_t m = std::uint8_t(0u - unsigned(c));
+  return std::uint8_t((a & m) | (b & ~m));
 }
 
 // The per-ray algebra of geo::intersectEllipsoid for a shared origin.
@@ -106,12 +115,103 @@ void surfaceHitsBatch(const double eye[3], const double* __restrict dx, const do
   }
 }
 
+// Column index to double through int (n <= 16384): AVX2 has no vector
+// 64-bit integer conversion, and with size_t the v3 clones stayed scalar.
+
+GEOCEAN_CLONES
+void surfaceHitsRow(const double eye[3], const double F[3], const double R[3], const double U[3], double x0,
+                    double dx, double y, std::size_t n, double* __restrict tOut, double* __restrict rx,
+                    double* __restrict ry, double* __restrict rz) {
+  const EllipsoidRays e(eye, 0.0);
+  const double bx = F[0] + y * U[0], by = F[1] + y * U[1], bz = F[2] + y * U[2];
+  const double R0 = R[0], R1 = R[1], R2 = R[2];
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = x0 + double(int(i)) * dx;
+    const double dxi = bx + x * R0, dyi = by + x * R1, dzi = bz + x * R2;  // as rayRow
+    const double t = e.t(dxi, dyi, dzi);
+    tOut[i] = t;
+    rx[i] = t * dxi;
+    ry[i] = t * dyi;
+    rz[i] = t * dzi;
+  }
+}
+
+GEOCEAN_CLONES
+std::size_t horizonRow(const double F[3], const double R[3], const double U[3], double x0, double dx, double y,
+                       std::size_t n, bool borderRow, const LimbCandidates& c, const double* __restrict t,
+                       double* __restrict rx, double* __restrict ry, double* __restrict rz,
+                       double* __restrict latDeg, double* __restrict lonDeg, std::uint8_t* __restrict surface,
+                       std::uint8_t* __restrict unresolved) {
+  const double bx = F[0] + y * U[0], by = F[1] + y * U[1], bz = F[2] + y * U[2];
+  const double R0 = R[0], R1 = R[1], R2 = R[2];
+  const double* __restrict c0x = c.colDir[0][0];
+  const double* __restrict c0y = c.colDir[0][1];
+  const double* __restrict c0z = c.colDir[0][2];
+  const double* __restrict c1x = c.colDir[1][0];
+  const double* __restrict c1y = c.colDir[1][1];
+  const double* __restrict c1z = c.colDir[1][2];
+  const double r0x = c.rowDir[0][0], r0y = c.rowDir[0][1], r0z = c.rowDir[0][2];
+  const double r1x = c.rowDir[1][0], r1y = c.rowDir[1][1], r1z = c.rowDir[1][2];
+  // Every load unconditional, every choice a select: the loop vectorises.
+  const double* __restrict p0x = c.colRel[0][0];
+  const double* __restrict p0y = c.colRel[0][1];
+  const double* __restrict p0z = c.colRel[0][2];
+  const double* __restrict p1x = c.colRel[1][0];
+  const double* __restrict p1y = c.colRel[1][1];
+  const double* __restrict p1z = c.colRel[1][2];
+  const double* __restrict la0 = c.colLat[0];
+  const double* __restrict la1 = c.colLat[1];
+  const double* __restrict lo0 = c.colLon[0];
+  const double* __restrict lo1 = c.colLon[1];
+  const std::uint8_t* __restrict s0 = c.colSurface[0];
+  const std::uint8_t* __restrict s1 = c.colSurface[1];
+  const double q0x = c.rowRel[0][0], q0y = c.rowRel[0][1], q0z = c.rowRel[0][2];
+  const double q1x = c.rowRel[1][0], q1y = c.rowRel[1][1], q1z = c.rowRel[1][2];
+  const double rla0 = c.rowLat[0], rla1 = c.rowLat[1], rlo0 = c.rowLon[0], rlo1 = c.rowLon[1];
+  const std::uint8_t rs0 = c.rowSurface[0], rs1 = c.rowSurface[1];
+  std::size_t left = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = x0 + double(int(i)) * dx;
+    const double dxi = bx + x * R0, dyi = by + x * R1, dzi = bz + x * R2;
+    const double d0 = c0x[i] * dxi + c0y[i] * dyi + c0z[i] * dzi, d1 = c1x[i] * dxi + c1y[i] * dyi + c1z[i] * dzi;
+    const double e0 = r0x * dxi + r0y * dyi + r0z * dzi, e1 = r1x * dxi + r1y * dyi + r1z * dzi;
+    // Within a line the second point wins only if strictly better (and > 0).
+    const bool col1 = d1 > (d0 > 0.0 ? d0 : 0.0), row1 = e1 > (e0 > 0.0 ? e0 : 0.0);
+    const double colDot = d0 > d1 ? d0 : d1, rowDot = e0 > e1 ? e0 : e1;
+    const bool borderCol = (i == 0) | (i + 1 == n);
+    const bool colPos = colDot > 0.0, rowPos = rowDot > 0.0, colNearer = colDot >= rowDot;
+    const bool preferCol = (borderCol & colPos) | (!borderCol & borderRow & !rowPos) |
+                           (!borderCol & !borderRow & colNearer);
+    const bool useCol = preferCol & colPos;
+    const bool useRow = !useCol & rowPos;
+    const bool miss = t[i] != t[i];
+    // Bitwise selects: GCC turns `c ? a[i] : b[i]` into a load from a
+    // selected address, which it cannot vectorise.
+    const double cx = sel(col1, p1x[i], p0x[i]), cy = sel(col1, p1y[i], p0y[i]), cz = sel(col1, p1z[i], p0z[i]);
+    const double cla = sel(col1, la1[i], la0[i]), clo = sel(col1, lo1[i], lo0[i]);
+    const std::uint8_t cs = sel8(col1, s1[i], s0[i]);
+    const double qx = sel(row1, q1x, q0x), qy = sel(row1, q1y, q0y), qz = sel(row1, q1z, q0z);
+    const double qla = sel(row1, rla1, rla0), qlo = sel(row1, rlo1, rlo0);
+    const std::uint8_t qs = sel8(row1, rs1, rs0);
+    rx[i] = sel(miss, sel(useCol, cx, qx), rx[i]);
+    ry[i] = sel(miss, sel(useCol, cy, qy), ry[i]);
+    rz[i] = sel(miss, sel(useCol, cz, qz), rz[i]);
+    latDeg[i] = sel(miss, sel(useCol, cla, qla), latDeg[i]);
+    lonDeg[i] = sel(miss, sel(useCol, clo, qlo), lonDeg[i]);
+    surface[i] = sel8(miss, sel8(useCol, cs, qs), surface[i]);
+    const bool none = miss & !useCol & !useRow;
+    unresolved[i] = std::uint8_t(none);
+    left += none;
+  }
+  return left;
+}
+
 GEOCEAN_CLONES
 void rayRow(const double F[3], const double R[3], const double U[3], double x0, double dx, double y, std::size_t n,
             double* __restrict dirX, double* __restrict dirY, double* __restrict dirZ) {
   const double bx = F[0] + y * U[0], by = F[1] + y * U[1], bz = F[2] + y * U[2];
   for (std::size_t i = 0; i < n; ++i) {
-    const double x = x0 + double(i) * dx;
+    const double x = x0 + double(int(i)) * dx;
     dirX[i] = bx + x * R[0];
     dirY[i] = by + x * R[1];
     dirZ[i] = bz + x * R[2];
@@ -151,29 +251,27 @@ void packRow(const double* __restrict t, const double* __restrict rx, const doub
              const double* __restrict rz, const double* __restrict latDeg, const double* __restrict lonDeg,
              const std::uint8_t* __restrict surface, double x0, double dx, bool rowOffscreen, std::size_t n,
              GridVertex* __restrict out) {
-  // Two 16-byte stores per vertex (field by field it was eight, and stores
-  // were the limit): { x, y, z, surface | flags << 8 } and { lat, lon }.
-  static_assert(offsetof(GridVertex, surface) == 12 && offsetof(GridVertex, latDeg) == 16);
-  // Streaming (non-temporal) stores when 16-byte aligned (malloc's
-  // alignment): the buffer is written once and read by the upload, so
-  // reading each line into the cache first (plain stores) only doubles the
-  // memory traffic.
-  const bool aligned = reinterpret_cast<std::uintptr_t>(out) % 16 == 0;
+  // The vertex as four 64-bit words { x | y << 32, z | (surface | flags << 8) << 32, lat, lon }
+  // (little endian): GCC vectorises this as an interleaving store (one
+  // vector store per 64 bytes with AVX-512), where the field-by-field
+  // struct write was eight scalar stores per vertex.
+  static_assert(offsetof(GridVertex, eyeRelM) == 0 && offsetof(GridVertex, surface) == 12 &&
+                offsetof(GridVertex, flags) == 13 && offsetof(GridVertex, latDeg) == 16 &&
+                offsetof(GridVertex, lonDeg) == 24);
+  using Word = std::uint64_t __attribute__((may_alias));
+  Word* __restrict o = reinterpret_cast<Word*>(out);
+  const std::uint32_t rowFlag = rowOffscreen ? std::uint32_t(kVertexOffscreen) : 0u;
   for (std::size_t i = 0; i < n; ++i) {
-    const double x = x0 + double(i) * dx;
-    const unsigned flags = (t[i] != t[i] ? kVertexHorizon : 0) | ((rowOffscreen || std::fabs(x) > 1.0) ? kVertexOffscreen : 0);
-    const std::uint32_t word = std::uint32_t(surface[i]) | flags << 8;  // little endian: surface, flags, reserved = 0
-    const __m128 pos = _mm_setr_ps(float(rx[i]), float(ry[i]), float(rz[i]), std::bit_cast<float>(word));
-    auto* dst = reinterpret_cast<char*>(out + i);
-    if (aligned) {
-      _mm_stream_ps(reinterpret_cast<float*>(dst), pos);
-      _mm_stream_pd(reinterpret_cast<double*>(dst + 16), _mm_setr_pd(latDeg[i], lonDeg[i]));
-    } else {
-      _mm_storeu_ps(reinterpret_cast<float*>(dst), pos);
-      _mm_storeu_pd(reinterpret_cast<double*>(dst + 16), _mm_setr_pd(latDeg[i], lonDeg[i]));
-    }
+    const double x = x0 + double(int(i)) * dx;
+    const std::uint32_t flags = (t[i] != t[i] ? std::uint32_t(kVertexHorizon) : 0u) |
+                                (std::fabs(x) > 1.0 ? std::uint32_t(kVertexOffscreen) : 0u) | rowFlag;
+    const std::uint32_t word = std::uint32_t(surface[i]) | flags << 8;  // reserved = 0
+    const auto bits = [](double v) { return std::uint64_t(std::bit_cast<std::uint32_t>(float(v))); };
+    o[4 * i] = bits(rx[i]) | bits(ry[i]) << 32;
+    o[4 * i + 1] = bits(rz[i]) | std::uint64_t(word) << 32;
+    o[4 * i + 2] = std::bit_cast<std::uint64_t>(latDeg[i]);
+    o[4 * i + 3] = std::bit_cast<std::uint64_t>(lonDeg[i]);
   }
-  _mm_sfence();  // the streamed stores are visible before the row is used
 }
 
 GEOCEAN_CLONES
@@ -192,10 +290,16 @@ void surfaceLatLonBatch(const double eye[3], const double* __restrict rx, const 
 }
 
 GEOCEAN_CLONES
-void landCellRow(const std::uint8_t* __restrict below, const std::uint8_t* __restrict above, std::uint8_t land,
-                 std::size_t cols, std::uint8_t* __restrict skip) {
-  for (std::size_t i = 0; i + 1 < cols; ++i)
-    skip[i] = std::uint8_t((below[i] == land) & (below[i + 1] == land) & (above[i] == land) & (above[i + 1] == land));
+std::size_t landCellRow(const std::uint8_t* __restrict below, const std::uint8_t* __restrict above,
+                        std::uint8_t land, std::size_t cols, std::uint8_t* __restrict skip) {
+  std::size_t count = 0;
+  for (std::size_t i = 0; i + 1 < cols; ++i) {
+    const std::uint8_t s =
+        std::uint8_t((below[i] == land) & (below[i + 1] == land) & (above[i] == land) & (above[i + 1] == land));
+    skip[i] = s;
+    count += s;
+  }
+  return count;
 }
 
 GEOCEAN_CLONES

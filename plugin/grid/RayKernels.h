@@ -41,6 +41,35 @@ void rayRow(const double F[3], const double R[3], const double U[3], double x0, 
 void surfaceHitsBatch(const double eyeEcef[3], const double* dx, const double* dy, const double* dz, std::size_t n,
                       double* tOut, double* rx, double* ry, double* rz);
 
+// rayRow fused with surfaceHitsBatch: the same directions (same
+// arithmetic) and hits in one pass, without storing the directions.
+void surfaceHitsRow(const double eyeEcef[3], const double F[3], const double R[3], const double U[3], double x0,
+                    double dx, double y, std::size_t n, double* tOut, double* rx, double* ry, double* rz);
+
+// Limb (horizon) candidates for the missed rays of one grid row: two per
+// grid column (arrays indexed by column) and two of the row's own line.
+// A candidate that does not exist has direction 0 (its dot is never > 0).
+struct LimbCandidates {
+  const double* colDir[2][3];  // unit directions from the eye
+  const double* colRel[2][3];  // eye-relative positions
+  const double* colLat[2];
+  const double* colLon[2];
+  const std::uint8_t* colSurface[2];
+  double rowDir[2][3], rowRel[2][3], rowLat[2], rowLon[2];
+  std::uint8_t rowSurface[2];
+};
+
+// For every i in [0, n) whose t is NaN (a miss): the limb candidate for
+// ray rayRow(i) -- the column's (i = 0 or n - 1: column first), the row's
+// (borderRow: row first), else whichever is closest in direction (ties:
+// the column) -- written to rx, ry, rz, lat, lon, surface. Lanes with no
+// candidate in front of the ray get unresolved[i] = 1 (else 0) for the
+// caller's fallback; returns how many.
+std::size_t horizonRow(const double F[3], const double R[3], const double U[3], double x0, double dx, double y,
+                       std::size_t n, bool borderRow, const LimbCandidates& c, const double* t, double* rx,
+                       double* ry, double* rz, double* latDeg, double* lonDeg, std::uint8_t* surface,
+                       std::uint8_t* unresolved);
+
 // ISPG (paper 000 eq. 5, 7, 8) on WGS84: hit of each ray with the plane of
 // normal N at height H below the eye (or, past farM, the far point in the
 // plane's direction), mapped radially from the Earth's centre onto the
@@ -56,7 +85,8 @@ void packRow(const double* t, const double* rx, const double* ry, const double* 
 
 // skip[i] = 1 where below[i], below[i + 1], above[i], above[i + 1] all
 // equal `land`, else 0, for i in [0, cols - 1): one row of cell flags.
-void landCellRow(const std::uint8_t* below, const std::uint8_t* above, std::uint8_t land, std::size_t cols,
+// Returns the number of skipped cells.
+std::size_t landCellRow(const std::uint8_t* below, const std::uint8_t* above, std::uint8_t land, std::size_t cols,
                  std::uint8_t* skip);
 
 // Number of NaNs in v[0, n).

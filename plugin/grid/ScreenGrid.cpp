@@ -21,9 +21,23 @@ constexpr double kMaxRectNdc = 4.0;
 struct RowScratch {
   std::vector<double> dx, dy, dz, t, rx, ry, rz, lat, lon;
   std::vector<ocean::Surface> surf;
+  std::vector<std::uint8_t> unresolved;
   void resize(std::size_t n) {
     for (auto* v : {&dx, &dy, &dz, &t, &rx, &ry, &rz, &lat, &lon}) v->resize(n);
     surf.resize(n);
+    unresolved.resize(n);
+  }
+};
+
+// The limb candidates of every grid column in SoA form, for horizonRow.
+struct ColumnLimbs {
+  std::vector<double> dir[2][3], rel[2][3], lat[2], lon[2];
+  std::vector<std::uint8_t> surface[2];
+  void resize(std::size_t n) {
+    for (int k = 0; k < 2; ++k) {
+      for (int a = 0; a < 3; ++a) dir[k][a].assign(n, 0.0), rel[k][a].assign(n, 0.0);
+      lat[k].assign(n, 0.0), lon[k].assign(n, 0.0), surface[k].assign(n, 0);
+    }
   }
 };
 
@@ -102,6 +116,10 @@ class LimbSolver {
       const LimbLine& l = which < 2 ? col : row;
       return {l.rel[which % 2], l.latDeg[which % 2], l.lonDeg[which % 2], &l.surface[which % 2]};
     }
+    return fallback(d);
+  }
+  // No line crossing in front of the ray: the limb point closest in direction.
+  LimbPick fallback(const glm::dvec3& d) const {
     LimbPick p{geo::horizonPoint(cam_.eyeEcef(), glm::normalize(d), offsetM_) - cam_.eyeEcef(), 0.0, 0.0, nullptr};
     surfaceLatLonBatch(eye_, &p.rel.x, &p.rel.y, &p.rel.z, 1, &p.latDeg, &p.lonDeg);
     return p;
@@ -294,7 +312,8 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
         cornersHit = cornersHit && geo::intersectEllipsoid(cam.eyeEcef(), cam.rayThroughNdc(cx, cy)).hit;
   }
   if (!cornersHit) colLines.resize(std::size_t(cols));
-  const LimbLine noLine{};
+  ColumnLimbs colLimbs;  // zero directions (no candidate) unless some corner misses
+  colLimbs.resize(std::size_t(cols));
 
   auto classifyLine = [&](LimbLine& l) {
     if (classifier_ && l.n > 0) {
@@ -305,8 +324,8 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
   };
   // Cell row j of cellSkip from the classes of vertex rows j and j + 1.
   auto skipRow = [&](int j, const std::uint8_t* below, const std::uint8_t* above) {
-    landCellRow(below, above, std::uint8_t(ocean::Surface::Land), std::size_t(cols),
-                f.cellSkip.data() + std::size_t(j) * (cols - 1));
+    return landCellRow(below, above, std::uint8_t(ocean::Surface::Land), std::size_t(cols),
+                       f.cellSkip.data() + std::size_t(j) * (cols - 1));
   };
 
   // Rows in chunks, each touched once: rays, hits, horizon, lat/lon, class,
@@ -315,6 +334,7 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
   // balance the load; fewer, larger tasks than TBB's auto partitioner).
   const int rowsPerChunk = std::max(4, rows / 16);
   const int chunks = (rows + rowsPerChunk - 1) / rowsPerChunk;
+  std::vector<std::size_t> chunkLandCells(static_cast<std::size_t>(chunks), 0);
   auto buildChunk = [&](int c) {
     const int j0 = c * rowsPerChunk, j1 = std::min(rows, j0 + rowsPerChunk);
     // Per task, not thread-local: a classifier that itself runs TBB work
@@ -324,11 +344,11 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
     std::vector<std::uint8_t> prevSurf(static_cast<std::size_t>(cols));
     for (int j = j0; j < j1; ++j) {
       const double y = rect.minY + j * dyNdc;
-      rayRow(Fa, Ra, Ua, rect.minX, dxNdc, y, std::size_t(cols), s.dx.data(), s.dy.data(), s.dz.data());
       if (o.mode == GridMode::Direct) {
-        surfaceHitsBatch(eye, s.dx.data(), s.dy.data(), s.dz.data(), std::size_t(cols), s.t.data(), s.rx.data(),
-                         s.ry.data(), s.rz.data());
+        surfaceHitsRow(eye, Fa, Ra, Ua, rect.minX, dxNdc, y, std::size_t(cols), s.t.data(), s.rx.data(), s.ry.data(),
+                       s.rz.data());
       } else {
+        rayRow(Fa, Ra, Ua, rect.minX, dxNdc, y, std::size_t(cols), s.dx.data(), s.dy.data(), s.dz.data());
         ispgBatch(eye, Na, planeH, ispgFar, s.dx.data(), s.dy.data(), s.dz.data(), std::size_t(cols), s.t.data(),
                   s.rx.data(), s.ry.data(), s.rz.data());
       }
@@ -340,20 +360,38 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
       if (last - first + 1 < cols || countNan(s.t.data(), std::size_t(cols)) > 0) {
         LimbLine rowLine = limb.row(y);
         classifyLine(rowLine);
-        for (int i = 0; i < cols; ++i) {
-          if (!std::isnan(s.t[i])) continue;
-          const Along along = (i == 0 || i == cols - 1) ? Along::Column
-                              : (j == 0 || j == rows - 1) ? Along::Row : Along::Nearest;
-          const LimbLine& colLine = colLines.empty() ? noLine : colLines[std::size_t(i)];  // no copy
-          const LimbPick pick = limb.choose(colLine, rowLine, glm::dvec3(s.dx[i], s.dy[i], s.dz[i]), along);
+        LimbCandidates cand;
+        for (int k = 0; k < 2; ++k) {
+          for (int a = 0; a < 3; ++a) {
+            cand.colDir[k][a] = colLimbs.dir[k][a].data();
+            cand.colRel[k][a] = colLimbs.rel[k][a].data();
+            cand.rowDir[k][a] = k < rowLine.n ? rowLine.dir[k][a] : 0.0;
+            cand.rowRel[k][a] = k < rowLine.n ? rowLine.rel[k][a] : 0.0;
+          }
+          cand.colLat[k] = colLimbs.lat[k].data();
+          cand.colLon[k] = colLimbs.lon[k].data();
+          cand.colSurface[k] = colLimbs.surface[k].data();
+          cand.rowLat[k] = k < rowLine.n ? rowLine.latDeg[k] : 0.0;
+          cand.rowLon[k] = k < rowLine.n ? rowLine.lonDeg[k] : 0.0;
+          cand.rowSurface[k] = k < rowLine.n ? std::uint8_t(rowLine.surface[k]) : 0;
+        }
+        auto* surfBytes = reinterpret_cast<std::uint8_t*>(s.surf.data());
+        const std::size_t left =
+            horizonRow(Fa, Ra, Ua, rect.minX, dxNdc, y, std::size_t(cols), j == 0 || j == rows - 1, cand, s.t.data(),
+                       s.rx.data(), s.ry.data(), s.rz.data(), s.lat.data(), s.lon.data(), surfBytes,
+                       s.unresolved.data());
+        for (int i = 0; left > 0 && i < cols; ++i) {
+          if (!s.unresolved[std::size_t(i)]) continue;
+          // No crossing in front of the ray (rare): the nearest limb point.
+          const double x = rect.minX + double(i) * dxNdc;
+          const glm::dvec3 d(F.x + y * U.x + x * R.x, F.y + y * U.y + x * R.y, F.z + y * U.z + x * R.z);
+          const LimbPick pick = limb.fallback(d);
           s.rx[i] = pick.rel.x;
           s.ry[i] = pick.rel.y;
           s.rz[i] = pick.rel.z;
           s.lat[i] = pick.latDeg;
           s.lon[i] = pick.lonDeg;
-          if (pick.surface) {
-            s.surf[i] = *pick.surface;
-          } else if (classifier_) {
+          if (classifier_) {
             classifier_(&s.lat[i], &s.lon[i], 1, &s.surf[i]);
           } else {
             s.surf[i] = ocean::Surface::Ocean;
@@ -378,7 +416,7 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
       const auto* surf = reinterpret_cast<const std::uint8_t*>(s.surf.data());
       packRow(s.t.data(), s.rx.data(), s.ry.data(), s.rz.data(), s.lat.data(), s.lon.data(), surf, rect.minX,
               dxNdc, std::abs(y) > 1.0, std::size_t(cols), f.vertices.data() + std::size_t(j) * cols);
-      if (j > j0) skipRow(j - 1, prevSurf.data(), surf);
+      if (j > j0) chunkLandCells[std::size_t(c)] += skipRow(j - 1, prevSurf.data(), surf);
       std::copy_n(surf, cols, prevSurf.data());
     }
   };
@@ -386,8 +424,18 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
     if (!colLines.empty()) {
       tbb::parallel_for(tbb::blocked_range<int>(0, cols, 32), [&](const tbb::blocked_range<int>& r) {
         for (int i = r.begin(); i < r.end(); ++i) {
-          colLines[std::size_t(i)] = limb.column(rect.minX + i * dxNdc);
-          classifyLine(colLines[std::size_t(i)]);
+          LimbLine& l = colLines[std::size_t(i)];
+          l = limb.column(rect.minX + i * dxNdc);
+          classifyLine(l);
+          for (int k = 0; k < l.n; ++k) {
+            for (int a = 0; a < 3; ++a) {
+              colLimbs.dir[k][a][std::size_t(i)] = l.dir[k][a];
+              colLimbs.rel[k][a][std::size_t(i)] = l.rel[k][a];
+            }
+            colLimbs.lat[k][std::size_t(i)] = l.latDeg[k];
+            colLimbs.lon[k][std::size_t(i)] = l.lonDeg[k];
+            colLimbs.surface[k][std::size_t(i)] = std::uint8_t(l.surface[k]);
+          }
         }
       });
     }
@@ -402,15 +450,17 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
   }
   // The cell rows between chunks.
   std::vector<std::uint8_t> below(static_cast<std::size_t>(cols)), above(static_cast<std::size_t>(cols));
+  std::size_t landCells = 0;
+  for (std::size_t n : chunkLandCells) landCells += n;
   for (int c = 1; c < chunks; ++c) {
     const int j = c * rowsPerChunk - 1;
     for (int i = 0; i < cols; ++i) {
       below[std::size_t(i)] = f.vertices[std::size_t(j) * cols + i].surface;
       above[std::size_t(i)] = f.vertices[std::size_t(j + 1) * cols + i].surface;
     }
-    skipRow(j, below.data(), above.data());
+    landCells += skipRow(j, below.data(), above.data());
   }
-  f.landCells = std::size_t(std::count(f.cellSkip.begin(), f.cellSkip.end(), std::uint8_t(1)));
+  f.landCells = landCells;
 }
 
 }  // namespace geocean::grid
