@@ -337,7 +337,10 @@ HWY_INLINE void Normalize(V& x, V& y, V& z) {
   z = hn::Mul(z, inv);
 }
 
-// wv_gerstner at offset (dx, dy, dz) from the query point.
+// wv_gerstner at offset (dx, dy, dz) from the query point. kOrigin: the
+// offset is 0 (the first evaluation), where the arc offset and its atan
+// vanish exactly (p = sO, s = sqrt(sO^2) = sO, e = y = 0, dTheta = 0).
+template <bool kOrigin>
 HWY_INLINE void EvalGerstner(const GerstnerComponent* cs, const CompLanes* cl, int count, const Frame& fr, V dx, V dy,
                              V dz, V depth, Eval& r) {
   const D d;
@@ -365,28 +368,36 @@ HWY_INLINE void EvalGerstner(const GerstnerComponent* cs, const CompLanes* cl, i
   V jxx = zero, jxy = zero, jyy = zero, t111 = zero, t112 = zero, t122 = zero, t222 = zero;
   for (int i = 0; i < count; ++i) {
     const CompLanes& c = cl[i];
-    const V g0 = hn::Load(d, c.g[0]), g1 = hn::Load(d, c.g[1]), g2 = hn::Load(d, c.g[2]);
-    const V b0 = hn::Load(d, c.bn[0]), b1 = hn::Load(d, c.bn[1]), b2 = hn::Load(d, c.bn[2]);
-    const V sO = hn::Load(d, c.sO), cO = hn::Load(d, c.cO);
-    const V eg = hn::Mul(Dot(dx, dy, dz, g0, g1, g2), fr.invR), eb = hn::Mul(Dot(dx, dy, dz, b0, b1, b2), fr.invR);
-    const V p = hn::MulAdd(cO, eg, hn::Mul(sO, onePlusEn));
-    const V eb2 = hn::Mul(eb, eb);
-    const V s = hn::Sqrt(hn::MulAdd(p, p, eb2));
-    const V e = hn::Div(eb2, hn::Max(hn::Add(s, p), S(1e-30)));
-    const V y = hn::MulAdd(cO, e, eg), x = hn::MulAdd(sO, e, onePlusEn);
-    // wv_atan2Small: Taylor series for |y/x| <= 0.05 (always within the
-    // query's offsets of metres), atan2 otherwise.
-    const V t = hn::Div(y, x);
-    const auto small = hn::Le(hn::Abs(t), S(0.05));
-    const V t2 = hn::Mul(t, t);
-    V at = hn::MulAdd(t2, S(-1.0 / 11.0), S(1.0 / 9.0));
-    at = hn::MulAdd(t2, at, S(-1.0 / 7.0));
-    at = hn::MulAdd(t2, at, S(0.2));
-    at = hn::MulAdd(t2, at, S(-1.0 / 3.0));
-    at = hn::Mul(t, hn::MulAdd(t2, at, S(1.0)));
-    if (!hn::AllTrue(d, small)) at = hn::IfThenElse(small, at, Atan2(y, x));
-    V psi = hn::MulAdd(S(cs[i].kR), at, hn::Load(d, c.phase));
-    psi = hn::NegMulAdd(S(2.0 * kPi), hn::Floor(hn::MulAdd(psi, S(0.5 / kPi), S(0.5))), psi);
+    const V sO = hn::Load(d, c.sO);
+    V s, psi;
+    if constexpr (kOrigin) {
+      s = sO;
+      psi = hn::Load(d, c.phase);
+    } else {
+      const V g0 = hn::Load(d, c.g[0]), g1 = hn::Load(d, c.g[1]), g2 = hn::Load(d, c.g[2]);
+      const V b0 = hn::Load(d, c.bn[0]), b1 = hn::Load(d, c.bn[1]), b2 = hn::Load(d, c.bn[2]);
+      const V cO = hn::Load(d, c.cO);
+      const V eg = hn::Mul(Dot(dx, dy, dz, g0, g1, g2), fr.invR), eb = hn::Mul(Dot(dx, dy, dz, b0, b1, b2), fr.invR);
+      const V p = hn::MulAdd(cO, eg, hn::Mul(sO, onePlusEn));
+      const V eb2 = hn::Mul(eb, eb);
+      s = hn::Sqrt(hn::MulAdd(p, p, eb2));
+      const V e = hn::Div(eb2, hn::Max(hn::Add(s, p), S(1e-30)));
+      const V y = hn::MulAdd(cO, e, eg), x = hn::MulAdd(sO, e, onePlusEn);
+      // wv_atan2Small: Taylor series for |y/x| <= 0.05 (always within the
+      // query's offsets of metres), atan2 otherwise.
+      const V t = hn::Div(y, x);
+      const auto small = hn::Le(hn::Abs(t), S(0.05));
+      const V t2 = hn::Mul(t, t);
+      V at = hn::MulAdd(t2, S(-1.0 / 11.0), S(1.0 / 9.0));
+      at = hn::MulAdd(t2, at, S(-1.0 / 7.0));
+      at = hn::MulAdd(t2, at, S(0.2));
+      at = hn::MulAdd(t2, at, S(-1.0 / 3.0));
+      at = hn::Mul(t, hn::MulAdd(t2, at, S(1.0)));
+      if (!hn::AllTrue(d, small)) at = hn::IfThenElse(small, at, Atan2(y, x));
+      psi = hn::MulAdd(S(cs[i].kR), at, hn::Load(d, c.phase));
+    }
+    // (The kernel reduces psi to [-pi, pi] for the GPU's sin/cos; SinCos
+    // reduces exactly itself, and |psi| < 2 pi + k |d| stays small.)
     // Direction of travel at P: away from the source, tangent at up.
     const V c0 = hn::Load(d, c.c[0]), c1 = hn::Load(d, c.c[1]), c2 = hn::Load(d, c.c[2]);
     const V cp = Dot(c0, c1, c2, ph0, ph1, ph2);
@@ -564,7 +575,7 @@ void Gerstner(const GerstnerComponent* cs, int count, const Points& pts, Surface
     V dx = zero, dy = zero, dz = zero, lastMiss = S(1e300), iters = zero;
     auto active = hn::Eq(zero, zero);
     Eval r;
-    EvalGerstner(cs, cl, count, fr, dx, dy, dz, depth, r);
+    EvalGerstner<true>(cs, cl, count, fr, dx, dy, dz, depth, r);
     for (int it = 0; it < 100; ++it) {
       V m0 = hn::Add(dx, r.hor[0]), m1 = hn::Add(dy, r.hor[1]), m2 = hn::Add(dz, r.hor[2]);
       const V mu = Dot(m0, m1, m2, l.u[0], l.u[1], l.u[2]);
@@ -596,7 +607,7 @@ void Gerstner(const GerstnerComponent* cs, int count, const Points& pts, Surface
       dz = hn::IfThenElse(active, hn::Sub(dz, s2), dz);
       lastMiss = hn::IfThenElse(active, missM, lastMiss);
       iters = hn::Add(iters, hn::IfThenElseZero(active, S(1.0)));
-      EvalGerstner(cs, cl, count, fr, dx, dy, dz, depth, r);
+      EvalGerstner<false>(cs, cl, count, fr, dx, dy, dz, depth, r);
     }
     // toEnu and the vertical velocity at the fixed point.
     const V ne = Dot(r.nrm[0], r.nrm[1], r.nrm[2], l.e[0], l.e[1], l.e[2]);

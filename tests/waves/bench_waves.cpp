@@ -15,9 +15,11 @@
 //    accumulation 29: 247. Per query: locate (2 sincos of 39) 97, normal 20.
 //    8 octaves: 2 093.
 //  - Gerstner, per component and query: waveAt (arc, atan2 ~50, phase,
-//    frame) 100. Per evaluation: 69 + 16 x 192 (arc offset 32, small-angle
-//    atan 13, phase 7, direction 32, taper 9, sincos 39, accumulation 47,
-//    second derivatives 13) + 54 = 3 195; per Chebyshev step 62; frame 124.
+//    frame) 100. Per evaluation: 69 + 16 x 187 (arc offset 32, small-angle
+//    atan 13, phase 2, direction 32, taper 9, sincos 39, accumulation 47,
+//    second derivatives 13) + 54 = 3 115; the first evaluation (offset 0:
+//    no arc offset, no atan) 69 + 16 x 146 + 54 = 2 455; per Chebyshev step
+//    62; frame 124.
 //    The query evaluates 1 + iterations times (counter "iter": the mean over
 //    points of the SIMD path's steps, i.e. what a query needs; the lanes of
 //    one vector run until the slowest converges: "vec_evals"). The scalar
@@ -86,7 +88,7 @@ double flopsPerQuery(Model m, double iterations) {
   switch (m) {
     case Model::Noise: return 117.0 + 8 * 247.0;
     case Model::NoisePaper: return 120.0 + 8 * 130.0;
-    case Model::Gerstner: return 124.0 + 16 * 100.0 + evals * 3195.0 + iterations * 62.0;
+    case Model::Gerstner: return 124.0 + 16 * 100.0 + 2455.0 + iterations * (3115.0 + 62.0);
     case Model::Fft: return 120.0 + evals * 820.0;
   }
   return 0;
