@@ -1,12 +1,15 @@
 // The SIMD batch kernels against the scalar double path (geo::intersectEllipsoid,
 // itself tested against long double) and GeographicLib's inverse.
 #include "plugin/grid/RayKernels.h"
+#include "plugin/grid/ScreenGrid.h"
 
 #include "globe/geo/Ellipsoid.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -98,4 +101,48 @@ TEST(RayKernels, SurfaceLatLonMatchesGeographicLib) {
 TEST(RayKernels, ReportsTheDispatchedIsa) {
   const std::string isa = grid::kernelIsa();
   EXPECT_TRUE(isa == "x86-64-v4" || isa == "x86-64-v3" || isa == "baseline") << isa;
+}
+
+// packRow (AVX-512 permutes on CPUs that have it, else GCC's vectorised
+// interleave, streamed from L1 blocks, or direct stores when the buffer is
+// not 16-byte aligned) against the field-by-field definition of GridVertex,
+// bit for bit: odd lengths for the remainders, NaN t (horizon), columns on
+// both sides of |x| = 1 and off-screen rows.
+TEST(RayKernels, PackRowWritesEveryField) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (std::size_t n : {1u, 7u, 8u, 9u, 64u, 65u, 203u, 515u}) {
+    std::vector<double> t(n), rx(n), ry(n), rz(n), lat(n), lon(n);
+    std::vector<std::uint8_t> surf(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      t[i] = i % 5 == 0 ? std::nan("") : 1e3 * (1 + u(rng));
+      rx[i] = 1e6 * u(rng), ry[i] = 1e4 * u(rng), rz[i] = 3.0 * u(rng);
+      lat[i] = 90 * u(rng), lon[i] = 180 * u(rng);
+      surf[i] = std::uint8_t(i % 3);
+    }
+    const double x0 = -1.3, dx = 2.6 / double(std::max<std::size_t>(n - 1, 1));
+    for (bool rowOff : {false, true}) {
+      for (std::size_t shift : {0u, 8u}) {  // 8: not 16-byte aligned
+        std::vector<unsigned char> raw(n * sizeof(grid::GridVertex) + 64);
+        auto base = (reinterpret_cast<std::uintptr_t>(raw.data()) + 31) / 32 * 32 + shift;
+        auto* out = reinterpret_cast<grid::GridVertex*>(base);
+        grid::packRow(t.data(), rx.data(), ry.data(), rz.data(), lat.data(), lon.data(), surf.data(), x0, dx, rowOff,
+                      n, out);
+        for (std::size_t i = 0; i < n; ++i) {
+          const grid::GridVertex& v = out[i];
+          const double x = x0 + double(int(i)) * dx;
+          const unsigned flags = (std::isnan(t[i]) ? grid::kVertexHorizon : 0) |
+                                 ((rowOff || std::fabs(x) > 1.0) ? grid::kVertexOffscreen : 0);
+          ASSERT_EQ(v.eyeRelM[0], float(rx[i])) << n << " " << i;
+          ASSERT_EQ(v.eyeRelM[1], float(ry[i])) << n << " " << i;
+          ASSERT_EQ(v.eyeRelM[2], float(rz[i])) << n << " " << i;
+          ASSERT_EQ(v.surface, surf[i]) << n << " " << i;
+          ASSERT_EQ(v.flags, flags) << n << " " << i;
+          ASSERT_EQ(v.reserved, 0) << n << " " << i;
+          ASSERT_EQ(std::memcmp(&v.latDeg, &lat[i], 8), 0) << n << " " << i;
+          ASSERT_EQ(std::memcmp(&v.lonDeg, &lon[i], 8), 0) << n << " " << i;
+        }
+      }
+    }
+  }
 }
