@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include <malloc.h>
 #include <unistd.h>
 
 namespace geocean::app {
@@ -33,6 +34,7 @@ struct ViewArgs {
   std::string size = "1280x720";
   double flightS = 30.0;   // interactive --fly-to duration
   int frames = 0;          // > 0: draw this many frames, then exit
+  int flightFrames = 0;    // with --frames: the flight lasts this many frames, then restarts (0: all of them)
   std::string screenshot;  // PNG of the last of --frames
   std::string statsCsv;    // per-frame CSV (position, sea, fps, resident memory)
   bool noHud = false;
@@ -97,6 +99,18 @@ long residentKb() {
   return n == 2 ? resident * (sysconf(_SC_PAGESIZE) / 1024) : 0;
 }
 
+// glibc's malloc, in kB (mallinfo2): bytes in use (arena chunks plus
+// mmapped blocks) and bytes held from the system (arenas plus mmapped
+// blocks; freed memory an arena keeps is still resident). Tells a leak (in
+// use grows) from allocator retention (only held grows).
+struct HeapKb {
+  long inUse = 0, held = 0;
+};
+HeapKb heapKb() {
+  const struct mallinfo2 m = mallinfo2();
+  return {long((m.uordblks + m.hblkhd) / 1024), long((m.arena + m.hblkhd) / 1024)};
+}
+
 // The window's back buffer (what is about to be shown: globe + HUD) as an image.
 render::Image readWindow(int w, int h) {
   render::Image img;
@@ -142,6 +156,9 @@ int runView(const ViewArgs& a) {
     if (!(a.flightS > 0.0) || !std::isfinite(a.flightS))
       throw render::ArgError("--flight-seconds: " + std::to_string(a.flightS) + " must be positive");
     if (!a.screenshot.empty() && a.frames == 0) throw render::ArgError("--screenshot needs --frames N (the frame it shows)");
+    if (a.flightFrames < 0 || a.flightFrames == 1 || (a.flightFrames > 0 && a.frames == 0))
+      throw render::ArgError("--flight-frames: " + std::to_string(a.flightFrames) +
+                             " must be >= 2 and needs --frames N (0: the flight takes all N frames)");
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean view: %s\n", e.what());
     return kExitBadInput;
@@ -153,7 +170,7 @@ int runView(const ViewArgs& a) {
       std::fprintf(stderr, "geocean view: cannot write --stats '%s'\n", a.statsCsv.c_str());
       return kExitBadInput;
     }
-    stats << "frame,wall_s,lat,lon,alt_m,sea_height_m,fps,rss_kb\n";
+    stats << "frame,wall_s,lat,lon,alt_m,sea_height_m,fps,rss_kb,heap_in_use_kb,heap_held_kb,tiles,tiles_built\n";
   }
   if (!glfwInit()) {
     std::fprintf(stderr, "geocean view: cannot open the display '%s'; use geocean render\n", display ? display : "");
@@ -199,6 +216,8 @@ int runView(const ViewArgs& a) {
     const auto t0 = std::chrono::steady_clock::now();
     auto last = t0;
     double fpsSmoothed = 0.0, flightS = 0.0;
+    long tilesBuilt = 0;  // terrain tiles made since the start (each fills a pool slot)
+    const int flightFrames = a.flightFrames > 0 ? a.flightFrames : a.frames;
     std::unique_ptr<render::Framebuffer> fb;
     for (int frame = 0; !glfwWindowShouldClose(win) && (a.frames == 0 || frame < a.frames); ++frame) {
       glfwPollEvents();
@@ -226,8 +245,8 @@ int runView(const ViewArgs& a) {
       if (hKey && !hKeyWasDown) showHud = !showHud;  // H toggles the HUD
       hKeyWasDown = hKey;
       if (flying) {
-        if (a.frames > 0)
-          flightS = a.frames > 1 ? double(frame) / double(a.frames - 1) : 1.0;
+        if (a.frames > 0)  // loops every flightFrames frames (--flight-frames)
+          flightS = flightFrames > 1 ? double(frame % flightFrames) / double(flightFrames - 1) : 1.0;
         else
           flightS = std::min(1.0, flightS + dt / a.flightS);
         c.pose = render::flightPose(plan, flightS, c.pose);
@@ -241,7 +260,8 @@ int runView(const ViewArgs& a) {
       render::FrameSettings fs;
       fs.timeS = simT;
       fs.sunEcef = render::sunFromLocal(c.pose.latDeg, c.pose.lonDeg, 135.0, 40.0);
-      renderer.render(c.pose, fs);
+      const render::FrameTimes times = renderer.render(c.pose, fs);
+      tilesBuilt += times.terrain.tilesBuilt;
       // The float-depth target is blitted to the window (its own depth is fixed point).
       glBindFramebuffer(GL_READ_FRAMEBUFFER, fb->id());
       glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
@@ -265,11 +285,14 @@ int runView(const ViewArgs& a) {
       }
       glfwSwapBuffers(win);
       if (stats) {
+        const HeapKb heap = heapKb();
         char row[256];
-        std::snprintf(row, sizeof row, "%d,%.4f,%.7f,%.7f,%.3f,%.4f,%.2f,%ld\n", frame,
+        std::snprintf(row, sizeof row, "%d,%.4f,%.7f,%.7f,%.3f,%.4f,%.2f,%ld,%ld,%ld,%d,%ld\n", frame,
                       std::chrono::duration<double>(now - t0).count(), c.pose.latDeg, c.pose.lonDeg, c.pose.altM,
-                      hv.seaKnown ? hv.seaHeightM : std::nan(""), fpsSmoothed, residentKb());
+                      hv.seaKnown ? hv.seaHeightM : std::nan(""), fpsSmoothed, residentKb(), heap.inUse, heap.held, times.terrain.tilesDrawn,
+                      tilesBuilt);
         stats << row;
+        if (frame % 100 == 99) stats.flush();  // a long run can be watched (and killed) midway
       }
       // The window title repeats the HUD on one line (task bars, window lists).
       std::string title = "Geocean  " + gl::Hud::text(hv);
@@ -295,9 +318,14 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                       sub.add_option("--frames", a->frames,
                                      "draw N frames and exit (time and the --fly-to flight then advance per frame: "
                                      "1/30 s, and the flight ends on the last frame); 0 = until closed");
+                      sub.add_option("--flight-frames", a->flightFrames,
+                                     "with --frames: the --fly-to flight takes M frames and starts over (e.g. "
+                                     "--frames 2000 --flight-frames 1000 flies twice)");
                       sub.add_option("--screenshot", a->screenshot, "with --frames: PNG of the last frame as shown");
                       sub.add_option("--stats", a->statsCsv,
-                                     "CSV per frame: frame,wall_s,lat,lon,alt_m,sea_height_m,fps,rss_kb");
+                                     "CSV per frame: frame,wall_s,lat,lon,alt_m,sea_height_m,fps,rss_kb,heap_in_use_kb,"
+                                     "heap_held_kb,tiles,tiles_built (resident set; malloc'd bytes in use and held "
+                                     "from the system, kB; terrain tiles drawn, tiles made so far)");
                       sub.add_flag("--no-hud", a->noHud, "no HUD panel (H toggles it in the window)");
                       return [a] { return runView(*a); };
                     }}};

@@ -50,21 +50,23 @@ struct StatsRow {
   int frame = 0;
   double latDeg = 0, lonDeg = 0, altM = 0, seaM = 0, fps = 0;
   long rssKb = 0;
+  int tiles = 0;
+  long tilesBuilt = 0;
 };
 std::vector<StatsRow> readStats(const std::string& path) {
   std::vector<StatsRow> rows;
   std::ifstream in(path);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "frame,wall_s,lat,lon,alt_m,sea_height_m,fps,rss_kb");
+  EXPECT_EQ(line, "frame,wall_s,lat,lon,alt_m,sea_height_m,fps,rss_kb,heap_in_use_kb,heap_held_kb,tiles,tiles_built");
   while (std::getline(in, line)) {
     std::vector<std::string> f;
     std::stringstream ls(line);
     for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
-    EXPECT_EQ(f.size(), 8u) << line;
-    if (f.size() != 8) continue;
+    EXPECT_EQ(f.size(), 12u) << line;
+    if (f.size() != 12) continue;
     rows.push_back({std::stoi(f[0]), std::stod(f[2]), std::stod(f[3]), std::stod(f[4]), std::stod(f[5]),
-                    std::stod(f[6]), std::stol(f[7])});
+                    std::stod(f[6]), std::stol(f[7]), std::stoi(f[10]), std::stol(f[11])});
   }
   return rows;
 }
