@@ -213,15 +213,19 @@ BENCHMARK(BM_Batch)
     ->Args({int(Model::Gerstner), 1, 1, 1})->Args({int(Model::Gerstner), 2, 1, 1})
     ->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
 
-// The FP limit itself, 1 and 2 threads (per-core peak x 2 if both cores are free).
+// The FP limit itself, 1 and 2 threads (per-core peak x 2 if both cores are
+// free), and per dispatch target (range(0): forced Highway target, 0 = best).
 void BM_FpPeak(benchmark::State& state) {
+  if (state.range(0) != 0 && state.thread_index() == 0) hwy::SetSupportedTargetsForTest(state.range(0));
   double flops = 0;
   for (auto _ : state) flops += geocean::waves::bench::fmaChains(1'000'000);
   state.counters["GFLOPs"] = benchmark::Counter(flops * 1e-9, benchmark::Counter::kIsRate);
   state.SetLabel(std::string(geocean::waves::batch::targetName()) + " x" +
                  std::to_string(geocean::waves::batch::lanes()));
+  if (state.range(0) != 0 && state.thread_index() == 0) hwy::SetSupportedTargetsForTest(0);
 }
-BENCHMARK(BM_FpPeak)->Threads(1)->Threads(2)->UseRealTime();
+BENCHMARK(BM_FpPeak)->Arg(0)->Threads(1)->Threads(2)->UseRealTime();
+BENCHMARK(BM_FpPeak)->Arg(HWY_AVX2)->Arg(HWY_SSE4);
 
 // FFT table synthesis for one new time (2 cascades x 4 inverse 128^2 FFTs).
 void BM_FftTables(benchmark::State& state) {
