@@ -351,6 +351,8 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
   // balance the load; fewer, larger tasks than TBB's auto partitioner).
   const int rowsPerChunk = std::max(4, rows / 16);
   const int chunks = (rows + rowsPerChunk - 1) / rowsPerChunk;
+  // Stream the vertices out only when the buffer cannot stay in the cache.
+  const bool streamOut = f.vertices.size() * sizeof(GridVertex) > (std::size_t(16) << 20);
   std::vector<std::size_t> chunkLandCells(static_cast<std::size_t>(chunks), 0);
   auto buildChunk = [&](int c) {
     const int j0 = c * rowsPerChunk, j1 = std::min(rows, j0 + rowsPerChunk);
@@ -432,7 +434,7 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
       }
       const auto* surf = reinterpret_cast<const std::uint8_t*>(s.surf.data());
       packRow(s.t.data(), s.rx.data(), s.ry.data(), s.rz.data(), s.lat.data(), s.lon.data(), surf, rect.minX,
-              dxNdc, std::abs(y) > 1.0, std::size_t(cols), f.vertices.data() + std::size_t(j) * cols);
+              dxNdc, std::abs(y) > 1.0, std::size_t(cols), f.vertices.data() + std::size_t(j) * cols, streamOut);
       if (j > j0) chunkLandCells[std::size_t(c)] += skipRow(j - 1, prevSurf.data(), surf);
       std::copy_n(surf, cols, prevSurf.data());
     }

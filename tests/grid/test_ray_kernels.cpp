@@ -104,8 +104,7 @@ TEST(RayKernels, ReportsTheDispatchedIsa) {
 }
 
 // packRow (AVX-512 permutes on CPUs that have it, else GCC's vectorised
-// interleave, streamed from L1 blocks, or direct stores when the buffer is
-// not 16-byte aligned) against the field-by-field definition of GridVertex,
+// interleave, stored directly or streamed from L1 blocks) against the field-by-field definition of GridVertex,
 // bit for bit: odd lengths for the remainders, NaN t (horizon), columns on
 // both sides of |x| = 1 and off-screen rows.
 TEST(RayKernels, PackRowWritesEveryField) {
@@ -122,25 +121,29 @@ TEST(RayKernels, PackRowWritesEveryField) {
     }
     const double x0 = -1.3, dx = 2.6 / double(std::max<std::size_t>(n - 1, 1));
     for (bool rowOff : {false, true}) {
-      for (std::size_t shift : {0u, 8u}) {  // 8: not 16-byte aligned
+      for (std::size_t shift : {0u, 8u, 16u}) {  // 8: not 16-byte aligned; 16: streamed below
+        const bool stream = shift != 8;
         std::vector<unsigned char> raw(n * sizeof(grid::GridVertex) + 64);
         auto base = (reinterpret_cast<std::uintptr_t>(raw.data()) + 31) / 32 * 32 + shift;
         auto* out = reinterpret_cast<grid::GridVertex*>(base);
-        grid::packRow(t.data(), rx.data(), ry.data(), rz.data(), lat.data(), lon.data(), surf.data(), x0, dx, rowOff,
-                      n, out);
-        for (std::size_t i = 0; i < n; ++i) {
-          const grid::GridVertex& v = out[i];
-          const double x = x0 + double(int(i)) * dx;
-          const unsigned flags = (std::isnan(t[i]) ? grid::kVertexHorizon : 0) |
-                                 ((rowOff || std::fabs(x) > 1.0) ? grid::kVertexOffscreen : 0);
-          ASSERT_EQ(v.eyeRelM[0], float(rx[i])) << n << " " << i;
-          ASSERT_EQ(v.eyeRelM[1], float(ry[i])) << n << " " << i;
-          ASSERT_EQ(v.eyeRelM[2], float(rz[i])) << n << " " << i;
-          ASSERT_EQ(v.surface, surf[i]) << n << " " << i;
-          ASSERT_EQ(v.flags, flags) << n << " " << i;
-          ASSERT_EQ(v.reserved, 0) << n << " " << i;
-          ASSERT_EQ(std::memcmp(&v.latDeg, &lat[i], 8), 0) << n << " " << i;
-          ASSERT_EQ(std::memcmp(&v.lonDeg, &lon[i], 8), 0) << n << " " << i;
+        for (int portable = 0; portable < 2; ++portable) {
+          std::memset(static_cast<void*>(out), 0xAB, n * sizeof(grid::GridVertex));
+          (portable ? grid::packRowPortable : grid::packRow)(t.data(), rx.data(), ry.data(), rz.data(), lat.data(),
+                                                             lon.data(), surf.data(), x0, dx, rowOff, n, out, stream);
+          for (std::size_t i = 0; i < n; ++i) {
+            const grid::GridVertex& v = out[i];
+            const double x = x0 + double(int(i)) * dx;
+            const unsigned flags = (std::isnan(t[i]) ? grid::kVertexHorizon : 0) |
+                                   ((rowOff || std::fabs(x) > 1.0) ? grid::kVertexOffscreen : 0);
+            ASSERT_EQ(v.eyeRelM[0], float(rx[i])) << n << " " << i;
+            ASSERT_EQ(v.eyeRelM[1], float(ry[i])) << n << " " << i;
+            ASSERT_EQ(v.eyeRelM[2], float(rz[i])) << n << " " << i;
+            ASSERT_EQ(v.surface, surf[i]) << n << " " << i;
+            ASSERT_EQ(v.flags, flags) << n << " " << i;
+            ASSERT_EQ(v.reserved, 0) << n << " " << i;
+            ASSERT_EQ(std::memcmp(&v.latDeg, &lat[i], 8), 0) << n << " " << i;
+            ASSERT_EQ(std::memcmp(&v.lonDeg, &lon[i], 8), 0) << n << " " << i;
+          }
         }
       }
     }
