@@ -8,26 +8,41 @@ const float kHazeScaleM = 8000.0;
 // Sunlight reaching the ground for a sun `sunMu` = cos(zenith angle): redder
 // and dimmer towards the horizon, zero below it.
 vec3 sunLight(float sunMu) {
-  float m = 1.0 / max(sunMu + 0.15 * pow(93.885 - degrees(acos(clamp(sunMu, -1.0, 1.0))), -1.253), 0.02);
+  // Kasten-Young air mass; its base is clamped so the night side (where the
+  // smoothstep below is 0) gives 0, not 0 * NaN.
+  float m = 1.0 / max(sunMu + 0.15 * pow(max(93.885 - degrees(acos(clamp(sunMu, -1.0, 1.0))), 1e-3), -1.253), 0.02);
   vec3 tau = vec3(0.0065, 0.015, 0.036) * m;  // extinction per air mass (R, G, B)
   return exp(-tau) * smoothstep(-0.05, 0.05, sunMu);
 }
 
 // Sky radiance seen along `dir` from an eye at `eyeAltM` with local up `up`;
 // discScale 0 leaves out the sun's disc (reflections add their own glint).
+// The sky near the ground (dome + horizon haze + sun glow, no disc) seen
+// along `dir`; sun = sunLight(dot(sunDir, up)), which callers compute once
+// (per vertex) and share.
+vec3 skyLow(vec3 dir, vec3 up, vec3 sunDir, vec3 sun) {
+  float mu = dot(dir, up);
+  float sunMu = dot(sunDir, up);
+  float cosSun = dot(dir, sunDir);
+  vec3 light = sun + vec3(0.02);
+  float h1 = 1.0 - max(mu, 0.0), h2 = h1 * h1;
+  float h = h2 * h2 * h1;  // (1 - mu)^5
+  vec3 zenith = vec3(0.10, 0.25, 0.65);
+  vec3 horizon = vec3(0.55, 0.65, 0.80);
+  vec3 ground = mix(zenith, horizon, h);
+  float x = 1.0001 - 0.92 * cosSun;
+  float mie = 0.08 * inversesqrt(x) / x * 0.02;  // 0.08 / x^1.5 * 0.02
+  return ground * light * smoothstep(-0.3, 0.1, sunMu) + mie * light;
+}
+
 vec3 skyRadiance(vec3 dir, vec3 up, vec3 sunDir, float eyeAltM, float eyeRadiusM, float discScale) {
   float mu = dot(dir, up);
   float sunMu = dot(sunDir, up);
   float cosSun = dot(dir, sunDir);
-  vec3 light = sunLight(max(sunMu, -0.2)) + vec3(0.02);
-  // Near the ground: dome + horizon haze + sun glow.
-  float h = pow(1.0 - max(mu, 0.0), 5.0);
-  vec3 zenith = vec3(0.10, 0.25, 0.65);
-  vec3 horizon = vec3(0.55, 0.65, 0.80);
-  vec3 ground = mix(zenith, horizon, h);
-  float mie = 0.08 / pow(1.0001 - 0.92 * cosSun, 1.5) * 0.02;
-  vec3 lowSky = ground * light * smoothstep(-0.3, 0.1, sunMu) + mie * light;
-  lowSky += discScale * vec3(18.0) * sunLight(sunMu) * smoothstep(0.9996, 0.99985, cosSun);  // the disc
+  vec3 sun = sunLight(sunMu);
+  vec3 light = sun + vec3(0.02);
+  vec3 lowSky = skyLow(dir, up, sunDir, sun);
+  lowSky += discScale * vec3(18.0) * sun * smoothstep(0.9996, 0.99985, cosSun);  // the disc
   // From space: black, with the limb glowing where the ray grazes the air.
   float closest = mu < 0.0 ? eyeRadiusM * sqrt(max(1.0 - mu * mu, 0.0)) : eyeRadiusM;
   float limb = exp(-max(closest - kEarthRadiusM, 0.0) / 25000.0);

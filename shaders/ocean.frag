@@ -9,18 +9,17 @@ in vec3 vNormal;
 in vec3 vUp;
 in vec2 vLonLat;
 in float vHeightM;
+in vec3 vSun;
+in vec3 vHazeTr;
+in vec3 vHazeIn;
+in float vDepthM;
+in float vFar;
 
-uniform vec4 uElevationGeo;
 uniform vec4 uWaterGeo;
 uniform vec3 uSunDir;
-uniform float uEyeRadiusM;
-uniform float uEyeAltM;
 uniform float uMaxVerticalM;
-uniform float uCellRadians;
-uniform float uOctaveWavelengthM[16];
 uniform float uTimeS;
 uniform int uWriteData;
-layout(binding = 1) uniform sampler2D uElevation;
 layout(binding = 2) uniform sampler2D uWater;
 
 layout(location = 0) out vec4 outColor;
@@ -32,25 +31,19 @@ float depthCurve(float depthM, float tauMin, float tauMax) {
 }
 
 void main() {
-  vec2 uvW = geoUv(vLonLat, uWaterGeo);
-  float texelsPerPixel = length(fwidth(uvW) * vec2(textureSize(uWater, 0)));
-  // The B-spline (4 taps) only near a coast: mip level 2 averages 4 x 4
-  // texels, so 1.0 there means open water all round.
-  float wCoarse = textureLod(uWater, uvW, 2.0).r;
-  float w = (texelsPerPixel < 1.0 && wCoarse < 1.0) ? textureBSpline(uWater, uvW) : texture(uWater, uvW).r;
+  // Coverage: B-spline magnified (a smooth shoreline, no 5' steps), the
+  // mipmapped average minified; 0.5 is the coast, smoothed over a pixel.
+  float w = textureBSplineAuto(uWater, geoUv(vLonLat, uWaterGeo));
   float aa = clamp(fwidth(w) * 0.75, 1e-3, 0.5);
   float alpha = smoothstep(0.5 - aa, 0.5 + aa, w);
   if (alpha <= 0.0) discard;
 
   // Depth (eq. 9's height): relief, or the coverage where the 20' relief
   // puts coastal water above sea level.
-  float depth = max(-texture(uElevation, geoUv(vLonLat, uElevationGeo)).r, (w - 0.5) * 120.0);
+  float depth = max(vDepthM, (w - 0.5) * 120.0);
   vec3 up = normalize(vUp);
   vec3 v = normalize(-vEyeRel);
-  float dist = length(vEyeRel);
-  float footprint = dist * uCellRadians;
-  // Distant sea: geometry fades to the mean normal, slopes to roughness.
-  float far = smoothstep(0.02, 0.5, footprint / max(uOctaveWavelengthM[0], 1e-3));
+  float far = vFar;
   vec3 n = normalize(mix(normalize(vNormal), up, far * 0.7));
   float roughness = mix(0.06, 0.22, far);
   // Crest foam where the surface nears its highest, and the shore band
@@ -59,8 +52,7 @@ void main() {
   float surf = 0.5 + 0.5 * sin(uTimeS * 0.9 - depth * 1.7);
   float shore = depthCurve(depth, 4.0, 0.3) * 0.55 * surf + depthCurve(depth, 1.2, 0.0) * 0.4;
   float foam = clamp(crest * 0.7 + shore, 0.0, 1.0);
-  vec3 c = seaColor(n, v, up, uSunDir, depth, roughness, foam, uEyeAltM, uEyeRadiusM);
-  c = applyHaze(c, dist, uEyeAltM, 0.0, up, uSunDir);
-  outColor = vec4(toDisplay(c), alpha);
+  vec3 c = seaColorLit(n, v, up, uSunDir, vSun, depth, roughness, foam);
+  outColor = vec4(toDisplay(c * vHazeTr + vHazeIn), alpha);
   outData = uWriteData != 0 ? vec4(vEyeRel, 1.0) : vec4(0.0);
 }

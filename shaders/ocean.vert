@@ -9,6 +9,7 @@ layout(std430, binding = 1) readonly buffer WvWaveBuffer { WvWave wvWaves[]; };
 layout(std430, binding = 2) readonly buffer WvFrameBuffer { WvFrame wvFrames[]; };
 #include "waves.glsl"
 #include "geo_uv.glsl"
+#include "atmosphere.glsl"
 
 layout(location = 0) in vec3 aEyeRel;
 layout(location = 1) in uint aClassFlags;
@@ -20,7 +21,10 @@ uniform int uOctaveCount;
 uniform int uWaveCount;
 uniform float uOctaveWavelengthM[16];
 uniform float uCellRadians;
+uniform float uRefLonDeg;  // the eye's longitude
 uniform vec4 uElevationGeo;
+uniform vec3 uSunDir;
+uniform float uEyeAltM;
 layout(binding = 1) uniform sampler2D uElevation;
 
 out vec3 vEyeRel;
@@ -28,9 +32,22 @@ out vec3 vNormal;
 out vec3 vUp;
 out vec2 vLonLat;
 out float vHeightM;
+// Smooth over a cell, so computed per vertex: sunlight at the surface, the
+// aerial perspective, the relief's water depth (read at the cell's
+// footprint) and how far the waves have faded into roughness.
+out vec3 vSun;
+out vec3 vHazeTr;
+out vec3 vHazeIn;
+out float vDepthM;
+out float vFar;
 
 void main() {
-  vec2 lonLat = vec2(float(aLatLon.y), float(aLatLon.x));
+  // Longitude unwrapped to within 180 degrees of the eye's, so a cell across
+  // the antimeridian interpolates across it, not back through 0 (the
+  // textures repeat in longitude).
+  double lonD = aLatLon.y - double(uRefLonDeg);
+  lonD -= 360.0 * floor((lonD + 180.0) / 360.0);
+  vec2 lonLat = vec2(float(lonD + double(uRefLonDeg)), float(aLatLon.x));
   vec3 d = aEyeRel + uEyeMinusOrigin;
   WvFrame fr = wvFrames[0];
   vec3 up = wv_upAt(fr, d);
@@ -49,12 +66,37 @@ void main() {
 #else
   WvResult r = wv_solidNoise(0, count, d, fr);
 #endif
-  vec3 p = aEyeRel + r.disp.xyz;
+  // A flat cell between vertices on the ellipsoid sags below it, at its
+  // centre, by d^2/(8R) over its diagonal d = sqrt(2) L, i.e. L^2/(4R) (L:
+  // the cell's size on the ground): 38 m for the 44 km cells seen from
+  // 3450 km, more than the 30 m the terrain's water lies under the sea, so
+  // cell centres lost the depth test to it (the dot pattern seen from
+  // orbit). Each vertex is raised by L^2/(3R) with L = footprint / sin(elevation
+  // angle) where that is >= 0.5, faded out below (so the silhouette and the
+  // atmosphere's limb glow stay; terrain.vert's sea proxy stops there too);
+  // below a few km the raise is under 1 mm.
+  float sinElev = abs(dot(normalize(aEyeRel), up));
+  float cellM = footprint / max(sinElev, 0.5);
+  vec3 p = aEyeRel + r.disp.xyz + up * (cellM * cellM / (3.0 * 6.3e6) * smoothstep(0.2, 0.5, sinElev));
   vNormal = r.normal.xyz;
   vHeightM = r.disp.w;
 #endif
   vEyeRel = p;
   vUp = up;
+#ifdef GEOCEAN_BARE
+  vSun = vec3(1.0), vHazeTr = vec3(1.0), vHazeIn = vec3(0.0), vDepthM = 0.0, vFar = 0.0;
+#else
+  vSun = sunLight(dot(uSunDir, up));
+  float t = hazeAmount(length(p), uEyeAltM, 0.0);
+  vHazeTr = exp(-t * vec3(1.2, 2.0, 3.6));
+  vHazeIn = vec3(0.30, 0.45, 0.80) * (vSun + vec3(0.02)) * 0.3 * (1.0 - vHazeTr);
+  // Relief texels are ~37 km: read the level whose texel matches the cell.
+  float texelM = abs(uElevationGeo.w) / float(textureSize(uElevation, 0).y) * 111320.0;
+  float lod = max(log2(footprint / texelM), 0.0);
+  vDepthM = -textureLod(uElevation, geoUv(lonLat, uElevationGeo), lod).r;
+  // Distant sea: geometry fades to the mean normal, slopes to roughness.
+  vFar = smoothstep(0.02, 0.5, footprint / max(uOctaveWavelengthM[0], 1e-3));
+#endif
   vLonLat = lonLat;
   gl_Position = uViewProj * vec4(p, 1.0);
 }

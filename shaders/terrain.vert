@@ -1,7 +1,11 @@
 // Terrain tile vertex: tile-relative ellipsoid point + height along the
 // normal; the tile centre's offset from the eye is added as a uniform made
 // in double on the CPU, so this stays precise at 1 m from the surface.
+// Everything smooth over a cell is computed here, not per fragment: the
+// relief normal (the 20' relief is no finer than the tiles' cells), the
+// sunlight reaching the ground and the aerial perspective.
 #include "geo_uv.glsl"
+#include "atmosphere.glsl"
 
 layout(location = 0) in vec3 aLocal;
 layout(location = 1) in vec3 aNormal;
@@ -15,19 +19,26 @@ uniform float uExaggeration;
 uniform float uSeaDropM;
 uniform vec4 uElevationGeo;
 uniform vec4 uWaterGeo;
+uniform vec3 uSunDir;
+uniform float uEyeRadiusM;
 layout(binding = 1) uniform sampler2D uElevation;
 layout(binding = 2) uniform sampler2D uWater;
 
 out vec3 vEyeRel;
 out vec3 vNormal;
 out vec2 vLonLat;
-out float vHeightM;
+out vec3 vRelief;   // lit normal (relief-tilted)
+out vec3 vSun;      // sunlight reaching the ground
+out vec3 vHazeTr;   // aerial perspective: transmittance
+out vec3 vHazeIn;   //                     in-scattered light
+out float vDepthM;  // water depth from the relief (positive below the sea)
 
 void main() {
 #ifdef GEOCEAN_BARE
   float h = -uSkirtM * aSkirt;
 #else
-  float elev = textureLod(uElevation, geoUv(aLonLat, uElevationGeo), 0.0).r;
+  vec2 uvE = geoUv(aLonLat, uElevationGeo);
+  float elev = textureLod(uElevation, uvE, 0.0).r;
   vec2 uvW = geoUv(aLonLat, uWaterGeo);
   // The fragment shaders draw the shoreline at B-spline coverage 0.5; the
   // ground must already be under the sea wherever that can be water, or it
@@ -41,6 +52,27 @@ void main() {
   vEyeRel = p;
   vNormal = aNormal;
   vLonLat = aLonLat;
-  vHeightM = h;
+#ifdef GEOCEAN_BARE
+  vRelief = aNormal, vSun = vec3(1.0), vHazeTr = vec3(1.0), vHazeIn = vec3(0.0), vDepthM = 0.0;
+#else
+  // Relief: the elevation gradient tilts the normal (east/north tangents).
+  vec2 texel = 1.0 / vec2(textureSize(uElevation, 0));
+  float hE = textureLod(uElevation, uvE + vec2(texel.x, 0), 0.0).r, hW = textureLod(uElevation, uvE - vec2(texel.x, 0), 0.0).r;
+  float hN = textureLod(uElevation, uvE - vec2(0, texel.y), 0.0).r, hS = textureLod(uElevation, uvE + vec2(0, texel.y), 0.0).r;
+  float cellNS = abs(uElevationGeo.w) * texel.y * 111320.0;
+  float cellEW = max(abs(uElevationGeo.z) * texel.x * 111320.0 * cos(radians(aLonLat.y)), 1.0);
+  vec3 up = aNormal;
+  vec3 east = normalize(cross(vec3(0.0, 0.0, 1.0), up) + vec3(1e-6, 0.0, 0.0));
+  vec3 north = cross(up, east);
+  vec2 grad = vec2(max(hE, 0.0) - max(hW, 0.0), max(hN, 0.0) - max(hS, 0.0)) /
+              (2.0 * vec2(cellEW, cellNS)) * uExaggeration;
+  vRelief = normalize(up - grad.x * east - grad.y * north);
+  vSun = sunLight(dot(uSunDir, up));
+  float eyeAlt = uEyeRadiusM - kEarthRadiusM;
+  float t = hazeAmount(length(p), eyeAlt, max(h, 0.0));
+  vHazeTr = exp(-t * vec3(1.2, 2.0, 3.6));
+  vHazeIn = vec3(0.30, 0.45, 0.80) * (vSun + vec3(0.02)) * 0.3 * (1.0 - vHazeTr);
+  vDepthM = -elev;
+#endif
   gl_Position = uViewProj * vec4(p, 1.0);
 }

@@ -1,7 +1,7 @@
 // A scripted flight from orbit to a few metres above the sea: the altitude
 // falls geometrically (constant speed in log altitude, so it feels the same
-// at every scale, with eased ends), the ground track arrives before the
-// descent does, and the view tilts from straight down to just below the
+// at every scale, with eased ends), the distance still to go along the
+// ground track shrinks with the altitude (ending over the target), and the view tilts from straight down to just below the
 // horizon in the last kilometres.
 #pragma once
 

@@ -30,8 +30,11 @@ GLuint compileStage(GLenum stage, const std::string& stageName, const std::vecto
   const auto embedded = shaders::find(stageName);
   if (!embedded) throw ShaderError("shader '" + stageName + "' is not embedded in this binary");
   std::string text;
+  // Snippets shared between stages test this for derivative functions.
+  std::vector<std::string> all = defines;
+  if (stage == GL_FRAGMENT_SHADER) all.push_back("GEOCEAN_FRAGMENT_STAGE 1");
   try {
-    text = shaders::assemble(stageName, defines);
+    text = shaders::assemble(stageName, all);
   } catch (const std::exception& e) {
     throw ShaderError(std::string(embedded->sourcePath) + ": " + e.what());
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 
 namespace geocean::render {
 
@@ -10,6 +11,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+double cpuMs() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
 }
 }  // namespace
 
@@ -34,6 +40,7 @@ ViewMatrices GlobeRenderer::matrices(const ViewPose& pose) const {
 FrameTimes GlobeRenderer::render(const ViewPose& pose, const FrameSettings& settings) {
   FrameTimes t;
   const auto t0 = Clock::now();
+  const double c0 = cpuMs();
   const ViewMatrices vm = matrices(pose);
   const Lighting light{glm::normalize(settings.sunEcef), settings.timeS};
 
@@ -46,20 +53,28 @@ FrameTimes GlobeRenderer::render(const ViewPose& pose, const FrameSettings& sett
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_GREATER);
   auto ts = Clock::now();
+  double cs = cpuMs();
   glDisable(GL_CULL_FACE);
-  // The terrain keeps shading its water as distant sea: the wave grid skips
-  // cells the classifier calls land, and those must not show land imagery.
-  t.terrain = terrain_.draw(vm, pose, light, settings.bare, true);
+  // The terrain shades water as distant sea where the wave grid does not
+  // draw (cells it skips as land can hold lakes and coast); open water that
+  // the ocean layer will cover gets only depth (a cheap first pass), so the
+  // early depth test skips shading it twice.
+  t.terrain = terrain_.draw(vm, pose, light, settings.bare,
+                            layers_.empty() ? SeaShading::DistantSea : SeaShading::UnderOcean);
   if (settings.timed) glFinish();
   t.terrainMs = msSince(ts);
+  t.terrainCpuMs = cpuMs() - cs;
 
   ts = Clock::now();
+  cs = cpuMs();
   for (auto& l : layers_) l->draw(vm, pose, light, settings.bare);
   if (settings.timed) glFinish();
   t.layersMs = msSince(ts);
+  t.layersCpuMs = cpuMs() - cs;
   // Sky last, at depth 0 with GL_GEQUAL: only pixels nothing else covered
   // pass, and the early depth test skips the rest.
   ts = Clock::now();
+  cs = cpuMs();
   glDepthFunc(GL_GEQUAL);
   glDepthMask(GL_FALSE);
   if (!settings.bare) {
@@ -79,11 +94,13 @@ FrameTimes GlobeRenderer::render(const ViewPose& pose, const FrameSettings& sett
   glDepthMask(GL_TRUE);
   if (settings.timed) glFinish();
   t.skyMs = msSince(ts);
+  t.skyCpuMs = cpuMs() - cs;
 
   glBindVertexArray(0);
   glUseProgram(0);
   if (settings.timed) glFinish();
   t.totalMs = msSince(t0);
+  t.totalCpuMs = cpuMs() - c0;
   return t;
 }
 

@@ -25,6 +25,10 @@ class Layer {
 
 struct FrameTimes {
   double skyMs = 0.0, terrainMs = 0.0, layersMs = 0.0, totalMs = 0.0;
+  // Process CPU time (all threads, llvmpipe's rasteriser threads included)
+  // per pass; with `timed` it is the pass's own work, and unlike wall time
+  // it does not grow when other processes share the cores.
+  double skyCpuMs = 0.0, terrainCpuMs = 0.0, layersCpuMs = 0.0, totalCpuMs = 0.0;
   TerrainStats terrain;
 };
 

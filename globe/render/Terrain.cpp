@@ -29,6 +29,7 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
     : world_(world), options_(options) {
   if (options_.poolTiles < 64) throw std::invalid_argument("terrain pool must hold at least 64 tiles");
   program_ = GlProgram::graphics("terrain.vert", "terrain.frag");
+  seaProxy_ = GlProgram::graphics("terrain.vert", "sea_proxy.frag");
   bare_ = GlProgram::graphics("terrain.vert", "bare.frag", {"GEOCEAN_BARE 1"});
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
@@ -109,7 +110,8 @@ TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
     }
   // The surface bulges between samples half a tile apart by R (1 - cos(span / 4)).
   const double span = (lat1 - lat0) * kDeg;
-  r += geo::kWgs84A * (1.0 - std::cos(span / 4.0)) + 1.0;
+  b.bulgeM = geo::kWgs84A * (1.0 - std::cos(span / 4.0)) + 1.0;
+  r += b.bulgeM;
   b.radius = r;
   return b;
 }
@@ -119,17 +121,27 @@ void TerrainRenderer::select(const Key& k, const ViewMatrices& vm, const ViewPos
   const Bounds b = bounds(k);
   const glm::dvec3 rel = b.center - vm.eyeEcef;
   const double dist = glm::length(rel);
-  // Horizon: points no higher than rMax are hidden beyond the angle
-  // acos(rOcc/|E|) + acos(rOcc/rMax) from the eye's nadir direction, for an
-  // occluding sphere rOcc inside the ellipsoid everywhere.
-  const double eyeR = glm::length(vm.eyeEcef);
-  const double rOcc = geo::kWgs84B + kMinTerrainM * std::max(1.0, options_.exaggeration);
-  const double rMax = geo::kWgs84A + kMaxTerrainM * std::max(1.0, options_.exaggeration);
+  // Horizon, in the space where the ellipsoid is the unit sphere (x, y / a,
+  // z / b: straight lines stay straight): the occluder is the sphere of the
+  // lowest opaque surface; a tile no higher than rTop is hidden if its
+  // centre lies beyond the two tangent angles acos(rOcc/|E|) + acos(rOcc/rTop)
+  // from the eye's direction by more than its angular radius. Lengths are
+  // divided by b, which only enlarges them.
+  const auto scaled = [](const glm::dvec3& p) {
+    return glm::dvec3(p.x / geo::kWgs84A, p.y / geo::kWgs84A, p.z / geo::kWgs84B);
+  };
+  const glm::dvec3 eyeS = scaled(vm.eyeEcef);
+  const double eyeR = glm::length(eyeS);
+  const double rOcc = 1.0 - options_.occluderDepthM / geo::kWgs84B;
   if (eyeR > rOcc) {
-    const double limit = std::acos(std::min(1.0, rOcc / eyeR)) + std::acos(rOcc / rMax);
-    const double cR = glm::length(b.center);
-    const double ang = std::acos(std::clamp(glm::dot(b.center, vm.eyeEcef) / (cR * eyeR), -1.0, 1.0));
-    const double angRadius = std::asin(std::min(1.0, b.radius / cR));
+    double rTop = 0.0;
+    for (const glm::dvec3& s : b.samples) rTop = std::max(rTop, glm::length(scaled(s)));
+    rTop += b.bulgeM / geo::kWgs84B;
+    const glm::dvec3 cS = scaled(b.center);
+    const double cR = glm::length(cS);
+    const double limit = std::acos(std::min(1.0, rOcc / eyeR)) + std::acos(std::min(1.0, rOcc / std::max(rTop, rOcc)));
+    const double ang = std::acos(std::clamp(glm::dot(cS, eyeS) / (cR * eyeR), -1.0, 1.0));
+    const double angRadius = std::asin(std::min(1.0, b.radius / geo::kWgs84B / cR));
     if (ang - angRadius > limit) return;
   }
   // Frustum: side planes through the eye, and in front of it.
@@ -199,7 +211,7 @@ const TerrainRenderer::Slot& TerrainRenderer::acquire(const Key& k, TerrainStats
 }
 
 TerrainStats TerrainRenderer::draw(const ViewMatrices& vm, const ViewPose& pose, const Lighting& light, bool bare,
-                                   bool seaShading) {
+                                   SeaShading sea) {
   TerrainStats stats;
   std::vector<Key> tiles;
   for (int y = 0; y < 2; ++y)
@@ -207,36 +219,55 @@ TerrainStats TerrainRenderer::draw(const ViewMatrices& vm, const ViewPose& pose,
   // More visible tiles than slots would thrash: keep the coarsest that fit.
   if (int(tiles.size()) > options_.poolTiles) tiles.resize(options_.poolTiles);
 
-  const GlProgram& prog = bare ? bare_ : program_;
-  prog.use();
-  world_.bind();
-  glUniformMatrix4fv(prog.uniform("uViewProj"), 1, GL_FALSE, &vm.viewProj[0][0]);
-  glUniform4fv(prog.uniform("uImageryGeo"), 1, &world_.imageryGeo()[0]);
-  glUniform4fv(prog.uniform("uElevationGeo"), 1, &world_.elevationGeo()[0]);
-  glUniform4fv(prog.uniform("uWaterGeo"), 1, &world_.waterGeo()[0]);
-  glUniform1f(prog.uniform("uExaggeration"), float(options_.exaggeration));
-  glUniform1f(prog.uniform("uSeaDropM"), float(options_.seaDropM));
-  const glm::vec3 sun(light.sunEcef);
-  glUniform3fv(prog.uniform("uSunDir"), 1, &sun[0]);
-  // The eye's distance from the Earth's centre and its direction, for the atmosphere.
-  const glm::vec3 eyeDir(glm::normalize(vm.eyeEcef));
-  glUniform3fv(prog.uniform("uEyeDir"), 1, &eyeDir[0]);
-  glUniform1f(prog.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
-  glUniform1f(prog.uniform("uTimeS"), float(light.timeS));
-  glUniform1i(prog.uniform("uSeaShading"), seaShading ? 1 : 0);
-  const GLint locOffset = prog.uniform("uTileOffset"), locSkirt = prog.uniform("uSkirtM");
-  glBindVertexArray(vao_);
+  std::vector<const Slot*> slots;
+  slots.reserve(tiles.size());
   for (const Key& k : tiles) {
-    const Slot& s = acquire(k, stats);
-    const glm::vec3 off(s.centerEcef - vm.eyeEcef);  // double difference, then float
-    glUniform3fv(locOffset, 1, &off[0]);
-    // Skirts hang deeper than the largest height error between levels
-    // (a third of a cell: slopes up to 1:3) and the curvature sag of a cell.
-    const double cellM = 90.0 / double(1 << k.level) / (kGrid - 1) * kDeg * geo::kWgs84A;
-    glUniform1f(locSkirt, float(std::max(5.0, 0.35 * cellM * std::max(1.0, options_.exaggeration))));
-    glDrawElementsBaseVertex(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr, s.index * kVertsPerTile);
+    slots.push_back(&acquire(k, stats));
     stats.maxLevel = std::max(stats.maxLevel, k.level);
   }
+  const auto pass = [&](const GlProgram& prog) {
+    prog.use();
+    world_.bind();
+    glUniformMatrix4fv(prog.uniform("uViewProj"), 1, GL_FALSE, &vm.viewProj[0][0]);
+    glUniform4fv(prog.uniform("uImageryGeo"), 1, &world_.imageryGeo()[0]);
+    glUniform4fv(prog.uniform("uElevationGeo"), 1, &world_.elevationGeo()[0]);
+    glUniform4fv(prog.uniform("uWaterGeo"), 1, &world_.waterGeo()[0]);
+    glUniform1f(prog.uniform("uExaggeration"), float(options_.exaggeration));
+    glUniform1f(prog.uniform("uSeaDropM"), float(options_.seaDropM));
+    const glm::vec3 sun(light.sunEcef);
+    glUniform3fv(prog.uniform("uSunDir"), 1, &sun[0]);
+    // The eye's distance from the Earth's centre, for the atmosphere.
+    glUniform1f(prog.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
+    glUniform1i(prog.uniform("uSeaShading"), sea == SeaShading::None ? 0 : 1);
+    glUniform1f(prog.uniform("uOceanCellPx"), float(options_.oceanCellPx));
+    glUniform1f(prog.uniform("uOceanCellRadians"),
+                float(2.0 * std::tan(0.5 * pose.fovYDeg * kDeg) / pose.height * options_.oceanCellPx));
+    const GLint locOffset = prog.uniform("uTileOffset"), locSkirt = prog.uniform("uSkirtM");
+    glBindVertexArray(vao_);
+    for (std::size_t i = 0; i < tiles.size(); ++i) {
+      const Key& k = tiles[i];
+      const glm::vec3 off(slots[i]->centerEcef - vm.eyeEcef);  // double difference, then float
+      glUniform3fv(locOffset, 1, &off[0]);
+      // Skirts hang deeper than the largest height error between levels
+      // (a third of a cell: slopes up to 1:3) and the curvature sag of a cell.
+      const double cellM = 90.0 / double(1 << k.level) / (kGrid - 1) * kDeg * geo::kWgs84A;
+      glUniform1f(locSkirt, float(std::max(5.0, 0.35 * cellM * std::max(1.0, options_.exaggeration))));
+      glDrawElementsBaseVertex(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr, slots[i]->index * kVertsPerTile);
+    }
+  };
+  if (!bare && sea == SeaShading::UnderOcean) {
+    // Depth only, where the ocean layer will cover the pixel: the same
+    // surface pulled a few float-depth units towards the eye (reversed Z),
+    // so the colour pass fails GL_GREATER there before shading, while the
+    // ocean, 30 m higher, passes.
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(0.0f, 16.0f);
+    pass(seaProxy_);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+  pass(bare ? bare_ : program_);
   stats.tilesDrawn = int(tiles.size());
   glBindVertexArray(0);
   return stats;

@@ -32,10 +32,21 @@ struct TerrainOptions {
   int maxLevel = 16;
   int poolTiles = 768;        // GPU tile slots: memory stays flat
   double seaDropM = 30.0;     // water areas of the terrain sit this far below the sea
+  // The ocean layer's grid cell on screen (OceanOptions::cellPx): open water
+  // is left to the ocean where a whole cell around the pixel is water.
+  double oceanCellPx = 8.0;
+  // Horizon culling: the lowest opaque surface (terrain water areas, wave
+  // troughs) lies no deeper than this under the ellipsoid.
+  double occluderDepthM = 100.0;
 };
 
-// Whether the terrain shades its water areas as distant sea (no ocean layer)
-// or leaves them to the ocean layer drawn over them (cheap land colour only).
+// How the terrain shades its water areas.
+enum class SeaShading {
+  None,        // land colour only
+  DistantSea,  // flat sea with Fresnel sky, depth colour and glint (no ocean layer)
+  UnderOcean,  // as DistantSea, but open water an ocean layer will cover is
+               // discarded (not shaded twice); coasts and small lakes stay
+};
 
 struct TerrainStats {
   int tilesDrawn = 0;
@@ -55,7 +66,7 @@ class TerrainRenderer {
   // Chooses tiles for the view, builds missing ones, draws. `bare` uses
   // trivial shaders (the reference for frame-time ratios).
   TerrainStats draw(const ViewMatrices& vm, const ViewPose& pose, const Lighting& light, bool bare = false,
-                    bool seaShading = true);
+                    SeaShading sea = SeaShading::DistantSea);
 
   const TerrainOptions& options() const { return options_; }
 
@@ -77,7 +88,8 @@ class TerrainRenderer {
   struct Bounds {
     glm::dvec3 center;
     double radius;
-    glm::dvec3 samples[9];
+    glm::dvec3 samples[9];  // 3 x 3 points at the highest height
+    double bulgeM = 0.0;    // how far the surface rises between them
     bool allWater = false;  // every sample is water: no relief to refine
   };
 
@@ -88,7 +100,7 @@ class TerrainRenderer {
 
   const WorldTextures& world_;
   TerrainOptions options_;
-  GlProgram program_, bare_;
+  GlProgram program_, bare_, seaProxy_;
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
   GLsizei indexCount_ = 0;
   std::unordered_map<Key, Slot, KeyHash> cache_;

@@ -4,7 +4,9 @@
 #include "globe/raster/World.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
+#include <cstdio>
 #include <cmath>
 #include <stdexcept>
 
@@ -78,8 +80,10 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
                          bool bare) {
   const camera::Camera cam = camera::Camera::fromEcef(vm.eyeEcef, vm.forward, vm.up, pose.fovYDeg, pose.width,
                                                       pose.height);
+  const auto t0 = std::chrono::steady_clock::now();
   grid_->build(cam, frame_);
   const std::vector<std::uint32_t> idx = grid::compactIndices(frame_);
+  gridMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (idx.empty()) return;
   const std::size_t vbytes = frame_.vertices.size() * sizeof(grid::GridVertex);
   if (vbytes > vboBytes_) {  // grow only: memory stays flat over a flight
@@ -126,6 +130,7 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
   glUniform3fv(p.uniform("uSunDir"), 1, &sun[0]);
   glUniform1f(p.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
   glUniform1f(p.uniform("uEyeAltM"), float(g.heightM));
+  glUniform1f(p.uniform("uRefLonDeg"), float(g.lonDeg));
   glUniform1f(p.uniform("uTimeS"), float(std::fmod(light.timeS, 3600.0)));
   glUniform1i(p.uniform("uWriteData"), writeData_ ? 1 : 0);
 

@@ -37,6 +37,9 @@ class OceanRenderer : public render::Layer {
   const grid::GridFrame& lastFrame() const { return frame_; }
   // Draw the eye-relative surface position into colour attachment 1 (tests).
   void setWriteData(bool on) { writeData_ = on; }
+  // CPU time of the last draw's grid build (ScreenGrid::build + index
+  // compaction), wall ms: the part of the ocean pass that is not GL.
+  double lastGridMs() const { return gridMs_; }
 
  private:
   std::shared_ptr<const render::WorldTextures> world_;
@@ -50,6 +53,7 @@ class OceanRenderer : public render::Layer {
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;
   bool writeData_ = false;
+  double gridMs_ = 0.0;
 };
 
 // The default world's classifier (5' mask + ETOPO) for the grid.

@@ -1,0 +1,139 @@
+// bench_render: the scripted flight of `geocean fly` (orbit to 2 m above the
+// sea, the same plan, sun and time step), each frame drawn with glFinish
+// between passes, then once more with trivial shaders over the same meshes
+// (the "bare" reference). Reports per-pass wall and process-CPU time per
+// frame (CSV) and medians by altitude band. CPU time counts llvmpipe's
+// rasteriser threads too and, unlike wall time, barely moves when other
+// jobs share the cores, so it is the figure to compare between runs.
+//   bench_render [--frames N] [--size WxH] [--to LAT,LON] [--csv FILE] [--no-ocean]
+// Set LP_NUM_THREADS to choose llvmpipe's thread count.
+#include "globe/render/CliParse.h"
+#include "globe/render/Flight.h"
+#include "globe/render/Session.h"
+#include "plugin/render/OceanRenderer.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+using namespace geocean;
+
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct Row {
+  double altM;
+  render::FrameTimes t, bare;
+  double gridMs;
+};
+
+void report(const char* label, const std::vector<Row>& rows, double lo, double hi) {
+  std::vector<double> c[8];
+  for (const Row& r : rows) {
+    if (r.altM < lo || r.altM >= hi) continue;
+    const double v[8] = {r.t.terrainCpuMs, r.t.layersCpuMs, r.t.skyCpuMs, r.t.totalCpuMs,
+                         r.bare.terrainCpuMs, r.bare.layersCpuMs, r.bare.totalCpuMs, r.t.totalMs};
+    for (int i = 0; i < 8; ++i) c[i].push_back(v[i]);
+  }
+  if (c[0].empty()) return;
+  const double bt = median(c[6]);
+  std::printf("%-14s %3zu frames | cpu ms: terrain %7.1f ocean %7.1f sky %5.1f total %7.1f | bare: terrain %6.1f "
+              "ocean %6.1f total %6.1f | ratio %5.2f | wall total %7.1f\n",
+              label, c[0].size(), median(c[0]), median(c[1]), median(c[2]), median(c[3]), median(c[4]),
+              median(c[5]), bt, bt > 0 ? median(c[3]) / bt : 0.0, median(c[7]));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int frames = 40;
+  std::string size = "1280x720", to = "36.0,-5.6", csvPath;
+  bool ocean = true;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "bench_render: %s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--frames") frames = std::atoi(next().c_str());
+    else if (a == "--size") size = next();
+    else if (a == "--to") to = next();
+    else if (a == "--csv") csvPath = next();
+    else if (a == "--no-ocean") ocean = false;
+    else {
+      std::fprintf(stderr, "bench_render: unknown option '%s'\n", a.c_str());
+      return 2;
+    }
+  }
+  render::ViewPose base;
+  render::FlightPlan plan;
+  try {
+    render::parseSize(size, base);
+    const auto t = render::parseNumbers(to, 2, "--to LAT,LON");
+    plan.toLatDeg = t[0], plan.toLonDeg = t[1], plan.fromLatDeg = t[0], plan.fromLonDeg = t[1] - 40.0;
+  } catch (const render::ArgError& e) {
+    std::fprintf(stderr, "bench_render: %s\n", e.what());
+    return 2;
+  }
+  if (frames < 2) {
+    std::fprintf(stderr, "bench_render: --frames %d must be at least 2\n", frames);
+    return 2;
+  }
+  plan.headingDeg = 90.0;  // as geocean fly
+  render::Session s = render::Session::headless(render::loadDefaultWorld(), base.width, base.height);
+  std::shared_ptr<ocean_render::OceanRenderer> oceanLayer;
+  if (ocean) {
+    const std::string err = ocean_render::addDefaultOcean(*s.renderer, s.world, "noise", 10.0, 270.0, &oceanLayer);
+    if (!err.empty()) {
+      std::fprintf(stderr, "bench_render: %s\n", err.c_str());
+      return 2;
+    }
+  }
+  const glm::dvec3 sun = render::sunFromLocal(plan.toLatDeg, plan.toLonDeg, 135.0, 35.0);
+  std::vector<Row> rows;
+  std::ofstream csv;
+  if (!csvPath.empty()) {
+    csv.open(csvPath);
+    csv << "frame,alt_m,tiles,terrain_ms,ocean_ms,sky_ms,total_ms,terrain_cpu_ms,ocean_cpu_ms,sky_cpu_ms,"
+           "total_cpu_ms,grid_ms,bare_terrain_cpu_ms,bare_ocean_cpu_ms,bare_total_cpu_ms\n";
+  }
+  for (int f = 0; f < frames; ++f) {
+    const render::ViewPose pose = render::flightPose(plan, double(f) / (frames - 1), base);
+    render::FrameSettings fs;
+    fs.timeS = f / 30.0;
+    fs.sunEcef = sun;
+    fs.timed = true;
+    Row r;
+    r.altM = pose.altM;
+    r.t = s.render(pose, fs);
+    r.gridMs = oceanLayer ? oceanLayer->lastGridMs() : 0.0;
+    fs.bare = true;
+    r.bare = s.render(pose, fs);
+    if (f > 0) rows.push_back(r);  // frame 0 compiles shaders
+    if (csv.is_open()) {
+      char line[512];
+      std::snprintf(line, sizeof line, "%d,%.1f,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f\n", f,
+                    pose.altM, r.t.terrain.tilesDrawn, r.t.terrainMs, r.t.layersMs, r.t.skyMs, r.t.totalMs,
+                    r.t.terrainCpuMs, r.t.layersCpuMs, r.t.skyCpuMs, r.t.totalCpuMs, r.gridMs, r.bare.terrainCpuMs,
+                    r.bare.layersCpuMs, r.bare.totalCpuMs);
+      csv << line;
+    }
+  }
+  report("all", rows, 0.0, 1e30);
+  report(">= 100 km", rows, 1e5, 1e30);
+  report("1 - 100 km", rows, 1e3, 1e5);
+  report("< 1 km", rows, 0.0, 1e3);
+  return 0;
+}
