@@ -14,6 +14,7 @@
 #include <hwy/contrib/math/math-inl.h>
 #include <hwy/highway.h>
 
+#include "plugin/waves/FftOcean.h"
 #include "plugin/waves/WaveBatch.h"
 
 #include <algorithm>
@@ -631,6 +632,248 @@ void Gerstner(const GerstnerComponent* cs, int count, const Points& pts, Surface
   });
 }
 
+// ---- FFT ocean -----------------------------------------------------------------
+
+constexpr int kFftN = FftOcean::kN;
+constexpr int kFftPlanes = FftOcean::kPlanes;
+constexpr int kFftCascades = FftOcean::kCascades;
+
+// Per query point and (plane, cascade): fractions and cells of the tile
+// coordinates (fftPlanesAt), the part of wv_fft that depends on the point only.
+struct FftLanes {
+  HWY_ALIGN double fracU[kFftPlanes * kFftCascades][kL];
+  HWY_ALIGN double fracV[kFftPlanes * kFftCascades][kL];
+  HWY_ALIGN double cellU[kFftPlanes * kFftCascades][kL];
+  HWY_ALIGN double cellV[kFftPlanes * kFftCascades][kL];
+};
+
+// wv_fftTangent1: the ECEF axis most nearly horizontal at up, made tangent.
+HWY_INLINE void FftTangent1(V u0, V u1, V u2, V& e0, V& e1, V& e2) {
+  const D d;
+  const V a0 = hn::Abs(u0), a1 = hn::Abs(u1), a2 = hn::Abs(u2);
+  const auto useX = hn::And(hn::Le(a0, a1), hn::Le(a0, a2));
+  const auto useY = hn::AndNot(useX, hn::Le(a1, a2));
+  const auto useZ = hn::Not(hn::Or(useX, useY));
+  const V one = S(1.0), zero = hn::Zero(d);
+  const V r0 = hn::IfThenElseZero(useX, one), r1 = hn::IfThenElseZero(useY, one), r2 = hn::IfThenElseZero(useZ, one);
+  (void)zero;
+  const V dd = Dot(r0, r1, r2, u0, u1, u2);
+  e0 = hn::NegMulAdd(dd, u0, r0);
+  e1 = hn::NegMulAdd(dd, u1, r1);
+  e2 = hn::NegMulAdd(dd, u2, r2);
+  Normalize(e0, e1, e2);
+}
+
+struct FftEval {
+  V hor[3], z, dzdt, nrm[3], hvel[3], a11, a12, a22, det, up[3], t1[3], t2[3];
+};
+
+// Bilinear fetch of texel part `part`, component `comp` at the 4 corners.
+struct Quad {
+  V a, b, c, e;
+};
+HWY_INLINE Quad Fetch(const double* texels, hn::Vec<hn::RebindToSigned<D>> ia, hn::Vec<hn::RebindToSigned<D>> ib,
+                      hn::Vec<hn::RebindToSigned<D>> ic, hn::Vec<hn::RebindToSigned<D>> ie, int offset) {
+  const D d;
+  const hn::RebindToSigned<D> di;
+  const auto o = hn::Set(di, offset);
+  return {hn::GatherIndex(d, texels, hn::Add(ia, o)), hn::GatherIndex(d, texels, hn::Add(ib, o)),
+          hn::GatherIndex(d, texels, hn::Add(ic, o)), hn::GatherIndex(d, texels, hn::Add(ie, o))};
+}
+
+// wv_fft at offset (dx, dy, dz).
+HWY_INLINE void EvalFft(const FftPlane* pl, const double* texels, const FftLanes& fl, const Frame& fr, V dx, V dy,
+                        V dz, FftEval& r) {
+  const D d;
+  const hn::RebindToSigned<D> di;
+  V u0 = hn::MulAdd(fr.upScale[0], dx, fr.up0[0]), u1 = hn::MulAdd(fr.upScale[1], dy, fr.up0[1]),
+    u2 = hn::MulAdd(fr.upScale[2], dz, fr.up0[2]);
+  Normalize(u0, u1, u2);
+  auto weight = [](V c) {
+    const V x = hn::Max(hn::Sub(hn::Abs(c), S(0.5)), hn::Zero(D()));
+    return hn::Mul(x, x);
+  };
+  const V w0 = weight(u0), w1 = weight(u1), w2 = weight(u2);
+  const V norm = hn::Div(S(1.0), hn::Sqrt(Dot(w0, w1, w2, w0, w1, w2)));
+  V e10, e11, e12;
+  FftTangent1(u0, u1, u2, e10, e11, e12);
+  const V e20 = hn::MulSub(u1, e12, hn::Mul(u2, e11)), e21 = hn::MulSub(u2, e10, hn::Mul(u0, e12)),
+          e22 = hn::MulSub(u0, e11, hn::Mul(u1, e10));
+  const V zero = hn::Zero(d), one = S(1.0);
+  V z = zero, dzdt = zero, g1 = zero, g2 = zero, j11 = zero, j12 = zero, j21 = zero, j22 = zero;
+  V h0 = zero, h1 = zero, h2 = zero, v0 = zero, v1 = zero, v2 = zero;
+  const V wp[3] = {hn::Mul(w0, norm), hn::Mul(w1, norm), hn::Mul(w2, norm)};
+  const auto mask = hn::Set(di, kFftN - 1);
+  for (int p = 0; p < kFftPlanes; ++p) {
+    const V w = wp[p];
+    if (hn::AllFalse(d, hn::Gt(w, zero))) continue;
+    V val0 = zero, val1 = zero, val2 = zero, val3 = zero, du0 = zero, du1 = zero, du2 = zero, dv0 = zero,
+      dv1 = zero, dv2 = zero, vel2 = zero, vel3 = zero;
+    for (int c = 0; c < kFftCascades; ++c) {
+      const int k = p * kFftCascades + c;
+      const FftPlane& q = pl[k];
+      const V tu = hn::Add(hn::Load(d, fl.fracU[k]), Dot(S(q.u[0]), S(q.u[1]), S(q.u[2]), dx, dy, dz));
+      const V tv = hn::Add(hn::Load(d, fl.fracV[k]), Dot(S(q.v[0]), S(q.v[1]), S(q.v[2]), dx, dy, dz));
+      const V fu = hn::Floor(tu), fv = hn::Floor(tv);
+      const V fx = hn::Sub(tu, fu), fy = hn::Sub(tv, fv), perM = S(1.0 / q.metresPerTexel);
+      const auto ix = hn::ConvertTo(di, hn::Add(hn::Load(d, fl.cellU[k]), fu));
+      const auto iy = hn::ConvertTo(di, hn::Add(hn::Load(d, fl.cellV[k]), fv));
+      const auto x0 = hn::And(ix, mask), x1 = hn::And(hn::Add(ix, hn::Set(di, 1)), mask);
+      const auto y0 = hn::ShiftLeft<7>(hn::And(iy, mask)), y1 = hn::ShiftLeft<7>(hn::And(hn::Add(iy, hn::Set(di, 1)), mask));
+      static_assert(kFftN == 128, "ShiftLeft<7> is the row stride");
+      const auto base = hn::Set(di, q.firstTexel);
+      // Index of double 0 of part 0 of each corner texel (2 dvec4 per texel).
+      const auto ia = hn::ShiftLeft<3>(hn::Add(base, hn::Add(y0, x0)));
+      const auto ib = hn::ShiftLeft<3>(hn::Add(base, hn::Add(y0, x1)));
+      const auto ic = hn::ShiftLeft<3>(hn::Add(base, hn::Add(y1, x0)));
+      const auto ie = hn::ShiftLeft<3>(hn::Add(base, hn::Add(y1, x1)));
+      const V gx = hn::Sub(one, fx), gy = hn::Sub(one, fy);
+      auto bil = [&](const Quad& t) {
+        return hn::MulAdd(hn::MulAdd(t.c, gx, hn::Mul(t.e, fx)), fy, hn::Mul(hn::MulAdd(t.a, gx, hn::Mul(t.b, fx)), gy));
+      };
+      auto ddu = [&](const Quad& t) {
+        return hn::Mul(hn::MulAdd(hn::Sub(t.b, t.a), gy, hn::Mul(hn::Sub(t.e, t.c), fy)), perM);
+      };
+      auto ddv = [&](const Quad& t) {
+        return hn::Mul(hn::MulAdd(hn::Sub(t.c, t.a), gx, hn::Mul(hn::Sub(t.e, t.b), fx)), perM);
+      };
+      const Quad q0 = Fetch(texels, ia, ib, ic, ie, 0), q1 = Fetch(texels, ia, ib, ic, ie, 1);
+      const Quad q2 = Fetch(texels, ia, ib, ic, ie, 2), q3 = Fetch(texels, ia, ib, ic, ie, 3);
+      const Quad q6 = Fetch(texels, ia, ib, ic, ie, 6), q7 = Fetch(texels, ia, ib, ic, ie, 7);
+      val0 = hn::Add(val0, bil(q0));
+      val1 = hn::Add(val1, bil(q1));
+      val2 = hn::Add(val2, bil(q2));
+      val3 = hn::Add(val3, bil(q3));
+      du0 = hn::Add(du0, ddu(q0));
+      du1 = hn::Add(du1, ddu(q1));
+      du2 = hn::Add(du2, ddu(q2));
+      dv0 = hn::Add(dv0, ddv(q0));
+      dv1 = hn::Add(dv1, ddv(q1));
+      dv2 = hn::Add(dv2, ddv(q2));
+      vel2 = hn::Add(vel2, bil(q6));
+      vel3 = hn::Add(vel3, bil(q7));
+    }
+    // Unit tile axes of the plane (first cascade), gradients of (u, v) in (e1, e2).
+    const FftPlane& q = pl[p * kFftCascades];
+    const double mpt = q.metresPerTexel;
+    const V ua0 = S(q.u[0] * mpt), ua1 = S(q.u[1] * mpt), ua2 = S(q.u[2] * mpt);
+    const V va0 = S(q.v[0] * mpt), va1 = S(q.v[1] * mpt), va2 = S(q.v[2] * mpt);
+    const V m11 = Dot(ua0, ua1, ua2, e10, e11, e12), m12 = Dot(va0, va1, va2, e10, e11, e12);
+    const V m21 = Dot(ua0, ua1, ua2, e20, e21, e22), m22 = Dot(va0, va1, va2, e20, e21, e22);
+    z = hn::MulAdd(w, val0, z);
+    dzdt = hn::MulAdd(w, val3, dzdt);
+    const V hu = hn::Mul(w, val1), hv = hn::Mul(w, val2);
+    h0 = hn::MulAdd(hu, ua0, hn::MulAdd(hv, va0, h0));
+    h1 = hn::MulAdd(hu, ua1, hn::MulAdd(hv, va1, h1));
+    h2 = hn::MulAdd(hu, ua2, hn::MulAdd(hv, va2, h2));
+    const V su = hn::Mul(w, vel2), sv = hn::Mul(w, vel3);
+    v0 = hn::MulAdd(su, ua0, hn::MulAdd(sv, va0, v0));
+    v1 = hn::MulAdd(su, ua1, hn::MulAdd(sv, va1, v1));
+    v2 = hn::MulAdd(su, ua2, hn::MulAdd(sv, va2, v2));
+    g1 = hn::MulAdd(w, hn::MulAdd(du0, m11, hn::Mul(dv0, m12)), g1);
+    g2 = hn::MulAdd(w, hn::MulAdd(du0, m21, hn::Mul(dv0, m22)), g2);
+    const V b11 = hn::MulAdd(du1, m11, hn::Mul(dv1, m12)), b12 = hn::MulAdd(du1, m21, hn::Mul(dv1, m22));
+    const V b21 = hn::MulAdd(du2, m11, hn::Mul(dv2, m12)), b22 = hn::MulAdd(du2, m21, hn::Mul(dv2, m22));
+    j11 = hn::MulAdd(w, hn::MulAdd(m11, b11, hn::Mul(m12, b21)), j11);
+    j12 = hn::MulAdd(w, hn::MulAdd(m11, b12, hn::Mul(m12, b22)), j12);
+    j21 = hn::MulAdd(w, hn::MulAdd(m21, b11, hn::Mul(m22, b21)), j21);
+    j22 = hn::MulAdd(w, hn::MulAdd(m21, b12, hn::Mul(m22, b22)), j22);
+  }
+  const V hu = Dot(h0, h1, h2, u0, u1, u2), vu = Dot(v0, v1, v2, u0, u1, u2);
+  r.hor[0] = hn::NegMulAdd(hu, u0, h0), r.hor[1] = hn::NegMulAdd(hu, u1, h1), r.hor[2] = hn::NegMulAdd(hu, u2, h2);
+  r.hvel[0] = hn::NegMulAdd(vu, u0, v0), r.hvel[1] = hn::NegMulAdd(vu, u1, v1), r.hvel[2] = hn::NegMulAdd(vu, u2, v2);
+  const V a11 = hn::Add(one, j11), a22 = hn::Add(one, j22);
+  const V idet = hn::Div(one, hn::NegMulAdd(j12, j21, hn::Mul(a11, a22)));
+  const V s1 = hn::Mul(hn::NegMulAdd(j21, g2, hn::Mul(a22, g1)), idet);
+  const V s2 = hn::Mul(hn::NegMulAdd(j12, g1, hn::Mul(a11, g2)), idet);
+  r.nrm[0] = hn::NegMulAdd(e20, s2, hn::NegMulAdd(e10, s1, u0));
+  r.nrm[1] = hn::NegMulAdd(e21, s2, hn::NegMulAdd(e11, s1, u1));
+  r.nrm[2] = hn::NegMulAdd(e22, s2, hn::NegMulAdd(e12, s1, u2));
+  Normalize(r.nrm[0], r.nrm[1], r.nrm[2]);
+  const V js = hn::Mul(S(0.5), hn::Add(j12, j21));
+  r.z = z;
+  r.dzdt = dzdt;
+  r.a11 = a11, r.a12 = js, r.a22 = a22, r.det = hn::NegMulAdd(js, js, hn::Mul(a11, a22));
+  r.up[0] = u0, r.up[1] = u1, r.up[2] = u2;
+  r.t1[0] = e10, r.t1[1] = e11, r.t1[2] = e12;
+  r.t2[0] = e20, r.t2[1] = e21, r.t2[2] = e22;
+}
+
+// surfaceAt for model Fft (one time: the tables given): fftPlanesAt, then
+// the Newton inversion exactly as the scalar path takes it.
+void Fft(const FftPlane* pl, const glm::dvec4* tex, const Points& pts, SurfacePoint* out) {
+  const D d;
+  const double* texels = &tex[0].x;
+  FftLanes fl;
+  ForBlocks(pts, [&](const Block& b) {
+    const Loc l = Locate(b.lat, b.lon);
+    Frame fr;
+    const V o0 = hn::Div(l.p[0], S(kA * kA)), o1 = hn::Div(l.p[1], S(kA * kA)), o2 = hn::Div(l.p[2], S(kB * kB));
+    const V ld = hn::Sqrt(Dot(o0, o1, o2, o0, o1, o2));
+    fr.up0[0] = hn::Div(o0, ld), fr.up0[1] = hn::Div(o1, ld), fr.up0[2] = hn::Div(o2, ld);
+    fr.upScale[0] = hn::Div(S(1.0), hn::Mul(S(kA * kA), ld));
+    fr.upScale[1] = fr.upScale[0];
+    fr.upScale[2] = hn::Div(S(1.0), hn::Mul(S(kB * kB), ld));
+    for (int k = 0; k < kFftPlanes * kFftCascades; ++k) {
+      const FftPlane& q = pl[k];
+      const V tu = hn::Add(Dot(S(q.u[0]), S(q.u[1]), S(q.u[2]), l.p[0], l.p[1], l.p[2]), S(q.offU));
+      const V tv = hn::Add(Dot(S(q.v[0]), S(q.v[1]), S(q.v[2]), l.p[0], l.p[1], l.p[2]), S(q.offV));
+      const V fu = hn::Floor(tu), fv = hn::Floor(tv);
+      hn::Store(hn::Sub(tu, fu), d, fl.fracU[k]);
+      hn::Store(hn::Sub(tv, fv), d, fl.fracV[k]);
+      // floor mod N (exact: integers below 2^53, N a power of 2)
+      hn::Store(hn::NegMulAdd(hn::Floor(hn::Mul(fu, S(1.0 / kFftN))), S(kFftN), fu), d, fl.cellU[k]);
+      hn::Store(hn::NegMulAdd(hn::Floor(hn::Mul(fv, S(1.0 / kFftN))), S(kFftN), fv), d, fl.cellV[k]);
+    }
+    const V zero = hn::Zero(d);
+    V dx = zero, dy = zero, dz = zero, lastMiss = S(1e300), iters = zero;
+    auto active = hn::Eq(zero, zero);
+    FftEval r;
+    EvalFft(pl, texels, fl, fr, dx, dy, dz, r);
+    for (int it = 0; it < 100; ++it) {
+      V m0 = hn::Add(dx, r.hor[0]), m1 = hn::Add(dy, r.hor[1]), m2 = hn::Add(dz, r.hor[2]);
+      const V mu = Dot(m0, m1, m2, l.u[0], l.u[1], l.u[2]);
+      m0 = hn::NegMulAdd(mu, l.u[0], m0);
+      m1 = hn::NegMulAdd(mu, l.u[1], m1);
+      m2 = hn::NegMulAdd(mu, l.u[2], m2);
+      const V missM = hn::Sqrt(Dot(m0, m1, m2, m0, m1, m2));
+      active = hn::AndNot(hn::Lt(missM, S(kInversionToleranceM)), active);
+      if (hn::AllFalse(d, active)) break;
+      const auto newton = hn::Lt(missM, hn::Mul(S(0.5), lastMiss));
+      const V mx = Dot(m0, m1, m2, r.t1[0], r.t1[1], r.t1[2]), my = Dot(m0, m1, m2, r.t2[0], r.t2[1], r.t2[2]);
+      const V idet = hn::Div(S(1.0), r.det);
+      const V st1 = hn::Mul(hn::NegMulAdd(r.a12, my, hn::Mul(r.a22, mx)), idet);
+      const V st2 = hn::Mul(hn::NegMulAdd(r.a12, mx, hn::Mul(r.a11, my)), idet);
+      const V s0 = hn::IfThenElse(newton, hn::MulAdd(r.t1[0], st1, hn::Mul(r.t2[0], st2)), m0);
+      const V s1 = hn::IfThenElse(newton, hn::MulAdd(r.t1[1], st1, hn::Mul(r.t2[1], st2)), m1);
+      const V s2 = hn::IfThenElse(newton, hn::MulAdd(r.t1[2], st1, hn::Mul(r.t2[2], st2)), m2);
+      dx = hn::IfThenElse(active, hn::Sub(dx, s0), dx);
+      dy = hn::IfThenElse(active, hn::Sub(dy, s1), dy);
+      dz = hn::IfThenElse(active, hn::Sub(dz, s2), dz);
+      lastMiss = hn::IfThenElse(active, missM, lastMiss);
+      iters = hn::Add(iters, hn::IfThenElseZero(active, S(1.0)));
+      EvalFft(pl, texels, fl, fr, dx, dy, dz, r);
+    }
+    const V ne = Dot(r.nrm[0], r.nrm[1], r.nrm[2], l.e[0], l.e[1], l.e[2]);
+    const V nn = Dot(r.nrm[0], r.nrm[1], r.nrm[2], l.n[0], l.n[1], l.n[2]);
+    const V nu = Dot(r.nrm[0], r.nrm[1], r.nrm[2], l.u[0], l.u[1], l.u[2]);
+    const V ve = Dot(r.hvel[0], r.hvel[1], r.hvel[2], l.e[0], l.e[1], l.e[2]);
+    const V vn = Dot(r.hvel[0], r.hvel[1], r.hvel[2], l.n[0], l.n[1], l.n[2]);
+    const V w = hn::Add(r.dzdt, hn::Div(hn::MulAdd(ne, ve, hn::Mul(nn, vn)), nu));
+    Out o;
+    hn::Store(r.z, d, o.h);
+    hn::Store(ne, d, o.ne);
+    hn::Store(nn, d, o.nn);
+    hn::Store(nu, d, o.nu);
+    hn::Store(w, d, o.w);
+    hn::Store(iters, d, o.it);
+    hn::Store(Dot(dx, dy, dz, l.e[0], l.e[1], l.e[2]), d, o.re);
+    hn::Store(Dot(dx, dy, dz, l.n[0], l.n[1], l.n[2]), d, o.rn);
+    hn::Store(Dot(dx, dy, dz, l.u[0], l.u[1], l.u[2]), d, o.ru);
+    o.write(b, out);
+  });
+}
+
 const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
 std::size_t LaneCount() { return hn::Lanes(D()); }
 
@@ -642,6 +885,7 @@ HWY_AFTER_NAMESPACE();
 namespace geocean::waves::batch {
 HWY_EXPORT(Noise);
 HWY_EXPORT(Gerstner);
+HWY_EXPORT(Fft);
 HWY_EXPORT(TargetName);
 HWY_EXPORT(LaneCount);
 
@@ -650,6 +894,9 @@ void noise(const NoiseOctave* octaves, int count, const Points& p, SurfacePoint*
 }
 void gerstner(const GerstnerComponent* comps, int count, const Points& p, SurfacePoint* out) {
   HWY_DYNAMIC_DISPATCH(Gerstner)(comps, count, p, out);
+}
+void fft(const FftPlane* planes, const glm::dvec4* texels, const Points& p, SurfacePoint* out) {
+  HWY_DYNAMIC_DISPATCH(Fft)(planes, texels, p, out);
 }
 const char* targetName() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
 std::size_t lanes() { return HWY_DYNAMIC_DISPATCH(LaneCount)(); }

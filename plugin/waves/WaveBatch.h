@@ -27,6 +27,16 @@ struct GerstnerComponent {
   double omega, kRef, kR, amplitudeM, phase0, choppiness;
 };
 
+// One (plane, cascade) entry of the FFT ocean (WvFftPlane without the
+// per-point part): float-rounded tile axes in texels per metre, the offset
+// (texels) of the plane, metres per texel, first texel of the cascade.
+struct FftPlane {
+  double u[3], v[3];
+  double offU, offV;
+  double metresPerTexel;
+  int firstTexel;
+};
+
 struct Points {
   const double* latDeg;
   const double* lonDeg;
@@ -38,6 +48,9 @@ struct Points {
 
 void noise(const NoiseOctave* octaves, int count, const Points& p, SurfacePoint* out);
 void gerstner(const GerstnerComponent* comps, int count, const Points& p, SurfacePoint* out);
+// planes: kPlanes x kCascades entries (plane-major); texels: the tables at
+// the one time every point of p has (p.tS[0] when !p.timesPerPoint).
+void fft(const FftPlane* planes, const glm::dvec4* texels, const Points& p, SurfacePoint* out);
 
 // Name of the instruction set the dispatch picked on this CPU ("AVX3", "AVX2", "SSE4", ...)
 // and the number of doubles per vector there.

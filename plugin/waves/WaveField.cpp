@@ -599,6 +599,29 @@ void WaveField::surfaceBatch(const double* latDeg, const double* lonDeg, const d
     batch::gerstner(gc.data(), int(components_.size()), pts, out);
     return;
   }
+  if (model_ == Model::Fft) {
+    // The plane constants of fftPlanesAt itself (at the origin, where the
+    // texel coordinate is the plane's offset: cell + fraction).
+    std::vector<kd::WvFftPlane> at0;
+    fftPlanesAt(glm::dvec3(0.0), at0);
+    std::array<batch::FftPlane, FftOcean::kPlanes * FftOcean::kCascades> pl{};
+    for (std::size_t k = 0; k < pl.size(); ++k) {
+      const kd::WvFftPlane& e = at0[k];
+      pl[k] = {{e.uAxis.x, e.uAxis.y, e.uAxis.z}, {e.vAxis.x, e.vAxis.y, e.vAxis.z}, e.cell.x + e.uAxis.w,
+               e.cell.y + e.vAxis.w, e.axis.w, e.cell.z};
+    }
+    // One table set per time: runs of points at the same time.
+    for (std::size_t i0 = 0; i0 < n;) {
+      const double t = timesPerPoint ? tS[i0] : tS[0];
+      std::size_t i1 = i0 + 1;
+      while (i1 < n && (!timesPerPoint || tS[i1] == t)) ++i1;
+      const auto tables = fft_->tablesAt(t);
+      const batch::Points run{latDeg + i0, lonDeg + i0, &t, false, nullptr, i1 - i0};
+      batch::fft(pl.data(), tables->data(), run, out + i0);
+      i0 = i1;
+    }
+    return;
+  }
   for (std::size_t i = 0; i < n; ++i)
     out[i] = surfaceAt(latDeg[i], lonDeg[i], timesPerPoint ? tS[i] : tS[0], depthM ? depthM[i] : kDeepWaterM);
 }

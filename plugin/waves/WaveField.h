@@ -131,11 +131,11 @@ class WaveField {
 
   // The batch form of surfaceAt: out[i] for (latDeg[i], lonDeg[i]) at time
   // tS[i] (tS[0] for every point when timesPerPoint is false) and depth
-  // depthM[i] (deep water everywhere when depthM is null). Models noise and
-  // Gerstner run a SIMD path (Highway, 2-8 points per vector, dispatched to
-  // the CPU's widest vectors) that agrees with surfaceAt to rounding
-  // (tests/waves/test_batch.cpp); the others loop over surfaceAt. Runs on the
-  // calling thread.
+  // depthM[i] (deep water everywhere when depthM is null). Models noise,
+  // Gerstner and FFT run a SIMD path (Highway, 2-8 points per vector,
+  // dispatched to the CPU's widest vectors) that agrees with surfaceAt to
+  // within the inversion tolerance (tests/waves/test_batch.cpp); noise-paper
+  // loops over surfaceAt. Runs on the calling thread.
   void surfaceBatch(const double* latDeg, const double* lonDeg, const double* tS, bool timesPerPoint,
                     const double* depthM, std::size_t n, SurfacePoint* out) const;
 

@@ -1,5 +1,5 @@
 // The SIMD batch (WaveField::surfaceBatch, plugin/waves/WaveBatch.cpp) is a
-// second implementation of the shared kernel's algebra: it must compute the
+// second implementation of the shared kernel's algebra (noise, Gerstner, FFT): it must compute the
 // same function as the scalar surfaceAt (which the GPU parity test pins to
 // the GLSL) at random points, across the antimeridian, at and near the
 // poles, between points 1 m apart, in shallow water and at large times.
@@ -162,17 +162,30 @@ TEST(SimdBatch, GerstnerInversionPutsTheParticleAboveThePoint) {
   std::printf("batch inversion: worst horizontal miss %.3g m\n", worst);
 }
 
+// FFT: the batch takes the scalar path's Newton steps, so the two agree to
+// rounding like the noise model. Times: each new time costs a table
+// synthesis, so runs of points share a few times (the batch splits at every
+// change of time).
+TEST(SimdBatch, FftEqualsScalar) {
+  for (double t : {0.0, 37.25, -1.0}) {
+    Case c = points(16);
+    for (std::size_t i = 0; i < c.t.size(); ++i) c.t[i] = t >= 0 ? t : 10.0 * double((i / 100) % 3);
+    compare(make(Model::Fft, 10.0, 4), c, {1e-8, 1e-7, 1e-7}, true);
+  }
+}
+
 TEST(SimdBatch, OtherModelsAndEdgeSizes) {
-  // FFT and the paper's noise loop over surfaceAt: identical.
+  // The paper's noise loops over surfaceAt: identical.
   const Case c = points(13);
-  for (Model m : {Model::Fft, Model::NoisePaper}) {
+  for (Model m : {Model::NoisePaper}) {
     const WaveField f = make(m, 10.0, 1);
     std::vector<SurfacePoint> out(50);
     f.surfaceBatch(c.lat.data(), c.lon.data(), c.t.data(), false, nullptr, 50, out.data());
     for (std::size_t i = 0; i < 50; ++i) EXPECT_EQ(out[i].heightM, f.surfaceAt(c.lat[i], c.lon[i], c.t[0]).heightM);
   }
   // Every tail length (1..17 points: partial vectors) and one time for all.
-  const WaveField f = make(Model::Gerstner, 10.0, 1);
+  for (Model m : {Model::Gerstner, Model::Fft}) {
+  const WaveField f = make(m, 10.0, 1);
   for (std::size_t n = 0; n <= 17; ++n) {
     std::vector<SurfacePoint> out(n + 1);
     out[n].heightM = 12345.0;  // must stay untouched
@@ -180,6 +193,7 @@ TEST(SimdBatch, OtherModelsAndEdgeSizes) {
     for (std::size_t i = 0; i < n; ++i)
       EXPECT_NEAR(out[i].heightM, f.surfaceAt(c.lat[i], c.lon[i], c.t[0]).heightM, 2e-5) << n << " " << i;
     EXPECT_EQ(out[n].heightM, 12345.0);
+  }
   }
 }
 
@@ -194,6 +208,9 @@ TEST(SimdBatch, EveryDispatchTargetEqualsScalar) {
     EXPECT_STREQ(batch::targetName(), hwy::TargetName(t));
     compare(make(Model::Noise, 10.0, 5), c, {1e-8, 1e-7, 1e-7}, true);
     compare(make(Model::Gerstner, 10.0, 5), c, {2e-5, 1e-5, 1e-4}, false);
+    Case one = c;
+    for (double& ti : one.t) ti = 5.0;
+    compare(make(Model::Fft, 10.0, 5), one, {1e-8, 1e-7, 1e-7}, true);
   }
   hwy::SetSupportedTargetsForTest(0);
 }
