@@ -235,3 +235,45 @@ TEST(Picker, TerrainAlongTheRayOnlyGivesTheWholeMeshAnswers) {
     EXPECT_NEAR(got[i].distanceM, want[i].distanceM, 1e-6 * (1.0 + want[i].distanceM)) << i;
   }
 }
+
+// A regional raster (no longitude wrap, no polar fans) across lon 180: the
+// one-ray scene still gives the whole-mesh answers.
+TEST(Picker, TerrainAlongTheRayOnlyOnARegionalRaster) {
+  // 0.25-degree cells over lat 30..50 (north up), lon 170..190 (past 180).
+  const int W = 80, H = 80;
+  std::vector<float> px(std::size_t(W) * H);
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i) {
+      const double lat = 50.0 - 0.25 * (j + 0.5), lon = 170.0 + 0.25 * (i + 0.5);
+      px[std::size_t(j) * W + i] = float(3000.0 * std::sin(lat * 0.7) * std::cos(lon * 0.9) - 500.0);
+    }
+  raster::GeoTransform gt;
+  gt.originLonDeg = 170.0, gt.originLatDeg = 50.0, gt.lonStepDeg = 0.25, gt.latStepDeg = -0.25;
+  const auto terrain = raster::Raster::fromPixels(std::move(px), W, H, 1, gt);
+  const auto land = [](const double*, const double*, std::size_t n, ocean::Surface* out) {
+    std::fill(out, out + n, ocean::Surface::Land);  // no sea: every hit is terrain
+  };
+  const Picker whole(terrain, land, geo::toEcef({40, 180, 0}));
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(-1, 1), u01(0, 1);
+  std::vector<PickRay> rays;
+  for (int i = 0; i < 60; ++i) {
+    const double lon = 180.0 + 9.0 * u(rng), lat = 40.0 + 9.0 * u(rng);
+    const geo::EnuFrame f = geo::enuFrame({lat, lon, i % 2 ? 4000.0 * u01(rng) : std::pow(10.0, 3.5 + 2.5 * u01(rng))});
+    const double az = 3.14159265 * u(rng), down = i % 2 ? 0.05 * u01(rng) : 0.3 + u01(rng);
+    rays.push_back({f.originEcef, std::cos(az) * f.east + std::sin(az) * f.north - down * f.up});
+  }
+  std::vector<grid::PickResult> want(rays.size());
+  whole.pickBatch(rays.data(), rays.size(), want.data());
+  int hits = 0;
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    const Picker one(terrain, land, rays[i].originEcef, std::vector<PickRay>{rays[i]});
+    EXPECT_LT(one.terrainTriangles(), whole.terrainTriangles() / 4) << i;
+    const grid::PickResult r = one.pick(rays[i]);
+    ASSERT_EQ(r.hit, want[i].hit) << i;
+    EXPECT_EQ(r.kind, want[i].kind) << i;
+    EXPECT_NEAR(r.distanceM, want[i].distanceM, 1e-6 * (1.0 + want[i].distanceM)) << i;
+    hits += want[i].hit;
+  }
+  EXPECT_GT(hits, 30);
+}
