@@ -46,7 +46,7 @@ void SeaQuery::queryClassified(const double* latDeg, const double* lonDeg, const
                                std::size_t n, const ocean::Surface* surface, const float* elevationM,
                                SeaQueryResult* out) const {
   // The ocean points of each chunk go through the field's batch form (SIMD
-  // for the noise and Gerstner models).
+  // for the noise, Gerstner and FFT models).
   constexpr std::size_t kChunk = 256;
   std::array<double, kChunk> la, lo, ts, dep;
   std::array<std::size_t, kChunk> idx;

@@ -1,4 +1,4 @@
-// The SIMD batch form of WaveField::surfaceAt (noise and Gerstner models):
+// The SIMD batch form of WaveField::surfaceAt (noise, Gerstner and FFT models):
 // Highway, compiled for every x86-64 target and dispatched at run time to
 // the widest vectors the CPU has (AVX-512, AVX2, SSE4), 2-8 queries per
 // vector in double. A second implementation of the algebra of

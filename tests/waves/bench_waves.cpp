@@ -27,10 +27,14 @@
 //    with the same per-query count, the work the batch shows a query needs.
 //  - paper noise, per octave: 2D noise 110 + accumulation 20; per query 120
 //    (scalar only).
-//  - FFT: plane entries at the point 120; per evaluation 60 (frame, weights)
-//    + per plane (2 on average at most) 100 + per cascade 140 (8 texel
-//    fetches, bilinear value, u and v derivatives, velocity): 820; the
-//    query evaluates 1 + iterations times (scalar only). All queries at one
+//  - FFT, counted in the SIMD code: per query locate and frame 122, texel
+//    fractions and cells of the 6 (plane, cascade) entries 144; per
+//    evaluation 62 (frame, weights, tangents) + 50 (slope, normal) + per
+//    plane 338 (per cascade 122: tile coordinates, 6 bilinear values, 3 u
+//    and v derivatives; then axes, accumulation, Jacobian) for the 1.5
+//    planes a point needs on average (|up_i| > 0.5 on half the sphere per
+//    axis; 8 random lanes make the SIMD path evaluate all 3); per Newton
+//    step 40. The query evaluates 1 + iterations times. All queries at one
 //    time (the tables are cached per time; BM_FftTables is a new time).
 #include "plugin/waves/SeaQuery.h"
 #include "plugin/waves/WaveBatch.h"
@@ -89,7 +93,7 @@ double flopsPerQuery(Model m, double iterations) {
     case Model::Noise: return 117.0 + 8 * 247.0;
     case Model::NoisePaper: return 120.0 + 8 * 130.0;
     case Model::Gerstner: return 124.0 + 16 * 100.0 + 2455.0 + iterations * (3115.0 + 62.0);
-    case Model::Fft: return 120.0 + evals * 820.0;
+    case Model::Fft: return 266.0 + evals * (112.0 + 1.5 * 338.0) + iterations * 40.0;
   }
   return 0;
 }
@@ -105,7 +109,7 @@ void report(benchmark::State& state, Model m, double queries, double iterations,
 }
 
 // Mean iterations per point of the Newton inversion (what a query needs).
-// (the batch's steps for noise and Gerstner; surfaceAt's for the others).
+// (the batch's steps; surfaceAt's for noise-paper).
 double meanIterations(const WaveField& f, const Points& p, bool oneTime) {
   std::vector<SurfacePoint> out(1024);
   f.surfaceBatch(p.lat.data(), p.lon.data(), p.t.data(), !oneTime, nullptr, out.size(), out.data());
@@ -163,12 +167,12 @@ void BM_SimdBatch(benchmark::State& state) {
   hwy::SetSupportedTargetsForTest(0);
 }
 BENCHMARK(BM_SimdBatch)
-    ->Args({int(Model::Noise), 0})->Args({int(Model::Gerstner), 0})
+    ->Args({int(Model::Noise), 0})->Args({int(Model::Gerstner), 0})->Args({int(Model::Fft), 0})
     ->Args({int(Model::Noise), HWY_AVX2})->Args({int(Model::Gerstner), HWY_AVX2})
     ->Args({int(Model::Noise), HWY_SSE4})->Args({int(Model::Gerstner), HWY_SSE4});
 
 // The batch forms (no land mask: pure wave cost) on 1 and 2 threads, real
-// time: SeaQuery::queryBatch (SIMD for noise and Gerstner) and, for
+// time: SeaQuery::queryBatch (SIMD but for noise-paper) and, for
 // comparison, the same TBB blocks calling the scalar surfaceAt.
 void BM_Batch(benchmark::State& state) {
   const Model m = Model(state.range(0));
@@ -206,11 +210,13 @@ BENCHMARK(BM_Batch)
     ->Args({int(Model::Noise), 1, 0, 0})->Args({int(Model::Noise), 2, 0, 0})
     ->Args({int(Model::Gerstner), 1, 1, 0})->Args({int(Model::Gerstner), 2, 1, 0})
     ->Args({int(Model::Gerstner), 1, 0, 0})->Args({int(Model::Gerstner), 2, 0, 0})
+    ->Args({int(Model::Fft), 1, 1, 0})->Args({int(Model::Fft), 2, 1, 0})
     ->Args({int(Model::Fft), 1, 0, 0})->Args({int(Model::Fft), 2, 0, 0})
     ->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Batch)
     ->Args({int(Model::Noise), 1, 1, 1})->Args({int(Model::Noise), 2, 1, 1})
     ->Args({int(Model::Gerstner), 1, 1, 1})->Args({int(Model::Gerstner), 2, 1, 1})
+    ->Args({int(Model::Fft), 1, 1, 1})->Args({int(Model::Fft), 2, 1, 1})
     ->MeasureProcessCPUTime()->Unit(benchmark::kMillisecond);
 
 // The FP limit itself, 1 and 2 threads (per-core peak x 2 if both cores are
