@@ -116,23 +116,6 @@ void intersectEllipsoidBatch(const double eye[3], const double* __restrict dx, c
 }
 
 GEOCEAN_CLONES
-void surfaceHitsBatch(const double eye[3], const double* __restrict dx, const double* __restrict dy,
-                      const double* __restrict dz, std::size_t n, double* __restrict tOut, double* __restrict rx,
-                      double* __restrict ry, double* __restrict rz) {
-  const EllipsoidRays e(eye, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double t = e.t(dx[i], dy[i], dz[i]);
-    tOut[i] = t;
-    rx[i] = t * dx[i];
-    ry[i] = t * dy[i];
-    rz[i] = t * dz[i];
-  }
-}
-
-// Column index to double through int (n <= 16384): AVX2 has no vector
-// 64-bit integer conversion, and with size_t the v3 clones stayed scalar.
-
-GEOCEAN_CLONES
 void surfaceHitsRow(const double eye[3], const double F[3], const double R[3], const double U[3], double x0,
                     double dx, double y, std::size_t n, double* __restrict tOut, double* __restrict rx,
                     double* __restrict ry, double* __restrict rz) {

@@ -36,13 +36,9 @@ struct GridVertex;
 void rayRow(const double F[3], const double R[3], const double U[3], double x0, double dx, double y, std::size_t n,
             double* dirX, double* dirY, double* dirZ);
 
-// intersectEllipsoidBatch (offset 0) fused with the eye-relative hit point
-// r = t d (NaN on a miss).
-void surfaceHitsBatch(const double eyeEcef[3], const double* dx, const double* dy, const double* dz, std::size_t n,
-                      double* tOut, double* rx, double* ry, double* rz);
-
-// rayRow fused with surfaceHitsBatch: the same directions (same
-// arithmetic) and hits in one pass, without storing the directions.
+// rayRow fused with intersectEllipsoidBatch (offset 0) and the eye-relative
+// hit point r = t d (NaN on a miss): the same directions (same arithmetic)
+// in one pass, without storing them.
 void surfaceHitsRow(const double eyeEcef[3], const double F[3], const double R[3], const double U[3], double x0,
                     double dx, double y, std::size_t n, double* tOut, double* rx, double* ry, double* rz);
 
