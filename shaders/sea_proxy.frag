@@ -7,10 +7,12 @@
 in vec3 vEyeRel;
 in vec3 vNormal;
 in vec2 vLonLat;
+in float vHeightM;
 
 uniform vec4 uWaterGeo;
 uniform float uOceanCellPx;       // the ocean layer's grid cell, pixels
 uniform float uOceanCellRadians;  // the same as an angle
+uniform float uSeaDropM;          // the terrain's water lies this far under the sea
 layout(binding = 2) uniform sampler2D uWater;
 
 void main() {
@@ -20,11 +22,24 @@ void main() {
   float sinElev = dot(normalize(-vEyeRel), normalize(vNormal));
   float cellM = length(vEyeRel) * uOceanCellRadians / max(sinElev, 1e-3);
   if (sinElev < 0.5 && cellM * cellM / (4.0 * 6.3e6) > 10.0) discard;
-  // All water within the B-spline's reach (2 texels: mip 2 at least) and
-  // within one ocean cell of the pixel (the mip of the pixel's footprint +
-  // log2(cell) + 1): the ocean grid draws the cells here (their corners are
-  // water) with coverage 1.
+  // The ground here must lie well under the sea (the coastal ramp of
+  // terrain.vert can still be above it), or the ocean would fail against it.
+  if (vHeightM > -0.5 * uSeaDropM) discard;
   vec2 uvW = geoUv(vLonLat, uWaterGeo);
-  float lod = max(textureQueryLod(uWater, uvW).y + log2(uOceanCellPx) + 1.0, 2.0);
-  if (textureLod(uWater, uvW, lod).r < 1.0) discard;
+  float lambda = textureQueryLod(uWater, uvW).y;
+  if (lambda < 0.0) {
+    // Magnified: the ocean's coverage (the same B-spline) is opaque here,
+    // with a margin; its cell is drawn (the grid keeps cells within two
+    // mask cells of water, and the B-spline reaches two texels).
+    float w = textureBSplineAuto(uWater, uvW);
+    float aa = clamp(fwidth(w) * 0.75, 1e-3, 0.5);
+    if (w < 0.52 + 2.0 * aa) discard;
+  } else {
+    // Minified: all water within one ocean cell of the pixel (the mip of
+    // the footprint + log2(cell) + 1), so the grid draws this cell (its
+    // corners are water) with coverage 1; at least mip 2 (the B-spline's
+    // reach).
+    float lod = max(lambda + log2(uOceanCellPx) + 1.0, 2.0);
+    if (textureLod(uWater, uvW, lod).r < 1.0) discard;
+  }
 }

@@ -32,6 +32,7 @@ out vec3 vSun;      // sunlight reaching the ground
 out vec3 vHazeTr;   // aerial perspective: transmittance
 out vec3 vHazeIn;   //                     in-scattered light
 out float vDepthM;  // water depth from the relief (positive below the sea)
+out float vHeightM; // height of this surface above the ellipsoid
 
 void main() {
 #ifdef GEOCEAN_BARE
@@ -52,6 +53,7 @@ void main() {
   vEyeRel = p;
   vNormal = aNormal;
   vLonLat = aLonLat;
+  vHeightM = h;
 #ifdef GEOCEAN_BARE
   vRelief = aNormal, vSun = vec3(1.0), vHazeTr = vec3(1.0), vHazeIn = vec3(0.0), vDepthM = 0.0;
 #else

@@ -6,6 +6,7 @@
 // rasteriser threads too and, unlike wall time, barely moves when other
 // jobs share the cores, so it is the figure to compare between runs.
 //   bench_render [--frames N] [--size WxH] [--to LAT,LON] [--csv FILE] [--no-ocean]
+//                [--pixel-error PX]  (terrain LOD: split while a cell spans more pixels)
 // Set LP_NUM_THREADS to choose llvmpipe's thread count.
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
@@ -58,6 +59,7 @@ int main(int argc, char** argv) {
   int frames = 40;
   std::string size = "1280x720", to = "36.0,-5.6", csvPath;
   bool ocean = true;
+  render::TerrainOptions terrain;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -72,6 +74,7 @@ int main(int argc, char** argv) {
     else if (a == "--to") to = next();
     else if (a == "--csv") csvPath = next();
     else if (a == "--no-ocean") ocean = false;
+    else if (a == "--pixel-error") terrain.pixelErrorPx = std::atof(next().c_str());
     else {
       std::fprintf(stderr, "bench_render: unknown option '%s'\n", a.c_str());
       return 2;
@@ -92,7 +95,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   plan.headingDeg = 90.0;  // as geocean fly
-  render::Session s = render::Session::headless(render::loadDefaultWorld(), base.width, base.height);
+  render::Session s = render::Session::headless(render::loadDefaultWorld(), base.width, base.height, terrain);
   std::shared_ptr<ocean_render::OceanRenderer> oceanLayer;
   if (ocean) {
     const std::string err = ocean_render::addDefaultOcean(*s.renderer, s.world, "noise", 10.0, 270.0, &oceanLayer);
