@@ -6,7 +6,9 @@
 // multi-versioned with GCC target_clones (baseline, x86-64-v3 = AVX2+FMA,
 // x86-64-v4 = AVX-512) and the best clone is picked once at load time by the
 // ifunc resolver. FP contraction is off (-ffp-contract=off on the target),
-// so every clone returns bit-identical results.
+// so every clone returns bit-identical results. packRow also has an AVX-512
+// intrinsics path chosen at run time (no arithmetic, same bytes; tested
+// against packRowPortable).
 #pragma once
 
 #include <cstddef>
