@@ -7,6 +7,13 @@
 layout(std430, binding = 0) readonly buffer WvOctaveBuffer { WvOctave wvOctaves[]; };
 layout(std430, binding = 1) readonly buffer WvWaveBuffer { WvWave wvWaves[]; };
 layout(std430, binding = 2) readonly buffer WvFrameBuffer { WvFrame wvFrames[]; };
+#if WV_MODEL == 2
+// FFT ocean (WaveField::gpuPatch: fftPlanes, fftTexels); WV_FFT is defined.
+layout(std430, binding = 3) readonly buffer WvFftPlaneBuffer { WvFftPlane wvFftPlanes[]; };
+layout(std430, binding = 4) readonly buffer WvFftTexelBuffer { vec4 wvFftTexels[]; };
+uniform int uFftCascades;
+uniform float uFftTexelM;  // the coarse cascade's texel, metres
+#endif
 #include "waves.glsl"
 #include "geo_uv.glsl"
 #include "atmosphere.glsl"
@@ -63,6 +70,15 @@ void main() {
   float elev = textureLod(uElevation, geoUv(lonLat, uElevationGeo), 0.0).r;
   float depth = elev < -500.0 ? 1e30 : max(-elev, 1.0);
   WvResult r = wv_gerstner(0, uWaveCount, d, fr, depth);
+#elif WV_MODEL == 2
+  // The tables are bilinear per texel: where a grid cell spans several
+  // texels of the coarse cascade the surface would alias, so displacement
+  // and slope fade to the mean surface (the fragment shader's roughness
+  // takes over, as for the noise octaves).
+  WvResult r = wv_fft(0, 3, uFftCascades, d, fr);
+  float fftKeep = 1.0 - smoothstep(0.5, 1.5, footprint / max(uFftTexelM, 1e-3));
+  r.disp *= fftKeep;
+  r.normal.xyz = normalize(mix(up, r.normal.xyz, fftKeep));
 #else
   WvResult r = wv_solidNoise(0, count, d, fr);
 #endif

@@ -37,13 +37,17 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const render::WorldTextures> world,
       ls->classifyNearWaterBatch(lat, lon, n, out);
     };
   grid_ = std::make_unique<grid::ScreenGrid>(go, classifier);
-  const std::string model = options_.model == waves::Model::Gerstner ? "WV_MODEL 1" : "WV_MODEL 0";
-  program_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", {model});
-  bare_ = render::GlProgram::graphics("ocean.vert", "bare.frag", {model, "GEOCEAN_BARE 1"});
+  std::vector<std::string> model = {options_.model == waves::Model::Gerstner ? "WV_MODEL 1"
+                                    : options_.model == waves::Model::Fft    ? "WV_MODEL 2"
+                                                                             : "WV_MODEL 0"};
+  if (options_.model == waves::Model::Fft) model.push_back("WV_FFT 1");
+  program_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", model);
+  model.push_back("GEOCEAN_BARE 1");
+  bare_ = render::GlProgram::graphics("ocean.vert", "bare.frag", model);
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
   glCreateBuffers(1, &ibo_);
-  glCreateBuffers(3, ssbo_);
+  glCreateBuffers(5, ssbo_);
   // GridVertex: vec3 eyeRel, uint class|flags << 8, dvec2 lat/lon (32 bytes).
   glEnableVertexArrayAttrib(vao_, 0);
   glVertexArrayAttribFormat(vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
@@ -56,13 +60,15 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const render::WorldTextures> world,
   glVertexArrayAttribBinding(vao_, 2, 0);
   // Octave wavelengths (1 / lattice frequency) for the distance fade.
   for (const auto& o : waves_->octaves()) octaveWavelengthM_.push_back(float(1.0 / o.frequencyPerM));
+  // Models without octaves fade by the spectrum's peak wavelength.
+  if (octaveWavelengthM_.empty()) octaveWavelengthM_.push_back(float(waves_->peakWavelengthM()));
 }
 
 OceanRenderer::~OceanRenderer() {
   glDeleteVertexArrays(1, &vao_);
   glDeleteBuffers(1, &vbo_);
   glDeleteBuffers(1, &ibo_);
-  glDeleteBuffers(3, ssbo_);
+  glDeleteBuffers(5, ssbo_);
 }
 
 namespace {
@@ -109,6 +115,20 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
   upload(ssbo_[1], patch_.waves);
   upload(ssbo_[2], std::vector<waves::kf::WvFrame>{patch_.frame});
   for (int i = 0; i < 3; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, ssbo_[i]);
+  // Bindings 3 and 4 (FFT) are restored after the draw: hosts may use them.
+  GLint hostSsbo[2] = {0, 0};
+  GLint64 hostStart[2] = {0, 0}, hostSize[2] = {0, 0};
+  const bool fft = options_.model == waves::Model::Fft;
+  if (fft) {
+    upload(ssbo_[3], patch_.fftPlanes);
+    upload(ssbo_[4], patch_.fftTexels);
+    for (int i = 0; i < 2; ++i) {
+      glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, GLuint(3 + i), &hostSsbo[i]);
+      glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, GLuint(3 + i), &hostStart[i]);
+      glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, GLuint(3 + i), &hostSize[i]);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(3 + i), ssbo_[3 + i]);
+    }
+  }
 
   const render::GlProgram& p = bare ? bare_ : program_;
   p.use();
@@ -133,6 +153,14 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
   glUniform1f(p.uniform("uRefLonDeg"), float(g.lonDeg));
   glUniform1f(p.uniform("uTimeS"), float(std::fmod(light.timeS, 3600.0)));
   glUniform1i(p.uniform("uWriteData"), writeData_ ? 1 : 0);
+  if (fft) {
+    // The coarse cascade's texel: its waves carry the height; the fine one
+    // fades with it (fading by the fine texel flattened the sea 40 m away).
+    float texelM = 0.0f;
+    for (const auto& pl : patch_.fftPlanes) texelM = std::max(texelM, pl.axis.w);
+    glUniform1i(p.uniform("uFftCascades"), patch_.fftCascades);
+    glUniform1f(p.uniform("uFftTexelM"), texelM);
+  }
 
   glEnable(GL_BLEND);
   glBlendFunci(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -146,6 +174,14 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
   glBindVertexArray(0);
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_BLEND);
+  if (fft)
+    for (int i = 0; i < 2; ++i) {
+      if (hostSsbo[i] != 0 && hostSize[i] > 0)
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, GLuint(3 + i), GLuint(hostSsbo[i]), GLintptr(hostStart[i]),
+                          GLsizeiptr(hostSize[i]));
+      else
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(3 + i), GLuint(hostSsbo[i]));
+    }
 }
 
 }  // namespace geocean::ocean_render
@@ -157,7 +193,7 @@ std::string addDefaultOcean(render::GlobeRenderer& renderer, std::shared_ptr<con
   OceanOptions oo;
   const auto model = waves::parseModel(modelName);
   if (!model || *model == waves::Model::NoisePaper)
-    return "--waves '" + modelName + "' is not a GPU wave model (noise, gerstner)";
+    return "--waves '" + modelName + "' is not a GPU wave model (noise, gerstner, fft)";
   oo.model = *model;
   oo.sea.windSpeedMps = windMps;
   oo.sea.windFromDeg = windFromDeg;

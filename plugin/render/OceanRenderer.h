@@ -49,7 +49,7 @@ class OceanRenderer : public render::Layer {
   grid::GridFrame frame_;
   waves::GpuPatch patch_;
   render::GlProgram program_, bare_;
-  GLuint vao_ = 0, vbo_ = 0, ibo_ = 0, ssbo_[3] = {0, 0, 0};
+  GLuint vao_ = 0, vbo_ = 0, ibo_ = 0, ssbo_[5] = {0, 0, 0, 0, 0};  // octaves, waves, frame, FFT planes, texels
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;
   bool writeData_ = false;
