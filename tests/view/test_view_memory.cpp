@@ -50,12 +50,13 @@ std::vector<Sample> readStats(const std::string& path) {
 // poses again, so whatever it adds is memory the first flight's frames did
 // not give back: a leak. Two measures, two bounds over its 1,000 frames:
 //  - malloc'd bytes in use (exact, no allocator noise): 1 MB, so a leak of
-//    1 kB per frame fails. Measured: 0.06 MB (0.4 MB over both flights).
+//    1 kB per frame fails. Measured: +5 and +59 kB (two runs).
 //  - the resident set (also catches memory not from malloc, e.g. driver
 //    mmaps): 8 MB, so 8 kB per frame fails. Allocator retention makes it
 //    jumpy: in the first descent below 25 m it moved by -13 and +18 MB
 //    while the bytes in use stayed within 0.2 MB (freed memory the arenas
-//    keep). Measured in the second flight: +0.08 MB.
+//    keep). Measured: +4 and +76 kB. Numbers and the 10,000-frame flight:
+//    docs/PERFORMANCE.md, "Viewer memory".
 TEST(ViewMemory, FlatOverARepeatedFlight) {
   if (!geocean::test::haveTool("xvfb-run"))
     GTEST_SKIP() << "xvfb-run is not installed (Debian packages xvfb and xauth, in quickstart.sh): "
