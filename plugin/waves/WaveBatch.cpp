@@ -1,11 +1,13 @@
 // SIMD batch of the sea-height query (see WaveBatch.h). Compiled once per
 // x86 target by Highway's foreach_target; HWY_DYNAMIC_DISPATCH picks one at
 // run time. Each function mirrors the algebra of shaders/waves.glsl and
-// WaveField.cpp (locate, makeFrame, octaveAt/waveAt, wv_solidNoise,
-// wv_gerstner, the Newton inversion of surfaceAt) lane by lane; where it
-// differs it says why. Results differ from the scalar path only by rounding
-// (FMA, polynomial sin/cos/atan, a different but exact-in-real-arithmetic
-// order of the trilinear interpolation): tests/waves/test_batch.cpp.
+// WaveField.cpp (locate, makeFrame, octaveAt/waveAt/fftPlanesAt,
+// wv_solidNoise, wv_gerstner, wv_fft, the Newton inversion of surfaceAt)
+// lane by lane; where it differs it says why. Noise and FFT differ from the
+// scalar path only by rounding (FMA, polynomial sin/cos/atan, a different
+// but exact-in-real-arithmetic order of the trilinear interpolation);
+// Gerstner also by its Chebyshev inversion steps, within the inversion
+// tolerance: tests/waves/test_batch.cpp.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "plugin/waves/WaveBatch.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
@@ -649,14 +651,12 @@ struct FftLanes {
 
 // wv_fftTangent1: the ECEF axis most nearly horizontal at up, made tangent.
 HWY_INLINE void FftTangent1(V u0, V u1, V u2, V& e0, V& e1, V& e2) {
-  const D d;
   const V a0 = hn::Abs(u0), a1 = hn::Abs(u1), a2 = hn::Abs(u2);
   const auto useX = hn::And(hn::Le(a0, a1), hn::Le(a0, a2));
   const auto useY = hn::AndNot(useX, hn::Le(a1, a2));
   const auto useZ = hn::Not(hn::Or(useX, useY));
-  const V one = S(1.0), zero = hn::Zero(d);
+  const V one = S(1.0);
   const V r0 = hn::IfThenElseZero(useX, one), r1 = hn::IfThenElseZero(useY, one), r2 = hn::IfThenElseZero(useZ, one);
-  (void)zero;
   const V dd = Dot(r0, r1, r2, u0, u1, u2);
   e0 = hn::NegMulAdd(dd, u0, r0);
   e1 = hn::NegMulAdd(dd, u1, r1);
