@@ -214,3 +214,24 @@ TEST(SimdBatch, EveryDispatchTargetEqualsScalar) {
   }
   hwy::SetSupportedTargetsForTest(0);
 }
+
+// Non-finite input gives a non-finite height in the lane it is in and leaves
+// the other lanes of its vector alone (no crash: texel and lattice indices
+// stay in range whatever the coordinates).
+TEST(SimdBatch, NonFiniteInputStaysInItsLane) {
+  const double nan = std::nan(""), inf = HUGE_VAL;
+  const std::vector<double> lat = {10.0, nan, 20.0, 30.0, inf, -40.0, 50.0, 60.0, 0.5};
+  const std::vector<double> lon = {10.0, 11.0, -inf, 13.0, 14.0, nan, 16.0, 17.0, 0.5};
+  const double t = 3.0;
+  for (Model m : {Model::Noise, Model::Gerstner, Model::Fft}) {
+    const WaveField f = make(m, 10.0, 1);
+    std::vector<SurfacePoint> out(lat.size());
+    f.surfaceBatch(lat.data(), lon.data(), &t, false, nullptr, lat.size(), out.data());
+    for (std::size_t i = 0; i < lat.size(); ++i) {
+      if (std::isfinite(lat[i]) && std::isfinite(lon[i]))
+        EXPECT_NEAR(out[i].heightM, f.surfaceAt(lat[i], lon[i], t).heightM, 2e-5) << toString(m) << " " << i;
+      else
+        EXPECT_FALSE(std::isfinite(out[i].heightM)) << toString(m) << " " << i;
+    }
+  }
+}
