@@ -25,20 +25,20 @@ void main() {
   // The ground here must lie well under the sea (the coastal ramp of
   // terrain.vert can still be above it), or the ocean would fail against it.
   if (vHeightM > -0.5 * uSeaDropM) discard;
+  // One texture tap (this pass covers the whole terrain; 4 B-spline taps
+  // here cost as much as the terrain's own shading).
   vec2 uvW = geoUv(vLonLat, uWaterGeo);
   float lambda = textureQueryLod(uWater, uvW).y;
   if (lambda < 0.0) {
-    // Magnified: the ocean's coverage (the same B-spline) is opaque here,
-    // with a margin; its cell is drawn (the grid keeps cells within two
-    // mask cells of water, and the B-spline reaches two texels).
-    float w = textureBSplineAuto(uWater, uvW);
-    float aa = clamp(fwidth(w) * 0.75, 1e-3, 0.5);
-    if (w < 0.52 + 2.0 * aa) discard;
+    // Magnified: the ocean's B-spline coverage is opaque (>= 0.5 + aa, aa
+    // tiny) wherever the mip-1 average over the same 4 x 4 texels is >= 0.75
+    // (worst case, outer ring all land: B-spline >= 0.69); its cell is drawn
+    // (the grid keeps cells within two mask cells of water).
+    if (textureLod(uWater, uvW, 1.0).r < 0.75) discard;
   } else {
     // Minified: all water within one ocean cell of the pixel (the mip of
     // the footprint + log2(cell) + 1), so the grid draws this cell (its
-    // corners are water) with coverage 1; at least mip 2 (the B-spline's
-    // reach).
+    // corners are water) with coverage 1; at least mip 2.
     float lod = max(lambda + log2(uOceanCellPx) + 1.0, 2.0);
     if (textureLod(uWater, uvW, lod).r < 1.0) discard;
   }

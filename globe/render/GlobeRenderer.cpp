@@ -57,8 +57,7 @@ FrameTimes GlobeRenderer::render(const ViewPose& pose, const FrameSettings& sett
   glDisable(GL_CULL_FACE);
   // The terrain shades water as distant sea where the wave grid does not
   // draw (cells it skips as land can hold lakes and coast); open water that
-  // the ocean layer will cover gets only depth (a cheap first pass), so the
-  // early depth test skips shading it twice.
+  // the ocean layer will cover can get only depth (TerrainOptions::seaProxy).
   t.terrain = terrain_.draw(vm, pose, light, settings.bare,
                             layers_.empty() ? SeaShading::DistantSea : SeaShading::UnderOcean);
   if (settings.timed) glFinish();

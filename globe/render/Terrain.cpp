@@ -255,7 +255,7 @@ TerrainStats TerrainRenderer::draw(const ViewMatrices& vm, const ViewPose& pose,
       glDrawElementsBaseVertex(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr, slots[i]->index * kVertsPerTile);
     }
   };
-  if (!bare && sea == SeaShading::UnderOcean) {
+  if (!bare && sea == SeaShading::UnderOcean && options_.seaProxy) {
     // Depth only, where the ocean layer will cover the pixel: the same
     // surface pulled a few float-depth units towards the eye (reversed Z),
     // so the colour pass fails GL_GREATER there before shading, while the

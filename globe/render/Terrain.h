@@ -38,14 +38,20 @@ struct TerrainOptions {
   // Horizon culling: the lowest opaque surface (terrain water areas, wave
   // troughs) lies no deeper than this under the ellipsoid.
   double occluderDepthM = 100.0;
+  // With an ocean layer, a depth-only pass first (sea_proxy.frag) so the
+  // colour pass skips water the ocean covers. Off: on llvmpipe the extra pass
+  // cost at least what it saved (flight medians, same run, terrain CPU ms:
+  // 211-273 without, 300-320 with); a GPU with cheap vertex and depth
+  // passes may gain.
+  bool seaProxy = false;
 };
 
 // How the terrain shades its water areas.
 enum class SeaShading {
   None,        // land colour only
   DistantSea,  // flat sea with Fresnel sky, depth colour and glint (no ocean layer)
-  UnderOcean,  // as DistantSea, but open water an ocean layer will cover is
-               // discarded (not shaded twice); coasts and small lakes stay
+  UnderOcean,  // as DistantSea; with TerrainOptions::seaProxy, water the ocean
+               // layer will cover gets only depth (not shaded twice)
 };
 
 struct TerrainStats {

@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
   int frames = 40;
   std::string size = "1280x720", to = "36.0,-5.6", csvPath;
   bool ocean = true;
+  int repeat = 1;  // draws per frame before the timed one
   render::TerrainOptions terrain;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -75,6 +76,7 @@ int main(int argc, char** argv) {
     else if (a == "--csv") csvPath = next();
     else if (a == "--no-ocean") ocean = false;
     else if (a == "--pixel-error") terrain.pixelErrorPx = std::atof(next().c_str());
+    else if (a == "--repeat") repeat = std::atoi(next().c_str());
     else {
       std::fprintf(stderr, "bench_render: unknown option '%s'\n", a.c_str());
       return 2;
@@ -120,6 +122,7 @@ int main(int argc, char** argv) {
     fs.timed = true;
     Row r;
     r.altM = pose.altM;
+    for (int k = 1; k < repeat; ++k) s.render(pose, fs);
     r.t = s.render(pose, fs);
     r.gridMs = oceanLayer ? oceanLayer->lastGridMs() : 0.0;
     fs.bare = true;
