@@ -299,7 +299,7 @@ int runView(const ViewArgs& a) {
       std::replace(title.begin(), title.end(), '\n', ' ');
       glfwSetWindowTitle(win, title.c_str());
     }
-    if (stats && !stats.flush()) {
+    if (!a.statsCsv.empty() && !stats.flush()) {  // also when a write failed midway
       std::fprintf(stderr, "geocean view: writing --stats '%s' failed\n", a.statsCsv.c_str());
       rc = kExitDataError;
     }
