@@ -76,15 +76,21 @@ void Hud::draw(int widthPx, int heightPx, double dtS, const HudValues& v) {
   io.DisplaySize = ImVec2(float(widthPx), float(heightPx));
   io.DeltaTime = float(std::clamp(dtS, 1e-4, 1.0));  // ImGui asserts a positive step
   ImGui_ImplOpenGL3_NewFrame();
-  ImGui::NewFrame();
-  const float margin = widthPx >= 480 ? 10.0f : 2.0f;
-  ImGui::SetNextWindowPos(ImVec2(margin, margin));
-  ImGui::SetNextWindowBgAlpha(0.45f);
-  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
-                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                                 ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
-  if (ImGui::Begin("geocean-hud", nullptr, flags)) ImGui::TextUnformatted(text(v).c_str());
-  ImGui::End();
+  // ImGui hides an auto-sized window on its first frame (it measures it
+  // then): lay the first frame out twice so every frame shows the panel.
+  for (int pass = firstFrame_ ? 2 : 1; pass > 0; --pass) {
+    ImGui::NewFrame();
+    const float margin = widthPx >= 480 ? 10.0f : 2.0f;
+    ImGui::SetNextWindowPos(ImVec2(margin, margin));
+    ImGui::SetNextWindowBgAlpha(0.45f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+    if (ImGui::Begin("geocean-hud", nullptr, flags)) ImGui::TextUnformatted(text(v).c_str());
+    ImGui::End();
+    if (pass > 1) ImGui::EndFrame();
+  }
+  firstFrame_ = false;
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   ImGui::SetCurrentContext(previous);

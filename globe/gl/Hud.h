@@ -43,6 +43,7 @@ class Hud {
  private:
   Hud() = default;
   ImGuiContext* ctx_ = nullptr;
+  bool firstFrame_ = true;
 };
 
 }  // namespace geocean::gl

@@ -199,6 +199,34 @@ TEST(ViewWindow, BadOptionsExit2NamingTheOption) {
   EXPECT_NE(r.err.find("/nonexistent-dir/s.csv"), std::string::npos) << r.err;
 }
 
+// `geocean fly --hud` (headless EGL, no X server): the same HUD in the PNGs.
+// Frames are deterministic, so away from the panel the pictures with and
+// without it are the same, and the panel's text changes many pixels.
+TEST(FlyHud, DrawsTheHudIntoThePngsAndNothingElse) {
+  const std::string withHud = tempPath("fly_hud"), noHud = tempPath("fly_nohud");
+  const std::string common = " fly --to 36.0,-5.6 --frames 3 --size 320x180 --out ";
+  auto r = geocean::test::run(kGeocean + common + withHud + " --hud");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  r = geocean::test::run(kGeocean + common + noHud);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (const char* frame : {"/frame_00000.png", "/frame_00002.png"}) {
+    const auto img = geocean::raster::readImage8(withHud + frame), bare = geocean::raster::readImage8(noHud + frame);
+    ASSERT_EQ(img.width, 320);
+    ASSERT_EQ(bare.width, 320);
+    ASSERT_EQ(img.channels, bare.channels);
+    int rightDiff = 0, panelText = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const Rgb a = at(img, x, y), b = at(bare, x, y);
+        const int diff = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+        if (x >= img.width / 2) rightDiff = std::max(rightDiff, diff);
+        if (x < 140 && y < 100 && diff > 64) ++panelText;
+      }
+    EXPECT_LE(rightDiff, 1) << frame;
+    EXPECT_GT(panelText, 300) << frame;
+  }
+}
+
 // No display at all (not even Xvfb): view says so and suggests `render`.
 TEST(ViewWindow, WithoutADisplaySaysSoAndSuggestsRender) {
   const auto r = geocean::test::run("env -u DISPLAY -u WAYLAND_DISPLAY " + kGeocean + " view --fly-to 36,-5.6");
