@@ -7,6 +7,7 @@
 // jobs share the cores, so it is the figure to compare between runs.
 //   bench_render [--frames N] [--size WxH] [--to LAT,LON] [--csv FILE] [--no-ocean]
 //                [--pixel-error PX]  (terrain LOD: split while a cell spans more pixels)
+//                [--repeat N] [--sea-proxy]  (TerrainOptions::seaProxy)
 // Set LP_NUM_THREADS to choose llvmpipe's thread count.
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
@@ -77,6 +78,7 @@ int main(int argc, char** argv) {
     else if (a == "--no-ocean") ocean = false;
     else if (a == "--pixel-error") terrain.pixelErrorPx = std::atof(next().c_str());
     else if (a == "--repeat") repeat = std::atoi(next().c_str());
+    else if (a == "--sea-proxy") terrain.seaProxy = true;
     else {
       std::fprintf(stderr, "bench_render: unknown option '%s'\n", a.c_str());
       return 2;
