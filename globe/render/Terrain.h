@@ -40,9 +40,9 @@ struct TerrainOptions {
   double occluderDepthM = 100.0;
   // With an ocean layer, a depth-only pass first (sea_proxy.frag) so the
   // colour pass skips water the ocean covers. Off: on llvmpipe the extra pass
-  // cost at least what it saved (flight medians, same run, terrain CPU ms:
-  // 211-273 without, 300-320 with); a GPU with cheap vertex and depth
-  // passes may gain.
+  // cost more than it saved (flight medians, terrain CPU ms, bench_render
+  // --sea-proxy on a quiet machine: 188/192 without, 223/230 with); a GPU
+  // with cheap vertex and depth passes may gain.
   bool seaProxy = false;
 };
 
