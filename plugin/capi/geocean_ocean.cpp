@@ -324,7 +324,7 @@ class GlStateGuard {
   GlStateGuard& operator=(const GlStateGuard&) = delete;
 
  private:
-  static constexpr int kUnits = 3, kSsbos = 3, kDrawBuffers = 2;
+  static constexpr int kUnits = 3, kSsbos = 5, kDrawBuffers = 2;  // SSBOs 3-4: the FFT tables
   GLint program_ = 0, vao_ = 0, activeTexture_ = GL_TEXTURE0, texture_[kUnits] = {}, ssboGeneric_ = 0;
   GLint ssbo_[kSsbos] = {};
   GLint64 ssboStart_[kSsbos] = {}, ssboSize_[kSsbos] = {};
@@ -810,7 +810,7 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
     if (!snap->waves) fail(GEOCEAN_ERROR_NOT_READY, "no sea state: call geocean_set_sea_state first");
     if (snap->model == geocean::waves::Model::NoisePaper)
       fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "sea state model GEOCEAN_WAVES_NOISE_PAPER has no GPU form: "
-                                           "draw with GEOCEAN_WAVES_NOISE or GEOCEAN_WAVES_GERSTNER");
+                                           "draw with GEOCEAN_WAVES_NOISE, GEOCEAN_WAVES_GERSTNER or GEOCEAN_WAVES_FFT");
     if (ocean->gl && ocean->gl->context != ctx)
       fail(GEOCEAN_ERROR_GL, "the ocean's GL resources belong to another context: call geocean_release_gl "
                              "with that context current first");

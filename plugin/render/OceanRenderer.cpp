@@ -24,7 +24,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const render::WorldTextures> world,
   waves_ = waves::WaveField::create(options_.model, options_.sea, err);
   if (!waves_) throw std::invalid_argument("sea state: " + err);
   if (options_.model == waves::Model::NoisePaper)
-    throw std::invalid_argument("--waves noise-paper has no GPU form; render with noise or gerstner");
+    throw std::invalid_argument("--waves noise-paper has no GPU form; render with noise, gerstner or fft");
   grid::GridOptions go;
   go.cellPx = options_.cellPx;
   go.maxDisplacementM = waves_->maxDisplacementM();
