@@ -349,7 +349,7 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
   // vertices, and the cell flags between the chunk's rows. A chunk is one
   // task (sky rows are cheaper than sea rows, so several chunks per thread
   // balance the load; fewer, larger tasks than TBB's auto partitioner).
-  const int rowsPerChunk = std::max(4, rows / 16);
+  const int rowsPerChunk = std::max(4, rows / 64);
   const int chunks = (rows + rowsPerChunk - 1) / rowsPerChunk;
   // Stream the vertices out only when the buffer cannot stay in the cache.
   const bool streamOut = f.vertices.size() * sizeof(GridVertex) > (std::size_t(16) << 20);
