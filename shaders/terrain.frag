@@ -3,7 +3,7 @@
 // shaded as distant sea; aerial perspective. The smooth terms (relief
 // normal, sunlight, haze) come interpolated from the vertex shader.
 #include "geo_uv.glsl"
-#include "sea_shading.glsl"
+#include "atmosphere.glsl"
 
 in vec3 vEyeRel;
 in vec3 vNormal;
@@ -13,6 +13,7 @@ in vec3 vSun;
 in vec3 vHazeTr;
 in vec3 vHazeIn;
 in float vDepthM;
+in vec3 vSeaColor;
 
 uniform vec4 uImageryGeo;
 uniform vec4 uWaterGeo;
@@ -37,12 +38,8 @@ void main() {
     float w = textureBSplineAuto(uWater, uvW);
     float aa = clamp(fwidth(w) * 0.75, 1e-3, 0.5);
     float waterAmt = smoothstep(0.5 - aa, 0.5 + aa, w);
-    // The 20' relief puts coastal cells above the sea: near the shore take
-    // the depth from the coverage instead (about 60 m at full coverage).
-    float depth = max(vDepthM, (w - 0.5) * 120.0);
-    // Distant sea: no wave geometry, the waves' slopes become roughness.
-    vec3 v = normalize(-vEyeRel);
-    c = mix(c, seaColorLit(up, v, up, uSunDir, vSun, depth, 0.18, 0.0), waterAmt);
+    // Distant sea (no wave geometry, slopes as roughness), shaded per vertex.
+    c = mix(c, vSeaColor, waterAmt);
   }
   outColor = vec4(toDisplay(c * vHazeTr + vHazeIn), 1.0);
 }

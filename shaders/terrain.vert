@@ -5,7 +5,7 @@
 // relief normal (the 20' relief is no finer than the tiles' cells), the
 // sunlight reaching the ground and the aerial perspective.
 #include "geo_uv.glsl"
-#include "atmosphere.glsl"
+#include "sea_shading.glsl"
 
 layout(location = 0) in vec3 aLocal;
 layout(location = 1) in vec3 aNormal;
@@ -33,6 +33,7 @@ out vec3 vHazeTr;   // aerial perspective: transmittance
 out vec3 vHazeIn;   //                     in-scattered light
 out float vDepthM;  // water depth from the relief (positive below the sea)
 out float vHeightM; // height of this surface above the ellipsoid
+out vec3 vSeaColor; // the distant sea's colour here (smooth: up, view, sun, depth)
 
 void main() {
 #ifdef GEOCEAN_BARE
@@ -55,7 +56,7 @@ void main() {
   vLonLat = aLonLat;
   vHeightM = h;
 #ifdef GEOCEAN_BARE
-  vRelief = aNormal, vSun = vec3(1.0), vHazeTr = vec3(1.0), vHazeIn = vec3(0.0), vDepthM = 0.0;
+  vRelief = aNormal, vSun = vec3(1.0), vHazeTr = vec3(1.0), vHazeIn = vec3(0.0), vDepthM = 0.0, vSeaColor = vec3(0.0);
 #else
   // Relief: the elevation gradient tilts the normal (east/north tangents).
   vec2 texel = 1.0 / vec2(textureSize(uElevation, 0));
@@ -75,6 +76,12 @@ void main() {
   vHazeTr = exp(-t * vec3(1.2, 2.0, 3.6));
   vHazeIn = vec3(0.30, 0.45, 0.80) * (vSun + vec3(0.02)) * 0.3 * (1.0 - vHazeTr);
   vDepthM = -elev;
+  // The 20' relief puts coastal cells above the sea: near the shore take the
+  // depth from the coverage instead (about 60 m at full coverage). Per
+  // vertex: on llvmpipe this shading per terrain pixel cost more than the
+  // imagery, and its inputs vary over a cell no faster than the haze.
+  float depth = max(vDepthM, (water - 0.5) * 120.0);
+  vSeaColor = seaColorLit(up, normalize(-p), up, uSunDir, vSun, depth, 0.18, 0.0);
 #endif
   gl_Position = uViewProj * vec4(p, 1.0);
 }
