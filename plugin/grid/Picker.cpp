@@ -220,6 +220,19 @@ std::optional<CellSelection> cellsAlong(const raster::Raster& r, const std::vect
   s.cells.erase(std::unique(s.cells.begin(), s.cells.end()), s.cells.end());
   return s;
 }
+// The fan vertex closing a global raster's polar hole: at the pole, at the
+// mean finite height of edge row j.
+glm::dvec3 poleVertexEcef(const raster::Raster& r, int j) {
+  const double lat = r.transform().latOf(j + 0.5);
+  double sum = 0.0;
+  int n = 0;
+  for (int i = 0; i < r.width(); ++i) {
+    const float e = r.pixel(i, j);
+    if (std::isfinite(e)) sum += e, ++n;
+  }
+  return geo::toEcef({lat > 0 ? 90.0 : -90.0, 0.0, n ? sum / n : 0.0});
+}
+
 }  // namespace
 
 struct Picker::Impl {
@@ -276,15 +289,8 @@ void Picker::Impl::buildTerrain(const raster::Raster& r) {
   if (wrap) {
     for (int edge = 0; edge < 2; ++edge) {
       const int j = edge == 0 ? 0 : H - 1;
-      const double lat = gt.latOf(j + 0.5);
-      double sum = 0.0;
-      int n = 0;
-      for (int i = 0; i < W; ++i) {
-        const float e = r.pixel(i, j);
-        if (std::isfinite(e)) sum += e, ++n;
-      }
       const auto pole = std::uint32_t(terrainEcef.size());
-      terrainEcef.push_back(geo::toEcef({lat > 0 ? 90.0 : -90.0, 0.0, n ? sum / n : 0.0}));
+      terrainEcef.push_back(poleVertexEcef(r, j));
       ok.push_back(1);
       for (int i = 0; i < W; ++i) tri(pole, std::uint32_t(j * W + i), std::uint32_t(j * W + (i + 1) % W));
     }
@@ -328,15 +334,8 @@ void Picker::Impl::buildTerrainCells(const raster::Raster& r, const CellSelectio
   for (int edge = 0; edge < 2; ++edge) {
     if (!sel.fan[edge]) continue;
     const int j = edge == 0 ? 0 : H - 1;
-    const double lat = gt.latOf(j + 0.5);
-    double sum = 0.0;
-    int n = 0;
-    for (int i = 0; i < W; ++i) {
-      const float e = r.pixel(i, j);
-      if (std::isfinite(e)) sum += e, ++n;
-    }
     const auto pole = std::uint32_t(terrainEcef.size());
-    terrainEcef.push_back(geo::toEcef({lat > 0 ? 90.0 : -90.0, 0.0, n ? sum / n : 0.0}));
+    terrainEcef.push_back(poleVertexEcef(r, j));
     ok.push_back(1);
     for (int i = 0; i < W; ++i) {
       const std::uint32_t la = vertex(std::uint32_t(j * W + i)), lb = vertex(std::uint32_t(j * W + (i + 1) % W));
