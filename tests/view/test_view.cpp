@@ -4,6 +4,7 @@
 #include "globe/geo/Ellipsoid.h"
 #include "globe/raster/ImageIo.h"
 #include "tests/support/Subprocess.h"
+#include "tests/view/ViewStats.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -46,30 +47,8 @@ Rgb at(const geocean::raster::Image8& img, int x, int y) {
 }
 bool isBlack(Rgb c) { return std::max({c.r, c.g, c.b}) < 24; }
 
-struct StatsRow {
-  int frame = 0;
-  double latDeg = 0, lonDeg = 0, altM = 0, seaM = 0, fps = 0;
-  long rssKb = 0;
-  int tiles = 0;
-  long tilesBuilt = 0;
-};
-std::vector<StatsRow> readStats(const std::string& path) {
-  std::vector<StatsRow> rows;
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "frame,wall_s,lat,lon,alt_m,sea_height_m,fps,rss_kb,heap_in_use_kb,heap_held_kb,tiles,tiles_built");
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream ls(line);
-    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
-    EXPECT_EQ(f.size(), 12u) << line;
-    if (f.size() != 12) continue;
-    rows.push_back({std::stoi(f[0]), std::stod(f[2]), std::stod(f[3]), std::stod(f[4]), std::stod(f[5]),
-                    std::stod(f[6]), std::stol(f[7]), std::stoi(f[10]), std::stol(f[11])});
-  }
-  return rows;
-}
+using geocean::test::readStats;
+using geocean::test::StatsRow;
 
 // From 20,000 km the window shows the whole Earth: a disc of angular radius
 // asin(R / d) (geometry, not our renderer) centred in the window, black space

@@ -2,6 +2,7 @@
 // scripted --fly-to flight twice (orbit -> 2 m, then again) and writes its
 // resident set size per frame (/proc/self/statm, the kernel's count).
 #include "tests/support/Subprocess.h"
+#include "tests/view/ViewStats.h"
 
 #include <gtest/gtest.h>
 
@@ -17,31 +18,8 @@ namespace {
 
 const std::string kGeocean = GEOCEAN_EXE;
 
-struct Sample {
-  long rssKb = 0;
-  long heapInUseKb = 0;
-  long tilesBuilt = 0;
-  double altM = 0.0;
-};
-
-std::vector<Sample> readStats(const std::string& path) {
-  std::vector<Sample> rows;
-  std::ifstream in(path);
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "frame,wall_s,lat,lon,alt_m,sea_height_m,fps,rss_kb,heap_in_use_kb,heap_held_kb,tiles,tiles_built");
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream ls(line);
-    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
-    if (f.size() != 12) {
-      ADD_FAILURE() << "bad stats row: " << line;
-      continue;
-    }
-    rows.push_back({std::stol(f[7]), std::stol(f[8]), std::stol(f[11]), std::stod(f[4])});
-  }
-  return rows;
-}
+using geocean::test::readStats;
+using geocean::test::StatsRow;
 
 // Warm-up is the first flight: it makes the terrain tiles it needs, grows the
 // ocean's grow-only buffers to the largest grid the flight needs, lets Mesa
@@ -78,11 +56,11 @@ TEST(ViewMemory, FlatOverARepeatedFlight) {
   EXPECT_NEAR(rows[perFlight - 1].altM, 2.0, 1e-3);
   EXPECT_NEAR(rows[perFlight].altM, 2.0e7, 1.0);
   EXPECT_NEAR(rows.back().altM, 2.0, 1e-3);
-  for (const Sample& s : rows) ASSERT_GT(s.rssKb, 0) << "no resident set size from /proc/self/statm";
+  for (const StatsRow& s : rows) ASSERT_GT(s.rssKb, 0) << "no resident set size from /proc/self/statm";
 
   long warmRss = 0, secondRss = 0, warmHeap = 0, secondHeap = 0;
   for (int f = 0; f < 2 * perFlight; ++f) {
-    const Sample& s = rows[size_t(f)];
+    const StatsRow& s = rows[size_t(f)];
     long& rss = f < perFlight ? warmRss : secondRss;
     long& heap = f < perFlight ? warmHeap : secondHeap;
     rss = std::max(rss, s.rssKb);
