@@ -333,6 +333,17 @@ struct Eval {
   V t111, t112, t122, t222;  // second derivatives of the horizontal map in (t1, t2)
 };
 
+// The inversion's miss: rest offset d plus the horizontal displacement H(d),
+// without its component along the query point's up u; returns its length.
+HWY_INLINE V TangentMiss(V dx, V dy, V dz, const V hor[3], const V u[3], V& m0, V& m1, V& m2) {
+  m0 = hn::Add(dx, hor[0]), m1 = hn::Add(dy, hor[1]), m2 = hn::Add(dz, hor[2]);
+  const V mu = Dot(m0, m1, m2, u[0], u[1], u[2]);
+  m0 = hn::NegMulAdd(mu, u[0], m0);
+  m1 = hn::NegMulAdd(mu, u[1], m1);
+  m2 = hn::NegMulAdd(mu, u[2], m2);
+  return hn::Sqrt(Dot(m0, m1, m2, m0, m1, m2));
+}
+
 HWY_INLINE void Normalize(V& x, V& y, V& z) {
   const V inv = hn::Div(S(1.0), hn::Sqrt(Dot(x, y, z, x, y, z)));
   x = hn::Mul(x, inv);
@@ -580,12 +591,8 @@ void Gerstner(const GerstnerComponent* cs, int count, const Points& pts, Surface
     Eval r;
     EvalGerstner<true>(cs, cl, count, fr, dx, dy, dz, depth, r);
     for (int it = 0; it < 100; ++it) {
-      V m0 = hn::Add(dx, r.hor[0]), m1 = hn::Add(dy, r.hor[1]), m2 = hn::Add(dz, r.hor[2]);
-      const V mu = Dot(m0, m1, m2, l.u[0], l.u[1], l.u[2]);
-      m0 = hn::NegMulAdd(mu, l.u[0], m0);
-      m1 = hn::NegMulAdd(mu, l.u[1], m1);
-      m2 = hn::NegMulAdd(mu, l.u[2], m2);
-      const V missM = hn::Sqrt(Dot(m0, m1, m2, m0, m1, m2));
+      V m0, m1, m2;
+      const V missM = TangentMiss(dx, dy, dz, r.hor, l.u, m0, m1, m2);
       active = hn::AndNot(hn::Lt(missM, S(kInversionToleranceM)), active);
       if (hn::AllFalse(d, active)) break;
       const auto newton = hn::Lt(missM, hn::Mul(S(0.5), lastMiss));
@@ -831,12 +838,8 @@ void Fft(const FftPlane* pl, const glm::dvec4* tex, const Points& pts, SurfacePo
     FftEval r;
     EvalFft(pl, texels, fl, fr, dx, dy, dz, r);
     for (int it = 0; it < 100; ++it) {
-      V m0 = hn::Add(dx, r.hor[0]), m1 = hn::Add(dy, r.hor[1]), m2 = hn::Add(dz, r.hor[2]);
-      const V mu = Dot(m0, m1, m2, l.u[0], l.u[1], l.u[2]);
-      m0 = hn::NegMulAdd(mu, l.u[0], m0);
-      m1 = hn::NegMulAdd(mu, l.u[1], m1);
-      m2 = hn::NegMulAdd(mu, l.u[2], m2);
-      const V missM = hn::Sqrt(Dot(m0, m1, m2, m0, m1, m2));
+      V m0, m1, m2;
+      const V missM = TangentMiss(dx, dy, dz, r.hor, l.u, m0, m1, m2);
       active = hn::AndNot(hn::Lt(missM, S(kInversionToleranceM)), active);
       if (hn::AllFalse(d, active)) break;
       const auto newton = hn::Lt(missM, hn::Mul(S(0.5), lastMiss));
