@@ -4,6 +4,7 @@
 // the GLSL) at random points, across the antimeridian, at and near the
 // poles, between points 1 m apart, in shallow water and at large times.
 #include "globe/geo/Ellipsoid.h"
+#include "tests/waves/MakeField.h"
 #include "plugin/waves/WaveBatch.h"
 #include "plugin/waves/WaveField.h"
 
@@ -18,15 +19,7 @@ using namespace geocean::waves;
 
 namespace {
 
-WaveField make(Model m, double windMps, std::uint32_t seed) {
-  SeaState s;
-  s.windSpeedMps = windMps;
-  s.seed = seed;
-  std::string err;
-  auto w = WaveField::create(m, s, err);
-  EXPECT_TRUE(w) << err;
-  return *w;
-}
+using geocean::waves::test::make;
 
 struct Case {
   std::vector<double> lat, lon, t, depth;

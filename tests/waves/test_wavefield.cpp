@@ -3,6 +3,7 @@
 // behaviour, continuity across the antimeridian and at the poles, and the
 // horizontal inversion checked through GeographicLib.
 #include "globe/geo/Ellipsoid.h"
+#include "tests/waves/MakeField.h"
 #include "plugin/waves/WaveField.h"
 
 #include <gtest/gtest.h>
@@ -16,15 +17,7 @@ namespace geo = geocean::geo;
 namespace {
 constexpr double kG = 9.80665;
 
-WaveField make(Model m, double windMps = 10.0, std::uint32_t seed = 1) {
-  SeaState s;
-  s.windSpeedMps = windMps;
-  s.seed = seed;
-  std::string err;
-  auto w = WaveField::create(m, s, err);
-  EXPECT_TRUE(w) << err;
-  return *w;
-}
+using geocean::waves::test::make;
 
 // Random points uniform on the sphere.
 struct Sampler {
