@@ -47,6 +47,24 @@ Rgb at(const geocean::raster::Image8& img, int x, int y) {
 }
 bool isBlack(Rgb c) { return std::max({c.r, c.g, c.b}) < 24; }
 
+// A frame with the HUD against the same frame without it: the largest
+// channel difference in the right half (no panel there) and the number of
+// pixels in the panel's corner that differ by more than 64 (its text).
+struct HudDiff {
+  int rightDiff = 0, panelText = 0;
+};
+HudDiff hudDiff(const geocean::raster::Image8& img, const geocean::raster::Image8& bare) {
+  HudDiff d;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const Rgb a = at(img, x, y), b = at(bare, x, y);
+      const int diff = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+      if (x >= img.width / 2) d.rightDiff = std::max(d.rightDiff, diff);
+      if (x < 140 && y < 100 && diff > 64) ++d.panelText;
+    }
+  return d;
+}
+
 using geocean::test::readStats;
 using geocean::test::StatsRow;
 
@@ -97,14 +115,7 @@ TEST(ViewWindow, OrbitScreenshotShowsTheGlobeAndTheHud) {
   // The HUD: the same frame without it is the same picture away from the
   // panel (frames are scripted: same poses, same simulation times), and the
   // panel's text changes many pixels (a line of 10 glyphs lights > 100).
-  int rightDiff = 0, panelText = 0;
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x) {
-      const Rgb a = at(img, x, y), b = at(bare, x, y);
-      const int diff = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
-      if (x >= img.width / 2) rightDiff = std::max(rightDiff, diff);
-      if (x < 140 && y < 100 && diff > 64) ++panelText;
-    }
+  const auto [rightDiff, panelText] = hudDiff(img, bare);
   EXPECT_LE(rightDiff, 1);
   EXPECT_GT(panelText, 300);
 }
@@ -193,14 +204,7 @@ TEST(FlyHud, DrawsTheHudIntoThePngsAndNothingElse) {
     ASSERT_EQ(img.width, 320);
     ASSERT_EQ(bare.width, 320);
     ASSERT_EQ(img.channels, bare.channels);
-    int rightDiff = 0, panelText = 0;
-    for (int y = 0; y < img.height; ++y)
-      for (int x = 0; x < img.width; ++x) {
-        const Rgb a = at(img, x, y), b = at(bare, x, y);
-        const int diff = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
-        if (x >= img.width / 2) rightDiff = std::max(rightDiff, diff);
-        if (x < 140 && y < 100 && diff > 64) ++panelText;
-      }
+    const auto [rightDiff, panelText] = hudDiff(img, bare);
     EXPECT_LE(rightDiff, 1) << frame;
     EXPECT_GT(panelText, 300) << frame;
   }
