@@ -88,9 +88,63 @@ void BM_BareLoop(benchmark::State& st) {
   st.counters["rays/s"] = benchmark::Counter(double(n) * n, benchmark::Counter::kIsIterationInvariantRate);
 }
 
+// The lat/lon kernel before 2026-11-30 (Cephes' (4, 5) rational atan, 4
+// divisions + 1 sqrt per vertex), kept as the reference for BM_LatLonCephes:
+// same clones and FP flags as the library (tests/grid/CMakeLists.txt).
+#define GEOCEAN_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+constexpr double kPi = 3.14159265358979323846, kPiO2 = 1.57079632679489661923, kPiO4 = 0.78539816339744830962;
+inline double atanRatio(double num, double den) {
+  const bool big = num > 0.41421356237309504880 * den;
+  const double x = (big ? num - den : num) / (big ? num + den : den);
+  const double base = big ? kPiO4 : 0.0;
+  const double zz = x * x;
+  const double p = (((-8.750608600031904122785e-1 * zz - 1.615753718733365076637e1) * zz -
+                     7.500855792314704667340e1) * zz - 1.228866684490136173410e2) * zz -
+                   6.485021904942025371773e1;
+  const double q = ((((zz + 2.485846490142306297962e1) * zz + 1.650270098316988542046e2) * zz +
+                     4.328810604912902668951e2) * zz + 4.853903996359136964868e2) * zz +
+                   1.945506571482613964425e2;
+  return base + (x * (zz * p / q) + x);
+}
+
+inline double atan2Fast(double y, double x) {
+  const double ax = std::fabs(x), ay = std::fabs(y);
+  const bool swap = ay > ax;
+  const double num = swap ? ax : ay;
+  const double den = std::max(swap ? ay : ax, 2.2250738585072014e-308);
+  double r = atanRatio(num, den);
+  r = swap ? kPiO2 - r : r;
+  r = x < 0.0 ? kPi - r : r;
+  return std::copysign(r, y);
+}
+
+inline double atan2PosX(double y, double x) {
+  const double ay = std::fabs(y);
+  const bool swap = ay > x;
+  const double num = swap ? x : ay;
+  const double den = std::max(swap ? ay : x, 2.2250738585072014e-308);
+  double r = atanRatio(num, den);
+  r = swap ? kPiO2 - r : r;
+  return std::copysign(r, y);
+}
+
+GEOCEAN_CLONES
+void cephesLatLonBatch(const double eye[3], const double* __restrict rx, const double* __restrict ry,
+                       const double* __restrict rz, std::size_t n, double* __restrict latDeg,
+                       double* __restrict lonDeg) {
+  constexpr double e2c = (1.0 - geo::kWgs84F) * (1.0 - geo::kWgs84F);  // 1 - e^2 = (b/a)^2
+  constexpr double toDeg = 180.0 / kPi;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = eye[0] + rx[i], y = eye[1] + ry[i], z = eye[2] + rz[i];
+    const double p = std::sqrt(x * x + y * y);
+    latDeg[i] = atan2PosX(z, e2c * p) * toDeg;
+    lonDeg[i] = atan2Fast(y, x) * toDeg;
+  }
+}
+
+
 // The lat/lon kernel alone (two double atan2 and a sqrt per point) over
-// the hit points of the same rays: the part of the grid that costs about as
-// much as the bare loop by itself.
+// the hit points of the same rays: the grid's largest part after the bare loop.
 void BM_LatLonKernel(benchmark::State& st) {
   const int n = int(st.range(0)), threads = int(st.range(1));
   const camera::Camera& cam = benchCamera();
@@ -120,6 +174,45 @@ void BM_LatLonKernel(benchmark::State& st) {
       tbb::parallel_for(0, n, [&](int j) {
         const auto& x = px[std::size_t(j)];
         grid::surfaceLatLonBatch(eye, x.data(), py[std::size_t(j)].data(), pz[std::size_t(j)].data(), x.size(),
+                                 lat.data() + std::size_t(j) * n, lon.data() + std::size_t(j) * n);
+      });
+    });
+    benchmark::DoNotOptimize(lat.data());
+  }
+  st.counters["points/s"] = benchmark::Counter(double(points), benchmark::Counter::kIsIterationInvariantRate);
+  st.counters["hit_frac"] = double(points) / (double(n) * n);
+}
+
+// The same over Cephes' kernel: the A/B of the current kernel in one run.
+void BM_LatLonCephes(benchmark::State& st) {
+  const int n = int(st.range(0)), threads = int(st.range(1));
+  const camera::Camera& cam = benchCamera();
+  tbb::task_arena arena(threads);
+  const double eye[3] = {cam.eyeEcef().x, cam.eyeEcef().y, cam.eyeEcef().z};
+  const glm::dvec3 F = cam.forward(), R = cam.right() * cam.tanHalfX(), U = cam.up() * cam.tanHalfY();
+  const double Fa[3] = {F.x, F.y, F.z}, Ra[3] = {R.x, R.y, R.z}, Ua[3] = {U.x, U.y, U.z};
+  // Per row: the hit span's eye-relative points, as the grid passes them.
+  const auto sn = static_cast<std::size_t>(n);
+  std::vector<std::vector<double>> px(sn), py(sn), pz(sn);
+  std::vector<double> t(sn), rx(sn), ry(sn), rz(sn);
+  std::size_t points = 0;
+  for (int j = 0; j < n; ++j) {
+    grid::surfaceHitsRow(eye, Fa, Ra, Ua, -1.0, 2.0 / (n - 1), -1.0 + 2.0 * j / (n - 1), std::size_t(n), t.data(),
+                         rx.data(), ry.data(), rz.data());
+    for (int i = 0; i < n; ++i)
+      if (!std::isnan(t[std::size_t(i)])) {
+        px[std::size_t(j)].push_back(rx[std::size_t(i)]);
+        py[std::size_t(j)].push_back(ry[std::size_t(i)]);
+        pz[std::size_t(j)].push_back(rz[std::size_t(i)]);
+      }
+    points += px[std::size_t(j)].size();
+  }
+  std::vector<double> lat(std::size_t(n) * n), lon(std::size_t(n) * n);
+  for (auto _ : st) {
+    arena.execute([&] {
+      tbb::parallel_for(0, n, [&](int j) {
+        const auto& x = px[std::size_t(j)];
+        cephesLatLonBatch(eye, x.data(), py[std::size_t(j)].data(), pz[std::size_t(j)].data(), x.size(),
                                  lat.data() + std::size_t(j) * n, lon.data() + std::size_t(j) * n);
       });
     });
@@ -247,6 +340,7 @@ void gridSizes(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_GridBuild)->Apply(gridSizes)->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_BareLoop)->Apply(sizes)->ArgNames({"n", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_LatLonKernel)->Apply(sizes)->ArgNames({"n", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LatLonCephes)->Apply(sizes)->ArgNames({"n", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WriteVertexBytes)->Apply(sizes)->ArgNames({"n", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_EmbreeUserEllipsoid)->Apply(sizes)->ArgNames({"n", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 

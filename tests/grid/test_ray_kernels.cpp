@@ -9,7 +9,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -84,8 +86,9 @@ TEST(RayKernels, SurfaceLatLonMatchesGeographicLib) {
   std::vector<double> lat(rx.size()), lon(rx.size());
   grid::surfaceLatLonBatch(e, rx.data(), ry.data(), rz.data(), rx.size(), lat.data(), lon.data());
   for (std::size_t i = 0; i < rx.size(); ++i) {
-    // 1e-11 deg = 1 micrometre: the rounding of the ECEF point (1e-9 m) and a
-    // few ulp of the rational atan; far below the 7 nm of GeographicLib.
+    // 1e-11 deg = 1 micrometre: the rounding of the ECEF point (1e-9 m) and
+    // the kernel's own 1e-15 rad (SurfaceLatLonMatchesLongDouble); far below
+    // the 7 nm of GeographicLib.
     EXPECT_NEAR(lat[i], truth[i].latDeg, 1e-11) << i;
     if (std::abs(truth[i].latDeg) < 90.0) {
       const double dLon = geo::wrapLonDeg(lon[i] - truth[i].lonDeg);
@@ -96,6 +99,79 @@ TEST(RayKernels, SurfaceLatLonMatchesGeographicLib) {
   double la, lo;
   grid::surfaceLatLonBatch(e, &nan, &zero, &zero, 1, &la, &lo);
   EXPECT_TRUE(std::isnan(la) && std::isnan(lo));
+}
+
+// The kernel's arctangent on its own: lat = atan2(z, (1 - e^2) p) and
+// lon = atan2(y, x) of the same double inputs in long double (64-bit
+// mantissa), over every octant and both reductions (|ratio| on both sides of
+// tan(pi/8)), at any radius, plus the special points. Bound 1e-13 deg: the
+// rational's 1.6e-16 rad, the rounding of the reduced argument and of the
+// octant constants (<= 1e-15 rad together, 5.7e-14 deg) and of the final
+// multiplication by 180/pi (half an ulp of 180, 1.4e-14 deg).
+TEST(RayKernels, SurfaceLatLonMatchesLongDouble) {
+  constexpr double e2c = (1.0 - geo::kWgs84F) * (1.0 - geo::kWgs84F);  // as the kernel
+  const long double toDeg = 180.0L / 3.141592653589793238462643383279502884L;
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(-1, 1), logR(-3.0, 8.0);
+  std::vector<double> x, y, z;
+  for (int i = 0; i < 200000; ++i) {
+    const double r = std::pow(10.0, logR(rng));
+    x.push_back(r * u(rng)), y.push_back(r * u(rng)), z.push_back(r * u(rng));
+  }
+  // Near the reduction thresholds tan(pi/8), 1 (octant swap) and the axes.
+  for (double t : {0.41421356237309504880, 1.0, 1e-12, 0.0})
+    for (double e : {-1e-15, 0.0, 1e-15})
+      for (double sx : {-1.0, 1.0})
+        for (double sy : {-1.0, 1.0}) {
+          x.push_back(sx * 6.4e6), y.push_back(sy * 6.4e6 * (t + e)), z.push_back(sy * 6.4e6 * e2c * (t + e));
+          x.push_back(sx * 6.4e6 * (t + e)), y.push_back(sy * 6.4e6), z.push_back(sx * 3e6);
+        }
+  std::vector<double> lat(x.size()), lon(x.size());
+  const double eye0[3] = {-0.0, -0.0, -0.0};  // -0 + v = v for every v, signed zeros included
+  grid::surfaceLatLonBatch(eye0, x.data(), y.data(), z.data(), x.size(), lat.data(), lon.data());
+  double worst = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const long double p = std::sqrt((long double)x[i] * x[i] + (long double)y[i] * y[i]);
+    const double refLat = double(std::atan2((long double)z[i], (long double)e2c * p) * toDeg);
+    const double refLon = double(std::atan2((long double)y[i], (long double)x[i]) * toDeg);
+    ASSERT_NEAR(lat[i], refLat, 1e-13) << x[i] << " " << y[i] << " " << z[i];
+    ASSERT_NEAR(lon[i], refLon, 1e-13) << x[i] << " " << y[i] << " " << z[i];
+    worst = std::max({worst, std::abs(lat[i] - refLat), std::abs(lon[i] - refLon)});
+  }
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", worst);
+  RecordProperty("max_error_deg", buf);
+}
+
+// Signed zeros as std::atan2 (the poles and lon 180 from both sides), NaN in
+// any coordinate gives NaN in the angles that use it.
+TEST(RayKernels, SurfaceLatLonSpecialValues) {
+  const double eye0[3] = {-0.0, -0.0, -0.0};  // -0 + v = v for every v, signed zeros included
+  const double nan = std::numeric_limits<double>::quiet_NaN(), b = geo::kWgs84B, a = geo::kWgs84A;
+  struct Case { double x, y, z; };
+  const Case cases[] = {{0.0, 0.0, b},   {-0.0, 0.0, b},   {0.0, -0.0, -b},  {-0.0, -0.0, -b},
+                        {-a, 0.0, 0.0},  {-a, -0.0, -0.0}, {a, 0.0, 0.0},    {a, -0.0, 0.0},
+                        {0.0, a, 0.0},   {0.0, -a, -0.0}};
+  for (const Case& c : cases) {
+    double la = 0, lo = 0;
+    grid::surfaceLatLonBatch(eye0, &c.x, &c.y, &c.z, 1, &la, &lo);
+    const double refLat = std::atan2(c.z, std::sqrt(c.x * c.x + c.y * c.y)) * 180.0 / M_PI;
+    const double refLon = std::atan2(c.y, c.x) * 180.0 / M_PI;
+    EXPECT_NEAR(la, refLat, 1e-13) << c.x << " " << c.y << " " << c.z;
+    EXPECT_NEAR(lo, refLon, 1e-13) << c.x << " " << c.y << " " << c.z;
+    EXPECT_EQ(std::signbit(la), std::signbit(refLat)) << c.x << " " << c.y << " " << c.z;
+    EXPECT_EQ(std::signbit(lo), std::signbit(refLon)) << c.x << " " << c.y << " " << c.z;
+  }
+  for (int k = 0; k < 3; ++k) {
+    double p[3] = {a * 0.6, a * 0.8, 1000.0};
+    p[k] = nan;
+    double la = 0, lo = 0;
+    grid::surfaceLatLonBatch(eye0, &p[0], &p[1], &p[2], 1, &la, &lo);
+    EXPECT_TRUE(std::isnan(la)) << k;  // z, and x, y through p
+    if (k < 2) {
+      EXPECT_TRUE(std::isnan(lo)) << k;
+    }
+  }
 }
 
 TEST(RayKernels, ReportsTheDispatchedIsa) {
