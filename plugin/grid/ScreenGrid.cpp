@@ -18,8 +18,30 @@ namespace geocean::grid {
 namespace {
 constexpr double kMaxRectNdc = 4.0;
 
-// A row buffer left uninitialised: every kernel writes before it reads
-// (value-initialised vectors were ~0.6 MB of memset per 512^2 build).
+// Row arrays of one kernel pass in ONE allocation, each array padded so that
+// array k starts k cache lines further in the 4 KB page than array 0. As
+// separate 512-double (4 KB) allocations they began 16 bytes apart in their
+// pages: element i of every array fell into the same L1 set (horizonRow reads
+// and writes 26 such arrays, packRow 7). 512^2 build 5% faster (A/B of 8
+// alternating runs, 2026-11-30). Uninitialised unless zeroed: every kernel
+// writes before it reads.
+class PaddedArrays {
+ public:
+  void resize(std::size_t count, std::size_t n) {
+    stride_ = (n + 7) / 8 * 8 + 8;  // whole cache lines, plus one
+    block_ = std::make_unique_for_overwrite<double[]>(count * stride_ + 8);
+    // 64-byte alignment: the block comes from operator new (16-byte aligned).
+    const auto addr = reinterpret_cast<std::uintptr_t>(block_.get());
+    base_ = block_.get() + ((64 - addr % 64) % 64) / sizeof(double);
+  }
+  double* operator[](std::size_t k) const { return base_ + k * stride_; }
+
+ private:
+  std::unique_ptr<double[]> block_;
+  double* base_ = nullptr;
+  std::size_t stride_ = 0;
+};
+
 template <class T>
 struct RowBuf {
   std::unique_ptr<T[]> p;
@@ -30,12 +52,22 @@ struct RowBuf {
   const T& operator[](std::size_t i) const { return p[i]; }
 };
 
+// A view of one array of a PaddedArrays block.
+struct RowArray {
+  double* p = nullptr;
+  double* data() const { return p; }
+  double& operator[](std::size_t i) const { return p[i]; }
+};
+
 struct RowScratch {
-  RowBuf<double> dx, dy, dz, t, rx, ry, rz, lat, lon;
+  PaddedArrays block;
+  RowArray dx, dy, dz, t, rx, ry, rz, lat, lon;
   RowBuf<ocean::Surface> surf;
   RowBuf<std::uint8_t> unresolved;
   void resize(std::size_t n) {
-    for (auto* v : {&dx, &dy, &dz, &t, &rx, &ry, &rz, &lat, &lon}) v->resize(n);
+    block.resize(9, n);
+    std::size_t k = 0;
+    for (auto* v : {&dx, &dy, &dz, &t, &rx, &ry, &rz, &lat, &lon}) v->p = block[k++];
     surf.resize(n);
     unresolved.resize(n);
     // horizonRow blends these for every lane (keeping the non-miss ones):
@@ -48,13 +80,18 @@ struct RowScratch {
 
 // The limb candidates of every grid column in SoA form, for horizonRow.
 struct ColumnLimbs {
-  std::vector<double> dir[2][3], rel[2][3], lat[2], lon[2];
+  PaddedArrays block;
+  RowArray dir[2][3], rel[2][3], lat[2], lon[2];
   std::vector<std::uint8_t> surface[2];
   void resize(std::size_t n) {
+    block.resize(16, n);
+    std::size_t b = 0;
     for (int k = 0; k < 2; ++k) {
-      for (int a = 0; a < 3; ++a) dir[k][a].assign(n, 0.0), rel[k][a].assign(n, 0.0);
-      lat[k].assign(n, 0.0), lon[k].assign(n, 0.0), surface[k].assign(n, 0);
+      for (int a = 0; a < 3; ++a) dir[k][a].p = block[b++], rel[k][a].p = block[b++];
+      lat[k].p = block[b++], lon[k].p = block[b++];
+      surface[k].assign(n, 0);
     }
+    for (std::size_t i = 0; i < b; ++i) std::fill_n(block[i], n, 0.0);
   }
 };
 
@@ -354,6 +391,10 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
   // Stream the vertices out only when the buffer cannot stay in the cache.
   const bool streamOut = f.vertices.size() * sizeof(GridVertex) > (std::size_t(16) << 20);
   std::vector<std::size_t> chunkLandCells(static_cast<std::size_t>(chunks), 0);
+  // The classes of each chunk's first and last row, for the cell rows
+  // between chunks (read back from the vertex buffer they were 16 KB-strided
+  // reads of memory, serial after the parallel part).
+  std::vector<std::uint8_t> edgeSurf(std::size_t(chunks) * 2 * cols);
   auto buildChunk = [&](int c) {
     const int j0 = c * rowsPerChunk, j1 = std::min(rows, j0 + rowsPerChunk);
     // Per task, not thread-local: a classifier that itself runs TBB work
@@ -373,10 +414,15 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
       }
       // The hits of a row are one span (the rays lie in a plane through the
       // eye); misses get their limb point with its lat/lon and class.
-      int first = 0, last = cols - 1;
-      while (first < cols && std::isnan(s.t[first])) ++first;
-      while (last >= first && std::isnan(s.t[last])) --last;
-      if (last - first + 1 < cols || countNan(s.t.data(), std::size_t(cols)) > 0) {
+      // Count first (vectorised): sky rows then skip the scalar scans.
+      const std::size_t misses = countNan(s.t.data(), std::size_t(cols));
+      int first = misses == std::size_t(cols) ? cols : 0, last = cols - 1;
+      if (misses > 0 && first < cols) {
+        while (first < cols && std::isnan(s.t[first])) ++first;
+        while (last >= first && std::isnan(s.t[last])) --last;
+      }
+      const bool anyMiss = misses > 0;
+      if (anyMiss) {
         LimbLine rowLine = limb.row(y);
         classifyLine(rowLine);
         LimbCandidates cand;
@@ -436,8 +482,10 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
       packRow(s.t.data(), s.rx.data(), s.ry.data(), s.rz.data(), s.lat.data(), s.lon.data(), surf, rect.minX,
               dxNdc, std::abs(y) > 1.0, std::size_t(cols), f.vertices.data() + std::size_t(j) * cols, streamOut);
       if (j > j0) chunkLandCells[std::size_t(c)] += skipRow(j - 1, prevSurf.data(), surf);
+      if (j == j0) std::copy_n(surf, cols, edgeSurf.data() + std::size_t(2 * c) * cols);
       std::copy_n(surf, cols, prevSurf.data());
     }
+    std::copy_n(prevSurf.data(), cols, edgeSurf.data() + std::size_t(2 * c + 1) * cols);
   };
   auto run = [&] {
     if (!colLines.empty()) {
@@ -468,16 +516,11 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
     run();
   }
   // The cell rows between chunks.
-  std::vector<std::uint8_t> below(static_cast<std::size_t>(cols)), above(static_cast<std::size_t>(cols));
   std::size_t landCells = 0;
   for (std::size_t n : chunkLandCells) landCells += n;
   for (int c = 1; c < chunks; ++c) {
-    const int j = c * rowsPerChunk - 1;
-    for (int i = 0; i < cols; ++i) {
-      below[std::size_t(i)] = f.vertices[std::size_t(j) * cols + i].surface;
-      above[std::size_t(i)] = f.vertices[std::size_t(j + 1) * cols + i].surface;
-    }
-    landCells += skipRow(j, below.data(), above.data());
+    landCells += skipRow(c * rowsPerChunk - 1, edgeSurf.data() + std::size_t(2 * c - 1) * cols,
+                         edgeSurf.data() + std::size_t(2 * c) * cols);
   }
   f.landCells = landCells;
 }
