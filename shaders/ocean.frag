@@ -33,7 +33,12 @@ float depthCurve(float depthM, float tauMin, float tauMax) {
 void main() {
   // Coverage: B-spline magnified (a smooth shoreline, no 5' steps), the
   // mipmapped average minified; 0.5 is the coast, smoothed over a pixel.
+#ifdef GEOCEAN_OPEN_WATER
+  // Water throughout the cell and its filters' reach (OceanRenderer).
+  float w = 1.0;
+#else
   float w = textureBSplineAuto(uWater, geoUv(vLonLat, uWaterGeo));
+#endif
   float aa = clamp(fwidth(w) * 0.75, 1e-3, 0.5);
   float alpha = smoothstep(0.5 - aa, 0.5 + aa, w);
   if (alpha <= 0.0) discard;

@@ -14,6 +14,7 @@ in vec3 vHazeTr;
 in vec3 vHazeIn;
 in float vDepthM;
 in vec3 vSeaColor;
+in float vWater;
 
 uniform vec4 uImageryGeo;
 uniform vec4 uWaterGeo;
@@ -32,6 +33,13 @@ void main() {
   // Skylight fades out on the night side.
   vec3 c = albedo * (vSun * max(dot(normalize(vRelief), uSunDir), 0.0) * 1.6 +
                      vec3(0.04, 0.045, 0.05) * smoothstep(-0.25, 0.1, sunMu));
+#ifdef GEOCEAN_UNDER_OCEAN
+  // The ocean layer draws open water and the anti-aliased shoreline over
+  // this; terrain water shows only where the ocean's coverage fades (the
+  // limb, the coast's one-pixel edge), so per-vertex coverage is enough and
+  // spares every terrain pixel the B-spline (on llvmpipe, 1/3 of the frame).
+  c = mix(c, vSeaColor, smoothstep(0.35, 0.65, vWater));
+#else
   if (uSeaShading != 0) {
     // Water coverage: 0.5 is the shoreline; smooth over a pixel (B-spline
     // magnified, the mipmapped average minified).
@@ -41,5 +49,6 @@ void main() {
     // Distant sea (no wave geometry, slopes as roughness), shaded per vertex.
     c = mix(c, vSeaColor, waterAmt);
   }
+#endif
   outColor = vec4(toDisplay(c * vHazeTr + vHazeIn), 1.0);
 }

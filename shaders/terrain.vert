@@ -34,6 +34,7 @@ out vec3 vHazeIn;   //                     in-scattered light
 out float vDepthM;  // water depth from the relief (positive below the sea)
 out float vHeightM; // height of this surface above the ellipsoid
 out vec3 vSeaColor; // the distant sea's colour here (smooth: up, view, sun, depth)
+out float vWater;   // water coverage at the vertex
 
 void main() {
 #ifdef GEOCEAN_BARE
@@ -56,7 +57,7 @@ void main() {
   vLonLat = aLonLat;
   vHeightM = h;
 #ifdef GEOCEAN_BARE
-  vRelief = aNormal, vSun = vec3(1.0), vHazeTr = vec3(1.0), vHazeIn = vec3(0.0), vDepthM = 0.0, vSeaColor = vec3(0.0);
+  vRelief = aNormal, vSun = vec3(1.0), vHazeTr = vec3(1.0), vHazeIn = vec3(0.0), vDepthM = 0.0, vSeaColor = vec3(0.0), vWater = 0.0;
 #else
   // Relief: the elevation gradient tilts the normal (east/north tangents).
   vec2 texel = 1.0 / vec2(textureSize(uElevation, 0));
@@ -76,6 +77,7 @@ void main() {
   vHazeTr = exp(-t * vec3(1.2, 2.0, 3.6));
   vHazeIn = vec3(0.30, 0.45, 0.80) * (vSun + vec3(0.02)) * 0.3 * (1.0 - vHazeTr);
   vDepthM = -elev;
+  vWater = water;
   // The 20' relief puts coastal cells above the sea: near the shore take the
   // depth from the coverage instead (about 60 m at full coverage). Per
   // vertex: on llvmpipe this shading per terrain pixel cost more than the

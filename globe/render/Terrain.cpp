@@ -29,6 +29,7 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
     : world_(world), options_(options) {
   if (options_.poolTiles < 64) throw std::invalid_argument("terrain pool must hold at least 64 tiles");
   program_ = GlProgram::graphics("terrain.vert", "terrain.frag");
+  underOcean_ = GlProgram::graphics("terrain.vert", "terrain.frag", {"GEOCEAN_UNDER_OCEAN 1"});
   seaProxy_ = GlProgram::graphics("terrain.vert", "sea_proxy.frag");
   bare_ = GlProgram::graphics("terrain.vert", "bare.frag", {"GEOCEAN_BARE 1"});
   glCreateVertexArrays(1, &vao_);
@@ -154,6 +155,7 @@ void TerrainRenderer::select(const Key& k, const ViewMatrices& vm, const ViewPos
 
   double lat0, lat1, lon0, lon1;
   tileRange(k, lat0, lat1, lon0, lon1);
+  if (skipOpenWater_ && b.allWater && underOpenWater(lat0, lat1, lon0, lon1, b, dist, vm, pose)) return;
   const double latEq = (lat0 <= 0.0 && lat1 >= 0.0) ? 0.0 : std::min(std::abs(lat0), std::abs(lat1));
   const double extentM = std::max((lat1 - lat0), (lon1 - lon0) * std::cos(latEq * kDeg)) * kDeg * geo::kWgs84A;
   const double pxPerM = pose.height / (2.0 * tanY);
@@ -169,6 +171,36 @@ void TerrainRenderer::select(const Key& k, const ViewMatrices& vm, const ViewPos
     return;
   }
   out.push_back(k);
+}
+
+bool TerrainRenderer::underOpenWater(double lat0, double lat1, double lon0, double lon1, const Bounds& b, double dist,
+                                     const ViewMatrices& vm, const ViewPose& pose) const {
+  // The ocean layer draws every pixel of this tile opaque, and none of its
+  // grid cells over it is skipped as land, if the water texture is water
+  // throughout the tile and a margin around it: the B-spline's 2 texels, the
+  // mipmap footprint (up to 3 texels per pixel of the view's footprint at the
+  // tile's worst point) and, for the grid, 16 pixels (two 8 px cells, whose
+  // corners must be water for the cell to be drawn).
+  const WaterIndex& wi = world_.waterIndex();
+  if (wi.width() == 0) return false;
+  // Footprint of a pixel at the tile's farthest point, widened by the
+  // grazing angle there: cos = (eye height over the tangent plane) / distance.
+  // Over the tile, the point moves by <= radius and its normal turns by
+  // <= radius / 6.3e6 m (the ellipsoid's smallest radius of curvature).
+  const glm::dvec3 up = geo::surfaceNormal(0.5 * (lat0 + lat1), 0.5 * (lon0 + lon1));
+  const double farM = dist + b.radius;
+  const double cosView = (glm::dot(vm.eyeEcef - b.center, up) - b.radius * (1.0 + 1.1 * dist / 6.3e6)) / farM;
+  if (cosView < 0.05) return false;
+  const double pxPerM = pose.height / (2.0 * std::tan(0.5 * pose.fovYDeg * kDeg));
+  const double footprintM = farM / (pxPerM * cosView);
+  const double maxAbsLat = std::max(std::abs(lat0), std::abs(lat1));
+  const double texelM = std::min(wi.latStepDeg(), wi.lonStepDeg() * std::cos(std::min(maxAbsLat, 89.0) * kDeg)) * kDeg *
+                        geo::kWgs84B;
+  const double tpp = footprintM / texelM;
+  const double margin = 3.0 + (3.0 + 2.0 * options_.oceanCellPx) * tpp;
+  if (margin > 256.0) return false;
+  return wi.allWater(wi.texelX(lon0) - margin, wi.texelX(lon1) + margin, wi.texelY(lat0) - margin,
+                     wi.texelY(lat1) + margin);
 }
 
 const TerrainRenderer::Slot& TerrainRenderer::acquire(const Key& k, TerrainStats& stats) {
@@ -214,6 +246,7 @@ TerrainStats TerrainRenderer::draw(const ViewMatrices& vm, const ViewPose& pose,
                                    SeaShading sea) {
   TerrainStats stats;
   std::vector<Key> tiles;
+  skipOpenWater_ = sea == SeaShading::UnderOcean && options_.skipOpenWater;
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 4; ++x) select({0, x, y}, vm, pose, tiles, 0);
   // More visible tiles than slots would thrash: keep the coarsest that fit.
@@ -267,7 +300,7 @@ TerrainStats TerrainRenderer::draw(const ViewMatrices& vm, const ViewPose& pose,
     glDisable(GL_POLYGON_OFFSET_FILL);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   }
-  pass(bare ? bare_ : program_);
+  pass(bare ? bare_ : sea == SeaShading::UnderOcean && !options_.seaProxy ? underOcean_ : program_);
   stats.tilesDrawn = int(tiles.size());
   glBindVertexArray(0);
   return stats;

@@ -44,6 +44,9 @@ struct TerrainOptions {
   // --sea-proxy on a quiet machine: 188/192 without, 223/230 with); a GPU
   // with cheap vertex and depth passes may gain.
   bool seaProxy = false;
+  // With an ocean layer, tiles that the ocean covers opaquely (open water
+  // with a margin, WaterIndex) are not drawn at all.
+  bool skipOpenWater = true;
 };
 
 // How the terrain shades its water areas.
@@ -75,6 +78,7 @@ class TerrainRenderer {
                     SeaShading sea = SeaShading::DistantSea);
 
   const TerrainOptions& options() const { return options_; }
+  void setSkipOpenWater(bool on) { options_.skipOpenWater = on; }
 
  private:
   struct Key {
@@ -102,11 +106,14 @@ class TerrainRenderer {
   void select(const Key& k, const ViewMatrices& vm, const ViewPose& pose, std::vector<Key>& out, int depth);
   Bounds bounds(const Key& k) const;
   const Slot& acquire(const Key& k, TerrainStats& stats);
+  bool underOpenWater(double lat0, double lat1, double lon0, double lon1, const Bounds& b, double dist,
+                      const ViewMatrices& vm, const ViewPose& pose) const;
   void tileRange(const Key& k, double& lat0, double& lat1, double& lon0, double& lon1) const;
 
   const WorldTextures& world_;
   TerrainOptions options_;
-  GlProgram program_, bare_, seaProxy_;
+  GlProgram program_, underOcean_, bare_, seaProxy_;
+  bool skipOpenWater_ = false;  // this draw: leave out tiles under open water
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
   GLsizei indexCount_ = 0;
   std::unordered_map<Key, Slot, KeyHash> cache_;

@@ -82,6 +82,7 @@ WorldTextures::WorldTextures(const WorldData& data) {
   waterGeo_ = geoOf(data.water);
   elev_ = data.elevation;
   waterHost_ = data.water;
+  waterIndex_ = WaterIndex(waterHost_);
 }
 
 WorldTextures::~WorldTextures() {

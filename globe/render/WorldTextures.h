@@ -6,6 +6,8 @@
 // lonSpanDeg, latSpanDeg) so a shader maps lon/lat to texture coordinates.
 #pragma once
 
+#include "globe/render/WaterIndex.h"
+
 #include <epoxy/gl.h>
 #include <glm/vec4.hpp>
 
@@ -57,11 +59,14 @@ class WorldTextures {
   // CPU copies for picking and LOD bounds.
   float elevationAt(double latDeg, double lonDeg) const;
   float waterAt(double latDeg, double lonDeg) const;
+  // Which texel rectangles of the water texture are water throughout.
+  const WaterIndex& waterIndex() const { return waterIndex_; }
 
  private:
   GLuint imagery_ = 0, elevation_ = 0, water_ = 0;
   glm::vec4 imageryGeo_{0.0f}, elevationGeo_{0.0f}, waterGeo_{0.0f};
   WorldLayer elev_, waterHost_;
+  WaterIndex waterIndex_;
 };
 
 }  // namespace geocean::render

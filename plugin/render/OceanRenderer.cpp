@@ -42,6 +42,11 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const render::WorldTextures> world,
                                                                              : "WV_MODEL 0"};
   if (options_.model == waves::Model::Fft) model.push_back("WV_FFT 1");
   program_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", model);
+  {
+    auto open = model;
+    open.push_back("GEOCEAN_OPEN_WATER 1");
+    openWater_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", open);
+  }
   model.push_back("GEOCEAN_BARE 1");
   bare_ = render::GlProgram::graphics("ocean.vert", "bare.frag", model);
   glCreateVertexArrays(1, &vao_);
@@ -82,13 +87,55 @@ void upload(GLuint buf, const std::vector<T>& v) {
 }
 }  // namespace
 
+std::size_t partitionOpenWater(const grid::GridFrame& f, const render::WaterIndex& wi, double cellPx,
+                               std::vector<std::uint32_t>& idx) {
+  // Per cell (6 indices): its vertices' lon/lat box in texels, widened by
+  // what a fragment inside can read: the B-spline's 2 texels and the
+  // mipmapped tap's footprint, up to 3 texels per pixel. Texels per pixel:
+  // the box's extent over the cell's size on screen, doubled for the
+  // perspective across the cell. Cells touching the horizon (stretched
+  // limb cells) always take the coverage path.
+  std::vector<std::uint32_t> open;
+  std::size_t coast = 0;
+  for (std::size_t c = 0; c + 6 <= idx.size(); c += 6) {
+    bool isOpen = wi.width() > 0;
+    double x0 = 0, x1 = 0, y0 = 0, y1 = 0, lon0 = 0;
+    for (std::size_t k = 0; k < 6 && isOpen; ++k) {
+      const grid::GridVertex& v = f.vertices[idx[c + k]];
+      if (v.flags & grid::kVertexHorizon) isOpen = false;
+      double lon = v.lonDeg;
+      if (k == 0) lon0 = lon;
+      lon -= 360.0 * std::round((lon - lon0) / 360.0);  // the cell does not wrap
+      const double x = wi.texelX(lon), y = wi.texelY(v.latDeg);
+      if (k == 0) x0 = x1 = x, y0 = y1 = y;
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+    if (isOpen) {
+      const double tpp = 2.0 * std::max(x1 - x0, y1 - y0) / cellPx;
+      const double margin = 3.0 + 3.0 * tpp;
+      isOpen = wi.allWater(x0 - margin, x1 + margin, y0 - margin, y1 + margin);
+    }
+    if (isOpen)
+      open.insert(open.end(), idx.begin() + c, idx.begin() + c + 6);
+    else
+      std::copy(idx.begin() + c, idx.begin() + c + 6, idx.begin() + coast), coast += 6;
+  }
+  std::copy(open.begin(), open.end(), idx.begin() + coast);
+  return coast;
+}
+
 void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose& pose, const render::Lighting& light,
                          bool bare) {
   const camera::Camera cam = camera::Camera::fromEcef(vm.eyeEcef, vm.forward, vm.up, pose.fovYDeg, pose.width,
                                                       pose.height);
   const auto t0 = std::chrono::steady_clock::now();
   grid_->build(cam, frame_);
-  const std::vector<std::uint32_t> idx = grid::compactIndices(frame_);
+  std::vector<std::uint32_t> idx = grid::compactIndices(frame_);
+  // Open water (coverage 1 throughout, WaterIndex) is drawn by a variant
+  // without the shoreline's coverage lookup: from orbit most cells, and on
+  // llvmpipe the coverage was half the ocean's fragment cost.
+  const std::size_t coastIndices =
+      bare || !options_.openWaterShader ? idx.size() : partitionOpenWater(frame_, world_->waterIndex(), options_.cellPx, idx);
   gridMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (idx.empty()) return;
   const std::size_t vbytes = frame_.vertices.size() * sizeof(grid::GridVertex);
@@ -130,10 +177,8 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
     }
   }
 
-  const render::GlProgram& p = bare ? bare_ : program_;
-  p.use();
-  world_->bind();
-  glUniformMatrix4fv(p.uniform("uViewProj"), 1, GL_FALSE, &vm.viewProj[0][0]);
+  const auto setUniforms = [&](const render::GlProgram& p) {
+    glUniformMatrix4fv(p.uniform("uViewProj"), 1, GL_FALSE, &vm.viewProj[0][0]);
   const glm::vec3 eyeMinusO(vm.eyeEcef - origin);
   glUniform3fv(p.uniform("uEyeMinusOrigin"), 1, &eyeMinusO[0]);
   glUniform1i(p.uniform("uOctaveCount"), int(patch_.octaves.size()));
@@ -161,6 +206,7 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
     glUniform1i(p.uniform("uFftCascades"), patch_.fftCascades);
     glUniform1f(p.uniform("uFftTexelM"), texelM);
   }
+  };
 
   glEnable(GL_BLEND);
   glBlendFunci(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -170,7 +216,18 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(0.0f, 256.0f);
   glBindVertexArray(vao_);
-  glDrawElements(GL_TRIANGLES, GLsizei(idx.size()), GL_UNSIGNED_INT, nullptr);
+  world_->bind();
+  const std::pair<const render::GlProgram*, std::size_t> passes[2] = {
+      {bare ? &bare_ : &program_, coastIndices}, {&openWater_, idx.size() - coastIndices}};
+  std::size_t first = 0;
+  for (const auto& [prog, count] : passes) {
+    if (count == 0) continue;
+    prog->use();
+    setUniforms(*prog);
+    glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
+    first += count;
+  }
   glBindVertexArray(0);
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_BLEND);

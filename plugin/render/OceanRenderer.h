@@ -19,7 +19,15 @@ struct OceanOptions {
   double cellPx = 8.0;  // grid vertex spacing on screen
   waves::Model model = waves::Model::Noise;
   waves::SeaState sea;
+  // Open water (WaterIndex) with a shader variant that skips the coverage.
+  bool openWaterShader = true;
 };
+
+// Reorders a grid frame's compacted cell indices (6 per cell) so cells over
+// open water (no shoreline can reach any fragment of the cell) come last;
+// returns the number of indices before them.
+std::size_t partitionOpenWater(const grid::GridFrame& f, const render::WaterIndex& wi, double cellPx,
+                               std::vector<std::uint32_t>& idx);
 
 class OceanRenderer : public render::Layer {
  public:
@@ -37,6 +45,7 @@ class OceanRenderer : public render::Layer {
   const grid::GridFrame& lastFrame() const { return frame_; }
   // Draw the eye-relative surface position into colour attachment 1 (tests).
   void setWriteData(bool on) { writeData_ = on; }
+  void setOpenWaterShader(bool on) { options_.openWaterShader = on; }
   // CPU time of the last draw's grid build (ScreenGrid::build + index
   // compaction), wall ms: the part of the ocean pass that is not GL.
   double lastGridMs() const { return gridMs_; }
@@ -48,7 +57,7 @@ class OceanRenderer : public render::Layer {
   std::unique_ptr<grid::ScreenGrid> grid_;
   grid::GridFrame frame_;
   waves::GpuPatch patch_;
-  render::GlProgram program_, bare_;
+  render::GlProgram program_, openWater_, bare_;
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0, ssbo_[5] = {0, 0, 0, 0, 0};  // octaves, waves, frame, FFT planes, texels
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;

@@ -15,6 +15,8 @@ namespace geocean::render::test {
 
 // The default world with the default ocean (noise waves, 10 m/s wind).
 Session& session();
+// The ocean layer of session().
+ocean_render::OceanRenderer& sessionOcean();
 
 // Image difference in 8-bit units over RGB.
 struct ImageDiff {

@@ -10,14 +10,23 @@
 
 namespace geocean::render::test {
 
+namespace {
+std::shared_ptr<ocean_render::OceanRenderer> g_ocean;
+}
+
 Session& session() {
   static std::unique_ptr<Session> s = [] {
     auto p = std::make_unique<Session>(Session::headless(loadDefaultWorld(), 256, 256));
-    const std::string err = ocean_render::addDefaultOcean(*p->renderer, p->world, "noise", 10.0, 270.0);
+    const std::string err = ocean_render::addDefaultOcean(*p->renderer, p->world, "noise", 10.0, 270.0, &g_ocean);
     if (!err.empty()) throw std::runtime_error(err);
     return p;
   }();
   return *s;
+}
+
+ocean_render::OceanRenderer& sessionOcean() {
+  session();
+  return *g_ocean;
 }
 
 ImageDiff compare(const Image& a, const Image& b) {
@@ -171,6 +180,47 @@ TEST(Render, EyeMoved1mmAt1mAltitudeGivesTheSameImage) {
   // hundredth of a pixel: any float jitter would show as many changed pixels.
   EXPECT_LE(d.mean, 0.5);
   EXPECT_LE(d.fractionOver16, 0.001);
+}
+
+
+// The open-water shortcuts (terrain tiles under open water left out, open
+// ocean cells without the coverage lookup) must not change what is seen:
+// each view drawn with and without them. Views with islands and coasts at
+// every scale (the shortcuts' margins are what keeps small islands and the
+// shoreline's filters intact); a wrong margin loses islands or cuts the
+// anti-aliased coast, thousands of pixels.
+TEST(Render, OpenWaterShortcutsDoNotChangeTheImage) {
+  Session& s = session();
+  struct View {
+    const char* name;
+    ViewPose pose;
+  };
+  const View views[] = {
+      {"Pacific from 20,000 km", pose(0.0, -150.0, 2.0e7, 0.0, -90.0, 512)},
+      {"Aegean islands from 300 km", pose(37.5, 25.0, 3.0e5, 0.0, -90.0, 512)},
+      {"Indonesia obliquely from 800 km", pose(-2.0, 118.0, 8.0e5, 90.0, -25.0, 512)},
+      {"Gibraltar from 50 km", pose(36.0, -5.45, 5.0e4, 270.0, -50.0, 512)},
+      {"the Strait from 2 m", pose(36.0, -5.6, 2.0, 250.0, -3.0, 512)},
+  };
+  for (const View& v : views) {
+    FrameSettings fs;
+    fs.sunEcef = sunForView(v.pose);
+    s.renderer->terrain().setSkipOpenWater(false);
+    sessionOcean().setOpenWaterShader(false);
+    s.render(v.pose, fs);
+    const Image full = s.image();
+    s.renderer->terrain().setSkipOpenWater(true);
+    sessionOcean().setOpenWaterShader(true);
+    const auto t = s.render(v.pose, fs);
+    const Image fast = s.image();
+    const ImageDiff d = compare(full, fast);
+    std::printf("%s: %d terrain tiles, mean %.4f, max %d, over 16: %.5f\n", v.name, t.terrain.tilesDrawn, d.mean,
+                d.max, d.fractionOver16);
+    // Where the ocean is opaque the two paths give the same bits; blending
+    // at the coast may round differently by one unit.
+    EXPECT_LE(d.mean, 0.01) << v.name;
+    EXPECT_EQ(d.fractionOver16, 0.0) << v.name;
+  }
 }
 
 }  // namespace
