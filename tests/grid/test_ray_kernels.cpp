@@ -128,8 +128,10 @@ TEST(RayKernels, SurfaceLatLonMatchesLongDouble) {
         }
   std::vector<double> lat(x.size()), lon(x.size());
   const double eye0[3] = {-0.0, -0.0, -0.0};  // -0 + v = v for every v, signed zeros included
-  grid::surfaceLatLonBatch(eye0, x.data(), y.data(), z.data(), x.size(), lat.data(), lon.data());
   double worst = 0;
+  // The dispatched path (FMA on AVX2/AVX-512 CPUs) and the portable one.
+  for (auto* kernel : {grid::surfaceLatLonBatch, grid::surfaceLatLonBatchPortable}) {
+  kernel(eye0, x.data(), y.data(), z.data(), x.size(), lat.data(), lon.data());
   for (std::size_t i = 0; i < x.size(); ++i) {
     const long double p = std::sqrt((long double)x[i] * x[i] + (long double)y[i] * y[i]);
     const double refLat = double(std::atan2((long double)z[i], (long double)e2c * p) * toDeg);
@@ -137,6 +139,7 @@ TEST(RayKernels, SurfaceLatLonMatchesLongDouble) {
     ASSERT_NEAR(lat[i], refLat, 1e-13) << x[i] << " " << y[i] << " " << z[i];
     ASSERT_NEAR(lon[i], refLon, 1e-13) << x[i] << " " << y[i] << " " << z[i];
     worst = std::max({worst, std::abs(lat[i] - refLat), std::abs(lon[i] - refLon)});
+  }
   }
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", worst);
@@ -152,9 +155,10 @@ TEST(RayKernels, SurfaceLatLonSpecialValues) {
   const Case cases[] = {{0.0, 0.0, b},   {-0.0, 0.0, b},   {0.0, -0.0, -b},  {-0.0, -0.0, -b},
                         {-a, 0.0, 0.0},  {-a, -0.0, -0.0}, {a, 0.0, 0.0},    {a, -0.0, 0.0},
                         {0.0, a, 0.0},   {0.0, -a, -0.0}};
+  for (auto* kernel : {grid::surfaceLatLonBatch, grid::surfaceLatLonBatchPortable})
   for (const Case& c : cases) {
     double la = 0, lo = 0;
-    grid::surfaceLatLonBatch(eye0, &c.x, &c.y, &c.z, 1, &la, &lo);
+    kernel(eye0, &c.x, &c.y, &c.z, 1, &la, &lo);
     const double refLat = std::atan2(c.z, std::sqrt(c.x * c.x + c.y * c.y)) * 180.0 / M_PI;
     const double refLon = std::atan2(c.y, c.x) * 180.0 / M_PI;
     EXPECT_NEAR(la, refLat, 1e-13) << c.x << " " << c.y << " " << c.z;
@@ -165,11 +169,13 @@ TEST(RayKernels, SurfaceLatLonSpecialValues) {
   for (int k = 0; k < 3; ++k) {
     double p[3] = {a * 0.6, a * 0.8, 1000.0};
     p[k] = nan;
-    double la = 0, lo = 0;
-    grid::surfaceLatLonBatch(eye0, &p[0], &p[1], &p[2], 1, &la, &lo);
-    EXPECT_TRUE(std::isnan(la)) << k;  // z, and x, y through p
-    if (k < 2) {
-      EXPECT_TRUE(std::isnan(lo)) << k;
+    for (auto* kernel : {grid::surfaceLatLonBatch, grid::surfaceLatLonBatchPortable}) {
+      double la = 0, lo = 0;
+      kernel(eye0, &p[0], &p[1], &p[2], 1, &la, &lo);
+      EXPECT_TRUE(std::isnan(la)) << k;  // z, and x, y through p
+      if (k < 2) {
+        EXPECT_TRUE(std::isnan(lo)) << k;
+      }
     }
   }
 }
