@@ -388,6 +388,13 @@ void packRow(const double* __restrict t, const double* __restrict rx, const doub
   packRowPortable(t, rx, ry, rz, latDeg, lonDeg, surface, x0, dx, rowOffscreen, n, out, streamOut);
 }
 
+void prefetchPackRow(GridVertex* out, std::size_t n, bool streamOut) {
+  static const bool avx512 = __builtin_cpu_supports("x86-64-v4");  // packRow's choice
+  if (streamOut && !avx512) return;
+  const auto* p = reinterpret_cast<const char*>(out);
+  for (std::size_t b = 0; b < n * sizeof(GridVertex); b += 64) __builtin_prefetch(p + b, 1, 3);
+}
+
 GEOCEAN_CLONES
 void packRowPortable(const double* __restrict t, const double* __restrict rx, const double* __restrict ry,
                      const double* __restrict rz, const double* __restrict latDeg, const double* __restrict lonDeg,

@@ -404,6 +404,9 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
     std::vector<std::uint8_t> prevSurf(static_cast<std::size_t>(cols));
     for (int j = j0; j < j1; ++j) {
       const double y = rect.minY + j * dyNdc;
+      // The row's vertex lines are requested now, so their transfer from L3
+      // overlaps the row's arithmetic instead of stalling packRow.
+      prefetchPackRow(f.vertices.data() + std::size_t(j) * cols, std::size_t(cols), streamOut);
       if (o.mode == GridMode::Direct) {
         surfaceHitsRow(eye, Fa, Ra, Ua, rect.minX, dxNdc, y, std::size_t(cols), s.t.data(), s.rx.data(), s.ry.data(),
                        s.rz.data());
