@@ -216,39 +216,57 @@ std::size_t horizonRow(const double F[3], const double R[3], const double U[3], 
   const double q1x = c.rowRel[1][0], q1y = c.rowRel[1][1], q1z = c.rowRel[1][2];
   const double rla0 = c.rowLat[0], rla1 = c.rowLat[1], rlo0 = c.rowLon[0], rlo1 = c.rowLon[1];
   const std::uint8_t rs0 = c.rowSurface[0], rs1 = c.rowSurface[1];
+  // Blocks of kBlock lanes in two loops: the doubles (choice and position,
+  // lat, lon), then the bytes (class, unresolved) from the choice code. In
+  // one loop the byte arrays set GCC's vector factor to 64 lanes (eight zmm
+  // of every double), which spilled registers (~22 instructions per lane).
+  constexpr std::size_t kBlock = 256;
+  // 0: hit, kept; 1, 2: column candidate 0, 1; 3, 4: row candidate 0, 1; 5: none.
+  alignas(64) std::int64_t code[kBlock];
   std::size_t left = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double x = x0 + double(int(i)) * dx;
-    const double dxi = bx + x * R0, dyi = by + x * R1, dzi = bz + x * R2;
-    const double d0 = c0x[i] * dxi + c0y[i] * dyi + c0z[i] * dzi, d1 = c1x[i] * dxi + c1y[i] * dyi + c1z[i] * dzi;
-    const double e0 = r0x * dxi + r0y * dyi + r0z * dzi, e1 = r1x * dxi + r1y * dyi + r1z * dzi;
-    // Within a line the second point wins only if strictly better (and > 0).
-    const bool col1 = d1 > (d0 > 0.0 ? d0 : 0.0), row1 = e1 > (e0 > 0.0 ? e0 : 0.0);
-    const double colDot = d0 > d1 ? d0 : d1, rowDot = e0 > e1 ? e0 : e1;
-    const bool borderCol = (i == 0) | (i + 1 == n);
-    const bool colPos = colDot > 0.0, rowPos = rowDot > 0.0, colNearer = colDot >= rowDot;
-    const bool preferCol = (borderCol & colPos) | (!borderCol & borderRow & !rowPos) |
-                           (!borderCol & !borderRow & colNearer);
-    const bool useCol = preferCol & colPos;
-    const bool useRow = !useCol & rowPos;
-    const bool miss = t[i] != t[i];
-    // Bitwise selects: GCC turns `c ? a[i] : b[i]` into a load from a
-    // selected address, which it cannot vectorise.
-    const double cx = sel(col1, p1x[i], p0x[i]), cy = sel(col1, p1y[i], p0y[i]), cz = sel(col1, p1z[i], p0z[i]);
-    const double cla = sel(col1, la1[i], la0[i]), clo = sel(col1, lo1[i], lo0[i]);
-    const std::uint8_t cs = sel8(col1, s1[i], s0[i]);
-    const double qx = sel(row1, q1x, q0x), qy = sel(row1, q1y, q0y), qz = sel(row1, q1z, q0z);
-    const double qla = sel(row1, rla1, rla0), qlo = sel(row1, rlo1, rlo0);
-    const std::uint8_t qs = sel8(row1, rs1, rs0);
-    rx[i] = sel(miss, sel(useCol, cx, qx), rx[i]);
-    ry[i] = sel(miss, sel(useCol, cy, qy), ry[i]);
-    rz[i] = sel(miss, sel(useCol, cz, qz), rz[i]);
-    latDeg[i] = sel(miss, sel(useCol, cla, qla), latDeg[i]);
-    lonDeg[i] = sel(miss, sel(useCol, clo, qlo), lonDeg[i]);
-    surface[i] = sel8(miss, sel8(useCol, cs, qs), surface[i]);
-    const bool none = miss & !useCol & !useRow;
-    unresolved[i] = std::uint8_t(none);
-    left += none;
+  for (std::size_t i0 = 0; i0 < n; i0 += kBlock) {
+    const std::size_t m = std::min(kBlock, n - i0);
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t i = i0 + k;
+      const double x = x0 + double(int(i)) * dx;
+      const double dxi = bx + x * R0, dyi = by + x * R1, dzi = bz + x * R2;
+      const double d0 = c0x[i] * dxi + c0y[i] * dyi + c0z[i] * dzi, d1 = c1x[i] * dxi + c1y[i] * dyi + c1z[i] * dzi;
+      const double e0 = r0x * dxi + r0y * dyi + r0z * dzi, e1 = r1x * dxi + r1y * dyi + r1z * dzi;
+      // Within a line the second point wins only if strictly better (and > 0).
+      const bool col1 = d1 > (d0 > 0.0 ? d0 : 0.0), row1 = e1 > (e0 > 0.0 ? e0 : 0.0);
+      const double colDot = d0 > d1 ? d0 : d1, rowDot = e0 > e1 ? e0 : e1;
+      const bool borderCol = (i == 0) | (i + 1 == n);
+      const bool colPos = colDot > 0.0, rowPos = rowDot > 0.0, colNearer = colDot >= rowDot;
+      const bool preferCol = (borderCol & colPos) | (!borderCol & borderRow & !rowPos) |
+                             (!borderCol & !borderRow & colNearer);
+      const bool useCol = preferCol & colPos;
+      const bool useRow = !useCol & rowPos;
+      const bool miss = t[i] != t[i];
+      // Bitwise selects: GCC turns `c ? a[i] : b[i]` into a load from a
+      // selected address, which it cannot vectorise.
+      const double cx = sel(col1, p1x[i], p0x[i]), cy = sel(col1, p1y[i], p0y[i]), cz = sel(col1, p1z[i], p0z[i]);
+      const double cla = sel(col1, la1[i], la0[i]), clo = sel(col1, lo1[i], lo0[i]);
+      const double qx = sel(row1, q1x, q0x), qy = sel(row1, q1y, q0y), qz = sel(row1, q1z, q0z);
+      const double qla = sel(row1, rla1, rla0), qlo = sel(row1, rlo1, rlo0);
+      rx[i] = sel(miss, sel(useCol, cx, qx), rx[i]);
+      ry[i] = sel(miss, sel(useCol, cy, qy), ry[i]);
+      rz[i] = sel(miss, sel(useCol, cz, qz), rz[i]);
+      latDeg[i] = sel(miss, sel(useCol, cla, qla), latDeg[i]);
+      lonDeg[i] = sel(miss, sel(useCol, clo, qlo), lonDeg[i]);
+      // Arithmetic, not ?: on constants (GCC leaves those as branches here).
+      const std::int64_t none = std::int64_t(!useCol & !useRow);
+      const std::int64_t choice = std::int64_t(useCol) * (1 + std::int64_t(col1)) +
+                                  std::int64_t(useRow) * (3 + std::int64_t(row1)) + 5 * none;
+      code[k] = std::int64_t(miss) * choice;
+    }
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t i = i0 + k;
+      const std::int64_t ch = code[k];
+      const std::uint8_t col = sel8(ch == 2, s1[i], s0[i]), row = sel8(ch == 4, rs1, rs0);
+      surface[i] = sel8(ch == 0 || ch == 5, surface[i], sel8(ch <= 2, col, row));
+      unresolved[i] = std::uint8_t(ch == 5);
+      left += ch == 5;
+    }
   }
   return left;
 }
