@@ -38,7 +38,7 @@ void main() {
   // this; terrain water shows only where the ocean's coverage fades (the
   // limb, the coast's one-pixel edge), so per-vertex coverage is enough and
   // spares every terrain pixel the B-spline (on llvmpipe, 1/3 of the frame).
-  c = mix(c, vSeaColor, smoothstep(0.35, 0.65, vWater));
+  c = mix(c, vSeaColor, smoothstep(0.4, 0.6, vWater));
 #else
   if (uSeaShading != 0) {
     // Water coverage: 0.5 is the shoreline; smooth over a pixel (B-spline

@@ -34,7 +34,7 @@ out vec3 vHazeIn;   //                     in-scattered light
 out float vDepthM;  // water depth from the relief (positive below the sea)
 out float vHeightM; // height of this surface above the ellipsoid
 out vec3 vSeaColor; // the distant sea's colour here (smooth: up, view, sun, depth)
-out float vWater;   // water coverage at the vertex
+out float vWater;   // water coverage at the vertex (B-spline, 0.5 = shore)
 
 void main() {
 #ifdef GEOCEAN_BARE
@@ -46,7 +46,8 @@ void main() {
   // The fragment shaders draw the shoreline at B-spline coverage 0.5; the
   // ground must already be under the sea wherever that can be water, or it
   // hides the wave grid (seen 2 m above the Strait of Gibraltar).
-  float water = max(textureLod(uWater, uvW, 0.0).r, textureBSpline(uWater, uvW));
+  float waterBSpline = textureBSpline(uWater, uvW);
+  float water = max(textureLod(uWater, uvW, 0.0).r, waterBSpline);
   // Land never dips below the sea, water areas sit under the wave grid.
   float land = max(elev, 0.0) * uExaggeration;
   float h = mix(land, -uSeaDropM, smoothstep(0.3, 0.45, water)) - uSkirtM * aSkirt;
@@ -77,7 +78,7 @@ void main() {
   vHazeTr = exp(-t * vec3(1.2, 2.0, 3.6));
   vHazeIn = vec3(0.30, 0.45, 0.80) * (vSun + vec3(0.02)) * 0.3 * (1.0 - vHazeTr);
   vDepthM = -elev;
-  vWater = water;
+  vWater = waterBSpline;  // the shoreline's own filter
   // The 20' relief puts coastal cells above the sea: near the shore take the
   // depth from the coverage instead (about 60 m at full coverage). Per
   // vertex: on llvmpipe this shading per terrain pixel cost more than the

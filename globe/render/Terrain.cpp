@@ -28,6 +28,10 @@ glm::dvec3 sunFromLocal(double latDeg, double lonDeg, double azimuthDeg, double 
 TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions options)
     : world_(world), options_(options) {
   if (options_.poolTiles < 64) throw std::invalid_argument("terrain pool must hold at least 64 tiles");
+  maxLevel_ = options_.maxLevel;
+  const double texelDeg = world_.finestShapeTexelDeg();
+  while (maxLevel_ > 0 && texelDeg > 0.0 && 90.0 / double(1 << (maxLevel_ - 1)) / (kGrid - 1) <= texelDeg / 16.0)
+    --maxLevel_;
   program_ = GlProgram::graphics("terrain.vert", "terrain.frag");
   underOcean_ = GlProgram::graphics("terrain.vert", "terrain.frag", {"GEOCEAN_UNDER_OCEAN 1"});
   seaProxy_ = GlProgram::graphics("terrain.vert", "sea_proxy.frag");
@@ -164,7 +168,7 @@ void TerrainRenderer::select(const Key& k, const ViewMatrices& vm, const ViewPos
   // Open water is flat and hidden under the wave grid: level 7 cells (2.4 km)
   // already follow the ellipsoid within 0.12 m (chord sag s^2 / 8R), far
   // below the 30 m the water areas sit under the sea.
-  const int maxLevel = b.allWater ? std::min(options_.maxLevel, 7) : options_.maxLevel;
+  const int maxLevel = b.allWater ? std::min(maxLevel_, 7) : maxLevel_;
   if (k.level < maxLevel && cellPx > options_.pixelErrorPx && depth < 40) {
     for (int cy = 0; cy < 2; ++cy)
       for (int cx = 0; cx < 2; ++cx) select({k.level + 1, 2 * k.x + cx, 2 * k.y + cy}, vm, pose, out, depth + 1);

@@ -29,6 +29,10 @@ struct Lighting {
 struct TerrainOptions {
   double exaggeration = 1.0;
   double pixelErrorPx = 8.0;  // split while a grid cell spans more pixels than this
+  // Deepest level; also no finer than 1/16 of the finest elevation or water
+  // texel per cell (WorldTextures::finestShapeTexelDeg): finer cells cost
+  // vertices and triangles but show nothing new (level 10, 305 m cells, for
+  // the 5' mask; at 2 m above the Strait 63 tiles instead of 316).
   int maxLevel = 16;
   int poolTiles = 768;        // GPU tile slots: memory stays flat
   double seaDropM = 30.0;     // water areas of the terrain sit this far below the sea
@@ -114,6 +118,7 @@ class TerrainRenderer {
   TerrainOptions options_;
   GlProgram program_, underOcean_, bare_, seaProxy_;
   bool skipOpenWater_ = false;  // this draw: leave out tiles under open water
+  int maxLevel_ = 16;           // options_.maxLevel capped by the data's resolution
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
   GLsizei indexCount_ = 0;
   std::unordered_map<Key, Slot, KeyHash> cache_;

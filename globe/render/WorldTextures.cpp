@@ -83,6 +83,9 @@ WorldTextures::WorldTextures(const WorldData& data) {
   elev_ = data.elevation;
   waterHost_ = data.water;
   waterIndex_ = WaterIndex(waterHost_);
+  for (const WorldLayer* l : {&data.elevation, &data.water})
+    for (const double step : {std::abs(l->lonStepDeg), std::abs(l->latStepDeg)})
+      if (step > 0.0 && (finestShapeTexelDeg_ == 0.0 || step < finestShapeTexelDeg_)) finestShapeTexelDeg_ = step;
 }
 
 WorldTextures::~WorldTextures() {

@@ -59,6 +59,9 @@ class WorldTextures {
   // CPU copies for picking and LOD bounds.
   float elevationAt(double latDeg, double lonDeg) const;
   float waterAt(double latDeg, double lonDeg) const;
+  // The finer of the elevation and water texels, degrees: the finest detail
+  // the terrain's geometry can show.
+  double finestShapeTexelDeg() const { return finestShapeTexelDeg_; }
   // Which texel rectangles of the water texture are water throughout.
   const WaterIndex& waterIndex() const { return waterIndex_; }
 
@@ -67,6 +70,7 @@ class WorldTextures {
   glm::vec4 imageryGeo_{0.0f}, elevationGeo_{0.0f}, waterGeo_{0.0f};
   WorldLayer elev_, waterHost_;
   WaterIndex waterIndex_;
+  double finestShapeTexelDeg_ = 0.0;
 };
 
 }  // namespace geocean::render
