@@ -188,9 +188,14 @@ class LimbSolver {
     const double A = glm::dot(n, v1_), B = glm::dot(n, v2_), M = std::sqrt(A * A + B * B);
     const double k = (glm::dot(n, e_) - glm::dot(n, c0_)) / rho_;
     if (!(M > 0.0) || std::abs(k) > M) return l;
-    const double phi = std::atan2(B, A), delta = std::acos(k / M);
-    for (double th : {phi + delta, phi - delta}) {
-      const glm::dvec3 p = (c0_ + rho_ * (std::cos(th) * v1_ + std::sin(th) * v2_)) * fromScaled_;
+    // The circle's angles phi +- delta, phi = atan2(B, A), delta = acos(k / M),
+    // as cosines and sines without trigonometric calls (cos phi = A / M,
+    // cos delta = k / M, sin delta = sqrt((M - k)(M + k)) / M >= 0).
+    const double sd = std::sqrt((M - k) * (M + k)), iM2 = 1.0 / (M * M);
+    const double cs[2][2] = {{(A * k - B * sd) * iM2, (B * k + A * sd) * iM2},
+                             {(A * k + B * sd) * iM2, (B * k - A * sd) * iM2}};
+    for (const auto& c : cs) {
+      const glm::dvec3 p = (c0_ + rho_ * (c[0] * v1_ + c[1] * v2_)) * fromScaled_;
       l.rel[l.n] = p - cam_.eyeEcef();
       l.dir[l.n] = glm::normalize(l.rel[l.n]);
       ++l.n;
