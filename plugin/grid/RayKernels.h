@@ -97,7 +97,7 @@ void packRowPortable(const double* t, const double* rx, const double* ry, const 
                      std::size_t n, GridVertex* out, bool streamOut);
 
 // Prefetches (for writing) the n vertices packRow(..., out, streamOut) will
-// store with plain stores; nothing when it streams them. 512^2 build 6 %
+// store with plain stores; nothing when it streams them. 512^2 build 5 %
 // faster (8-run A/B, 2026-11-30): the 8 MB vertex buffer lives in L3, and
 // packRow stalled on the lines it writes.
 void prefetchPackRow(GridVertex* out, std::size_t n, bool streamOut);
