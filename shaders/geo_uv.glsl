@@ -24,14 +24,12 @@ float textureBSpline(sampler2D tex, vec2 uv) {
   return mix(mix(a, b, g1.x), mix(c, d, g1.x), g1.y);
 }
 
-#ifdef GEOCEAN_FRAGMENT_STAGE
 // The same B-spline from the 16 texels themselves (4 textureGather), with
 // the weights in float: the filtering unit's bilinear weights have only 8
 // bits of subtexel precision (llvmpipe, and GPUs alike), so the 4-tap form
 // is a staircase of 1/256-texel steps, 36 m for the 5' mask: magnified, its
-// 0.5 contour showed as steps along the ocean's shoreline. Minified: the
-// mipmapped average (implicit level of detail). Fragment shaders only.
-float textureBSplineAuto(sampler2D tex, vec2 uv) {
+// 0.5 contour showed as steps along the ocean's shoreline. Any stage.
+float textureBSplineGather(sampler2D tex, vec2 uv) {
   vec2 size = vec2(textureSize(tex, 0));
   vec2 p = uv * size - 0.5;
   vec2 i = floor(p);
@@ -47,11 +45,18 @@ float textureBSplineAuto(sampler2D tex, vec2 uv) {
   vec4 g10 = textureGather(tex, (i + vec2(2.0, 0.0)) / size, 0);
   vec4 g01 = textureGather(tex, (i + vec2(0.0, 2.0)) / size, 0);
   vec4 g11 = textureGather(tex, (i + vec2(2.0, 2.0)) / size, 0);
-  float b = dot(g00, vec4(w0.x * w1.y, w1.x * w1.y, w1.x * w0.y, w0.x * w0.y)) +
-            dot(g10, vec4(w2.x * w1.y, w3.x * w1.y, w3.x * w0.y, w2.x * w0.y)) +
-            dot(g01, vec4(w0.x * w3.y, w1.x * w3.y, w1.x * w2.y, w0.x * w2.y)) +
-            dot(g11, vec4(w2.x * w3.y, w3.x * w3.y, w3.x * w2.y, w2.x * w2.y));
-  float texelsPerPixel = length(fwidth(uv) * size);
+  return dot(g00, vec4(w0.x * w1.y, w1.x * w1.y, w1.x * w0.y, w0.x * w0.y)) +
+         dot(g10, vec4(w2.x * w1.y, w3.x * w1.y, w3.x * w0.y, w2.x * w0.y)) +
+         dot(g01, vec4(w0.x * w3.y, w1.x * w3.y, w1.x * w2.y, w0.x * w2.y)) +
+         dot(g11, vec4(w2.x * w3.y, w3.x * w3.y, w3.x * w2.y, w2.x * w2.y));
+}
+
+#ifdef GEOCEAN_FRAGMENT_STAGE
+// Magnified: the float-weight B-spline; minified: the mipmapped average
+// (implicit level of detail). Fragment shaders only.
+float textureBSplineAuto(sampler2D tex, vec2 uv) {
+  float b = textureBSplineGather(tex, uv);
+  float texelsPerPixel = length(fwidth(uv) * vec2(textureSize(tex, 0)));
   return texelsPerPixel < 1.0 ? b : texture(tex, uv).r;
 }
 #endif

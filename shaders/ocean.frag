@@ -14,6 +14,9 @@ in vec3 vHazeTr;
 in vec3 vHazeIn;
 in float vDepthM;
 in float vFar;
+#ifdef GEOCEAN_VERTEX_COVERAGE
+in float vCoverage;
+#endif
 
 uniform vec4 uWaterGeo;
 uniform vec3 uSunDir;
@@ -33,9 +36,11 @@ float depthCurve(float depthM, float tauMin, float tauMax) {
 void main() {
   // Coverage: B-spline magnified (a smooth shoreline, no 5' steps), the
   // mipmapped average minified; 0.5 is the coast, smoothed over a pixel.
-#ifdef GEOCEAN_OPEN_WATER
+#if defined(GEOCEAN_OPEN_WATER)
   // Water throughout the cell and its filters' reach (OceanRenderer).
   float w = 1.0;
+#elif defined(GEOCEAN_VERTEX_COVERAGE)
+  float w = vCoverage;
 #else
   float w = textureBSplineAuto(uWater, geoUv(vLonLat, uWaterGeo));
 #endif

@@ -47,6 +47,14 @@ out vec3 vHazeTr;
 out vec3 vHazeIn;
 out float vDepthM;
 out float vFar;
+#ifdef GEOCEAN_VERTEX_COVERAGE
+// Cells much smaller than a water texel (OceanRenderer): the shoreline's
+// B-spline is linear across them to well under a pixel, so it is read per
+// vertex instead of per pixel.
+uniform vec4 uWaterGeo;
+layout(binding = 2) uniform sampler2D uWater;
+out float vCoverage;
+#endif
 
 void main() {
   // Longitude unwrapped to within 180 degrees of the eye's, so a cell across
@@ -114,5 +122,8 @@ void main() {
   vFar = smoothstep(0.02, 0.5, footprint / max(uOctaveWavelengthM[0], 1e-3));
 #endif
   vLonLat = lonLat;
+#ifdef GEOCEAN_VERTEX_COVERAGE
+  vCoverage = textureBSplineGather(uWater, geoUv(lonLat, uWaterGeo));
+#endif
   gl_Position = uViewProj * vec4(p, 1.0);
 }

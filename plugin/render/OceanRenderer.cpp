@@ -46,6 +46,8 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const render::WorldTextures> world,
     auto open = model;
     open.push_back("GEOCEAN_OPEN_WATER 1");
     openWater_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", open);
+    open.back() = "GEOCEAN_VERTEX_COVERAGE 1";
+    smoothCoast_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", open);
   }
   model.push_back("GEOCEAN_BARE 1");
   bare_ = render::GlProgram::graphics("ocean.vert", "bare.frag", model);
@@ -87,22 +89,91 @@ void upload(GLuint buf, const std::vector<T>& v) {
 }
 }  // namespace
 
-std::size_t partitionOpenWater(const grid::GridFrame& f, const render::WaterIndex& wi, double cellPx,
-                               std::vector<std::uint32_t>& idx) {
+std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenCull& v) {
+  // Per vertex: the sides of the screen (bits: left, right, bottom, top)
+  // that it stays beyond however the waves move it. The displacement is
+  // bounded per view-space axis by h (the wave field's maximum plus the
+  // vertex shader's sag raise for the cell), and x / z over the box of
+  // possible positions is bounded by its corners when z - h > 0.
+  const auto sides = [&](const glm::dvec3& p, double h) -> std::uint8_t {
+    const double z = glm::dot(p, v.forward);
+    if (!(z - h > 0.0)) return 0;
+    const double x = glm::dot(p, v.right), y = glm::dot(p, v.up);
+    const double zNear = z - h, zFar = z + h;
+    const double xMin = std::min((x - h) / zNear, (x - h) / zFar), xMax = std::max((x + h) / zNear, (x + h) / zFar);
+    const double yMin = std::min((y - h) / zNear, (y - h) / zFar), yMax = std::max((y + h) / zNear, (y + h) / zFar);
+    return std::uint8_t((xMax < -v.tanX ? 1 : 0) | (xMin > v.tanX ? 2 : 0) | (yMax < -v.tanY ? 4 : 0) |
+                        (yMin > v.tanY ? 8 : 0));
+  };
+  const auto sagM = [&](double dist) {
+    const double cellM = 2.0 * dist * v.cellRadians;  // ocean.vert: footprint / max(sin, 0.5)
+    return cellM * cellM / (3.0 * 6.3e6) + 1e-4 * dist;  // + float rounding
+  };
+  std::vector<std::uint8_t> out(f.vertices.size(), 0);
+  std::vector<std::size_t> near;
+  for (std::size_t i = 0; i < f.vertices.size(); ++i) {
+    const grid::GridVertex& g = f.vertices[i];
+    const glm::dvec3 p(g.eyeRelM[0], g.eyeRelM[1], g.eyeRelM[2]);
+    const double dist = glm::length(p);
+    const double h = v.maxDisplacementM + sagM(dist);
+    out[i] = sides(p, h);
+    if (glm::dot(p, v.forward) - h <= 0.0 && !(g.flags & grid::kVertexHorizon)) near.push_back(i);
+  }
+  // Near the eye the bound cannot decide (at 2 m above the sea, crests of
+  // the 8 m bound could reach the eye): where the waves only move the sea
+  // vertically, evaluate them (the CPU's SIMD batch of the same kernel) and
+  // test the displaced vertex, within what the vertex shader may differ by
+  // (octaves it leaves out, float rounding: kNearToleranceM).
+  if (!v.waves || v.waves->maxHorizontalM() != 0.0 || near.empty()) return out;
+  constexpr double kNearToleranceM = 0.05;
+  std::vector<double> lat(near.size()), lon(near.size());
+  for (std::size_t k = 0; k < near.size(); ++k) lat[k] = f.vertices[near[k]].latDeg, lon[k] = f.vertices[near[k]].lonDeg;
+  std::vector<waves::SurfacePoint> sp(near.size());
+  v.waves->surfaceBatch(lat.data(), lon.data(), &v.timeS, false, nullptr, near.size(), sp.data());
+  for (std::size_t k = 0; k < near.size(); ++k) {
+    const grid::GridVertex& g = f.vertices[near[k]];
+    const glm::dvec3 p(g.eyeRelM[0], g.eyeRelM[1], g.eyeRelM[2]);
+    const glm::dvec3 up = geo::surfaceNormal(g.latDeg, g.lonDeg);
+    out[near[k]] = sides(p + up * sp[k].heightM, kNearToleranceM + sagM(glm::length(p)));
+  }
+  return out;
+}
+
+CellGroups partitionCells(const grid::GridFrame& f, const render::WaterIndex& wi, double cellPx, const ScreenCull& view,
+                          bool cull, bool group, std::vector<std::uint32_t>& idx) {
+  // Cells whose every vertex stays beyond one side of the screen cannot
+  // reach it (the clamp rectangle adds such cells at low altitude: 2 m above
+  // the sea it spans up to 4 screens a side).
+  const std::vector<std::uint8_t> sides = cull ? offscreenSides(f, view) : std::vector<std::uint8_t>();
+  std::size_t kept = 0;
+  for (std::size_t c = 0; cull && c + 6 <= idx.size(); c += 6) {
+    std::uint8_t all = 0xF;
+    for (std::size_t k = 0; k < 6; ++k) all &= sides[idx[c + k]];
+    if (all == 0) std::copy(idx.begin() + c, idx.begin() + c + 6, idx.begin() + kept), kept += 6;
+  }
+  if (cull) idx.resize(kept);
+  if (!group) return {idx.size(), 0, 0};
   // Per cell (6 indices): its vertices' lon/lat box in texels, widened by
   // what a fragment inside can read: the B-spline's 2 texels and the
   // mipmapped tap's footprint, up to 3 texels per pixel. Texels per pixel:
   // the box's extent over the cell's size on screen, doubled for the
   // perspective across the cell. Cells touching the horizon (stretched
-  // limb cells) always take the coverage path.
-  std::vector<std::uint32_t> open;
-  std::size_t coast = 0;
+  // limb cells) always take the per-pixel path.
+  // Smooth cells: at most kSmoothTexels across. The B-spline's second
+  // derivative is at most 2 per texel^2 (|B''| <= 2, weights sum to 1), so
+  // linear interpolation across h texels errs by <= h^2 / 4 in coverage;
+  // where the shoreline is, the gradient is >= 0.3 per texel, so the 0.5
+  // contour moves by <= h^2 / 1.2 texels = (h / 1.2) x cellPx pixels:
+  // 0.2 px at h = 0.03.
+  constexpr double kSmoothTexels = 0.03;
+  std::vector<std::uint32_t> smooth, open;
+  std::size_t sharp = 0;
   for (std::size_t c = 0; c + 6 <= idx.size(); c += 6) {
-    bool isOpen = wi.width() > 0;
+    bool limb = wi.width() == 0;
     double x0 = 0, x1 = 0, y0 = 0, y1 = 0, lon0 = 0;
-    for (std::size_t k = 0; k < 6 && isOpen; ++k) {
+    for (std::size_t k = 0; k < 6 && !limb; ++k) {
       const grid::GridVertex& v = f.vertices[idx[c + k]];
-      if (v.flags & grid::kVertexHorizon) isOpen = false;
+      if (v.flags & grid::kVertexHorizon) limb = true;
       double lon = v.lonDeg;
       if (k == 0) lon0 = lon;
       lon -= 360.0 * std::round((lon - lon0) / 360.0);  // the cell does not wrap
@@ -110,18 +181,23 @@ std::size_t partitionOpenWater(const grid::GridFrame& f, const render::WaterInde
       if (k == 0) x0 = x1 = x, y0 = y1 = y;
       x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
     }
-    if (isOpen) {
-      const double tpp = 2.0 * std::max(x1 - x0, y1 - y0) / cellPx;
-      const double margin = 3.0 + 3.0 * tpp;
-      isOpen = wi.allWater(x0 - margin, x1 + margin, y0 - margin, y1 + margin);
+    std::vector<std::uint32_t>* to = nullptr;
+    if (!limb) {
+      const double extent = std::max(x1 - x0, y1 - y0);
+      const double margin = 3.0 + 3.0 * 2.0 * extent / cellPx;
+      if (wi.allWater(x0 - margin, x1 + margin, y0 - margin, y1 + margin))
+        to = &open;
+      else if (extent <= kSmoothTexels)
+        to = &smooth;
     }
-    if (isOpen)
-      open.insert(open.end(), idx.begin() + c, idx.begin() + c + 6);
+    if (to)
+      to->insert(to->end(), idx.begin() + c, idx.begin() + c + 6);
     else
-      std::copy(idx.begin() + c, idx.begin() + c + 6, idx.begin() + coast), coast += 6;
+      std::copy(idx.begin() + c, idx.begin() + c + 6, idx.begin() + sharp), sharp += 6;
   }
-  std::copy(open.begin(), open.end(), idx.begin() + coast);
-  return coast;
+  std::copy(smooth.begin(), smooth.end(), idx.begin() + sharp);
+  std::copy(open.begin(), open.end(), idx.begin() + sharp + smooth.size());
+  return {sharp, smooth.size(), open.size()};
 }
 
 void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose& pose, const render::Lighting& light,
@@ -131,11 +207,20 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
   const auto t0 = std::chrono::steady_clock::now();
   grid_->build(cam, frame_);
   std::vector<std::uint32_t> idx = grid::compactIndices(frame_);
-  // Open water (coverage 1 throughout, WaterIndex) is drawn by a variant
-  // without the shoreline's coverage lookup: from orbit most cells, and on
-  // llvmpipe the coverage was half the ocean's fragment cost.
-  const std::size_t coastIndices =
-      bare || !options_.openWaterShader ? idx.size() : partitionOpenWater(frame_, world_->waterIndex(), options_.cellPx, idx);
+  // Open water (coverage 1 throughout, WaterIndex) and cells much smaller
+  // than a water texel are drawn by variants without the per-pixel coverage
+  // lookup, which was half the ocean's fragment cost on llvmpipe.
+  ScreenCull cull;
+  cull.forward = vm.forward, cull.right = vm.right, cull.up = vm.up;
+  cull.tanY = std::tan(0.5 * pose.fovYDeg * 3.14159265358979 / 180.0);
+  cull.tanX = cull.tanY * pose.width / pose.height;
+  cull.cellRadians = 2.0 * cull.tanY / pose.height * options_.cellPx;
+  cull.maxDisplacementM = waves_->maxDisplacementM();
+  cull.waves = &*waves_;
+  cull.timeS = light.timeS;
+  const CellGroups groups =
+      partitionCells(frame_, world_->waterIndex(), options_.cellPx, cull, options_.cullOffscreen,
+                     !bare && options_.cheapCoverage, idx);
   gridMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (idx.empty()) return;
   const std::size_t vbytes = frame_.vertices.size() * sizeof(grid::GridVertex);
@@ -217,8 +302,8 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
   glPolygonOffset(0.0f, 256.0f);
   glBindVertexArray(vao_);
   world_->bind();
-  const std::pair<const render::GlProgram*, std::size_t> passes[2] = {
-      {bare ? &bare_ : &program_, coastIndices}, {&openWater_, idx.size() - coastIndices}};
+  const std::pair<const render::GlProgram*, std::size_t> passes[3] = {
+      {bare ? &bare_ : &program_, groups.sharp}, {&smoothCoast_, groups.smooth}, {&openWater_, groups.open}};
   std::size_t first = 0;
   for (const auto& [prog, count] : passes) {
     if (count == 0) continue;

@@ -19,15 +19,38 @@ struct OceanOptions {
   double cellPx = 8.0;  // grid vertex spacing on screen
   waves::Model model = waves::Model::Noise;
   waves::SeaState sea;
-  // Open water (WaterIndex) with a shader variant that skips the coverage.
-  bool openWaterShader = true;
+  // Open water (WaterIndex) and cells far smaller than a water texel with
+  // shader variants that skip the per-pixel coverage (partitionCells).
+  bool cheapCoverage = true;
+  // Leave out grid cells that no wave can bring on screen (offscreenSides):
+  // the clamp rectangle spans up to 4 screens a side near the sea.
+  bool cullOffscreen = true;
 };
 
-// Reorders a grid frame's compacted cell indices (6 per cell) so cells over
-// open water (no shoreline can reach any fragment of the cell) come last;
-// returns the number of indices before them.
-std::size_t partitionOpenWater(const grid::GridFrame& f, const render::WaterIndex& wi, double cellPx,
-                               std::vector<std::uint32_t>& idx);
+// Reorders a grid frame's compacted cell indices (6 per cell) into three
+// runs: cells that need the per-pixel shoreline coverage, cells small
+// enough to interpolate it from their vertices, and cells over open water
+// (no shoreline can reach any of their fragments).
+struct CellGroups {
+  std::size_t sharp = 0, smooth = 0, open = 0;  // index counts, in this order
+};
+// The view, for leaving out cells that stay off screen.
+struct ScreenCull {
+  glm::dvec3 forward{0.0}, right{0.0}, up{0.0};
+  double tanX = 1.0, tanY = 1.0;  // half-angle tangents of the view
+  double cellRadians = 0.0;       // a grid cell's size on screen, radians
+  double maxDisplacementM = 0.0;  // the wave field's bound
+  // With these, vertices near the eye are tested at their displaced place
+  // (fields that move the sea only vertically).
+  const waves::WaveField* waves = nullptr;
+  double timeS = 0.0;
+};
+// Per grid vertex, the screen sides it stays beyond (bits 1 left, 2 right,
+// 4 bottom, 8 top) under any wave displacement.
+std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenCull& view);
+// With `cull`, drops cells that stay off screen; with `group`, sorts the rest.
+CellGroups partitionCells(const grid::GridFrame& f, const render::WaterIndex& wi, double cellPx, const ScreenCull& view,
+                          bool cull, bool group, std::vector<std::uint32_t>& idx);
 
 class OceanRenderer : public render::Layer {
  public:
@@ -45,7 +68,8 @@ class OceanRenderer : public render::Layer {
   const grid::GridFrame& lastFrame() const { return frame_; }
   // Draw the eye-relative surface position into colour attachment 1 (tests).
   void setWriteData(bool on) { writeData_ = on; }
-  void setOpenWaterShader(bool on) { options_.openWaterShader = on; }
+  void setCheapCoverage(bool on) { options_.cheapCoverage = on; }
+  void setCullOffscreen(bool on) { options_.cullOffscreen = on; }
   // CPU time of the last draw's grid build (ScreenGrid::build + index
   // compaction), wall ms: the part of the ocean pass that is not GL.
   double lastGridMs() const { return gridMs_; }
@@ -57,7 +81,7 @@ class OceanRenderer : public render::Layer {
   std::unique_ptr<grid::ScreenGrid> grid_;
   grid::GridFrame frame_;
   waves::GpuPatch patch_;
-  render::GlProgram program_, openWater_, bare_;
+  render::GlProgram program_, smoothCoast_, openWater_, bare_;
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0, ssbo_[5] = {0, 0, 0, 0, 0};  // octaves, waves, frame, FFT planes, texels
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;

@@ -183,13 +183,16 @@ TEST(Render, EyeMoved1mmAt1mAltitudeGivesTheSameImage) {
 }
 
 
-// The open-water shortcuts (terrain tiles under open water left out, open
-// ocean cells without the coverage lookup) must not change what is seen:
+// The shortcuts (terrain tiles under open water left out; ocean cells over
+// open water, or much smaller than a water texel, without the per-pixel
+// coverage lookup; ocean cells that stay off screen culled) must not change
+// what is seen:
 // each view drawn with and without them. Views with islands and coasts at
 // every scale (the shortcuts' margins are what keeps small islands and the
 // shoreline's filters intact); a wrong margin loses islands or cuts the
-// anti-aliased coast, thousands of pixels.
-TEST(Render, OpenWaterShortcutsDoNotChangeTheImage) {
+// anti-aliased coast, thousands of pixels; a wrong cull leaves holes at the
+// screen's edges near the sea.
+TEST(Render, ShortcutsDoNotChangeTheImage) {
   Session& s = session();
   struct View {
     const char* name;
@@ -201,16 +204,22 @@ TEST(Render, OpenWaterShortcutsDoNotChangeTheImage) {
       {"Indonesia obliquely from 800 km", pose(-2.0, 118.0, 8.0e5, 90.0, -25.0, 512)},
       {"Gibraltar from 50 km", pose(36.0, -5.45, 5.0e4, 270.0, -50.0, 512)},
       {"the Strait from 2 m", pose(36.0, -5.6, 2.0, 250.0, -3.0, 512)},
+      {"Tarifa's coast from 2 m", pose(36.0, -5.6, 2.0, 20.0, -1.0, 512)},
+      {"a coast from 300 m", pose(35.95, -5.5, 300.0, 330.0, -8.0, 512)},
+      {"a coast from 900 m", pose(36.1, -5.4, 900.0, 200.0, -15.0, 512)},
+      {"Gibraltar from 3 km", pose(36.1, -5.3, 3000.0, 250.0, -30.0, 512)},
   };
   for (const View& v : views) {
     FrameSettings fs;
     fs.sunEcef = sunForView(v.pose);
     s.renderer->terrain().setSkipOpenWater(false);
-    sessionOcean().setOpenWaterShader(false);
+    sessionOcean().setCheapCoverage(false);
+    sessionOcean().setCullOffscreen(false);
     s.render(v.pose, fs);
     const Image full = s.image();
     s.renderer->terrain().setSkipOpenWater(true);
-    sessionOcean().setOpenWaterShader(true);
+    sessionOcean().setCheapCoverage(true);
+    sessionOcean().setCullOffscreen(true);
     const auto t = s.render(v.pose, fs);
     const Image fast = s.image();
     const ImageDiff d = compare(full, fast);
