@@ -50,10 +50,41 @@ FrameTimes GlobeRenderer::render(const ViewPose& pose, const FrameSettings& sett
   glDepthMask(GL_TRUE);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_GREATER);
+  // Sky first, over the whole screen, without depth: what the terrain and
+  // the ocean leave uncovered, or cover only in part (the ocean's
+  // anti-aliased shoreline, faded by the coverage's mipmap at the horizon,
+  // over land the terrain does not draw there), blends with the sky, not
+  // with the clear colour (black dots along the horizon from 2 m).
   auto ts = Clock::now();
   double cs = cpuMs();
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  if (!settings.bare) {
+    sky_.use();
+    const glm::vec3 f(vm.forward), r(vm.right), u(vm.up), sun(light.sunEcef), eyeDir(glm::normalize(vm.eyeEcef));
+    const double tanY = std::tan(0.5 * pose.fovYDeg * 3.14159265358979323846 / 180.0);
+    glUniform3fv(sky_.uniform("uForward"), 1, &f[0]);
+    glUniform3fv(sky_.uniform("uRight"), 1, &r[0]);
+    glUniform3fv(sky_.uniform("uUp"), 1, &u[0]);
+    glUniform2f(sky_.uniform("uTanHalf"), float(tanY * pose.width / pose.height), float(tanY));
+    glUniform3fv(sky_.uniform("uSunDir"), 1, &sun[0]);
+    glUniform3fv(sky_.uniform("uEyeDir"), 1, &eyeDir[0]);
+    glUniform1f(sky_.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
+    glBindVertexArray(emptyVao_);
+    // The sky writes no data attachment (tests read the ocean's there).
+    glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+  glDepthMask(GL_TRUE);
+  if (settings.timed) glFinish();
+  t.skyMs = msSince(ts);
+  t.skyCpuMs = cpuMs() - cs;
+
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  ts = Clock::now();
+  cs = cpuMs();
   glDisable(GL_CULL_FACE);
   // The terrain shades water as distant sea where the wave grid does not
   // draw (cells it skips as land can hold lakes and coast); open water that
@@ -70,31 +101,6 @@ FrameTimes GlobeRenderer::render(const ViewPose& pose, const FrameSettings& sett
   if (settings.timed) glFinish();
   t.layersMs = msSince(ts);
   t.layersCpuMs = cpuMs() - cs;
-  // Sky last, at depth 0 with GL_GEQUAL: only pixels nothing else covered
-  // pass, and the early depth test skips the rest.
-  ts = Clock::now();
-  cs = cpuMs();
-  glDepthFunc(GL_GEQUAL);
-  glDepthMask(GL_FALSE);
-  if (!settings.bare) {
-    sky_.use();
-    const glm::vec3 f(vm.forward), r(vm.right), u(vm.up), sun(light.sunEcef), eyeDir(glm::normalize(vm.eyeEcef));
-    const double tanY = std::tan(0.5 * pose.fovYDeg * 3.14159265358979323846 / 180.0);
-    glUniform3fv(sky_.uniform("uForward"), 1, &f[0]);
-    glUniform3fv(sky_.uniform("uRight"), 1, &r[0]);
-    glUniform3fv(sky_.uniform("uUp"), 1, &u[0]);
-    glUniform2f(sky_.uniform("uTanHalf"), float(tanY * pose.width / pose.height), float(tanY));
-    glUniform3fv(sky_.uniform("uSunDir"), 1, &sun[0]);
-    glUniform3fv(sky_.uniform("uEyeDir"), 1, &eyeDir[0]);
-    glUniform1f(sky_.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
-    glBindVertexArray(emptyVao_);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-  }
-  glDepthMask(GL_TRUE);
-  if (settings.timed) glFinish();
-  t.skyMs = msSince(ts);
-  t.skyCpuMs = cpuMs() - cs;
-
   glBindVertexArray(0);
   glUseProgram(0);
   if (settings.timed) glFinish();

@@ -115,5 +115,21 @@ TEST(Ocean, RenderedSurfaceMatchesSeaHeightWithin1cm) {
   EXPECT_LT(worst, 0.01) << "over " << checked << " pixels";
 }
 
+
+// In daylight near the sea nothing on screen is black: every pixel is sky,
+// sea or land seen through the haze. Where the ocean's coverage fades at
+// the horizon (far coasts, over ground the terrain does not draw there) it
+// used to blend with the clear colour: a dotted black line along the
+// horizon looking from Tarifa towards Gibraltar.
+TEST(Ocean, NoBlackPixelsAlongTheHorizonFrom2m) {
+  for (const double heading : {90.0, 250.0, 0.0}) {
+    const Image img = renderAt(seaPose(36.0, -5.6, 2.0, heading, -2.0, 640), 0.0, 135.0, 55.0);
+    int black = 0;
+    for (std::size_t i = 0; i < std::size_t(img.width) * img.height; ++i)
+      black += img.rgba[i * 4] + img.rgba[i * 4 + 1] + img.rgba[i * 4 + 2] < 24;
+    EXPECT_EQ(black, 0) << "heading " << heading;
+  }
+}
+
 }  // namespace
 }  // namespace geocean::render::test
