@@ -47,6 +47,12 @@ out vec3 vHazeTr;
 out vec3 vHazeIn;
 out float vDepthM;
 out float vFar;
+#ifdef GEOCEAN_FAR_SHADED
+// Far open water (OceanRenderer): the waves have faded into roughness and
+// nothing left varies within a cell, so the colour is made per vertex.
+#include "ocean_shading.glsl"
+out vec3 vColor;
+#endif
 #ifdef GEOCEAN_VERTEX_COVERAGE
 // Cells much smaller than a water texel (OceanRenderer): the shoreline's
 // B-spline is linear across them to well under a pixel, so it is read per
@@ -122,6 +128,9 @@ void main() {
   vFar = smoothstep(0.02, 0.5, footprint / max(uOctaveWavelengthM[0], 1e-3));
 #endif
   vLonLat = lonLat;
+#ifdef GEOCEAN_FAR_SHADED
+  vColor = oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, vDepthM, vFar, 1.0);
+#endif
 #ifdef GEOCEAN_VERTEX_COVERAGE
   vCoverage = textureBSplineGather(uWater, geoUv(lonLat, uWaterGeo));
 #endif

@@ -48,6 +48,8 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const render::WorldTextures> world,
     openWater_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", open);
     open.back() = "GEOCEAN_VERTEX_COVERAGE 1";
     smoothCoast_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", open);
+    open.back() = "GEOCEAN_FAR_SHADED 1";
+    farShaded_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", open);
   }
   model.push_back("GEOCEAN_BARE 1");
   bare_ = render::GlProgram::graphics("ocean.vert", "bare.frag", model);
@@ -152,7 +154,7 @@ CellGroups partitionCells(const grid::GridFrame& f, const render::WaterIndex& wi
     if (all == 0) std::copy(idx.begin() + c, idx.begin() + c + 6, idx.begin() + kept), kept += 6;
   }
   if (cull) idx.resize(kept);
-  if (!group) return {idx.size(), 0, 0};
+  if (!group) return {idx.size(), 0, 0, 0};
   // Per cell (6 indices): its vertices' lon/lat box in texels, widened by
   // what a fragment inside can read: the B-spline's 2 texels and the
   // mipmapped tap's footprint, up to 3 texels per pixel. Texels per pixel:
@@ -166,7 +168,7 @@ CellGroups partitionCells(const grid::GridFrame& f, const render::WaterIndex& wi
   // contour moves by <= h^2 / 1.2 texels = (h / 1.2) x cellPx pixels:
   // 0.2 px at h = 0.03.
   constexpr double kSmoothTexels = 0.03;
-  std::vector<std::uint32_t> smooth, open;
+  std::vector<std::uint32_t> smooth, open, farOpen;
   std::size_t sharp = 0;
   for (std::size_t c = 0; c + 6 <= idx.size(); c += 6) {
     bool limb = wi.width() == 0;
@@ -185,8 +187,17 @@ CellGroups partitionCells(const grid::GridFrame& f, const render::WaterIndex& wi
     if (!limb) {
       const double extent = std::max(x1 - x0, y1 - y0);
       const double margin = 3.0 + 3.0 * 2.0 * extent / cellPx;
-      if (wi.allWater(x0 - margin, x1 + margin, y0 - margin, y1 + margin))
-        to = &open;
+      if (wi.allWater(x0 - margin, x1 + margin, y0 - margin, y1 + margin)) {
+        // Far: ocean.vert's fade (footprint / longest wavelength >= 0.5)
+        // is complete at every vertex, with 1 % for its float arithmetic.
+        bool far = view.farFootprintM > 0.0;
+        for (std::size_t k = 0; k < 6 && far; ++k) {
+          const float* e = f.vertices[idx[c + k]].eyeRelM;
+          far = std::sqrt(double(e[0]) * e[0] + double(e[1]) * e[1] + double(e[2]) * e[2]) * view.cellRadians >=
+                1.01 * view.farFootprintM;
+        }
+        to = far ? &farOpen : &open;
+      }
       else if (extent <= kSmoothTexels)
         to = &smooth;
     }
@@ -197,7 +208,8 @@ CellGroups partitionCells(const grid::GridFrame& f, const render::WaterIndex& wi
   }
   std::copy(smooth.begin(), smooth.end(), idx.begin() + sharp);
   std::copy(open.begin(), open.end(), idx.begin() + sharp + smooth.size());
-  return {sharp, smooth.size(), open.size()};
+  std::copy(farOpen.begin(), farOpen.end(), idx.begin() + sharp + smooth.size() + open.size());
+  return {sharp, smooth.size(), open.size(), farOpen.size()};
 }
 
 void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose& pose, const render::Lighting& light,
@@ -217,6 +229,8 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
   cull.cellRadians = 2.0 * cull.tanY / pose.height * options_.cellPx;
   cull.maxDisplacementM = waves_->maxDisplacementM();
   cull.waves = &*waves_;
+  if (options_.farVertexShading && !octaveWavelengthM_.empty())
+    cull.farFootprintM = 0.5 * double(octaveWavelengthM_[0]);
   cull.timeS = light.timeS;
   const CellGroups groups =
       partitionCells(frame_, world_->waterIndex(), options_.cellPx, cull, options_.cullOffscreen,
@@ -302,8 +316,10 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
   glPolygonOffset(0.0f, 256.0f);
   glBindVertexArray(vao_);
   world_->bind();
-  const std::pair<const render::GlProgram*, std::size_t> passes[3] = {
-      {bare ? &bare_ : &program_, groups.sharp}, {&smoothCoast_, groups.smooth}, {&openWater_, groups.open}};
+  const std::pair<const render::GlProgram*, std::size_t> passes[4] = {{bare ? &bare_ : &program_, groups.sharp},
+                                                                       {&smoothCoast_, groups.smooth},
+                                                                       {&openWater_, groups.open},
+                                                                       {&farShaded_, groups.farOpen}};
   std::size_t first = 0;
   for (const auto& [prog, count] : passes) {
     if (count == 0) continue;

@@ -25,14 +25,17 @@ struct OceanOptions {
   // Leave out grid cells that no wave can bring on screen (offscreenSides):
   // the clamp rectangle spans up to 4 screens a side near the sea.
   bool cullOffscreen = true;
+  // Far open water (waves faded into roughness) shaded per vertex.
+  bool farVertexShading = true;
 };
 
 // Reorders a grid frame's compacted cell indices (6 per cell) into three
 // runs: cells that need the per-pixel shoreline coverage, cells small
 // enough to interpolate it from their vertices, and cells over open water
-// (no shoreline can reach any of their fragments).
+// (no shoreline can reach any of their fragments), the last of them where
+// the waves have faded (ScreenCull::farFootprintM) so it is shaded per vertex.
 struct CellGroups {
-  std::size_t sharp = 0, smooth = 0, open = 0;  // index counts, in this order
+  std::size_t sharp = 0, smooth = 0, open = 0, farOpen = 0;  // index counts, in this order
 };
 // The view, for leaving out cells that stay off screen.
 struct ScreenCull {
@@ -44,6 +47,9 @@ struct ScreenCull {
   // (fields that move the sea only vertically).
   const waves::WaveField* waves = nullptr;
   double timeS = 0.0;
+  // Grid footprint (|eye-relative| x cellRadians) from which ocean.vert's
+  // distance fade is complete; 0: no far group.
+  double farFootprintM = 0.0;
 };
 // Per grid vertex, the screen sides it stays beyond (bits 1 left, 2 right,
 // 4 bottom, 8 top) under any wave displacement.
@@ -70,6 +76,7 @@ class OceanRenderer : public render::Layer {
   void setWriteData(bool on) { writeData_ = on; }
   void setCheapCoverage(bool on) { options_.cheapCoverage = on; }
   void setCullOffscreen(bool on) { options_.cullOffscreen = on; }
+  void setFarVertexShading(bool on) { options_.farVertexShading = on; }
   // CPU time of the last draw's grid build (ScreenGrid::build + index
   // compaction), wall ms: the part of the ocean pass that is not GL.
   double lastGridMs() const { return gridMs_; }
@@ -81,7 +88,7 @@ class OceanRenderer : public render::Layer {
   std::unique_ptr<grid::ScreenGrid> grid_;
   grid::GridFrame frame_;
   waves::GpuPatch patch_;
-  render::GlProgram program_, smoothCoast_, openWater_, bare_;
+  render::GlProgram program_, smoothCoast_, openWater_, farShaded_, bare_;
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0, ssbo_[5] = {0, 0, 0, 0, 0};  // octaves, waves, frame, FFT planes, texels
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;
