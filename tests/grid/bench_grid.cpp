@@ -143,9 +143,10 @@ void cephesLatLonBatch(const double eye[3], const double* __restrict rx, const d
 }
 
 
-// The lat/lon kernel alone (two double atan2 and a sqrt per point) over
-// the hit points of the same rays: the grid's largest part after the bare loop.
-void BM_LatLonKernel(benchmark::State& st) {
+// A lat/lon kernel alone over the hit points of the same rays, row by row
+// as the grid passes them.
+template <class Kernel>
+void latLonBench(benchmark::State& st, Kernel kernel) {
   const int n = int(st.range(0)), threads = int(st.range(1));
   const camera::Camera& cam = benchCamera();
   tbb::task_arena arena(threads);
@@ -173,8 +174,8 @@ void BM_LatLonKernel(benchmark::State& st) {
     arena.execute([&] {
       tbb::parallel_for(0, n, [&](int j) {
         const auto& x = px[std::size_t(j)];
-        grid::surfaceLatLonBatch(eye, x.data(), py[std::size_t(j)].data(), pz[std::size_t(j)].data(), x.size(),
-                                 lat.data() + std::size_t(j) * n, lon.data() + std::size_t(j) * n);
+        kernel(eye, x.data(), py[std::size_t(j)].data(), pz[std::size_t(j)].data(), x.size(),
+               lat.data() + std::size_t(j) * n, lon.data() + std::size_t(j) * n);
       });
     });
     benchmark::DoNotOptimize(lat.data());
@@ -183,44 +184,12 @@ void BM_LatLonKernel(benchmark::State& st) {
   st.counters["hit_frac"] = double(points) / (double(n) * n);
 }
 
+// The grid's lat/lon kernel (two double atan2 and a sqrt per point): its
+// largest part after the bare loop.
+void BM_LatLonKernel(benchmark::State& st) { latLonBench(st, grid::surfaceLatLonBatch); }
+
 // The same over Cephes' kernel: the A/B of the current kernel in one run.
-void BM_LatLonCephes(benchmark::State& st) {
-  const int n = int(st.range(0)), threads = int(st.range(1));
-  const camera::Camera& cam = benchCamera();
-  tbb::task_arena arena(threads);
-  const double eye[3] = {cam.eyeEcef().x, cam.eyeEcef().y, cam.eyeEcef().z};
-  const glm::dvec3 F = cam.forward(), R = cam.right() * cam.tanHalfX(), U = cam.up() * cam.tanHalfY();
-  const double Fa[3] = {F.x, F.y, F.z}, Ra[3] = {R.x, R.y, R.z}, Ua[3] = {U.x, U.y, U.z};
-  // Per row: the hit span's eye-relative points, as the grid passes them.
-  const auto sn = static_cast<std::size_t>(n);
-  std::vector<std::vector<double>> px(sn), py(sn), pz(sn);
-  std::vector<double> t(sn), rx(sn), ry(sn), rz(sn);
-  std::size_t points = 0;
-  for (int j = 0; j < n; ++j) {
-    grid::surfaceHitsRow(eye, Fa, Ra, Ua, -1.0, 2.0 / (n - 1), -1.0 + 2.0 * j / (n - 1), std::size_t(n), t.data(),
-                         rx.data(), ry.data(), rz.data());
-    for (int i = 0; i < n; ++i)
-      if (!std::isnan(t[std::size_t(i)])) {
-        px[std::size_t(j)].push_back(rx[std::size_t(i)]);
-        py[std::size_t(j)].push_back(ry[std::size_t(i)]);
-        pz[std::size_t(j)].push_back(rz[std::size_t(i)]);
-      }
-    points += px[std::size_t(j)].size();
-  }
-  std::vector<double> lat(std::size_t(n) * n), lon(std::size_t(n) * n);
-  for (auto _ : st) {
-    arena.execute([&] {
-      tbb::parallel_for(0, n, [&](int j) {
-        const auto& x = px[std::size_t(j)];
-        cephesLatLonBatch(eye, x.data(), py[std::size_t(j)].data(), pz[std::size_t(j)].data(), x.size(),
-                                 lat.data() + std::size_t(j) * n, lon.data() + std::size_t(j) * n);
-      });
-    });
-    benchmark::DoNotOptimize(lat.data());
-  }
-  st.counters["points/s"] = benchmark::Counter(double(points), benchmark::Counter::kIsIterationInvariantRate);
-  st.counters["hit_frac"] = double(points) / (double(n) * n);
-}
+void BM_LatLonCephes(benchmark::State& st) { latLonBench(st, cephesLatLonBatch); }
 
 // Writing the vertex buffer's bytes (32 per vertex) at memory speed.
 void BM_WriteVertexBytes(benchmark::State& st) {
