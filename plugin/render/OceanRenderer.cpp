@@ -124,10 +124,23 @@ std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenC
   // Near the eye the bound cannot decide (at 2 m above the sea, crests of
   // the 8 m bound could reach the eye): where the waves only move the sea
   // vertically, evaluate them (the CPU's SIMD batch of the same kernel) and
-  // test the displaced vertex, within what the vertex shader may differ by
-  // (octaves it leaves out, float rounding: kNearToleranceM).
+  // test the displaced vertex, within what the vertex shader may differ by:
+  // the bound of the octaves it leaves out at that distance (those shorter
+  // than 3 grid cells, with 1 % for its float footprint) and 1 cm for float
+  // rounding.
   if (!v.waves || v.waves->maxHorizontalM() != 0.0 || near.empty()) return out;
-  constexpr double kNearToleranceM = 0.05;
+  const auto& octaves = v.waves->octaves();
+  std::vector<double> tailBoundM(octaves.size() + 1, 0.0);  // bound of octaves i.. together
+  double ampSum = 0.0;
+  for (const auto& o : octaves) ampSum += o.amplitudeM;
+  for (std::size_t i = octaves.size(); i-- > 0;)
+    tailBoundM[i] = tailBoundM[i + 1] + v.waves->maxVerticalM() * octaves[i].amplitudeM / std::max(ampSum, 1e-300);
+  const auto omittedBoundM = [&](double dist) {
+    std::size_t i = 0;
+    // ocean.vert takes at most 16 octaves, longest first.
+    while (i < octaves.size() && i < 16 && 1.0 / octaves[i].frequencyPerM > 3.03 * dist * v.cellRadians) ++i;
+    return tailBoundM[i];
+  };
   std::vector<double> lat(near.size()), lon(near.size());
   for (std::size_t k = 0; k < near.size(); ++k) lat[k] = f.vertices[near[k]].latDeg, lon[k] = f.vertices[near[k]].lonDeg;
   std::vector<waves::SurfacePoint> sp(near.size());
@@ -136,7 +149,8 @@ std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenC
     const grid::GridVertex& g = f.vertices[near[k]];
     const glm::dvec3 p(g.eyeRelM[0], g.eyeRelM[1], g.eyeRelM[2]);
     const glm::dvec3 up = geo::surfaceNormal(g.latDeg, g.lonDeg);
-    out[near[k]] = sides(p + up * sp[k].heightM, kNearToleranceM + sagM(glm::length(p)));
+    const double dist = glm::length(p);
+    out[near[k]] = sides(p + up * sp[k].heightM, omittedBoundM(dist) + 0.01 + sagM(dist));
   }
   return out;
 }
