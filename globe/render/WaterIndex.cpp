@@ -18,17 +18,22 @@ WaterIndex::WaterIndex(const WorldLayer& water)
     width_ = height_ = 0;
     return;
   }
-  Level base{width_, height_, std::vector<std::uint8_t>(std::size_t(width_) * height_)};
-  for (std::size_t i = 0; i < base.land.size(); ++i)
-    base.land[i] = water.values[i * std::size_t(water.channels)] >= 1.0f ? 0 : 1;  // NaN counts as land
+  // One bit per block (the 5' mask: 1.2 MB for the finest level).
+  const auto makeLevel = [](int w, int h) {
+    return Level{w, h, std::vector<std::uint64_t>((std::size_t(w) * std::size_t(h) + 63) / 64, 0)};
+  };
+  Level base = makeLevel(width_, height_);
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x)
+      if (!(water.values[(std::size_t(y) * width_ + x) * std::size_t(water.channels)] >= 1.0f))
+        base.set(x, y);  // NaN counts as land
   levels_.push_back(std::move(base));
   while (levels_.back().width > 1 || levels_.back().height > 1) {
     const Level& f = levels_.back();
-    Level c{(f.width + 1) / 2, (f.height + 1) / 2, {}};
-    c.land.assign(std::size_t(c.width) * c.height, 0);
+    Level c = makeLevel((f.width + 1) / 2, (f.height + 1) / 2);
     for (int y = 0; y < f.height; ++y)
       for (int x = 0; x < f.width; ++x)
-        c.land[std::size_t(y / 2) * c.width + x / 2] |= f.land[std::size_t(y) * f.width + x];
+        if (f.at(x, y)) c.set(x / 2, y / 2);
     levels_.push_back(std::move(c));
   }
 }
@@ -48,7 +53,7 @@ bool WaterIndex::anyLand(int x0, int x1, int y0, int y1) const {
 
 bool WaterIndex::blockHasLand(std::size_t k, int bx, int by, int x0, int x1, int y0, int y1) const {
   const Level& l = levels_[k];
-  if (bx >= l.width || by >= l.height || !l.land[std::size_t(by) * l.width + bx]) return false;
+  if (bx >= l.width || by >= l.height || !l.at(bx, by)) return false;
   const int s = 1 << k;
   if (k == 0 || (bx * s >= x0 && (bx + 1) * s - 1 <= x1 && by * s >= y0 && (by + 1) * s - 1 <= y1)) return true;
   for (int cy = 2 * by; cy <= 2 * by + 1; ++cy)

@@ -42,7 +42,15 @@ class WaterIndex {
   double originLonDeg_ = 0, originLatDeg_ = 0, lonStepDeg_ = 1, latStepDeg_ = -1;
   struct Level {
     int width, height;
-    std::vector<std::uint8_t> land;  // 1: some texel of the block is not water
+    std::vector<std::uint64_t> land;  // bit set: some texel of the block is not water
+    bool at(int x, int y) const {
+      const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
+      return (land[i >> 6] >> (i & 63)) & 1u;
+    }
+    void set(int x, int y) {
+      const std::size_t i = std::size_t(y) * std::size_t(width) + std::size_t(x);
+      land[i >> 6] |= std::uint64_t(1) << (i & 63);
+    }
   };
   std::vector<Level> levels_;
 };
