@@ -26,7 +26,6 @@ layout(binding = 2) uniform sampler2D uWater;
 layout(location = 0) out vec4 outColor;
 
 void main() {
-  vec2 uvW = geoUv(vLonLat, uWaterGeo);
   vec3 up = normalize(vNormal);
   vec3 albedo = texture(uImagery, geoUv(vLonLat, uImageryGeo)).rgb;
   float sunMu = dot(uSunDir, up);
@@ -37,13 +36,14 @@ void main() {
   // The ocean layer draws open water and the anti-aliased shoreline over
   // this; terrain water shows only where the ocean's coverage fades (the
   // limb, the coast's one-pixel edge), so per-vertex coverage is enough and
-  // spares every terrain pixel the B-spline (on llvmpipe, 1/3 of the frame).
+  // spares every terrain pixel the B-spline (on llvmpipe a third of the
+  // terrain's cost).
   c = mix(c, vSeaColor, smoothstep(0.4, 0.6, vWater));
 #else
   if (uSeaShading != 0) {
     // Water coverage: 0.5 is the shoreline; smooth over a pixel (B-spline
     // magnified, the mipmapped average minified).
-    float w = textureBSplineAuto(uWater, uvW);
+    float w = textureBSplineAuto(uWater, geoUv(vLonLat, uWaterGeo));
     float aa = clamp(fwidth(w) * 0.75, 1e-3, 0.5);
     float waterAmt = smoothstep(0.5 - aa, 0.5 + aa, w);
     // Distant sea (no wave geometry, slopes as roughness), shaded per vertex.
