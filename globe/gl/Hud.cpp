@@ -56,12 +56,14 @@ std::string Hud::text(const HudValues& v) {
   else
     add("alt %10.2f m\n", v.altM);
   if (v.seaKnown) {
-    if (std::isfinite(v.seaHeightM) && v.altM < 10000.0)
-      add("sea %+10.3f m  (%.2f m below the camera)\n", v.seaHeightM, v.altM - v.seaHeightM);
-    else if (std::isfinite(v.seaHeightM))
+    if (std::isfinite(v.seaHeightM)) {
       add("sea %+10.3f m\n", v.seaHeightM);
-    else
+      // Near the sea, the camera's clearance over the wave under it; short
+      // lines keep the panel in a corner of small windows.
+      if (v.altM < 10000.0) add("clearance %5.2f m\n", v.altM - v.seaHeightM);
+    } else {
       add("sea %10s\n", "land");
+    }
   }
   if (v.fps > 0.0) add("fps %10.1f", v.fps);
   std::string s(buf, size_t(std::min(n, int(sizeof buf) - 1)));
@@ -75,10 +77,25 @@ void Hud::draw(int widthPx, int heightPx, double dtS, const HudValues& v) {
   ImGuiIO& io = ImGui::GetIO();
   io.DisplaySize = ImVec2(float(widthPx), float(heightPx));
   io.DeltaTime = float(std::clamp(dtS, 1e-4, 1.0));  // ImGui asserts a positive step
+  // The built-in 13 px font grows with the window (17 px at 720p, 26 px at
+  // 1080p): at 13 px the HUD was hard to read on a large window. The atlas
+  // is rebuilt only when the whole-pixel size changes.
+  const int fontPx = int(std::lround(13.0 * std::max(1.0, heightPx / 540.0)));
+  if (fontPx != fontPx_) {
+    ImGui_ImplOpenGL3_DestroyFontsTexture();
+    io.Fonts->Clear();
+    ImFontConfig cfg;
+    cfg.SizePixels = float(fontPx);
+    io.Fonts->AddFontDefault(&cfg);
+    ImGui_ImplOpenGL3_CreateFontsTexture();
+    fontPx_ = fontPx;
+  }
   ImGui_ImplOpenGL3_NewFrame();
-  // ImGui hides an auto-sized window on its first frame (it measures it
-  // then): lay the first frame out twice so every frame shows the panel.
-  for (int pass = firstFrame_ ? 2 : 1; pass > 0; --pass) {
+  // An auto-sized window takes the size its content had in the previous
+  // layout (and is hidden in its first): lay every frame out twice, so the
+  // panel always fits this frame's text (a flight's lines grow as the
+  // camera comes down). The HUD is a few lines: the extra layout is free.
+  for (int pass = 2; pass > 0; --pass) {
     ImGui::NewFrame();
     const float margin = widthPx >= 480 ? 10.0f : 2.0f;
     ImGui::SetNextWindowPos(ImVec2(margin, margin));
@@ -90,7 +107,6 @@ void Hud::draw(int widthPx, int heightPx, double dtS, const HudValues& v) {
     ImGui::End();
     if (pass > 1) ImGui::EndFrame();
   }
-  firstFrame_ = false;
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   ImGui::SetCurrentContext(previous);

@@ -43,7 +43,7 @@ class Hud {
  private:
   Hud() = default;
   ImGuiContext* ctx_ = nullptr;
-  bool firstFrame_ = true;
+  int fontPx_ = 0;  // size of the font atlas now built
 };
 
 }  // namespace geocean::gl
