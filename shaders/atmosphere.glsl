@@ -35,11 +35,11 @@ vec3 skyLow(vec3 dir, vec3 up, vec3 sunDir, vec3 sun) {
   return ground * light * smoothstep(-0.3, 0.1, sunMu) + mie * light;
 }
 
-vec3 skyRadiance(vec3 dir, vec3 up, vec3 sunDir, float eyeAltM, float eyeRadiusM, float discScale) {
+// The same with sun = sunLight(dot(sunDir, up)) given (constant over a
+// view: the sky pass computes it per vertex).
+vec3 skyRadianceLit(vec3 dir, vec3 up, vec3 sunDir, float eyeAltM, float eyeRadiusM, float discScale, vec3 sun) {
   float mu = dot(dir, up);
-  float sunMu = dot(sunDir, up);
   float cosSun = dot(dir, sunDir);
-  vec3 sun = sunLight(sunMu);
   vec3 light = sun + vec3(0.02);
   vec3 lowSky = skyLow(dir, up, sunDir, sun);
   lowSky += discScale * vec3(18.0) * sun * smoothstep(0.9996, 0.99985, cosSun);  // the disc
@@ -48,6 +48,10 @@ vec3 skyRadiance(vec3 dir, vec3 up, vec3 sunDir, float eyeAltM, float eyeRadiusM
   float limb = exp(-max(closest - kEarthRadiusM, 0.0) / 25000.0);
   vec3 space = vec3(0.25, 0.45, 1.0) * limb * light * 0.9;
   return mix(lowSky, space, smoothstep(30000.0, 200000.0, eyeAltM));
+}
+
+vec3 skyRadiance(vec3 dir, vec3 up, vec3 sunDir, float eyeAltM, float eyeRadiusM, float discScale) {
+  return skyRadianceLit(dir, up, sunDir, eyeAltM, eyeRadiusM, discScale, sunLight(dot(sunDir, up)));
 }
 
 vec3 skyColor(vec3 dir, vec3 up, vec3 sunDir, float eyeAltM, float eyeRadiusM) {
