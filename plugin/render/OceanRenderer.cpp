@@ -233,9 +233,11 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
   const auto t0 = std::chrono::steady_clock::now();
   grid_->build(cam, frame_);
   std::vector<std::uint32_t> idx = grid::compactIndices(frame_);
-  // Open water (coverage 1 throughout, WaterIndex) and cells much smaller
-  // than a water texel are drawn by variants without the per-pixel coverage
-  // lookup, which was half the ocean's fragment cost on llvmpipe.
+  // Cells no wave can bring on screen are dropped; open water (coverage 1
+  // throughout, WaterIndex) and cells much smaller than a water texel are
+  // drawn by variants without the per-pixel coverage lookup, which was half
+  // the ocean's fragment cost on llvmpipe. cull.cellRadians is also
+  // ocean.vert's uCellRadians: the CPU's far and cull tests use its numbers.
   ScreenCull cull;
   cull.forward = vm.forward, cull.right = vm.right, cull.up = vm.up;
   cull.tanY = std::tan(0.5 * pose.fovYDeg * 3.14159265358979 / 180.0);
@@ -292,33 +294,32 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
 
   const auto setUniforms = [&](const render::GlProgram& p) {
     glUniformMatrix4fv(p.uniform("uViewProj"), 1, GL_FALSE, &vm.viewProj[0][0]);
-  const glm::vec3 eyeMinusO(vm.eyeEcef - origin);
-  glUniform3fv(p.uniform("uEyeMinusOrigin"), 1, &eyeMinusO[0]);
-  glUniform1i(p.uniform("uOctaveCount"), int(patch_.octaves.size()));
-  glUniform1i(p.uniform("uWaveCount"), int(patch_.waves.size()));
-  glUniform1fv(p.uniform("uOctaveWavelengthM"), GLsizei(std::min<std::size_t>(octaveWavelengthM_.size(), 16)),
-               octaveWavelengthM_.data());
-  // Metres per pixel at 1 m distance: a cell's footprint is this x cellPx x distance.
-  const double radPerPx = 2.0 * std::tan(0.5 * pose.fovYDeg * 3.14159265358979 / 180.0) / pose.height;
-  glUniform1f(p.uniform("uCellRadians"), float(radPerPx * options_.cellPx));
-  glUniform1f(p.uniform("uMaxVerticalM"), float(waves_->maxVerticalM()));
-  glUniform4fv(p.uniform("uElevationGeo"), 1, &world_->elevationGeo()[0]);
-  glUniform4fv(p.uniform("uWaterGeo"), 1, &world_->waterGeo()[0]);
-  const glm::vec3 sun(light.sunEcef);
-  glUniform3fv(p.uniform("uSunDir"), 1, &sun[0]);
-  glUniform1f(p.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
-  glUniform1f(p.uniform("uEyeAltM"), float(g.heightM));
-  glUniform1f(p.uniform("uRefLonDeg"), float(g.lonDeg));
-  glUniform1f(p.uniform("uTimeS"), float(std::fmod(light.timeS, 3600.0)));
-  glUniform1i(p.uniform("uWriteData"), writeData_ ? 1 : 0);
-  if (fft) {
-    // The coarse cascade's texel: its waves carry the height; the fine one
-    // fades with it (fading by the fine texel flattened the sea 40 m away).
-    float texelM = 0.0f;
-    for (const auto& pl : patch_.fftPlanes) texelM = std::max(texelM, pl.axis.w);
-    glUniform1i(p.uniform("uFftCascades"), patch_.fftCascades);
-    glUniform1f(p.uniform("uFftTexelM"), texelM);
-  }
+    const glm::vec3 eyeMinusO(vm.eyeEcef - origin);
+    glUniform3fv(p.uniform("uEyeMinusOrigin"), 1, &eyeMinusO[0]);
+    glUniform1i(p.uniform("uOctaveCount"), int(patch_.octaves.size()));
+    glUniform1i(p.uniform("uWaveCount"), int(patch_.waves.size()));
+    glUniform1fv(p.uniform("uOctaveWavelengthM"), GLsizei(std::min<std::size_t>(octaveWavelengthM_.size(), 16)),
+                 octaveWavelengthM_.data());
+    // A cell's footprint on the ground is this x its distance.
+    glUniform1f(p.uniform("uCellRadians"), float(cull.cellRadians));
+    glUniform1f(p.uniform("uMaxVerticalM"), float(waves_->maxVerticalM()));
+    glUniform4fv(p.uniform("uElevationGeo"), 1, &world_->elevationGeo()[0]);
+    glUniform4fv(p.uniform("uWaterGeo"), 1, &world_->waterGeo()[0]);
+    const glm::vec3 sun(light.sunEcef);
+    glUniform3fv(p.uniform("uSunDir"), 1, &sun[0]);
+    glUniform1f(p.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
+    glUniform1f(p.uniform("uEyeAltM"), float(g.heightM));
+    glUniform1f(p.uniform("uRefLonDeg"), float(g.lonDeg));
+    glUniform1f(p.uniform("uTimeS"), float(std::fmod(light.timeS, 3600.0)));
+    glUniform1i(p.uniform("uWriteData"), writeData_ ? 1 : 0);
+    if (fft) {
+      // The coarse cascade's texel: its waves carry the height; the fine one
+      // fades with it (fading by the fine texel flattened the sea 40 m away).
+      float texelM = 0.0f;
+      for (const auto& pl : patch_.fftPlanes) texelM = std::max(texelM, pl.axis.w);
+      glUniform1i(p.uniform("uFftCascades"), patch_.fftCascades);
+      glUniform1f(p.uniform("uFftTexelM"), texelM);
+    }
   };
 
   glEnable(GL_BLEND);
