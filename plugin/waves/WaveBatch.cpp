@@ -495,6 +495,32 @@ HWY_INLINE void EvalGerstner(const GerstnerComponent* cs, const CompLanes* cl, i
 
 // Shoaling terms of wv_gerstner for one component at one depth (scalar: only
 // for points in shallow water, through the shared kernel's wv_waveNumber).
+// The end of an inverted query (Gerstner, FFT): the surface's normal and
+// vertical velocity at the fixed point in the point's ENU frame, and the
+// rest offset found. E: the model's evaluation (Eval, FftEval).
+template <class E>
+HWY_INLINE void WriteSurface(const E& r, const Loc& l, V dx, V dy, V dz, V iters, const Block& b, SurfacePoint* out) {
+  const D d;
+  const V ne = Dot(r.nrm[0], r.nrm[1], r.nrm[2], l.e[0], l.e[1], l.e[2]);
+  const V nn = Dot(r.nrm[0], r.nrm[1], r.nrm[2], l.n[0], l.n[1], l.n[2]);
+  const V nu = Dot(r.nrm[0], r.nrm[1], r.nrm[2], l.u[0], l.u[1], l.u[2]);
+  const V ve = Dot(r.hvel[0], r.hvel[1], r.hvel[2], l.e[0], l.e[1], l.e[2]);
+  const V vn = Dot(r.hvel[0], r.hvel[1], r.hvel[2], l.n[0], l.n[1], l.n[2]);
+  // w - grad(eta) . v_h with grad(eta) = -n_h / n_u.
+  const V w = hn::Add(r.dzdt, hn::Div(hn::MulAdd(ne, ve, hn::Mul(nn, vn)), nu));
+  Out o;
+  hn::Store(r.z, d, o.h);
+  hn::Store(ne, d, o.ne);
+  hn::Store(nn, d, o.nn);
+  hn::Store(nu, d, o.nu);
+  hn::Store(w, d, o.w);
+  hn::Store(iters, d, o.it);
+  hn::Store(Dot(dx, dy, dz, l.e[0], l.e[1], l.e[2]), d, o.re);
+  hn::Store(Dot(dx, dy, dz, l.n[0], l.n[1], l.n[2]), d, o.rn);
+  hn::Store(Dot(dx, dy, dz, l.u[0], l.u[1], l.u[2]), d, o.ru);
+  o.write(b, out);
+}
+
 void Shoal(double omega, double depth, double& th, double& ks) {
   th = 1.0, ks = 1.0;
   if (omega * omega / kG * depth < 12.0) {
@@ -619,25 +645,7 @@ void Gerstner(const GerstnerComponent* cs, int count, const Points& pts, Surface
       iters = hn::Add(iters, hn::IfThenElseZero(active, S(1.0)));
       EvalGerstner<false>(cs, cl, count, fr, dx, dy, dz, depth, r);
     }
-    // toEnu and the vertical velocity at the fixed point.
-    const V ne = Dot(r.nrm[0], r.nrm[1], r.nrm[2], l.e[0], l.e[1], l.e[2]);
-    const V nn = Dot(r.nrm[0], r.nrm[1], r.nrm[2], l.n[0], l.n[1], l.n[2]);
-    const V nu = Dot(r.nrm[0], r.nrm[1], r.nrm[2], l.u[0], l.u[1], l.u[2]);
-    const V ve = Dot(r.hvel[0], r.hvel[1], r.hvel[2], l.e[0], l.e[1], l.e[2]);
-    const V vn = Dot(r.hvel[0], r.hvel[1], r.hvel[2], l.n[0], l.n[1], l.n[2]);
-    // w - grad(eta) . v_h with grad(eta) = -n_h / n_u.
-    const V w = hn::Add(r.dzdt, hn::Div(hn::MulAdd(ne, ve, hn::Mul(nn, vn)), nu));
-    Out o;
-    hn::Store(r.z, d, o.h);
-    hn::Store(ne, d, o.ne);
-    hn::Store(nn, d, o.nn);
-    hn::Store(nu, d, o.nu);
-    hn::Store(w, d, o.w);
-    hn::Store(iters, d, o.it);
-    hn::Store(Dot(dx, dy, dz, l.e[0], l.e[1], l.e[2]), d, o.re);
-    hn::Store(Dot(dx, dy, dz, l.n[0], l.n[1], l.n[2]), d, o.rn);
-    hn::Store(Dot(dx, dy, dz, l.u[0], l.u[1], l.u[2]), d, o.ru);
-    o.write(b, out);
+    WriteSurface(r, l, dx, dy, dz, iters, b, out);
   });
 }
 
@@ -857,23 +865,7 @@ void Fft(const FftPlane* pl, const glm::dvec4* tex, const Points& pts, SurfacePo
       iters = hn::Add(iters, hn::IfThenElseZero(active, S(1.0)));
       EvalFft(pl, texels, fl, fr, dx, dy, dz, r);
     }
-    const V ne = Dot(r.nrm[0], r.nrm[1], r.nrm[2], l.e[0], l.e[1], l.e[2]);
-    const V nn = Dot(r.nrm[0], r.nrm[1], r.nrm[2], l.n[0], l.n[1], l.n[2]);
-    const V nu = Dot(r.nrm[0], r.nrm[1], r.nrm[2], l.u[0], l.u[1], l.u[2]);
-    const V ve = Dot(r.hvel[0], r.hvel[1], r.hvel[2], l.e[0], l.e[1], l.e[2]);
-    const V vn = Dot(r.hvel[0], r.hvel[1], r.hvel[2], l.n[0], l.n[1], l.n[2]);
-    const V w = hn::Add(r.dzdt, hn::Div(hn::MulAdd(ne, ve, hn::Mul(nn, vn)), nu));
-    Out o;
-    hn::Store(r.z, d, o.h);
-    hn::Store(ne, d, o.ne);
-    hn::Store(nn, d, o.nn);
-    hn::Store(nu, d, o.nu);
-    hn::Store(w, d, o.w);
-    hn::Store(iters, d, o.it);
-    hn::Store(Dot(dx, dy, dz, l.e[0], l.e[1], l.e[2]), d, o.re);
-    hn::Store(Dot(dx, dy, dz, l.n[0], l.n[1], l.n[2]), d, o.rn);
-    hn::Store(Dot(dx, dy, dz, l.u[0], l.u[1], l.u[2]), d, o.ru);
-    o.write(b, out);
+    WriteSurface(r, l, dx, dy, dz, iters, b, out);
   });
 }
 
