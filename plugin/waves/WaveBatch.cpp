@@ -495,6 +495,22 @@ HWY_INLINE void EvalGerstner(const GerstnerComponent* cs, const CompLanes* cl, i
 
 // Shoaling terms of wv_gerstner for one component at one depth (scalar: only
 // for points in shallow water, through the shared kernel's wv_waveNumber).
+// One step of an inversion (Gerstner, FFT) on its active lanes: the step
+// (st1, st2) in the tangent basis where it is converging (`newton`), else
+// the plain miss (m0, m1, m2); counts the step.
+template <class E, class M>
+HWY_INLINE void TakeStep(const E& r, M newton, M active, V st1, V st2, V m0, V m1, V m2, V missM, V& dx, V& dy, V& dz,
+                         V& lastMiss, V& iters) {
+  const V s0 = hn::IfThenElse(newton, hn::MulAdd(r.t1[0], st1, hn::Mul(r.t2[0], st2)), m0);
+  const V s1 = hn::IfThenElse(newton, hn::MulAdd(r.t1[1], st1, hn::Mul(r.t2[1], st2)), m1);
+  const V s2 = hn::IfThenElse(newton, hn::MulAdd(r.t1[2], st1, hn::Mul(r.t2[2], st2)), m2);
+  dx = hn::IfThenElse(active, hn::Sub(dx, s0), dx);
+  dy = hn::IfThenElse(active, hn::Sub(dy, s1), dy);
+  dz = hn::IfThenElse(active, hn::Sub(dz, s2), dz);
+  lastMiss = hn::IfThenElse(active, missM, lastMiss);
+  iters = hn::Add(iters, hn::IfThenElseZero(active, S(1.0)));
+}
+
 // The end of an inverted query (Gerstner, FFT): the surface's normal and
 // vertical velocity at the fixed point in the point's ENU frame, and the
 // rest offset found. E: the model's evaluation (Eval, FftEval).
@@ -635,14 +651,7 @@ void Gerstner(const GerstnerComponent* cs, int count, const Points& pts, Surface
       const V wy = hn::Mul(S(0.5), hn::MulAdd(r.t112, n11, hn::MulAdd(r.t122, n12, hn::Mul(r.t222, n22))));
       const V st1 = hn::MulAdd(hn::NegMulAdd(r.a12, wy, hn::Mul(r.a22, wx)), idet, n1);
       const V st2 = hn::MulAdd(hn::NegMulAdd(r.a12, wx, hn::Mul(r.a11, wy)), idet, n2);
-      const V s0 = hn::IfThenElse(newton, hn::MulAdd(r.t1[0], st1, hn::Mul(r.t2[0], st2)), m0);
-      const V s1 = hn::IfThenElse(newton, hn::MulAdd(r.t1[1], st1, hn::Mul(r.t2[1], st2)), m1);
-      const V s2 = hn::IfThenElse(newton, hn::MulAdd(r.t1[2], st1, hn::Mul(r.t2[2], st2)), m2);
-      dx = hn::IfThenElse(active, hn::Sub(dx, s0), dx);
-      dy = hn::IfThenElse(active, hn::Sub(dy, s1), dy);
-      dz = hn::IfThenElse(active, hn::Sub(dz, s2), dz);
-      lastMiss = hn::IfThenElse(active, missM, lastMiss);
-      iters = hn::Add(iters, hn::IfThenElseZero(active, S(1.0)));
+      TakeStep(r, newton, active, st1, st2, m0, m1, m2, missM, dx, dy, dz, lastMiss, iters);
       EvalGerstner<false>(cs, cl, count, fr, dx, dy, dz, depth, r);
     }
     WriteSurface(r, l, dx, dy, dz, iters, b, out);
@@ -855,14 +864,7 @@ void Fft(const FftPlane* pl, const glm::dvec4* tex, const Points& pts, SurfacePo
       const V idet = hn::Div(S(1.0), r.det);
       const V st1 = hn::Mul(hn::NegMulAdd(r.a12, my, hn::Mul(r.a22, mx)), idet);
       const V st2 = hn::Mul(hn::NegMulAdd(r.a12, mx, hn::Mul(r.a11, my)), idet);
-      const V s0 = hn::IfThenElse(newton, hn::MulAdd(r.t1[0], st1, hn::Mul(r.t2[0], st2)), m0);
-      const V s1 = hn::IfThenElse(newton, hn::MulAdd(r.t1[1], st1, hn::Mul(r.t2[1], st2)), m1);
-      const V s2 = hn::IfThenElse(newton, hn::MulAdd(r.t1[2], st1, hn::Mul(r.t2[2], st2)), m2);
-      dx = hn::IfThenElse(active, hn::Sub(dx, s0), dx);
-      dy = hn::IfThenElse(active, hn::Sub(dy, s1), dy);
-      dz = hn::IfThenElse(active, hn::Sub(dz, s2), dz);
-      lastMiss = hn::IfThenElse(active, missM, lastMiss);
-      iters = hn::Add(iters, hn::IfThenElseZero(active, S(1.0)));
+      TakeStep(r, newton, active, st1, st2, m0, m1, m2, missM, dx, dy, dz, lastMiss, iters);
       EvalFft(pl, texels, fl, fr, dx, dy, dz, r);
     }
     WriteSurface(r, l, dx, dy, dz, iters, b, out);
