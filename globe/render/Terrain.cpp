@@ -159,10 +159,10 @@ void TerrainRenderer::select(const Key& k, const ViewMatrices& vm, const ViewPos
 
   double lat0, lat1, lon0, lon1;
   tileRange(k, lat0, lat1, lon0, lon1);
-  if (skipOpenWater_ && b.allWater && underOpenWater(lat0, lat1, lon0, lon1, b, dist, vm, pose)) return;
+  const double pxPerM = pose.height / (2.0 * tanY);
+  if (skipOpenWater_ && b.allWater && underOpenWater(lat0, lat1, lon0, lon1, b, dist, vm, pxPerM)) return;
   const double latEq = (lat0 <= 0.0 && lat1 >= 0.0) ? 0.0 : std::min(std::abs(lat0), std::abs(lat1));
   const double extentM = std::max((lat1 - lat0), (lon1 - lon0) * std::cos(latEq * kDeg)) * kDeg * geo::kWgs84A;
-  const double pxPerM = pose.height / (2.0 * tanY);
   const double nearest = std::max(dist - b.radius, vm.nearM);
   const double cellPx = extentM / (kGrid - 1) / nearest * pxPerM;
   // Open water is flat and hidden under the wave grid: level 7 cells (2.4 km)
@@ -178,7 +178,7 @@ void TerrainRenderer::select(const Key& k, const ViewMatrices& vm, const ViewPos
 }
 
 bool TerrainRenderer::underOpenWater(double lat0, double lat1, double lon0, double lon1, const Bounds& b, double dist,
-                                     const ViewMatrices& vm, const ViewPose& pose) const {
+                                     const ViewMatrices& vm, double pxPerM) const {
   // The ocean layer draws every pixel of this tile opaque, and none of its
   // grid cells over it is skipped as land, if the water texture is water
   // throughout the tile and a margin around it: the B-spline's 2 texels, the
@@ -195,7 +195,6 @@ bool TerrainRenderer::underOpenWater(double lat0, double lat1, double lon0, doub
   const double farM = dist + b.radius;
   const double cosView = (glm::dot(vm.eyeEcef - b.center, up) - b.radius * (1.0 + 1.1 * dist / 6.3e6)) / farM;
   if (cosView < 0.05) return false;
-  const double pxPerM = pose.height / (2.0 * std::tan(0.5 * pose.fovYDeg * kDeg));
   const double footprintM = farM / (pxPerM * cosView);
   const double maxAbsLat = std::max(std::abs(lat0), std::abs(lat1));
   const double texelM = std::min(wi.latStepDeg(), wi.lonStepDeg() * std::cos(std::min(maxAbsLat, 89.0) * kDeg)) * kDeg *

@@ -110,8 +110,9 @@ class TerrainRenderer {
   void select(const Key& k, const ViewMatrices& vm, const ViewPose& pose, std::vector<Key>& out, int depth);
   Bounds bounds(const Key& k) const;
   const Slot& acquire(const Key& k, TerrainStats& stats);
+  // pxPerM: pixels per metre at 1 m distance.
   bool underOpenWater(double lat0, double lat1, double lon0, double lon1, const Bounds& b, double dist,
-                      const ViewMatrices& vm, const ViewPose& pose) const;
+                      const ViewMatrices& vm, double pxPerM) const;
   void tileRange(const Key& k, double& lat0, double& lat1, double& lon0, double& lon1) const;
 
   const WorldTextures& world_;
