@@ -31,7 +31,7 @@ struct Failure {
   std::string message;
 };
 
-[[noreturn]] void fail(geocean_status status, std::string message) { throw Failure{status, std::move(message)}; }
+[[noreturn]] inline void fail(geocean_status status, std::string message) { throw Failure{status, std::move(message)}; }
 
 template <class F>
 geocean_status guard(const char* function, F&& body) noexcept {
@@ -68,7 +68,7 @@ geocean_status guard(const char* function, F&& body) noexcept {
   return status;
 }
 
-void requireNonNull(const void* p, const char* what) {
+inline void requireNonNull(const void* p, const char* what) {
   if (!p) fail(GEOCEAN_ERROR_NULL_ARGUMENT, std::string(what) + " is NULL");
 }
 
