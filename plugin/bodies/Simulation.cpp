@@ -103,7 +103,8 @@ std::int64_t Simulation::advanceTo(double tS) {
 
 void Simulation::step() {
   // Phase 1: every force from the states at the step's start.
-  std::vector<StepContext> ctx(bodies_.size());
+  std::vector<StepContext>& ctx = contexts_;
+  ctx.resize(bodies_.size());
   wrenches_.assign(bodies_.size(), Wrench{});
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const Body& b = bodies_[i];

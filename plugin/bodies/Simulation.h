@@ -70,6 +70,8 @@ struct SimulationConfig {
   bool coriolis = false;
 };
 
+// Not thread-safe: one thread steps a Simulation (issue 14 may run the
+// per-body phases on TBB; each phase only reads other bodies' states).
 class Simulation {
  public:
   explicit Simulation(SimulationConfig config = {});
@@ -109,7 +111,8 @@ class Simulation {
   std::int64_t steps_ = 0;
   BodyId nextId_ = 1;
   double alpha_ = 0.0;
-  std::vector<Wrench> wrenches_;  // per body, reused
+  std::vector<Wrench> wrenches_;       // per body, reused across steps
+  std::vector<StepContext> contexts_;  // per body, reused across steps
 };
 
 }  // namespace geocean::bodies

@@ -98,4 +98,7 @@ TEST(Validation, StateAndForces) {
   expectThrowNaming([&] { sim.step(); }, "force on body", "nan");
   EXPECT_EQ(sim.stepCount(), 0);
   EXPECT_EQ(sim.body(id).state.positionEcef, before.positionEcef);
+  sim.removeBody(id);
+  expectThrowNaming([&] { sim.body(id); }, "body id", std::to_string(id));
+  expectThrowNaming([&] { sim.removeBody(id); }, "body id", std::to_string(id));
 }
