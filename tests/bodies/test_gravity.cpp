@@ -10,14 +10,14 @@
 
 using geocean::bodies::normalGravity;
 
-TEST(Gravity, PublishedEquatorAndPoleValues) {
+TEST(NormalGravity, PublishedEquatorAndPoleValues) {
   // TR8350.2 quotes 10 decimals; our formula reproduces them to rounding.
   EXPECT_NEAR(normalGravity(0.0, 0.0), 9.7803253359, 1e-10);
   EXPECT_NEAR(normalGravity(90.0, 0.0), 9.8321849378, 1e-10);
   EXPECT_NEAR(normalGravity(-90.0, 0.0), 9.8321849378, 1e-10);
 }
 
-TEST(Gravity, MatchesGeographicLibNormalGravity) {
+TEST(NormalGravity, MatchesGeographicLibNormalGravity) {
   const auto& ref = GeographicLib::NormalGravity::WGS84();
   double worst = 0.0;
   for (double lat = -90.0; lat <= 90.0; lat += 7.5) {
@@ -41,7 +41,7 @@ TEST(Gravity, MatchesGeographicLibNormalGravity) {
   EXPECT_GT(worst, 0.1);  // the tolerance is not loose by orders of magnitude
 }
 
-TEST(Gravity, FreeAirGradientIsAbout3Point086e6) {
+TEST(NormalGravity, FreeAirGradientIsAbout3Point086e6) {
   // Textbook free-air gradient: 0.3086 mGal/m (3.086e-6 s^-2) at mid latitude.
   const double grad = (normalGravity(45.0, 0.0) - normalGravity(45.0, 100.0)) / 100.0;
   EXPECT_NEAR(grad, 3.086e-6, 0.005e-6);

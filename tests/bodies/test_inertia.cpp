@@ -64,7 +64,7 @@ void expectTensorNear(const glm::dmat3& ours, const glm::dmat3& ref, double relT
 
 }  // namespace
 
-TEST(Inertia, BoxMatchesQuadrature) {
+TEST(BodyInertia, BoxMatchesQuadrature) {
   const int n = 64;
   const glm::dvec3 size(2.0, 5.0, 1.5);
   const auto box = MassProperties::box(800.0, size);
@@ -74,7 +74,7 @@ TEST(Inertia, BoxMatchesQuadrature) {
   expectTensorNear(box.inertiaBody(), q.I, 1.0 / (n * n));
 }
 
-TEST(Inertia, SolidAndHollowCylindersMatchQuadrature) {
+TEST(BodyInertia, SolidAndHollowCylindersMatchQuadrature) {
   const int n = 160;
   // Polar midpoint rule: O(1/n^2) in r, theta and x; 2/n^2 covers the sum.
   const double tol = 2.0 / (n * n);
@@ -86,7 +86,7 @@ TEST(Inertia, SolidAndHollowCylindersMatchQuadrature) {
   EXPECT_GT(tube.inertiaBody()[0][0], solid.inertiaBody()[0][0]);
 }
 
-TEST(Inertia, AxisChoicePermutesTheTensor) {
+TEST(BodyInertia, AxisChoicePermutesTheTensor) {
   const auto x = MassProperties::hollowCylinder(10.0, 0.5, 1.0, 4.0, Axis::X).inertiaBody();
   const auto y = MassProperties::hollowCylinder(10.0, 0.5, 1.0, 4.0, Axis::Y).inertiaBody();
   const auto z = MassProperties::hollowCylinder(10.0, 0.5, 1.0, 4.0, Axis::Z).inertiaBody();
@@ -96,7 +96,7 @@ TEST(Inertia, AxisChoicePermutesTheTensor) {
   EXPECT_EQ(x[2][2], z[0][0]);
 }
 
-TEST(Inertia, IsotropicKeepsTraceAndMass) {
+TEST(BodyInertia, IsotropicKeepsTraceAndMass) {
   const auto tube = MassProperties::hollowCylinder(2000.0, 1.5, 2.0, 12.0);
   const auto iso = MassProperties::isotropicFrom(tube);
   const glm::dmat3& I = tube.inertiaBody();
@@ -108,7 +108,7 @@ TEST(Inertia, IsotropicKeepsTraceAndMass) {
   EXPECT_EQ(J[0][1], 0.0);
 }
 
-TEST(Inertia, InverseIsTheInverse) {
+TEST(BodyInertia, InverseIsTheInverse) {
   glm::dmat3 I(0.0);
   I[0][0] = 4.0, I[1][1] = 5.0, I[2][2] = 6.0;
   I[0][1] = I[1][0] = 0.5;

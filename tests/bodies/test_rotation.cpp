@@ -42,7 +42,7 @@ Drift torqueFreeDrift(double dt, double seconds) {
 
 }  // namespace
 
-TEST(Rotation, TorqueFreeConservesEnergyAndMomentum) {
+TEST(BodyRotation, TorqueFreeConservesEnergyAndMomentum) {
   const Drift d = torqueFreeDrift(1.0 / 120.0, 120.0);
   // The implicit midpoint rule keeps the quadratic invariants w.Iw and |Iw|
   // exactly; what is left is rounding and the Newton stop (1e-15) over
@@ -89,7 +89,7 @@ Spin spinAbout(int axis, double seconds) {
 
 }  // namespace
 
-TEST(Rotation, IntermediateAxisIsUnstableTheOthersAreNot) {
+TEST(BodyRotation, IntermediateAxisIsUnstableTheOthersAreNot) {
   const Spin largest = spinAbout(0, 60.0), middle = spinAbout(1, 60.0), smallest = spinAbout(2, 60.0);
   // About the largest and smallest axes the nudge stays a nudge: linear
   // theory bounds it by 1e-6 * sqrt(I ratio) / 2 rad/s ~ 1e-6.
@@ -108,7 +108,7 @@ TEST(Rotation, IntermediateAxisIsUnstableTheOthersAreNot) {
   EXPECT_NEAR(measured, lambda, 0.01 * lambda);
 }
 
-TEST(Rotation, ConstantTorqueAboutAPrincipalAxis) {
+TEST(BodyRotation, ConstantTorqueAboutAPrincipalAxis) {
   // tau = I dw/dt with no gyroscopic term when w is along a principal axis:
   // w(t) = tau t / I, exact for the midpoint rule.
   Simulation sim({.gravity = false});

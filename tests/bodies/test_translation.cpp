@@ -41,7 +41,7 @@ double simulatedFall(double latDeg, double h0, double t, double dt, double* latO
 
 }  // namespace
 
-TEST(Translation, FreeFallMatchesClosedFormWithKnownFirstOrderError) {
+TEST(BodyTranslation, FreeFallMatchesClosedFormWithKnownFirstOrderError) {
   const double lat = 30.0, h0 = 1000.0, t = 10.0, dt = 1.0 / 120.0;
   // Closed form for s'' = g0 + G s (gravity growing linearly as the body
   // falls, G the free-air gradient): s = g0 / G (cosh(sqrt(G) t) - 1).
@@ -98,7 +98,7 @@ Landing fly(const geo::Geodetic& at, double v0, double elevDeg, double azDeg, do
 
 }  // namespace
 
-TEST(Translation, ProjectileRangeMatchesClosedForm) {
+TEST(BodyTranslation, ProjectileRangeMatchesClosedForm) {
   const geo::Geodetic at{30.0, 20.0, 0.0};
   const double v0 = 50.0, dt = 1.0 / 120.0;
   const double g = referenceGravity(at.latDeg, 0.0);
@@ -151,7 +151,7 @@ bool bitIdentical(const Simulation& a, const Simulation& b) {
 
 }  // namespace
 
-TEST(Translation, FrameRateIndependentBitForBit) {
+TEST(BodyTranslation, FrameRateIndependentBitForBit) {
   Simulation at10 = springScene(), at60 = springScene(), irregular = springScene(), oneCall = springScene();
   for (int k = 1; k <= 100; ++k) at10.advanceTo(k / 10.0);
   for (int k = 1; k <= 600; ++k) at60.advanceTo(k / 60.0);
@@ -168,7 +168,7 @@ TEST(Translation, FrameRateIndependentBitForBit) {
   EXPECT_GT(glm::length(at10.bodies()[0].state.angularVelocityBody - glm::dvec3(0.3, -0.7, 1.1)), 0.1);
 }
 
-TEST(Translation, AccumulatorAndDrawInterpolation) {
+TEST(BodyTranslation, AccumulatorAndDrawInterpolation) {
   Simulation sim({.stepS = 0.01});
   const BodyId id = sim.addBody(kBox, stateAt({0.0, 0.0, 100.0}, {10.0, 0.0, 0.0}));
   EXPECT_EQ(sim.advanceTo(0.0349), 3);
@@ -196,7 +196,7 @@ glm::dvec3 launchAndRotateBack(const geo::Geodetic& at, const glm::dvec3& vEnu, 
 
 }  // namespace
 
-TEST(Translation, AntimeridianAndHighLatitudeMatchLongitudeZero) {
+TEST(BodyTranslation, AntimeridianAndHighLatitudeMatchLongitudeZero) {
   // Physics is symmetric about the polar axis: a launch at lon 179.99 is the
   // launch at lon 0 rotated. 150 m/s east for 10 s crosses the antimeridian.
   const glm::dvec3 v(150.0, 20.0, 40.0);
@@ -213,7 +213,7 @@ TEST(Translation, AntimeridianAndHighLatitudeMatchLongitudeZero) {
   EXPECT_LT(geo::fromEcef(sim.body(id).state.positionEcef).lonDeg, -179.99);
 }
 
-TEST(Translation, CrossesThePole) {
+TEST(BodyTranslation, CrossesThePole) {
   // 11 m south of the north pole on lon 0, moving north at 5 m/s and up at
   // 10 m/s for 4 s: over the pole and down the lon 180 meridian.
   const geo::Geodetic at{89.9999, 0.0, 0.0};
@@ -233,7 +233,7 @@ TEST(Translation, CrossesThePole) {
   EXPECT_NEAR(s12, 20.0, 1e-3);
 }
 
-TEST(Translation, CoriolisDeflectsAFallingBodyEast) {
+TEST(BodyTranslation, CoriolisDeflectsAFallingBodyEast) {
   // Textbook (e.g. Landau & Lifshitz, Mechanics sec. 39): a body dropped
   // from rest is deflected east by Omega g t^3 cos(lat) / 3 to first order in Omega.
   const double lat = 0.0, t = 10.0;

@@ -37,7 +37,7 @@ glm::dmat3 diag(double a, double b, double c) {
 
 }  // namespace
 
-TEST(Validation, Mass) {
+TEST(BodyValidation, Mass) {
   expectThrowNaming([] { MassProperties(kNan, diag(1, 1, 1)); }, "mass", "nan");
   expectThrowNaming([] { MassProperties(0.0, diag(1, 1, 1)); }, "mass", "= 0");
   expectThrowNaming([] { MassProperties(-5.0, diag(1, 1, 1)); }, "mass", "-5");
@@ -45,7 +45,7 @@ TEST(Validation, Mass) {
   expectThrowNaming([] { MassProperties::solidCylinder(-1.0, 1, 1); }, "mass", "-1");
 }
 
-TEST(Validation, Inertia) {
+TEST(BodyValidation, Inertia) {
   expectThrowNaming([] { MassProperties(1.0, diag(1, 1, -1)); }, "inertia leading minor 3", "-1");
   expectThrowNaming([] { MassProperties(1.0, diag(1, 0, 1)); }, "inertia leading minor 2", "0");
   expectThrowNaming([] { MassProperties(1.0, diag(-2, 1, 1)); }, "inertia leading minor 1", "-2");
@@ -59,7 +59,7 @@ TEST(Validation, Inertia) {
   expectThrowNaming([indefinite] { MassProperties(1.0, indefinite); }, "inertia leading minor 2", "-3");
 }
 
-TEST(Validation, Shapes) {
+TEST(BodyValidation, Shapes) {
   expectThrowNaming([] { MassProperties::box(1.0, {1, -2, 1}); }, "box size.y", "-2");
   expectThrowNaming([] { MassProperties::box(1.0, {1, 1, kNan}); }, "box size.z", "nan");
   expectThrowNaming([] { MassProperties::solidCylinder(1.0, 0.0, 1); }, "cylinder radius", "0");
@@ -68,7 +68,7 @@ TEST(Validation, Shapes) {
   expectThrowNaming([] { MassProperties::hollowCylinder(1.0, -0.1, 1.0, 1); }, "inner radius", "-0.1");
 }
 
-TEST(Validation, StepAndTime) {
+TEST(BodyValidation, StepAndTime) {
   expectThrowNaming([] { Simulation({.stepS = kNan}); }, "stepS", "nan");
   expectThrowNaming([] { Simulation({.stepS = kInf}); }, "stepS", "inf");
   expectThrowNaming([] { Simulation({.stepS = 0.0}); }, "stepS", "0");
@@ -78,7 +78,7 @@ TEST(Validation, StepAndTime) {
   expectThrowNaming([&] { sim.advanceTo(-1.0); }, "advanceTo t", "-1");
 }
 
-TEST(Validation, StateAndForces) {
+TEST(BodyValidation, StateAndForces) {
   Simulation sim;
   const auto box = MassProperties::box(10.0, {1, 1, 1});
   BodyState s = stateAt({0, 0, 0});
