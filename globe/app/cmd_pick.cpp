@@ -5,7 +5,7 @@
 #include "globe/camera/Camera.h"
 #include "globe/raster/World.h"
 #include "plugin/grid/Picker.h"
-#include "plugin/landsea/LandSea.h"
+#include "plugin/ocean/Ocean.h"
 
 #include <charconv>
 #include <cmath>
@@ -86,20 +86,23 @@ void format(const grid::PickResult& r, const std::string& fmt, std::string& out)
   }
 }
 
+// The picker's inputs from the ocean façade: the terrain and the classes.
 struct World {
   std::shared_ptr<const raster::Raster> elevation;
-  grid::SurfaceClassifier classifier;
+  ocean::Classifier classifier;
 };
 
 World openWorld(const PickOptions& o) {
   const auto files = raster::defaultWorld();
   raster::OpenOptions ro;
   if (o.global) ro.georef = raster::Georef::GlobalEquirect;
-  World w;
   auto mask = raster::Raster::open(o.mask.empty() ? files.mask : o.mask, ro);
-  if (!o.noTerrain) w.elevation = raster::Raster::open(o.elevation.empty() ? files.elevation : o.elevation, ro);
-  w.classifier = grid::classifierFor(std::make_shared<ocean::LandSea>(mask, w.elevation));
-  return w;
+  std::shared_ptr<const raster::Raster> elevation;
+  if (!o.noTerrain) elevation = raster::Raster::open(o.elevation.empty() ? files.elevation : o.elevation, ro);
+  ocean::Ocean ocean;
+  ocean.setRasters(std::move(mask), std::move(elevation));
+  const auto snap = ocean.current();
+  return {snap->elevation, snap->classifier()};
 }
 
 int runPick(const PickOptions& o) {

@@ -4,11 +4,8 @@
 #include "globe/app/Command.h"
 #include "globe/app/QueryIo.h"
 #include "globe/raster/World.h"
-#include "plugin/landsea/LandSea.h"
-#include "plugin/waves/SeaQuery.h"
+#include "plugin/ocean/Ocean.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_pipeline.h>
 
 #include <algorithm>
@@ -115,10 +112,11 @@ void appendSea(std::string& s, double v, bool sea) {
     appendDouble(s, v);
 }
 
+// One block's answers, one entry per row (normal: 3 per row).
 struct Results {
   std::vector<ocean::Surface> surface;
   std::vector<float> elevationM;
-  std::vector<waves::SeaQueryResult> sea;
+  std::vector<double> seaHeightM, normalEnu, verticalVelocityMps;
 };
 
 class Querier {
@@ -132,37 +130,38 @@ class Querier {
     if (!batch) ro.fewLookups = true;
     auto mask = raster::Raster::open(o.mask.empty() ? world.mask : o.mask, ro);
     auto elev = raster::Raster::open(o.elevation.empty() ? world.elevation : o.elevation, ro);
-    const ocean::MaskEncoding enc = o.maskEncoding.empty() ? ocean::MaskEncoding() : ocean::MaskEncoding::parse(o.maskEncoding);
-    landSea_ = std::make_shared<ocean::LandSea>(mask, elev, enc);
-    if (w.noSea) return;
-    std::string error;
-    auto field = waves::WaveField::create(w.model, w.sea, error);
-    if (!field) throw std::invalid_argument(error);  // parseWaveOptions checked the ranges first
-    sea_ = std::make_unique<waves::SeaQuery>(std::move(*field), landSea_);
+    // The encoding before the rasters: the land/sea is then built once.
+    if (!o.maskEncoding.empty()) ocean_.setMaskEncoding(ocean::MaskEncoding::parse(o.maskEncoding));
+    ocean_.setRasters(std::move(mask), std::move(elev));
+    if (!w.noSea) ocean_.setSeaState(w.model, w.sea);  // parseWaveOptions checked the ranges first
+    snap_ = ocean_.current();
+    withSea_ = !w.noSea;
   }
 
   void run(const std::vector<PointRow>& pts, Results& r) const {
     const std::size_t n = pts.size();
     r.surface.resize(n);
     r.elevationM.resize(n);
-    r.sea.resize(n);
+    r.seaHeightM.resize(n);
+    r.normalEnu.resize(3 * n);
+    r.verticalVelocityMps.resize(n);
     std::vector<double> lat(n), lon(n), t(n);
     for (std::size_t i = 0; i < n; ++i) {
       lat[i] = pts[i].latDeg;
       lon[i] = pts[i].lonDeg;
       t[i] = pts[i].timeS.value_or(timeS_);  // a row's own time overrides --time
     }
-    constexpr std::size_t kGrain = 4096;
-    tbb::parallel_for(std::size_t(0), (n + kGrain - 1) / kGrain, [&](std::size_t b) {
-      const std::size_t s = b * kGrain, m = std::min(kGrain, n - s);
-      landSea_->classifyBatch(lat.data() + s, lon.data() + s, m, r.surface.data() + s);
-      landSea_->elevationBatch(lat.data() + s, lon.data() + s, m, r.elevationM.data() + s);
-      if (sea_)
-        sea_->queryClassified(lat.data() + s, lon.data() + s, t.data() + s, true, m, r.surface.data() + s,
-                              r.elevationM.data() + s, r.sea.data() + s);
-      else
-        for (std::size_t i = s; i < s + m; ++i) r.sea[i].seaHeightM = std::numeric_limits<double>::quiet_NaN();
-    });
+    ocean::SurfaceOutputs out;
+    out.surface = r.surface.data();
+    out.elevationM = r.elevationM.data();
+    if (withSea_) {
+      out.heightM = r.seaHeightM.data();
+      out.normalEnu = r.normalEnu.data();
+      out.verticalVelocityMps = r.verticalVelocityMps.data();
+    } else {
+      std::fill(r.seaHeightM.begin(), r.seaHeightM.end(), std::numeric_limits<double>::quiet_NaN());
+    }
+    snap_->querySurface({lat.data(), lon.data(), n, t.data(), true}, out);
   }
 
   void header(std::string& out) const {
@@ -170,10 +169,13 @@ class Querier {
       out += "lat,lon,surface,elevation_m,time_s,sea_height_m,normal_e,normal_n,normal_u,vertical_velocity_mps\n";
   }
 
-  // Sea fields are null where there is no sea surface (land, lakes).
-  void format(const PointRow& p, ocean::Surface s, float elev, const waves::SeaQueryResult& w,
-              std::string& out) const {
-    const bool sea = s == ocean::Surface::Ocean && !std::isnan(w.seaHeightM);
+  // Row i of r. Sea fields are null where there is no sea surface (land, lakes).
+  void format(const PointRow& p, const Results& r, std::size_t i, std::string& out) const {
+    const ocean::Surface s = r.surface[i];
+    const float elev = r.elevationM[i];
+    const double height = r.seaHeightM[i];
+    const double* nrm = &r.normalEnu[3 * i];
+    const bool sea = s == ocean::Surface::Ocean && !std::isnan(height);
     const double t = p.timeS.value_or(timeS_);
     if (format_ == "json") {
       out += "{\"lat\":";
@@ -187,21 +189,21 @@ class Querier {
       out += "\",\"elevation_m\":";
       appendFloat(out, elev);
       out += ",\"sea_height_m\":";
-      appendSea(out, w.seaHeightM, sea);
+      appendSea(out, height, sea);
       out += ",\"normal\":";
       if (sea) {
         out += '[';
-        appendDouble(out, w.normalEnu.x);
+        appendDouble(out, nrm[0]);
         out += ',';
-        appendDouble(out, w.normalEnu.y);
+        appendDouble(out, nrm[1]);
         out += ',';
-        appendDouble(out, w.normalEnu.z);
+        appendDouble(out, nrm[2]);
         out += ']';
       } else {
         out += "null";
       }
       out += ",\"vertical_velocity_mps\":";
-      appendSea(out, w.verticalVelocityMps, sea);
+      appendSea(out, r.verticalVelocityMps[i], sea);
       out += "}\n";
     } else {
       appendDouble(out, p.latDeg);
@@ -213,7 +215,7 @@ class Querier {
       appendFloat(out, elev);
       out += ',';
       appendDouble(out, t);
-      for (double v : {w.seaHeightM, w.normalEnu.x, w.normalEnu.y, w.normalEnu.z, w.verticalVelocityMps}) {
+      for (double v : {height, nrm[0], nrm[1], nrm[2], r.verticalVelocityMps[i]}) {
         out += ',';
         appendSea(out, v, sea);
       }
@@ -224,8 +226,9 @@ class Querier {
  private:
   std::string format_;
   double timeS_ = 0.0;
-  std::shared_ptr<ocean::LandSea> landSea_;
-  std::unique_ptr<waves::SeaQuery> sea_;
+  bool withSea_ = false;
+  ocean::Ocean ocean_;
+  std::shared_ptr<const ocean::Snapshot> snap_;
 };
 
 int runQuery(const QueryOptions& o) {
@@ -278,7 +281,7 @@ int runQuery(const QueryOptions& o) {
   q->header(out);
   if (!batch) {
     q->run(single, res);
-    q->format(single[0], res.surface[0], res.elevationM[0], res.sea[0], out);
+    q->format(single[0], res, 0, out);
     std::fwrite(out.data(), 1, out.size(), stdout);
     return kExitOk;
   }
@@ -359,7 +362,7 @@ int runQuery(const QueryOptions& o) {
                 Results br;
                 q->run(pts, br);
                 for (std::size_t i = 0; i < pts.size(); ++i)
-                  q->format(pts[i], br.surface[i], br.elevationM[i], br.sea[i], blk->out);
+                  q->format(pts[i], br, i, blk->out);
                 return blk;
               }) &
           tbb::make_filter<std::shared_ptr<Block>, void>(tbb::filter_mode::serial_in_order,
@@ -407,7 +410,7 @@ int runDemo() {
   std::printf("%-22s %9s %9s  %-6s %12s %13s\n", "place", "lat", "lon", "class", "elevation_m", "sea_height_m");
   for (std::size_t i = 0; i < pts.size(); ++i) {
     char sea[32] = "-";
-    if (!std::isnan(r.sea[i].seaHeightM)) std::snprintf(sea, sizeof sea, "%.3f", r.sea[i].seaHeightM);
+    if (!std::isnan(r.seaHeightM[i])) std::snprintf(sea, sizeof sea, "%.3f", r.seaHeightM[i]);
     std::printf("%-22s %9.3f %9.3f  %-6s %12.1f %13s\n", kPlaces[i].name, pts[i].latDeg, pts[i].lonDeg,
                 ocean::toString(r.surface[i]), double(r.elevationM[i]), sea);
   }

@@ -88,6 +88,19 @@ std::unique_ptr<OceanPlugin> OceanPlugin::load(const std::string& path, std::str
     resolve(handle, "geocean_draw", a.draw, file, ignored);
     resolve(handle, "geocean_release_gl", a.releaseGl, file, ignored);
   }
+  // ABI 1.2 queries and setters: present in every plugin of minor >= 2 (a
+  // host of minor 2 gets no older plugin, compatible() saw to that).
+  if ((p->pluginAbi_ & 0xffffu) >= 2) {
+    const bool ok12 =
+        resolve(handle, "geocean_raster_options_init", a.rasterOptionsInit, file, error) &&
+        resolve(handle, "geocean_set_mask_file_with_options", a.setMaskFileWithOptions, file, error) &&
+        resolve(handle, "geocean_set_elevation_file_with_options", a.setElevationFileWithOptions, file, error) &&
+        resolve(handle, "geocean_set_default_world_with_options", a.setDefaultWorldWithOptions, file, error) &&
+        resolve(handle, "geocean_set_mask_encoding", a.setMaskEncoding, file, error) &&
+        resolve(handle, "geocean_surface_outputs_init", a.surfaceOutputsInit, file, error) &&
+        resolve(handle, "geocean_query_surface", a.querySurface, file, error);
+    if (!ok12) return nullptr;
+  }
   return p;
 }
 

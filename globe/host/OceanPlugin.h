@@ -52,6 +52,15 @@ struct OceanApi {
   geocean_status (*update)(geocean_ocean*, const geocean_view*) = nullptr;
   geocean_status (*draw)(geocean_ocean*) = nullptr;
   geocean_status (*releaseGl)(geocean_ocean*) = nullptr;
+  // ABI 1.2 (NULL when the plugin's minor is below 2).
+  geocean_status (*rasterOptionsInit)(geocean_raster_options*) = nullptr;
+  geocean_status (*setMaskFileWithOptions)(geocean_ocean*, const char*, const geocean_raster_options*) = nullptr;
+  geocean_status (*setElevationFileWithOptions)(geocean_ocean*, const char*, const geocean_raster_options*) = nullptr;
+  geocean_status (*setDefaultWorldWithOptions)(geocean_ocean*, const geocean_raster_options*) = nullptr;
+  geocean_status (*setMaskEncoding)(geocean_ocean*, const char*) = nullptr;
+  geocean_status (*surfaceOutputsInit)(geocean_surface_outputs*) = nullptr;
+  geocean_status (*querySurface)(const geocean_ocean*, size_t, const double*, const double*, const double*, size_t,
+                                 const geocean_surface_outputs*) = nullptr;
 };
 
 class OceanPlugin {

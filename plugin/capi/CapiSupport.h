@@ -1,17 +1,13 @@
-// Internal to the plugin's C ABI (never installed): the handle, its
-// immutable snapshot, and the guard every entry point runs in. Shared by
-// geocean_ocean.cpp (state and queries) and geocean_draw.cpp (GL).
+// Internal to the plugin's C ABI (never installed): the handle over the
+// ocean façade (plugin/ocean/Ocean.h), and the guard every entry point runs
+// in. Shared by geocean_ocean.cpp (state and queries) and geocean_draw.cpp (GL).
 #pragma once
 
 #include "geocean/geocean_ocean.h"
 
-#include "globe/raster/Raster.h"
-#include "plugin/landsea/LandSea.h"
-#include "plugin/waves/SeaQuery.h"
-#include "plugin/waves/WaveField.h"
+#include "plugin/ocean/Ocean.h"
 
 #include <memory>
-#include <mutex>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -33,6 +29,21 @@ struct Failure {
 
 [[noreturn]] inline void fail(geocean_status status, std::string message) { throw Failure{status, std::move(message)}; }
 
+// The façade's missing prerequisite, with the C functions that provide it.
+inline const char* notReadyMessage(geocean::ocean::NotReady::Missing m) {
+  using M = geocean::ocean::NotReady::Missing;
+  switch (m) {
+    case M::Rasters:
+      return "no mask or elevation raster: call geocean_set_mask_* or geocean_set_elevation_* "
+             "(or geocean_set_default_world) first";
+    case M::Elevation:
+      return "no elevation raster: call geocean_set_elevation_file, geocean_set_elevation_pixels or "
+             "geocean_set_default_world first";
+    case M::SeaState: return "no sea state: call geocean_set_sea_state first";
+  }
+  return "not ready";
+}
+
 template <class F>
 geocean_status guard(const char* function, F&& body) noexcept {
   tlsLastError.clear();
@@ -44,6 +55,9 @@ geocean_status guard(const char* function, F&& body) noexcept {
   } catch (const Failure& f) {
     status = f.status;
     message = f.message;
+  } catch (const geocean::ocean::NotReady& e) {
+    status = GEOCEAN_ERROR_NOT_READY;
+    message = notReadyMessage(e.missing);
   } catch (const RasterError& e) {
     status = GEOCEAN_ERROR_RASTER;
     message = e.what();
@@ -72,18 +86,19 @@ inline void requireNonNull(const void* p, const char* what) {
   if (!p) fail(GEOCEAN_ERROR_NULL_ARGUMENT, std::string(what) + " is NULL");
 }
 
-// Everything a query reads. Immutable once published: setters build a new
-// snapshot and swap the pointer, so queries never lock while they work.
-struct Snapshot {
-  std::shared_ptr<const Raster> mask, elevation;
-  std::shared_ptr<const geocean::ocean::LandSea> landSea;
-  std::shared_ptr<const geocean::waves::WaveField> waves;
-  // The query path shared with `geocean query` (rebuilt when either changes).
-  std::shared_ptr<const geocean::waves::SeaQuery> sea;
-  // What `waves` was made from: the renderer builds its own field from it.
-  geocean::waves::Model model = geocean::waves::Model::Noise;
-  geocean::waves::SeaState seaState;
-};
+// A struct_size-versioned struct must be at least this version's layout
+// (the host filled it with its _init function).
+template <class T>
+void requireStructSize(const T* s, const char* name, const char* init) {
+  if (s->struct_size < sizeof(T))
+    fail(GEOCEAN_ERROR_INVALID_ARGUMENT, std::string(name) + "->struct_size " + std::to_string(s->struct_size) +
+                                             " is smaller than " + std::to_string(sizeof(T)) + ": call " + init +
+                                             " first");
+}
+
+// What queries and the draw half read (mask, elevation, landSea, waves,
+// model, seaState, maskEncoding); compared by pointer to know when to rebuild.
+using Snapshot = geocean::ocean::Snapshot;
 
 // Render-thread state of one ocean (geocean_draw.cpp).
 struct DrawState;
@@ -98,33 +113,9 @@ void releaseDrawState(std::unique_ptr<DrawState, DrawStateDeleter>& d);
 
 struct geocean_ocean {
   using Snapshot = geocean::capi::Snapshot;
-  mutable std::mutex mutex;  // guards `snapshot` (the pointer, not its contents)
-  std::shared_ptr<const Snapshot> snapshot = std::make_shared<Snapshot>();
+  geocean::ocean::Ocean core;  // rasters, sea state, the snapshot and the queries
   // Render-thread state (update/draw/release_gl never overlap, header rule).
   std::unique_ptr<geocean::capi::DrawState, geocean::capi::DrawStateDeleter> draw;
-  std::shared_ptr<const Snapshot> current() const {
-    std::lock_guard lock(mutex);
-    return snapshot;
-  }
-  // Applies `edit` to a copy of the current snapshot and publishes it.
-  // Setters are serialised so two concurrent edits cannot lose one another.
-  template <class Edit>
-  void update(Edit&& edit) {
-    std::lock_guard editLock(editMutex);
-    auto next = std::make_shared<Snapshot>(*current());
-    edit(*next);
-    if (next->mask || next->elevation)
-      next->landSea = std::make_shared<geocean::ocean::LandSea>(next->mask, next->elevation);
-    else
-      next->landSea.reset();
-    if (next->waves)
-      next->sea = std::make_shared<geocean::waves::SeaQuery>(*next->waves, next->landSea);
-    else
-      next->sea.reset();
-    std::lock_guard lock(mutex);
-    snapshot = std::move(next);
-  }
-
- private:
-  std::mutex editMutex;
+  // The draw half reads the state through this.
+  std::shared_ptr<const Snapshot> current() const { return core.current(); }
 };

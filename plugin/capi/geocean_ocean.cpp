@@ -1,10 +1,9 @@
-// The C ABI over the C++ plugin libraries. Every entry point runs inside
-// guard(): no exception crosses extern "C", and every failure leaves a
-// status and a thread-local message naming the function.
+// The C ABI over the ocean façade (plugin/ocean/Ocean.h): each entry point
+// checks and converts its C arguments and calls the façade. Every entry
+// point runs inside guard(): no exception crosses extern "C", and every
+// failure leaves a status and a thread-local message naming the function.
 #include "geocean/geocean_ocean.h"
 #include "plugin/capi/CapiSupport.h"
-
-#include "globe/raster/World.h"
 
 #include <dlfcn.h>
 
@@ -27,13 +26,25 @@ using namespace geocean::capi;
 
 namespace {
 
-geocean::raster::OpenOptions openOptions(geocean_georef georef) {
+using geocean::ocean::NotReady;
+
+// georef arrives as a plain int32_t (the enum's fixed C++ type), so any
+// value a host passes is defined here and checked before it is converted.
+geocean::raster::OpenOptions openOptions(int32_t georef, const char* what = "georef") {
   geocean::raster::OpenOptions o;
   switch (georef) {
     case GEOCEAN_GEOREF_FROM_FILE: o.georef = geocean::raster::Georef::FromFile; break;
     case GEOCEAN_GEOREF_GLOBAL_EQUIRECT: o.georef = geocean::raster::Georef::GlobalEquirect; break;
-    default: fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "georef " + std::to_string(int(georef)) + " is not a geocean_georef");
+    default: fail(GEOCEAN_ERROR_INVALID_ARGUMENT, std::string(what) + " " + std::to_string(georef) + " is not a geocean_georef");
   }
+  return o;
+}
+
+geocean::raster::OpenOptions openOptions(const geocean_raster_options* options) {
+  requireNonNull(options, "options");
+  requireStructSize(options, "options", "geocean_raster_options_init");
+  geocean::raster::OpenOptions o = openOptions(options->georef, "options->georef");
+  o.fewLookups = options->few_lookups != 0;
   return o;
 }
 
@@ -79,10 +90,6 @@ std::string installedDataDir() {
   return fs::exists(d / "landmask_5m.tif", ec) ? d.string() : std::string();
 }
 
-
-// ---- Rendering helpers (ABI 1.1) -------------------------------------------
-
-// The OpenGL context current on this thread (EGL or GLX), or nullptr. Asks
 }  // namespace
 
 extern "C" {
@@ -134,8 +141,7 @@ GEOCEAN_API geocean_status geocean_set_mask_file(geocean_ocean* ocean, const cha
   return guard("geocean_set_mask_file", [&] {
     requireNonNull(ocean, "ocean");
     requireNonNull(path, "path");
-    auto r = Raster::open(path, openOptions(georef));
-    ocean->update([&](Snapshot& s) { s.mask = std::move(r); });
+    ocean->core.setMaskFile(path, openOptions(static_cast<int32_t>(georef)));
   });
 }
 
@@ -144,8 +150,34 @@ GEOCEAN_API geocean_status geocean_set_elevation_file(geocean_ocean* ocean, cons
   return guard("geocean_set_elevation_file", [&] {
     requireNonNull(ocean, "ocean");
     requireNonNull(path, "path");
-    auto r = Raster::open(path, openOptions(georef));
-    ocean->update([&](Snapshot& s) { s.elevation = std::move(r); });
+    ocean->core.setElevationFile(path, openOptions(static_cast<int32_t>(georef)));
+  });
+}
+
+GEOCEAN_API geocean_status geocean_raster_options_init(geocean_raster_options* options) {
+  return guard("geocean_raster_options_init", [&] {
+    requireNonNull(options, "options");
+    *options = geocean_raster_options{};
+    options->struct_size = sizeof(geocean_raster_options);
+    options->georef = GEOCEAN_GEOREF_FROM_FILE;
+  });
+}
+
+GEOCEAN_API geocean_status geocean_set_mask_file_with_options(geocean_ocean* ocean, const char* path,
+                                                              const geocean_raster_options* options) {
+  return guard("geocean_set_mask_file_with_options", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(path, "path");
+    ocean->core.setMaskFile(path, openOptions(options));
+  });
+}
+
+GEOCEAN_API geocean_status geocean_set_elevation_file_with_options(geocean_ocean* ocean, const char* path,
+                                                                   const geocean_raster_options* options) {
+  return guard("geocean_set_elevation_file_with_options", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(path, "path");
+    ocean->core.setElevationFile(path, openOptions(options));
   });
 }
 
@@ -153,8 +185,7 @@ GEOCEAN_API geocean_status geocean_set_mask_pixels(geocean_ocean* ocean, const f
                                                    int32_t height, const geocean_grid_placement* placement) {
   return guard("geocean_set_mask_pixels", [&] {
     requireNonNull(ocean, "ocean");
-    auto r = fromMemory(values, width, height, placement, "<mask from memory>");
-    ocean->update([&](Snapshot& s) { s.mask = std::move(r); });
+    ocean->core.setMask(fromMemory(values, width, height, placement, "<mask from memory>"));
   });
 }
 
@@ -163,34 +194,38 @@ GEOCEAN_API geocean_status geocean_set_elevation_pixels(geocean_ocean* ocean, co
                                                         const geocean_grid_placement* placement) {
   return guard("geocean_set_elevation_pixels", [&] {
     requireNonNull(ocean, "ocean");
-    auto r = fromMemory(values_m, width, height, placement, "<elevation from memory>");
-    ocean->update([&](Snapshot& s) { s.elevation = std::move(r); });
+    ocean->core.setElevation(fromMemory(values_m, width, height, placement, "<elevation from memory>"));
   });
 }
 
 GEOCEAN_API geocean_status geocean_set_default_world(geocean_ocean* ocean) {
   return guard("geocean_set_default_world", [&] {
     requireNonNull(ocean, "ocean");
-    std::string dir;
-    if (const char* env = std::getenv("GEOCEAN_DATA"); env && *env) dir = env;
-    if (dir.empty()) dir = installedDataDir();
-    if (dir.empty()) dir = geocean::raster::dataDir();
-    auto mask = Raster::open(dir + "/landmask_5m.tif");
-    auto elevation = Raster::open(dir + "/etopo_20m.tif");
-    ocean->update([&](Snapshot& s) {
-      s.mask = std::move(mask);
-      s.elevation = std::move(elevation);
-    });
+    ocean->core.setDefaultWorld(geocean::ocean::Ocean::defaultWorldDir(installedDataDir));
+  });
+}
+
+GEOCEAN_API geocean_status geocean_set_default_world_with_options(geocean_ocean* ocean,
+                                                                  const geocean_raster_options* options) {
+  return guard("geocean_set_default_world_with_options", [&] {
+    requireNonNull(ocean, "ocean");
+    const auto o = openOptions(options);
+    ocean->core.setDefaultWorld(geocean::ocean::Ocean::defaultWorldDir(installedDataDir), o);
   });
 }
 
 GEOCEAN_API geocean_status geocean_clear_rasters(geocean_ocean* ocean) {
   return guard("geocean_clear_rasters", [&] {
     requireNonNull(ocean, "ocean");
-    ocean->update([&](Snapshot& s) {
-      s.mask.reset();
-      s.elevation.reset();
-    });
+    ocean->core.clearRasters();
+  });
+}
+
+GEOCEAN_API geocean_status geocean_set_mask_encoding(geocean_ocean* ocean, const char* spec) {
+  return guard("geocean_set_mask_encoding", [&] {
+    requireNonNull(ocean, "ocean");
+    ocean->core.setMaskEncoding(spec && *spec ? geocean::ocean::MaskEncoding::parse(spec)
+                                              : geocean::ocean::MaskEncoding());
   });
 }
 
@@ -202,10 +237,8 @@ GEOCEAN_API geocean_status geocean_query_class(const geocean_ocean* ocean, size_
     requireNonNull(lat_deg, "lat_deg");
     requireNonNull(lon_deg, "lon_deg");
     requireNonNull(out_class, "out_class");
-    const auto snap = ocean->current();
-    if (!snap->landSea)
-      fail(GEOCEAN_ERROR_NOT_READY, "no mask or elevation raster: call geocean_set_mask_* or "
-                                    "geocean_set_elevation_* (or geocean_set_default_world) first");
+    const auto snap = ocean->core.current();
+    if (!snap->landSea) throw NotReady(NotReady::Missing::Rasters);
     static_assert(sizeof(geocean::ocean::Surface) == sizeof(uint8_t));
     static_assert(uint8_t(geocean::ocean::Surface::Ocean) == GEOCEAN_SURFACE_OCEAN &&
                   uint8_t(geocean::ocean::Surface::Land) == GEOCEAN_SURFACE_LAND &&
@@ -215,7 +248,7 @@ GEOCEAN_API geocean_status geocean_query_class(const geocean_ocean* ocean, size_
     geocean::ocean::Surface buf[kChunk];
     for (std::size_t i = 0; i < count; i += kChunk) {
       const std::size_t n = std::min(kChunk, count - i);
-      snap->landSea->classifyBatch(lat_deg + i, lon_deg + i, n, buf);
+      snap->classify(lat_deg + i, lon_deg + i, n, buf);
       for (std::size_t k = 0; k < n; ++k) out_class[i + k] = static_cast<uint8_t>(buf[k]);
     }
   });
@@ -230,11 +263,7 @@ GEOCEAN_API geocean_status geocean_query_elevation(const geocean_ocean* ocean, s
     requireNonNull(lat_deg, "lat_deg");
     requireNonNull(lon_deg, "lon_deg");
     requireNonNull(out_elevation_m, "out_elevation_m");
-    const auto snap = ocean->current();
-    if (!snap->elevation)
-      fail(GEOCEAN_ERROR_NOT_READY, "no elevation raster: call geocean_set_elevation_file, "
-                                    "geocean_set_elevation_pixels or geocean_set_default_world first");
-    snap->landSea->elevationBatch(lat_deg, lon_deg, count, out_elevation_m);
+    ocean->core.current()->elevationAt(lat_deg, lon_deg, count, out_elevation_m);
   });
 }
 
@@ -271,10 +300,7 @@ GEOCEAN_API geocean_status geocean_set_sea_state(geocean_ocean* ocean, const geo
     requireNonNull(ocean, "ocean");
     requireNonNull(sea_state, "sea_state");
     // Version 1.0 knows this layout only; a smaller size is a host bug.
-    if (sea_state->struct_size < sizeof(geocean_sea_state))
-      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "sea_state->struct_size " + std::to_string(sea_state->struct_size) +
-                                               " is smaller than " + std::to_string(sizeof(geocean_sea_state)) +
-                                               ": call geocean_sea_state_init first");
+    requireStructSize(sea_state, "sea_state", "geocean_sea_state_init");
     geocean::waves::Model model;
     switch (sea_state->model) {
       case GEOCEAN_WAVES_NOISE: model = geocean::waves::Model::Noise; break;
@@ -295,15 +321,7 @@ GEOCEAN_API geocean_status geocean_set_sea_state(geocean_ocean* ocean, const geo
     s.anchorLatDeg = sea_state->anchor_lat_deg;
     s.anchorLonDeg = sea_state->anchor_lon_deg;
     s.referenceDepthM = sea_state->reference_depth_m;
-    std::string error;
-    auto field = geocean::waves::WaveField::create(model, s, error);
-    if (!field) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, error);
-    auto shared = std::make_shared<const geocean::waves::WaveField>(std::move(*field));
-    ocean->update([&](Snapshot& snap) {
-      snap.waves = std::move(shared);
-      snap.model = model;
-      snap.seaState = s;
-    });
+    ocean->core.setSeaState(model, s);
   });
 }
 
@@ -315,31 +333,59 @@ GEOCEAN_API geocean_status geocean_query_sea_surface(const geocean_ocean* ocean,
     requireNonNull(ocean, "ocean");
     if (!std::isfinite(time_s))
       fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "time_s " + std::to_string(time_s) + " is not finite");
-    const auto snap = ocean->current();
-    if (!snap->sea) fail(GEOCEAN_ERROR_NOT_READY, "no sea state: call geocean_set_sea_state first");
+    const auto snap = ocean->core.current();
+    if (!snap->sea) throw NotReady(NotReady::Missing::SeaState);
     if (count == 0) return;
     requireNonNull(lat_deg, "lat_deg");
     requireNonNull(lon_deg, "lon_deg");
     requireNonNull(out_height_m, "out_height_m");
-    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-    // Chunks bound the result buffer; each chunk runs on all cores (TBB).
-    constexpr std::size_t kChunk = 16384;
-    std::vector<geocean::waves::SeaQueryResult> r(std::min(count, kChunk));
-    for (std::size_t i0 = 0; i0 < count; i0 += kChunk) {
-      const std::size_t n = std::min(kChunk, count - i0);
-      snap->sea->queryBatch(lat_deg + i0, lon_deg + i0, &time_s, false, n, r.data());
-      for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t i = i0 + k;
-        const bool sea = r[k].surface == geocean::ocean::Surface::Ocean;
-        out_height_m[i] = r[k].seaHeightM;
-        if (out_class) out_class[i] = static_cast<uint8_t>(r[k].surface);
-        if (out_normal_enu) {
-          out_normal_enu[3 * i] = sea ? r[k].normalEnu.x : kNaN;
-          out_normal_enu[3 * i + 1] = sea ? r[k].normalEnu.y : kNaN;
-          out_normal_enu[3 * i + 2] = sea ? r[k].normalEnu.z : kNaN;
-        }
-      }
+    geocean::ocean::SurfaceOutputs out;
+    out.heightM = out_height_m;
+    out.normalEnu = out_normal_enu;
+    // The façade copies class bytes (memcpy), so uint8_t storage is written without aliasing it as Surface.
+    out.surface = reinterpret_cast<geocean::ocean::Surface*>(out_class);
+    snap->querySurface({lat_deg, lon_deg, count, &time_s, false}, out);
+  });
+}
+
+GEOCEAN_API geocean_status geocean_surface_outputs_init(geocean_surface_outputs* outputs) {
+  return guard("geocean_surface_outputs_init", [&] {
+    requireNonNull(outputs, "outputs");
+    *outputs = geocean_surface_outputs{};
+    outputs->struct_size = sizeof(geocean_surface_outputs);
+  });
+}
+
+GEOCEAN_API geocean_status geocean_query_surface(const geocean_ocean* ocean, size_t count, const double* lat_deg,
+                                                 const double* lon_deg, const double* time_s, size_t time_count,
+                                                 const geocean_surface_outputs* outputs) {
+  return guard("geocean_query_surface", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(outputs, "outputs");
+    requireStructSize(outputs, "outputs", "geocean_surface_outputs_init");
+    geocean::ocean::SurfaceOutputs out;
+    out.surface = reinterpret_cast<geocean::ocean::Surface*>(outputs->surface_class);
+    out.elevationM = outputs->elevation_m;
+    out.heightM = outputs->height_m;
+    out.normalEnu = outputs->normal_enu;
+    out.verticalVelocityMps = outputs->vertical_velocity_mps;
+    out.horizontalVelocityEnMps = outputs->horizontal_velocity_en_mps;
+    const auto snap = ocean->core.current();
+    if (out.wantsSea() && !snap->sea) throw NotReady(NotReady::Missing::SeaState);
+    if (count == 0) return;
+    requireNonNull(lat_deg, "lat_deg");
+    requireNonNull(lon_deg, "lon_deg");
+    if (out.wantsSea()) {
+      if (time_count != 1 && time_count != count)
+        fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "time_count " + std::to_string(time_count) + " is neither 1 nor count (" +
+                                                 std::to_string(count) + ")");
+      requireNonNull(time_s, "time_s");
+      for (std::size_t i = 0; i < time_count; ++i)
+        if (!std::isfinite(time_s[i]))
+          fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
+               "time_s[" + std::to_string(i) + "] " + std::to_string(time_s[i]) + " is not finite");
     }
+    snap->querySurface({lat_deg, lon_deg, count, time_s, time_count == count && count > 1}, out);
   });
 }
 
@@ -347,9 +393,7 @@ GEOCEAN_API geocean_status geocean_significant_wave_height(const geocean_ocean* 
   return guard("geocean_significant_wave_height", [&] {
     requireNonNull(ocean, "ocean");
     requireNonNull(out_hs_m, "out_hs_m");
-    const auto snap = ocean->current();
-    if (!snap->waves) fail(GEOCEAN_ERROR_NOT_READY, "no sea state: call geocean_set_sea_state first");
-    *out_hs_m = snap->waves->spectrumHsM();
+    *out_hs_m = ocean->core.current()->significantWaveHeightM();
   });
 }
 

@@ -44,10 +44,22 @@ extern "C" {
  * A host built against MAJOR.MINOR runs with a plugin of the same MAJOR and
  * a MINOR at least as high. */
 #define GEOCEAN_ABI_VERSION_MAJOR 1
-#define GEOCEAN_ABI_VERSION_MINOR 1
+#define GEOCEAN_ABI_VERSION_MINOR 2
 #define GEOCEAN_ABI_VERSION ((uint32_t)((GEOCEAN_ABI_VERSION_MAJOR << 16) | GEOCEAN_ABI_VERSION_MINOR))
 
-typedef enum geocean_status {
+/* Enums that cross the boundary as values have int32_t as their C++
+ * underlying type: an enum without a fixed type may hold only its
+ * enumerators' bit range in C++, so a host passing another value (say
+ * georef 7) would be undefined behaviour inside the plugin before it could
+ * be rejected. C keeps the plain enum, which GCC and Clang pass as the same
+ * 4-byte integer, so the ABI is unchanged. */
+#ifdef __cplusplus
+#define GEOCEAN_ENUM_INT32 : int32_t
+#else
+#define GEOCEAN_ENUM_INT32
+#endif
+
+typedef enum geocean_status GEOCEAN_ENUM_INT32 {
   GEOCEAN_OK = 0,
   GEOCEAN_ERROR_NULL_ARGUMENT = 1,    /* a required pointer or handle was NULL */
   GEOCEAN_ERROR_INVALID_ARGUMENT = 2, /* a value out of range (the message names it) */
@@ -68,7 +80,7 @@ typedef enum geocean_surface {
 } geocean_surface;
 
 /* How a raster file is placed on the Earth. */
-typedef enum geocean_georef {
+typedef enum geocean_georef GEOCEAN_ENUM_INT32 {
   GEOCEAN_GEOREF_FROM_FILE = 0,       /* GeoTIFF tags, or a world file beside a PNG/JPEG */
   GEOCEAN_GEOREF_GLOBAL_EQUIRECT = 1  /* whole Earth, north up, column 0 starts at -180 */
 } geocean_georef;
@@ -159,6 +171,35 @@ GEOCEAN_API geocean_status geocean_set_default_world(geocean_ocean* ocean);
 /* Removes both rasters. Errors: NULL_ARGUMENT. */
 GEOCEAN_API geocean_status geocean_clear_rasters(geocean_ocean* ocean);
 
+/* ABI 1.2: how a raster file is read. Fill with
+ * geocean_raster_options_init() first (struct_size lets later minor
+ * versions append fields). */
+typedef struct geocean_raster_options {
+  uint32_t struct_size; /* sizeof(geocean_raster_options), set by geocean_raster_options_init */
+  int32_t georef;       /* a geocean_georef */
+  int32_t few_lookups;  /* non-zero: read only the tiles lookups touch (tiled TIFF), for a handful of
+                           points (what `geocean query LAT LON` does); 0: decode into memory */
+} geocean_raster_options;
+
+/* ABI 1.2: fills *options with GEOCEAN_GEOREF_FROM_FILE and few_lookups 0.
+ * Errors: NULL_ARGUMENT. Thread-safe. */
+GEOCEAN_API geocean_status geocean_raster_options_init(geocean_raster_options* options);
+/* ABI 1.2: geocean_set_mask_file, geocean_set_elevation_file and
+ * geocean_set_default_world with read options. Errors as those, and
+ * INVALID_ARGUMENT (options->struct_size, options->georef). */
+GEOCEAN_API geocean_status geocean_set_mask_file_with_options(geocean_ocean* ocean, const char* path,
+                                                              const geocean_raster_options* options);
+GEOCEAN_API geocean_status geocean_set_elevation_file_with_options(geocean_ocean* ocean, const char* path,
+                                                                   const geocean_raster_options* options);
+GEOCEAN_API geocean_status geocean_set_default_world_with_options(geocean_ocean* ocean,
+                                                                  const geocean_raster_options* options);
+/* ABI 1.2: how mask values map to classes, e.g. "0=ocean,1=land,2=lake"
+ * (the default; NULL or "" restores it). Values 0..255; a value not listed,
+ * and every value >= 256, is land. Applies to the current and later masks.
+ * Errors: NULL_ARGUMENT (ocean), INVALID_ARGUMENT (the message names the
+ * bad item); the previous encoding stays. */
+GEOCEAN_API geocean_status geocean_set_mask_encoding(geocean_ocean* ocean, const char* spec);
+
 /* ---- Queries (thread-safe, any number of threads) ----------------------- */
 
 /* Surface class at count points. Needs a mask or an elevation raster.
@@ -205,6 +246,38 @@ GEOCEAN_API geocean_status geocean_query_sea_surface(const geocean_ocean* ocean,
                                                      const double* lat_deg, const double* lon_deg, double time_s,
                                                      double* out_height_m, double* out_normal_enu,
                                                      uint8_t* out_class);
+/* ABI 1.2: what geocean_query_surface writes. Every array may be NULL (not
+ * computed unless another needs it); count entries unless said otherwise.
+ * Fill with geocean_surface_outputs_init() first, then set the arrays:
+ * struct_size lets later minor versions append outputs. */
+typedef struct geocean_surface_outputs {
+  uint32_t struct_size;               /* sizeof(geocean_surface_outputs), set by the init */
+  uint8_t* surface_class;             /* geocean_surface */
+  float* elevation_m;                 /* terrain, m (ocean depth negative); NaN without elevation data */
+  double* height_m;                   /* sea surface above the WGS84 ellipsoid exactly above the point, m */
+  double* normal_enu;                 /* 3 x count: unit normal, east-north-up at the point */
+  double* vertical_velocity_mps;      /* d(height_m)/dt at the fixed point, m/s */
+  double* horizontal_velocity_en_mps; /* 2 x count (east, north): velocity of the water particle now at
+                                         the surface above the point, m/s */
+} geocean_surface_outputs;
+
+/* ABI 1.2: sets struct_size and every array to NULL. Errors: NULL_ARGUMENT.
+ * Thread-safe. */
+GEOCEAN_API geocean_status geocean_surface_outputs_init(geocean_surface_outputs* outputs);
+/* ABI 1.2: class, elevation and the sea surface at count points in one
+ * pass, exactly what `geocean query` prints. time_s: time_count values, 1
+ * (one time for every point) or count (one per point); may be NULL with
+ * time_count 0 when no sea output (height .. horizontal velocity) is asked
+ * for. Sea outputs are NaN on land and lakes. Without rasters every point
+ * is deep ocean (elevation NaN). Large batches run on all cores.
+ * Errors: NULL_ARGUMENT (ocean, outputs; lat_deg, lon_deg, time_s when
+ * needed and count > 0), INVALID_ARGUMENT (outputs->struct_size,
+ * time_count, a time not finite: the message names its index), NOT_READY
+ * (a sea output without a sea state). */
+GEOCEAN_API geocean_status geocean_query_surface(const geocean_ocean* ocean, size_t count, const double* lat_deg,
+                                                 const double* lon_deg, const double* time_s, size_t time_count,
+                                                 const geocean_surface_outputs* outputs);
+
 /* Significant wave height (m) of the current sea state's spectrum, 4 sqrt(m0).
  * Errors: NULL_ARGUMENT, NOT_READY (no sea state). */
 GEOCEAN_API geocean_status geocean_significant_wave_height(const geocean_ocean* ocean, double* out_hs_m);

@@ -1,0 +1,246 @@
+#include "plugin/ocean/Ocean.h"
+
+#include "globe/geo/Ellipsoid.h"
+#include "globe/raster/World.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <utility>
+
+namespace geocean::ocean {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+const char* missingText(NotReady::Missing m) {
+  switch (m) {
+    case NotReady::Missing::Rasters: return "no mask or elevation raster";
+    case NotReady::Missing::Elevation: return "no elevation raster";
+    case NotReady::Missing::SeaState: return "no sea state";
+  }
+  return "not ready";
+}
+
+// The velocity (east, north) of the particle that is now at the surface
+// above each point: the wave kernel's own analytic particle velocity
+// (Gerstner: a omega per component; FFT: the dDx/dt, dDy/dt tables; the
+// noise models move particles vertically only, so it is 0) evaluated at the
+// particle's rest point, which the surface inversion finds. Ocean points only.
+void horizontalVelocities(const waves::WaveField& field, const double* latDeg, const double* lonDeg,
+                          const double* tS, const double* depthM, std::size_t n, double* outEn) {
+  constexpr std::size_t kChunk = 64;
+  std::array<waves::SurfacePoint, kChunk> sp;
+  for (std::size_t i0 = 0; i0 < n; i0 += kChunk) {
+    const std::size_t m = std::min(kChunk, n - i0);
+    // The same inversion as the height's (same inputs, same rest point).
+    field.surfaceBatch(latDeg + i0, lonDeg + i0, tS + i0, true, depthM + i0, m, sp.data());
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t i = i0 + k;
+      const glm::dvec3 off = sp[k].restOffsetEnuM;
+      double restLat = latDeg[i], restLon = lonDeg[i];
+      if (off != glm::dvec3(0.0)) {
+        const geo::EnuFrame f = geo::enuFrame({latDeg[i], lonDeg[i], 0.0});
+        const geo::Geodetic rest = geo::fromEcef(f.originEcef + f.toEcef(off));
+        restLat = rest.latDeg;
+        restLon = rest.lonDeg;
+      }
+      const glm::dvec3 v = field.sample(restLat, restLon, tS[i], depthM[i]).horizontalVelocityEnuMps;
+      outEn[2 * i] = v.x;
+      outEn[2 * i + 1] = v.y;
+    }
+  }
+}
+
+}  // namespace
+
+NotReady::NotReady(Missing m) : std::logic_error(missingText(m)), missing(m) {}
+
+// ---- Snapshot ---------------------------------------------------------------
+
+void Snapshot::classify(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out) const {
+  if (!landSea) throw NotReady(NotReady::Missing::Rasters);
+  landSea->classifyBatch(latDeg, lonDeg, n, out);
+}
+
+void Snapshot::elevationAt(const double* latDeg, const double* lonDeg, std::size_t n, float* out) const {
+  if (!elevation) throw NotReady(NotReady::Missing::Elevation);
+  landSea->elevationBatch(latDeg, lonDeg, n, out);
+}
+
+double Snapshot::significantWaveHeightM() const {
+  if (!waves) throw NotReady(NotReady::Missing::SeaState);
+  return waves->spectrumHsM();
+}
+
+Classifier Snapshot::classifier() const {
+  if (!landSea) return {};
+  return [ls = landSea](const double* lat, const double* lon, std::size_t n, Surface* out) {
+    ls->classifyBatch(lat, lon, n, out);
+  };
+}
+
+void Snapshot::querySurface(const Points& p, const SurfaceOutputs& out) const {
+  if (out.wantsSea() && !sea) throw NotReady(NotReady::Missing::SeaState);
+  if (p.count == 0) return;
+  if (out.wantsSea() && !p.timeS) throw std::invalid_argument("sea-surface query: timeS is null");
+  // Blocks as `geocean query` had them: large enough that the per-block
+  // set-up vanishes, small enough to balance 2..N cores on 10 k points.
+  constexpr std::size_t kGrain = 4096;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, p.count, kGrain),
+                    [&](const tbb::blocked_range<std::size_t>& r) { queryRange(p, r.begin(), r.end(), out); });
+}
+
+void Snapshot::queryRange(const Points& p, std::size_t begin, std::size_t end, const SurfaceOutputs& out) const {
+  constexpr std::size_t kChunk = 256;
+  std::array<Surface, kChunk> cls;
+  std::array<float, kChunk> elev;
+  std::array<waves::SeaQueryResult, kChunk> res;
+  std::array<double, kChunk> oLat, oLon, oT, oDepth;
+  std::array<std::size_t, kChunk> oIdx;
+  const bool wantSea = out.wantsSea();
+  const bool wantElevation = out.elevationM || (wantSea && elevation);
+  for (std::size_t i0 = begin; i0 < end; i0 += kChunk) {
+    const std::size_t m = std::min(kChunk, end - i0);
+    const double* lat = p.latDeg + i0;
+    const double* lon = p.lonDeg + i0;
+    Surface* c = cls.data();
+    if (landSea)
+      landSea->classifyBatch(lat, lon, m, c);
+    else
+      std::fill(c, c + m, Surface::Ocean);
+    // Bytes, not Surface stores: a binding may hand uint8_t storage (the C ABI does).
+    if (out.surface) std::memcpy(out.surface + i0, c, m * sizeof(Surface));
+    float* e = out.elevationM ? out.elevationM + i0 : elev.data();
+    if (wantElevation) {
+      if (landSea)
+        landSea->elevationBatch(lat, lon, m, e);
+      else
+        std::fill(e, e + m, std::numeric_limits<float>::quiet_NaN());
+    }
+    if (!wantSea) continue;
+    const double* t = p.timePerPoint ? p.timeS + i0 : p.timeS;
+    sea->queryClassified(lat, lon, t, p.timePerPoint, m, c, wantElevation ? e : nullptr, res.data());
+    std::size_t nOcean = 0;
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t i = i0 + k;
+      const waves::SeaQueryResult& r = res[k];
+      const bool water = r.surface == Surface::Ocean;
+      if (out.heightM) out.heightM[i] = r.seaHeightM;
+      if (out.normalEnu) {
+        out.normalEnu[3 * i] = water ? r.normalEnu.x : kNaN;
+        out.normalEnu[3 * i + 1] = water ? r.normalEnu.y : kNaN;
+        out.normalEnu[3 * i + 2] = water ? r.normalEnu.z : kNaN;
+      }
+      if (out.verticalVelocityMps) out.verticalVelocityMps[i] = water ? r.verticalVelocityMps : kNaN;
+      if (out.horizontalVelocityEnMps) {
+        out.horizontalVelocityEnMps[2 * i] = out.horizontalVelocityEnMps[2 * i + 1] = kNaN;
+        if (water) {
+          oLat[nOcean] = lat[k], oLon[nOcean] = lon[k], oT[nOcean] = p.timePerPoint ? t[k] : t[0];
+          oDepth[nOcean] = r.depthM, oIdx[nOcean] = i;
+          ++nOcean;
+        }
+      }
+    }
+    if (nOcean == 0) continue;
+    std::array<double, 2 * kChunk> v;
+    horizontalVelocities(sea->field(), oLat.data(), oLon.data(), oT.data(), oDepth.data(), nOcean, v.data());
+    for (std::size_t k = 0; k < nOcean; ++k) {
+      out.horizontalVelocityEnMps[2 * oIdx[k]] = v[2 * k];
+      out.horizontalVelocityEnMps[2 * oIdx[k] + 1] = v[2 * k + 1];
+    }
+  }
+}
+
+// ---- Ocean ------------------------------------------------------------------
+
+Ocean::Ocean() : snapshot_(std::make_shared<Snapshot>()) {}
+
+std::string Ocean::defaultWorldDir(const std::function<std::string()>& installedDir) {
+  if (const char* env = std::getenv("GEOCEAN_DATA"); env && *env) return env;
+  if (installedDir)
+    if (std::string d = installedDir(); !d.empty()) return d;
+  return raster::dataDir();
+}
+
+void Ocean::setDefaultWorld(const std::string& dir, const raster::OpenOptions& options) {
+  // The file names of raster::defaultWorld(), in `dir`.
+  auto mask = raster::Raster::open(dir + "/landmask_5m.tif", options);
+  auto elevation = raster::Raster::open(dir + "/etopo_20m.tif", options);
+  setRasters(std::move(mask), std::move(elevation));
+}
+
+void Ocean::setMaskFile(const std::string& path, const raster::OpenOptions& options) {
+  setMask(raster::Raster::open(path, options));
+}
+
+void Ocean::setElevationFile(const std::string& path, const raster::OpenOptions& options) {
+  setElevation(raster::Raster::open(path, options));
+}
+
+void Ocean::setMask(std::shared_ptr<const raster::Raster> mask) {
+  update([&](Snapshot& s) { s.mask = std::move(mask); });
+}
+
+void Ocean::setElevation(std::shared_ptr<const raster::Raster> elevation) {
+  update([&](Snapshot& s) { s.elevation = std::move(elevation); });
+}
+
+void Ocean::setRasters(std::shared_ptr<const raster::Raster> mask, std::shared_ptr<const raster::Raster> elevation) {
+  update([&](Snapshot& s) {
+    s.mask = std::move(mask);
+    s.elevation = std::move(elevation);
+  });
+}
+
+void Ocean::clearRasters() { setRasters(nullptr, nullptr); }
+
+void Ocean::setMaskEncoding(const MaskEncoding& encoding) {
+  update([&](Snapshot& s) { s.maskEncoding = encoding; });
+}
+
+void Ocean::setSeaState(waves::Model model, const waves::SeaState& sea) {
+  std::string error;
+  auto field = waves::WaveField::create(model, sea, error);
+  if (!field) throw std::invalid_argument(error);
+  auto shared = std::make_shared<const waves::WaveField>(std::move(*field));
+  update([&](Snapshot& s) {
+    s.waves = std::move(shared);
+    s.model = model;
+    s.seaState = sea;
+  });
+}
+
+void Ocean::clearSeaState() {
+  update([](Snapshot& s) { s.waves.reset(); });
+}
+
+std::shared_ptr<const Snapshot> Ocean::current() const {
+  std::lock_guard lock(mutex_);
+  return snapshot_;
+}
+
+void Ocean::update(const std::function<void(Snapshot&)>& edit) {
+  std::lock_guard editLock(editMutex_);
+  const std::shared_ptr<const Snapshot> prev = current();
+  auto next = std::make_shared<Snapshot>(*prev);
+  edit(*next);
+  const bool rastersChanged = next->mask != prev->mask || next->elevation != prev->elevation ||
+                              next->maskEncoding.classOf != prev->maskEncoding.classOf;
+  if (rastersChanged)
+    next->landSea = next->mask || next->elevation
+                        ? std::make_shared<const LandSea>(next->mask, next->elevation, next->maskEncoding)
+                        : nullptr;
+  if (rastersChanged || next->waves != prev->waves)
+    next->sea = next->waves ? std::make_shared<const waves::SeaQuery>(*next->waves, next->landSea) : nullptr;
+  std::lock_guard lock(mutex_);
+  snapshot_ = std::move(next);
+}
+
+}  // namespace geocean::ocean

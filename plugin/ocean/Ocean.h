@@ -1,0 +1,143 @@
+// The ocean as one C++ object: rasters (mask, elevation, mask encoding),
+// the sea state, and every query. The C ABI (plugin/capi), the CLI
+// (`geocean query`, `pick`, `demo`) and future bindings use this and
+// nothing deeper of the plugin.
+//
+//   geocean::ocean::Ocean ocean;
+//   ocean.setDefaultWorld(geocean::ocean::Ocean::defaultWorldDir());
+//   ocean.setSeaState(geocean::waves::Model::Gerstner, sea);
+//   const auto snap = ocean.current();          // one consistent state
+//   snap->querySurface(points, outputs);         // on all cores (TBB)
+//
+// Thread safety: setters may run on any thread; they are serialised and
+// publish a new immutable Snapshot. current() and every Snapshot query may
+// run on any number of threads at once, also while a setter runs: a query
+// sees the whole state before or after the setter, never a mix.
+#pragma once
+
+#include "globe/raster/Raster.h"
+#include "plugin/landsea/LandSea.h"
+#include "plugin/waves/SeaQuery.h"
+#include "plugin/waves/WaveField.h"
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+namespace geocean::ocean {
+
+// A query whose prerequisite is missing; `missing` says which, so a binding
+// can name its own setter in the message.
+class NotReady : public std::logic_error {
+ public:
+  enum class Missing { Rasters, Elevation, SeaState };
+  explicit NotReady(Missing m);
+  Missing missing;
+};
+
+// The points of a query: `count` latitudes and longitudes (degrees, WGS84)
+// and times in seconds: one per point when timePerPoint, else timeS[0] for
+// all. timeS may be null when no sea-surface output is asked for.
+struct Points {
+  const double* latDeg = nullptr;
+  const double* lonDeg = nullptr;
+  std::size_t count = 0;
+  const double* timeS = nullptr;
+  bool timePerPoint = false;
+};
+
+// What querySurface writes; every array may be null (then it is not
+// computed unless another output needs it). Sea fields are NaN where the
+// point is not ocean (land, lakes).
+struct SurfaceOutputs {
+  Surface* surface = nullptr;                 // count; written as bytes (memcpy), so uint8_t storage is fine
+  float* elevationM = nullptr;                // count; terrain (m), NaN without elevation data
+  double* heightM = nullptr;                  // count; sea surface above the ellipsoid exactly above the point
+  double* normalEnu = nullptr;                // 3 x count; unit normal, east-north-up at the point
+  double* verticalVelocityMps = nullptr;      // count; d(height)/dt at the fixed point
+  double* horizontalVelocityEnMps = nullptr;  // 2 x count (east, north): velocity of the water particle now
+                                              // at the surface above the point
+  bool wantsSea() const { return heightM || normalEnu || verticalVelocityMps || horizontalVelocityEnMps; }
+};
+
+// Classes for a batch of points, as the picker and the screen grid take them
+// (the same signature as grid::SurfaceClassifier).
+using Classifier = std::function<void(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out)>;
+
+// Everything a query reads, immutable once published. The renderer (the
+// ABI's draw half) reads the members and compares snapshot pointers.
+struct Snapshot {
+  std::shared_ptr<const raster::Raster> mask, elevation;
+  MaskEncoding maskEncoding;
+  std::shared_ptr<const LandSea> landSea;  // null without rasters
+  std::shared_ptr<const waves::WaveField> waves;  // null without a sea state
+  std::shared_ptr<const waves::SeaQuery> sea;     // the query path over landSea and waves
+  waves::Model model = waves::Model::Noise;       // what `waves` was made from
+  waves::SeaState seaState;
+
+  // Nearest-cell class. Calling thread only. Throws NotReady without rasters.
+  void classify(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out) const;
+  // Terrain elevation (m, bilinear; NaN where no data). Calling thread only.
+  // Throws NotReady without an elevation raster.
+  void elevationAt(const double* latDeg, const double* lonDeg, std::size_t n, float* out) const;
+  // Class, elevation and the sea surface in one pass, on all cores (TBB).
+  // Without rasters every point is deep ocean (elevation NaN). Water depth
+  // (Gerstner) is -elevation, at least 1 m where the mask says ocean.
+  // Throws NotReady when a sea output is asked for without a sea state,
+  // std::invalid_argument when its times are missing.
+  void querySurface(const Points& points, const SurfaceOutputs& out) const;
+  // Significant wave height (m) of the sea state's spectrum. Throws NotReady.
+  double significantWaveHeightM() const;
+  // For the picker: the classes of this snapshot (empty without rasters:
+  // sea everywhere). Keeps the land/sea alive.
+  Classifier classifier() const;
+
+ private:
+  void queryRange(const Points& p, std::size_t begin, std::size_t end, const SurfaceOutputs& out) const;
+};
+
+class Ocean {
+ public:
+  Ocean();
+
+  // The default world's directory: $GEOCEAN_DATA if set, else what
+  // `installedDir` returns if it is non-empty (the plugin looks beside its
+  // installed library), else raster::dataDir() (beside the executable).
+  static std::string defaultWorldDir(const std::function<std::string()>& installedDir = {});
+  // The 5' mask and the 20' relief from `dir` (see defaultWorldDir), both
+  // in one new snapshot. Throws raster::RasterError naming the file.
+  void setDefaultWorld(const std::string& dir, const raster::OpenOptions& options = {});
+
+  // Rasters from files (raster::OpenOptions: georeferencing, few lookups)
+  // or already in memory (raster::Raster::fromPixels). A setter that throws
+  // leaves the previous state.
+  void setMaskFile(const std::string& path, const raster::OpenOptions& options = {});
+  void setElevationFile(const std::string& path, const raster::OpenOptions& options = {});
+  void setMask(std::shared_ptr<const raster::Raster> mask);
+  void setElevation(std::shared_ptr<const raster::Raster> elevation);
+  // Both at once (either may be null), one land/sea build.
+  void setRasters(std::shared_ptr<const raster::Raster> mask, std::shared_ptr<const raster::Raster> elevation);
+  void clearRasters();
+  void setMaskEncoding(const MaskEncoding& encoding);
+
+  // Builds the wave field; throws std::invalid_argument naming the field and
+  // value of a bad sea state.
+  void setSeaState(waves::Model model, const waves::SeaState& sea);
+  void clearSeaState();
+
+  std::shared_ptr<const Snapshot> current() const;
+
+ private:
+  // Applies `edit` to a copy of the current snapshot, rebuilds what it
+  // changed (land/sea only when rasters or encoding did) and publishes it.
+  void update(const std::function<void(Snapshot&)>& edit);
+
+  mutable std::mutex mutex_;  // guards snapshot_ (the pointer, not its contents)
+  std::mutex editMutex_;      // serialises setters so no edit is lost
+  std::shared_ptr<const Snapshot> snapshot_;
+};
+
+}  // namespace geocean::ocean
