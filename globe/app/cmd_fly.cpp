@@ -36,7 +36,7 @@ struct FlyArgs {
 };
 
 int runFly(const FlyArgs& a) {
-  render::ViewPose base;
+  camera::ViewPose base;
   render::FlightPlan plan;
   std::vector<double> sunAzEl = {135.0, 35.0};
   try {
@@ -73,11 +73,11 @@ int runFly(const FlyArgs& a) {
     std::fprintf(stderr, "geocean fly: cannot write '%s'\n", csvPath.c_str());
     return kExitBadInput;
   }
-  const render::WorldData data = render::loadDefaultWorld();
+  const world::WorldData data = world::loadDefaultWorld();
   render::Session s;
   try {
     s = render::Session::headless(data, base.width, base.height);
-  } catch (const render::ShaderError&) {
+  } catch (const gl::ShaderError&) {
     throw;
   } catch (const std::runtime_error& e) {
     std::fprintf(stderr, "geocean fly: %s\n", e.what());
@@ -107,7 +107,7 @@ int runFly(const FlyArgs& a) {
   const glm::dvec3 sun = render::sunFromLocal(plan.toLatDeg, plan.toLonDeg, sunAzEl[0], sunAzEl[1]);
   for (int f = 0; f < a.frames; ++f) {
     const double sProgress = double(f) / double(a.frames - 1);
-    const render::ViewPose pose = render::flightPose(plan, sProgress, base);
+    const camera::ViewPose pose = render::flightPose(plan, sProgress, base);
     render::FrameSettings fs;
     fs.timeS = f / a.fps;
     fs.sunEcef = sun;
@@ -128,7 +128,7 @@ int runFly(const FlyArgs& a) {
     if (!a.noImages) {
       char name[64];
       std::snprintf(name, sizeof name, "/frame_%05d.png", f);
-      render::writePng(a.out + name, s.image());
+      gl::writePng(a.out + name, s.image());
     }
     char row[256];
     std::snprintf(row, sizeof row, "%d,%.4f,%.7f,%.7f,%.3f,%.2f,%d,%.3f,%.3f,%.3f,%.3f", f, fs.timeS, pose.latDeg,

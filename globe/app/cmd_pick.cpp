@@ -1,10 +1,10 @@
 // `geocean pick`: the first hit on terrain or sea along a ray, through the
-// Embree scene of plugin/grid/Picker.h (double-refined).
+// Embree scene of plugin/pick/Picker.h (double-refined).
 #include "globe/app/Command.h"
 #include "globe/app/QueryIo.h"
 #include "globe/camera/Camera.h"
 #include "globe/raster/World.h"
-#include "plugin/grid/Picker.h"
+#include "plugin/pick/Picker.h"
 #include "plugin/ocean/Ocean.h"
 
 #include <charconv>
@@ -51,7 +51,7 @@ void appendDouble(std::string& s, double v) {
   s.append(b, r.ptr);
 }
 
-void format(const grid::PickResult& r, const std::string& fmt, std::string& out) {
+void format(const pick::PickResult& r, const std::string& fmt, std::string& out) {
   if (fmt == "json") {
     out += "{\"hit\":";
     out += r.hit ? "true" : "false";
@@ -115,7 +115,7 @@ int runPick(const PickOptions& o) {
     std::fprintf(stderr, "geocean pick: give exactly one of --ray, --rays or --camera\n");
     return kExitBadInput;
   }
-  std::vector<grid::PickRay> rays;
+  std::vector<pick::PickRay> rays;
   std::vector<double> v;
   if (!o.ray.empty()) {
     if (auto e = parseList(o.ray, 6, "--ray", v); !e.empty()) {
@@ -172,7 +172,7 @@ int runPick(const PickOptions& o) {
   if (o.format == "text") out += "hit,lat,lon,height_m,distance_m,surface\n";
   if (!rays.empty()) {
     // One ray: only the terrain cells along it (the whole world's mesh takes ~1 s to build).
-    const grid::Picker picker(world->elevation, world->classifier, rays[0].originEcef, rays);
+    const pick::Picker picker(world->elevation, world->classifier, rays[0].originEcef, rays);
     format(picker.pick(rays[0]), o.format, out);
     std::fwrite(out.data(), 1, out.size(), stdout);
     return kExitOk;
@@ -189,13 +189,13 @@ int runPick(const PickOptions& o) {
     }
     in = &file;
   }
-  std::unique_ptr<grid::Picker> picker;
-  std::vector<grid::PickResult> res;
+  std::unique_ptr<pick::Picker> picker;
+  std::vector<pick::PickResult> res;
   std::string line;
   long row = 0;
   auto flush = [&] {
     if (rays.empty()) return;
-    if (!picker) picker = std::make_unique<grid::Picker>(world->elevation, world->classifier, rays[0].originEcef);
+    if (!picker) picker = std::make_unique<pick::Picker>(world->elevation, world->classifier, rays[0].originEcef);
     res.resize(rays.size());
     picker->pickBatch(rays.data(), rays.size(), res.data());
     for (const auto& r : res) format(r, o.format, out);

@@ -25,7 +25,7 @@ struct RenderArgs {
 };
 
 int runRender(const RenderArgs& a) {
-  render::ViewPose pose;
+  camera::ViewPose pose;
   glm::dvec3 sun;
   try {
     render::parseCamera(a.camera, pose);
@@ -44,13 +44,13 @@ int runRender(const RenderArgs& a) {
     std::fprintf(stderr, "geocean render: %s\n", e.what());
     return kExitBadInput;
   }
-  const render::WorldData data = render::loadDefaultWorld();
+  const world::WorldData data = world::loadDefaultWorld();
   render::TerrainOptions terrain;
   terrain.exaggeration = a.exaggeration;
   render::Session s;
   try {
     s = render::Session::headless(data, pose.width, pose.height, terrain);
-  } catch (const render::ShaderError&) {
+  } catch (const gl::ShaderError&) {
     throw;
   } catch (const std::runtime_error& e) {
     std::fprintf(stderr, "geocean render: %s\n", e.what());
@@ -68,7 +68,7 @@ int runRender(const RenderArgs& a) {
   fs.timeS = a.timeS;
   fs.sunEcef = sun;
   const auto t = s.render(pose, fs);
-  render::writePng(a.out, s.image());
+  gl::writePng(a.out, s.image());
   std::fprintf(stderr, "geocean render: wrote %s (%dx%d, %d terrain tiles, %.1f ms)\n", a.out.c_str(), pose.width,
                pose.height, t.terrain.tilesDrawn, t.totalMs);
   return kExitOk;

@@ -6,8 +6,8 @@
 #include "globe/host/OceanLayer.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
-#include "globe/render/Framebuffer.h"
-#include "globe/render/GlDebug.h"
+#include "globe/gl/Framebuffer.h"
+#include "globe/gl/GlDebug.h"
 #include "globe/render/GlobeRenderer.h"
 #include "globe/gl/Hud.h"
 
@@ -56,7 +56,7 @@ bool seaHeightUnder(const host::PluginOceanLayer& ocean, double latDeg, double l
 // arrow keys tilt and turn, WASD moves at a speed proportional to altitude,
 // R (or Home) goes back to orbit.
 struct Controller {
-  render::ViewPose pose;
+  camera::ViewPose pose;
   double lastX = 0, lastY = 0;
   bool left = false, right = false;
   double wheel = 0;
@@ -112,8 +112,8 @@ HeapKb heapKb() {
 }
 
 // The window's back buffer (what is about to be shown: globe + HUD) as an image.
-render::Image readWindow(int w, int h) {
-  render::Image img;
+gl::Image readWindow(int w, int h) {
+  gl::Image img;
   img.width = w, img.height = h;
   std::vector<std::uint8_t> rows(size_t(w) * size_t(h) * 4);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
@@ -179,7 +179,7 @@ int runView(const ViewArgs& a) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, render::glDebugWanted() ? GLFW_TRUE : GLFW_FALSE);
+  glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, gl::glDebugWanted() ? GLFW_TRUE : GLFW_FALSE);
   glfwWindowHint(GLFW_RESIZABLE, a.frames > 0 ? GLFW_FALSE : GLFW_TRUE);  // scripted runs keep their size
   GLFWwindow* win = glfwCreateWindow(c.pose.width, c.pose.height, "Geocean", nullptr, nullptr);
   if (!win) {
@@ -189,10 +189,10 @@ int runView(const ViewArgs& a) {
   }
   glfwMakeContextCurrent(win);
   glfwSwapInterval(a.frames > 0 ? 0 : 1);  // scripted runs go as fast as they can
-  render::enableGlDebug();
+  gl::enableGlDebug();
   int rc = kExitOk;
   {
-    auto world = std::make_shared<render::WorldTextures>(render::loadDefaultWorld());
+    auto world = std::make_shared<render::WorldTextures>(world::loadDefaultWorld());
     render::GlobeRenderer renderer(world);
     // The ocean through the plugin's C ABI, as any host engine loads it.
     std::shared_ptr<host::PluginOceanLayer> ocean;
@@ -218,7 +218,7 @@ int runView(const ViewArgs& a) {
     double fpsSmoothed = 0.0, flightS = 0.0;
     long tilesBuilt = 0;  // terrain tiles made since the start (each fills a pool slot)
     const int flightFrames = a.flightFrames > 0 ? a.flightFrames : a.frames;
-    std::unique_ptr<render::Framebuffer> fb;
+    std::unique_ptr<gl::Framebuffer> fb;
     for (int frame = 0; !glfwWindowShouldClose(win) && (a.frames == 0 || frame < a.frames); ++frame) {
       glfwPollEvents();
       const auto now = std::chrono::steady_clock::now();
@@ -255,7 +255,7 @@ int runView(const ViewArgs& a) {
       glfwGetFramebufferSize(win, &w, &h);
       if (w <= 0 || h <= 0) continue;
       c.pose.width = w, c.pose.height = h;
-      if (!fb || fb->width() != w || fb->height() != h) fb = std::make_unique<render::Framebuffer>(w, h);
+      if (!fb || fb->width() != w || fb->height() != h) fb = std::make_unique<gl::Framebuffer>(w, h);
       fb->bind();
       render::FrameSettings fs;
       fs.timeS = simT;
@@ -277,7 +277,7 @@ int runView(const ViewArgs& a) {
       }
       if (a.frames > 0 && frame == a.frames - 1 && !a.screenshot.empty()) {
         try {
-          render::writePng(a.screenshot, readWindow(w, h));
+          gl::writePng(a.screenshot, readWindow(w, h));
         } catch (const std::exception& e) {
           std::fprintf(stderr, "geocean view: %s\n", e.what());
           rc = kExitBadInput;

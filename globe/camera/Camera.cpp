@@ -27,7 +27,14 @@ void checkView(double vfovDeg, int w, int h) {
 double horizonDistance(double r, double h) { return std::sqrt(std::max(0.0, h * (2.0 * r + h))); }
 }  // namespace
 
-Camera Camera::fromGeodetic(const GeodeticPose& p, double vfovDeg, int w, int h) {
+double nearPlaneM(double altAboveSurfaceM) { return std::clamp(0.1 * std::abs(altAboveSurfaceM), 0.01, 5.0e4); }
+
+Camera Camera::fromView(const ViewPose& v, double altAboveSurfaceM) {
+  return fromGeodetic({v.latDeg, v.lonDeg, v.altM, v.headingDeg, v.pitchDeg, 0.0}, v.fovYDeg, v.width, v.height,
+                      altAboveSurfaceM);
+}
+
+Camera Camera::fromGeodetic(const GeodeticPose& p, double vfovDeg, int w, int h, double altAboveSurfaceM) {
   checkFinite(p.latDeg, "latitude");
   checkFinite(p.lonDeg, "longitude");
   checkFinite(p.heightM, "height");
@@ -40,11 +47,10 @@ Camera Camera::fromGeodetic(const GeodeticPose& p, double vfovDeg, int w, int h)
   const geo::EnuFrame f = geo::enuFrame({p.latDeg, p.lonDeg, p.heightM});
   const double ch = std::cos(rad(p.headingDeg)), sh = std::sin(rad(p.headingDeg));
   const double cp = std::cos(rad(p.pitchDeg)), sp = std::sin(rad(p.pitchDeg));
-  const glm::dvec3 horiz = sh * f.east + ch * f.north;  // level view direction
   Camera c;
   c.eye_ = f.originEcef;
-  c.forward_ = cp * horiz + sp * f.up;
-  const glm::dvec3 right0 = ch * f.east - sh * f.north;
+  c.forward_ = f.toEcef({cp * sh, cp * ch, sp});
+  const glm::dvec3 right0 = f.toEcef({ch, -sh, 0.0});
   const glm::dvec3 up0 = glm::cross(right0, c.forward_);
   const double cr = std::cos(rad(p.rollDeg)), sr = std::sin(rad(p.rollDeg));
   c.right_ = cr * right0 - sr * up0;
@@ -53,12 +59,14 @@ Camera Camera::fromGeodetic(const GeodeticPose& p, double vfovDeg, int w, int h)
   c.width_ = w;
   c.height_ = h;
   c.heightM_ = p.heightM;
-  c.finish();
+  c.latDeg_ = p.latDeg;
+  c.lonDeg_ = p.lonDeg;
+  c.finish(altAboveSurfaceM);
   return c;
 }
 
 Camera Camera::fromEcef(const glm::dvec3& eye, const glm::dvec3& forward, const glm::dvec3& upHint,
-                        double vfovDeg, int w, int h) {
+                        double vfovDeg, int w, int h, double altAboveSurfaceM) {
   checkFinite(eye.x + eye.y + eye.z, "eye position");
   checkView(vfovDeg, w, h);
   Camera c;
@@ -74,18 +82,73 @@ Camera Camera::fromEcef(const glm::dvec3& eye, const glm::dvec3& forward, const 
   c.vfovDeg_ = vfovDeg;
   c.width_ = w;
   c.height_ = h;
-  c.heightM_ = geo::fromEcef(eye).heightM;
-  c.finish();
+  const geo::Geodetic g = geo::fromEcef(eye);
+  c.heightM_ = g.heightM;
+  c.latDeg_ = g.latDeg;
+  c.lonDeg_ = g.lonDeg;
+  c.finish(altAboveSurfaceM);
   return c;
 }
 
-void Camera::finish() {
+Camera Camera::fromHost(const glm::dvec3& eye, const glm::dvec3& forward, const glm::dvec3& right,
+                        const glm::dvec3& up, const glm::dmat4& proj, int w, int h) {
+  const double vfov = 2.0 * std::atan(1.0 / proj[1][1]) * 180.0 / kPi;
+  checkFinite(eye.x + eye.y + eye.z, "eye position");
+  checkView(vfov, w, h);
+  Camera c;
+  c.eye_ = eye;
+  c.forward_ = forward;
+  c.right_ = right;
+  c.up_ = up;
+  c.vfovDeg_ = vfov;
+  c.width_ = w;
+  c.height_ = h;
+  const geo::Geodetic g = geo::fromEcef(eye);
+  c.heightM_ = g.heightM;
+  c.latDeg_ = g.latDeg;
+  c.lonDeg_ = g.lonDeg;
+  c.finish(std::numeric_limits<double>::quiet_NaN());
+  c.nearM_ = proj[3][2] != 0.0 ? std::abs(proj[3][2]) : 1.0;
+  glm::dmat4 view(1.0);
+  for (int i = 0; i < 3; ++i) {
+    view[i][0] = right[i];
+    view[i][1] = up[i];
+    view[i][2] = -forward[i];
+  }
+  c.gpu_.view = glm::mat4(view);
+  c.gpu_.proj = glm::mat4(proj);
+  c.gpu_.projD = proj;
+  c.gpu_.viewProjD = proj * view;
+  c.gpu_.viewProj = glm::mat4(c.gpu_.viewProjD);
+  return c;
+}
+
+void Camera::finish(double altAboveSurfaceM) {
   tanY_ = std::tan(rad(vfovDeg_) * 0.5);
   const double h = std::max(heightM_, 0.0);
-  nearM_ = std::clamp(0.1 * h, 0.01, 1e6);
+  nearM_ = nearPlaneM(std::isnan(altAboveSurfaceM) ? h : altAboveSurfaceM);
   // Horizon of the sea plus the horizon of the highest terrain (9 km), with
   // a 1 % margin; at least 10 km so an eye near the surface sees to its horizon.
   farM_ = std::max(1e4, 1.01 * (horizonDistance(geo::kWgs84A, h) + horizonDistance(geo::kWgs84A, 9000.0)));
+  // The renderers' matrices, in double then rounded.
+  glm::dmat4 view(1.0);
+  for (int i = 0; i < 3; ++i) {
+    view[i][0] = right_[i];
+    view[i][1] = up_[i];
+    view[i][2] = -forward_[i];
+  }
+  const double f = 1.0 / std::tan(0.5 * vfovDeg_ * (kPi / 180.0));
+  const double aspect = double(width_) / double(height_);
+  glm::dmat4 proj(0.0);
+  proj[0][0] = f / aspect;
+  proj[1][1] = f;
+  proj[2][3] = -1.0;    // w = -z_view
+  proj[3][2] = nearM_;  // z = near  ->  depth = near / -z_view: 1 at near, 0 at infinity
+  gpu_.view = glm::mat4(view);
+  gpu_.proj = glm::mat4(proj);
+  gpu_.projD = proj;
+  gpu_.viewProjD = proj * view;
+  gpu_.viewProj = glm::mat4(gpu_.viewProjD);
 }
 
 glm::dvec3 Camera::pixelRay(double x, double y) const {

@@ -6,44 +6,66 @@
 namespace geocean::host {
 
 PluginOceanLayer::PluginOceanLayer(std::shared_ptr<const OceanPlugin> plugin, geocean_ocean* ocean)
-    : plugin_(std::move(plugin)), ocean_(ocean) {}
+    : plugin_(std::move(plugin)), ocean_(ocean) {
+  const OceanApi& a = plugin_->api();
+  if (!a.getLayerInfo) return;
+  geocean_layer_info li{};
+  li.struct_size = sizeof li;
+  if (a.getLayerInfo(ocean_, &li) != GEOCEAN_OK) throw std::runtime_error(a.lastError());
+  info_.opaqueWater = (li.flags & GEOCEAN_LAYER_OPAQUE_WATER) != 0 && a.coversOpaquely;
+  info_.cellPx = li.cell_px;
+  info_.wants = (li.flags & GEOCEAN_LAYER_WANTS_SCENE_COPY) ? render::kLayerWantsSceneCopy : 0u;
+}
 
 PluginOceanLayer::~PluginOceanLayer() { plugin_->api().destroy(ocean_); }
 
-geocean_view hostView(const geocean_view& defaults, const render::ViewMatrices& vm, const render::ViewPose& pose,
-                      const render::Lighting& light) {
+render::LayerInfo PluginOceanLayer::info() const { return info_; }
+
+bool PluginOceanLayer::coversOpaquely(double lat0, double lat1, double lon0, double lon1, double footprintM) const {
+  const OceanApi& a = plugin_->api();
+  int32_t covers = 0;
+  if (a.coversOpaquely(ocean_, lat0, lat1, lon0, lon1, footprintM, &covers) != GEOCEAN_OK)
+    throw std::runtime_error(std::string("ocean plugin: ") + a.lastError());
+  return covers != 0;
+}
+
+geocean_view hostView(const geocean_view& defaults, const camera::Camera& cam, const camera::Lighting& light) {
   geocean_view v = defaults;
   for (int i = 0; i < 3; ++i) {
-    v.eye_ecef_m[i] = vm.eyeEcef[i];
+    v.eye_ecef_m[i] = cam.eyeEcef()[i];
     v.sun_dir_ecef[i] = light.sunEcef[i];
   }
   std::fill(v.view_matrix, v.view_matrix + 16, 0.0);
   for (int c = 0; c < 3; ++c) {  // rows right, up, back (column-major storage)
-    v.view_matrix[4 * c + 0] = vm.right[c];
-    v.view_matrix[4 * c + 1] = vm.up[c];
-    v.view_matrix[4 * c + 2] = -vm.forward[c];
+    v.view_matrix[4 * c + 0] = cam.right()[c];
+    v.view_matrix[4 * c + 1] = cam.up()[c];
+    v.view_matrix[4 * c + 2] = -cam.forward()[c];
   }
   v.view_matrix[15] = 1.0;
-  // As render::viewMatrices builds it, in double (vm.proj is float).
-  const double f = 1.0 / std::tan(0.5 * pose.fovYDeg * 3.14159265358979323846 / 180.0);
-  std::fill(v.projection_matrix, v.projection_matrix + 16, 0.0);
-  v.projection_matrix[0] = f / (double(pose.width) / double(pose.height));
-  v.projection_matrix[5] = f;
-  v.projection_matrix[11] = -1.0;
-  v.projection_matrix[14] = vm.nearM;
-  v.viewport_width_px = pose.width;
-  v.viewport_height_px = pose.height;
+  const glm::dmat4& p = cam.gpu().projD;  // double: the float copy would lose bits
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) v.projection_matrix[4 * c + r] = p[c][r];
+  v.viewport_width_px = cam.widthPx();
+  v.viewport_height_px = cam.heightPx();
   v.time_s = light.timeS;
   return v;
 }
 
-void PluginOceanLayer::draw(const render::ViewMatrices& vm, const render::ViewPose& pose,
-                            const render::Lighting& light, bool bare) {
+void PluginOceanLayer::draw(const camera::Camera& cam, const camera::Lighting& light, bool bare,
+                            const render::LayerInputs& inputs) {
   const OceanApi& a = plugin_->api();
   geocean_view defaults;
   if (a.viewInit(&defaults) != GEOCEAN_OK) throw std::runtime_error(a.lastError());
-  geocean_view v = hostView(defaults, vm, pose, light);
+  geocean_view v = hostView(defaults, cam, light);
   v.draw_flags = bare ? GEOCEAN_DRAW_REFERENCE : 0u;
+  if (a.setLayerInputs && info_.wants) {
+    geocean_layer_inputs in{};
+    in.struct_size = sizeof in;
+    in.scene_color_texture = inputs.sceneColor;
+    in.scene_depth_texture = inputs.sceneDepth;
+    if (a.setLayerInputs(ocean_, &in) != GEOCEAN_OK)
+      throw std::runtime_error(std::string("ocean plugin: ") + a.lastError());
+  }
   if (a.update(ocean_, &v) != GEOCEAN_OK || a.draw(ocean_) != GEOCEAN_OK)
     throw std::runtime_error(std::string("ocean plugin: ") + a.lastError());
 }

@@ -6,6 +6,7 @@
 
 #include "globe/host/OceanPlugin.h"
 #include "globe/render/GlobeRenderer.h"
+#include "globe/render/Layer.h"
 
 #include <memory>
 #include <string>
@@ -22,9 +23,14 @@ class PluginOceanLayer : public render::Layer {
   PluginOceanLayer& operator=(const PluginOceanLayer&) = delete;
 
   const char* name() const override { return "ocean"; }
-  // Throws std::runtime_error with the plugin's message if a call fails.
-  void draw(const render::ViewMatrices& vm, const render::ViewPose& pose, const render::Lighting& light,
-            bool bare) override;
+  // The plugin's answers (geocean_get_layer_info, geocean_covers_opaquely;
+  // a plugin older than 1.2 claims nothing). Throw std::runtime_error with
+  // the plugin's message if a call fails, as does draw.
+  render::LayerInfo info() const override;
+  bool coversOpaquely(double lat0Deg, double lat1Deg, double lon0Deg, double lon1Deg,
+                      double pixelFootprintM) const override;
+  void draw(const camera::Camera& cam, const camera::Lighting& light, bool bare,
+            const render::LayerInputs& inputs) override;
 
   geocean_ocean* ocean() const { return ocean_; }
   const OceanPlugin& plugin() const { return *plugin_; }
@@ -32,12 +38,12 @@ class PluginOceanLayer : public render::Layer {
  private:
   std::shared_ptr<const OceanPlugin> plugin_;
   geocean_ocean* ocean_;
+  render::LayerInfo info_;  // asked once: it does not change with the ocean's state
 };
 
-// The host view for the renderer's matrices: the same numbers the renderer
-// draws its terrain with (projection rebuilt in double from the pose).
-geocean_view hostView(const geocean_view& defaults, const render::ViewMatrices& vm, const render::ViewPose& pose,
-                      const render::Lighting& light);
+// The host view for a camera: the same numbers the renderer draws its
+// terrain with (the camera's double-precision projection).
+geocean_view hostView(const geocean_view& defaults, const camera::Camera& cam, const camera::Lighting& light);
 
 // Loads the plugin (OceanPlugin::loadForExecutable), gives an ocean the
 // default world and the sea state (model by CLI name, wind) and adds it to

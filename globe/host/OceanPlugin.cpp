@@ -98,7 +98,10 @@ std::unique_ptr<OceanPlugin> OceanPlugin::load(const std::string& path, std::str
         resolve(handle, "geocean_set_default_world_with_options", a.setDefaultWorldWithOptions, file, error) &&
         resolve(handle, "geocean_set_mask_encoding", a.setMaskEncoding, file, error) &&
         resolve(handle, "geocean_surface_outputs_init", a.surfaceOutputsInit, file, error) &&
-        resolve(handle, "geocean_query_surface", a.querySurface, file, error);
+        resolve(handle, "geocean_query_surface", a.querySurface, file, error) &&
+        resolve(handle, "geocean_get_layer_info", a.getLayerInfo, file, error) &&
+        resolve(handle, "geocean_covers_opaquely", a.coversOpaquely, file, error) &&
+        resolve(handle, "geocean_set_layer_inputs", a.setLayerInputs, file, error);
     if (!ok12) return nullptr;
   }
   return p;

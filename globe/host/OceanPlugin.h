@@ -61,6 +61,10 @@ struct OceanApi {
   geocean_status (*surfaceOutputsInit)(geocean_surface_outputs*) = nullptr;
   geocean_status (*querySurface)(const geocean_ocean*, size_t, const double*, const double*, const double*, size_t,
                                  const geocean_surface_outputs*) = nullptr;
+  // ABI 1.2, the host/layer contract (NULL when the plugin's minor is below 2).
+  geocean_status (*getLayerInfo)(const geocean_ocean*, geocean_layer_info*) = nullptr;
+  geocean_status (*coversOpaquely)(geocean_ocean*, double, double, double, double, double, int32_t*) = nullptr;
+  geocean_status (*setLayerInputs)(geocean_ocean*, const geocean_layer_inputs*) = nullptr;
 };
 
 class OceanPlugin {

@@ -27,7 +27,7 @@ std::vector<double> parseNumbers(const std::string& text, std::size_t count, con
   return out;
 }
 
-void parseCamera(const std::string& text, ViewPose& pose) {
+void parseCamera(const std::string& text, camera::ViewPose& pose) {
   const auto v = parseNumbers(text, 5, "--camera LAT,LON,ALT,HEADING,PITCH");
   if (v[0] < -90.0 || v[0] > 90.0) throw ArgError("--camera: latitude " + std::to_string(v[0]) + " is outside [-90, 90]");
   if (v[2] <= 0.0 || v[2] > 1.0e9)
@@ -40,7 +40,7 @@ void parseCamera(const std::string& text, ViewPose& pose) {
   pose.pitchDeg = v[4];
 }
 
-void parseSize(const std::string& text, ViewPose& pose) {
+void parseSize(const std::string& text, camera::ViewPose& pose) {
   const auto x = text.find_first_of("xX");
   int w = 0, h = 0;
   bool ok = x != std::string::npos;

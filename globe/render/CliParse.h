@@ -2,7 +2,7 @@
 // errors that name the option and the offending value.
 #pragma once
 
-#include "globe/render/ViewPose.h"
+#include "globe/camera/Camera.h"
 
 #include <stdexcept>
 #include <string>
@@ -18,8 +18,8 @@ class ArgError : public std::runtime_error {
 // "a,b,c" -> exactly `count` finite doubles; throws ArgError naming `option`.
 std::vector<double> parseNumbers(const std::string& text, std::size_t count, const char* option);
 // "LAT,LON,ALT,HEADING,PITCH" into pose (keeps fov and size).
-void parseCamera(const std::string& text, ViewPose& pose);
+void parseCamera(const std::string& text, camera::ViewPose& pose);
 // "WxH" (1..16384 each).
-void parseSize(const std::string& text, ViewPose& pose);
+void parseSize(const std::string& text, camera::ViewPose& pose);
 
 }  // namespace geocean::render

@@ -12,9 +12,9 @@ double smooth(double x) {
 }
 }  // namespace
 
-ViewPose flightPose(const FlightPlan& plan, double s, const ViewPose& base) {
+camera::ViewPose flightPose(const FlightPlan& plan, double s, const camera::ViewPose& base) {
   s = std::clamp(s, 0.0, 1.0);
-  ViewPose p = base;
+  camera::ViewPose p = base;
   // Altitude: log-linear with eased ends.
   const double la = std::log(plan.fromAltM), lb = std::log(plan.toAltM);
   p.altM = std::exp(la + (lb - la) * smooth(s));

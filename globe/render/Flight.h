@@ -5,7 +5,7 @@
 // horizon in the last kilometres.
 #pragma once
 
-#include "globe/render/ViewPose.h"
+#include "globe/camera/Camera.h"
 
 namespace geocean::render {
 
@@ -17,6 +17,6 @@ struct FlightPlan {
 };
 
 // Pose at progress s in [0, 1] (clamped); keeps fov/size from `base`.
-ViewPose flightPose(const FlightPlan& plan, double s, const ViewPose& base);
+camera::ViewPose flightPose(const FlightPlan& plan, double s, const camera::ViewPose& base);
 
 }  // namespace geocean::render

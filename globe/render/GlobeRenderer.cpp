@@ -1,5 +1,7 @@
 #include "globe/render/GlobeRenderer.h"
 
+#include "globe/geo/Ellipsoid.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -21,11 +23,15 @@ double cpuMs() {
 
 GlobeRenderer::GlobeRenderer(std::shared_ptr<const WorldTextures> world, TerrainOptions terrain)
     : world_(std::move(world)), terrain_(*world_, terrain) {
-  sky_ = GlProgram::graphics("sky.vert", "sky.frag");
+  sky_ = gl::GlProgram::graphics("sky.vert", "sky.frag");
   glCreateVertexArrays(1, &emptyVao_);
 }
 
-double GlobeRenderer::altitudeAboveSurfaceM(const ViewPose& pose) const {
+GlobeRenderer::~GlobeRenderer() {
+  glDeleteVertexArrays(1, &emptyVao_);
+}
+
+double GlobeRenderer::altitudeAboveSurfaceM(const camera::ViewPose& pose) const {
   const double water = world_->waterAt(pose.latDeg, pose.lonDeg);
   const double ground = water > 0.5 ? 0.0
                                     : std::max(0.0, double(world_->elevationAt(pose.latDeg, pose.lonDeg))) *
@@ -33,17 +39,12 @@ double GlobeRenderer::altitudeAboveSurfaceM(const ViewPose& pose) const {
   return pose.altM - ground;
 }
 
-ViewMatrices GlobeRenderer::matrices(const ViewPose& pose) const {
-  return viewMatrices(pose, altitudeAboveSurfaceM(pose));
+camera::Camera GlobeRenderer::camera(const camera::ViewPose& pose) const {
+  return camera::Camera::fromView(pose, altitudeAboveSurfaceM(pose));
 }
 
-FrameTimes GlobeRenderer::render(const ViewPose& pose, const FrameSettings& settings) {
-  FrameTimes t;
-  const auto t0 = Clock::now();
-  const double c0 = cpuMs();
-  const ViewMatrices vm = matrices(pose);
-  const Lighting light{glm::normalize(settings.sunEcef), settings.timeS};
-
+void GlobeRenderer::drawScene(const camera::Camera& cam, const camera::Lighting& light, const FrameSettings& settings,
+                              FrameTimes& t, const Layer* waterLayer, SeaShading sea) {
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glClearDepth(0.0);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
@@ -61,15 +62,16 @@ FrameTimes GlobeRenderer::render(const ViewPose& pose, const FrameSettings& sett
   glDepthMask(GL_FALSE);
   if (!settings.bare) {
     sky_.use();
-    const glm::vec3 f(vm.forward), r(vm.right), u(vm.up), sun(light.sunEcef), eyeDir(glm::normalize(vm.eyeEcef));
-    const double tanY = std::tan(0.5 * pose.fovYDeg * 3.14159265358979323846 / 180.0);
+    const glm::vec3 f(cam.forward()), r(cam.right()), u(cam.up()), sun(light.sunEcef),
+        eyeDir(glm::normalize(cam.eyeEcef()));
+    const double tanY = std::tan(0.5 * cam.vfovDeg() * 3.14159265358979323846 / 180.0);
     glUniform3fv(sky_.uniform("uForward"), 1, &f[0]);
     glUniform3fv(sky_.uniform("uRight"), 1, &r[0]);
     glUniform3fv(sky_.uniform("uUp"), 1, &u[0]);
-    glUniform2f(sky_.uniform("uTanHalf"), float(tanY * pose.width / pose.height), float(tanY));
+    glUniform2f(sky_.uniform("uTanHalf"), float(tanY * cam.widthPx() / cam.heightPx()), float(tanY));
     glUniform3fv(sky_.uniform("uSunDir"), 1, &sun[0]);
     glUniform3fv(sky_.uniform("uEyeDir"), 1, &eyeDir[0]);
-    glUniform1f(sky_.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
+    glUniform1f(sky_.uniform("uEyeRadiusM"), float(glm::length(cam.eyeEcef())));
     glBindVertexArray(emptyVao_);
     // The sky writes no data attachment (tests read the ocean's there).
     glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -78,26 +80,59 @@ FrameTimes GlobeRenderer::render(const ViewPose& pose, const FrameSettings& sett
   }
   glDepthMask(GL_TRUE);
   if (settings.timed) glFinish();
-  t.skyMs = msSince(ts);
-  t.skyCpuMs = cpuMs() - cs;
+  t.skyMs += msSince(ts);
+  t.skyCpuMs += cpuMs() - cs;
 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_GREATER);
   ts = Clock::now();
   cs = cpuMs();
   glDisable(GL_CULL_FACE);
+  t.terrain = terrain_.draw(cam, light, settings.bare, sea, waterLayer);
+  if (settings.timed) glFinish();
+  t.terrainMs += msSince(ts);
+  t.terrainCpuMs += cpuMs() - cs;
+}
+
+void GlobeRenderer::makeLayerInputs(const camera::Camera& cam, unsigned wants, LayerInputs& in) {
+  const int w = cam.widthPx(), h = cam.heightPx();
+  GLint target = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
+  if (wants & kLayerWantsSceneCopy) {
+    sceneCopy_.ensure(w, h);
+    // Colour attachment 0 and depth of whatever the host draws into.
+    glNamedFramebufferReadBuffer(GLuint(target), target == 0 ? GL_BACK : GL_COLOR_ATTACHMENT0);
+    glBlitNamedFramebuffer(GLuint(target), sceneCopy_.fbo(), 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBlitNamedFramebuffer(GLuint(target), sceneCopy_.fbo(), 0, 0, w, h, 0, 0, w, h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    in.sceneColor = sceneCopy_.color();
+    in.sceneDepth = sceneCopy_.depth();
+  }
+}
+
+FrameTimes GlobeRenderer::render(const camera::ViewPose& pose, const FrameSettings& settings) {
+  FrameTimes t;
+  const auto t0 = Clock::now();
+  const double c0 = cpuMs();
+  const camera::Camera cam = camera(pose);
+  const camera::Lighting light{glm::normalize(settings.sunEcef), settings.timeS};
+
   // The terrain shades water as distant sea where the wave grid does not
   // draw (cells it skips as land can hold lakes and coast); open water that
-  // the ocean layer will cover can get only depth (TerrainOptions::seaProxy).
-  t.terrain = terrain_.draw(vm, pose, light, settings.bare,
-                            layers_.empty() ? SeaShading::DistantSea : SeaShading::UnderOcean);
-  if (settings.timed) glFinish();
-  t.terrainMs = msSince(ts);
-  t.terrainCpuMs = cpuMs() - cs;
+  // a layer covers opaquely is left to it (TerrainOptions::skipOpenWater).
+  const Layer* waterLayer = nullptr;
+  unsigned wants = 0;
+  for (const auto& l : layers_) {
+    const LayerInfo info = l->info();
+    if (info.opaqueWater && !waterLayer) waterLayer = l.get();
+    wants |= info.wants;
+  }
+  drawScene(cam, light, settings, t, waterLayer, layers_.empty() ? SeaShading::DistantSea : SeaShading::UnderOcean);
 
-  ts = Clock::now();
-  cs = cpuMs();
-  for (auto& l : layers_) l->draw(vm, pose, light, settings.bare);
+  auto ts = Clock::now();
+  double cs = cpuMs();
+  LayerInputs inputs;
+  if (wants && !settings.bare) makeLayerInputs(cam, wants, inputs);
+  for (auto& l : layers_) l->draw(cam, light, settings.bare, inputs);
   if (settings.timed) glFinish();
   t.layersMs = msSince(ts);
   t.layersCpuMs = cpuMs() - cs;

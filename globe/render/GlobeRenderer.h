@@ -4,24 +4,17 @@
 // a GLFW window). Reversed Z: depth cleared to 0, GL_GREATER, float depth.
 #pragma once
 
-#include "globe/render/GlProgram.h"
+#include "globe/gl/Framebuffer.h"
+#include "globe/gl/GlProgram.h"
+#include "globe/render/Layer.h"
 #include "globe/render/Terrain.h"
-#include "globe/render/ViewPose.h"
+#include "globe/camera/Camera.h"
 #include "globe/render/WorldTextures.h"
 
 #include <memory>
 #include <vector>
 
 namespace geocean::render {
-
-// A layer drawn after the terrain (the ocean). Implementations live in
-// plugins; the globe renderer only knows this interface.
-class Layer {
- public:
-  virtual ~Layer() = default;
-  virtual const char* name() const = 0;
-  virtual void draw(const ViewMatrices& vm, const ViewPose& pose, const Lighting& light, bool bare) = 0;
-};
 
 struct FrameTimes {
   double skyMs = 0.0, terrainMs = 0.0, layersMs = 0.0, totalMs = 0.0;
@@ -42,13 +35,18 @@ struct FrameSettings {
 class GlobeRenderer {
  public:
   GlobeRenderer(std::shared_ptr<const WorldTextures> world, TerrainOptions terrain = {});
+  ~GlobeRenderer();
+  GlobeRenderer(const GlobeRenderer&) = delete;
+  GlobeRenderer& operator=(const GlobeRenderer&) = delete;
   void addLayer(std::shared_ptr<Layer> layer) { layers_.push_back(std::move(layer)); }
 
   // Height of the eye above the terrain or sea under it (for the near plane).
-  double altitudeAboveSurfaceM(const ViewPose& pose) const;
-  ViewMatrices matrices(const ViewPose& pose) const;
+  double altitudeAboveSurfaceM(const camera::ViewPose& pose) const;
+  // The camera a frame of this pose is drawn with (near plane from the
+  // altitude above the surface).
+  camera::Camera camera(const camera::ViewPose& pose) const;
 
-  FrameTimes render(const ViewPose& pose, const FrameSettings& settings);
+  FrameTimes render(const camera::ViewPose& pose, const FrameSettings& settings);
 
   const WorldTextures& world() const { return *world_; }
   TerrainRenderer& terrain() { return terrain_; }
@@ -56,8 +54,16 @@ class GlobeRenderer {
  private:
   std::shared_ptr<const WorldTextures> world_;
   TerrainRenderer terrain_;
-  GlProgram sky_;
+  // Draws sky and terrain (no layers) into the bound framebuffer.
+  void drawScene(const camera::Camera& cam, const camera::Lighting& light, const FrameSettings& settings,
+                 FrameTimes& t, const Layer* waterLayer, SeaShading sea);
+  // The inputs the layers asked for (LayerInfo::wants), made after the terrain.
+  void makeLayerInputs(const camera::Camera& cam, unsigned wants, LayerInputs& in);
+
+  gl::GlProgram sky_;
   GLuint emptyVao_ = 0;
+  // The layers' scene copy (made on first need, per size).
+  gl::TextureTarget sceneCopy_;
   std::vector<std::shared_ptr<Layer>> layers_;
 };
 

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "globe/gl/HeadlessContext.h"
-#include "globe/render/Framebuffer.h"
+#include "globe/gl/Framebuffer.h"
 #include "globe/render/GlobeRenderer.h"
 
 #include <memory>
@@ -15,15 +15,15 @@ struct Session {
   std::unique_ptr<gl::HeadlessContext> context;
   std::shared_ptr<WorldTextures> world;
   std::unique_ptr<GlobeRenderer> renderer;
-  std::unique_ptr<Framebuffer> target;
+  std::unique_ptr<gl::Framebuffer> target;
 
   // Throws std::runtime_error (no GL context) or raster::RasterError (data).
-  static Session headless(const WorldData& data, int width, int height, TerrainOptions terrain = {});
-  FrameTimes render(const ViewPose& pose, const FrameSettings& settings);
-  Image image() const { return target->readColor(); }
+  static Session headless(const world::WorldData& data, int width, int height, TerrainOptions terrain = {});
+  FrameTimes render(const camera::ViewPose& pose, const FrameSettings& settings);
+  gl::Image image() const { return target->readColor(); }
 };
 
 // Default sun: `elevationDeg` above the horizon at the camera's nadir, from `azimuthDeg`.
-glm::dvec3 sunForView(const ViewPose& pose, double azimuthDeg = 135.0, double elevationDeg = 55.0);
+glm::dvec3 sunForView(const camera::ViewPose& pose, double azimuthDeg = 135.0, double elevationDeg = 55.0);
 
 }  // namespace geocean::render

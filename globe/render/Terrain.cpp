@@ -32,10 +32,10 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
   const double texelDeg = world_.finestShapeTexelDeg();
   while (maxLevel_ > 0 && texelDeg > 0.0 && 90.0 / double(1 << (maxLevel_ - 1)) / (kGrid - 1) <= texelDeg / 16.0)
     --maxLevel_;
-  program_ = GlProgram::graphics("terrain.vert", "terrain.frag");
-  underOcean_ = GlProgram::graphics("terrain.vert", "terrain.frag", {"GEOCEAN_UNDER_OCEAN 1"});
-  seaProxy_ = GlProgram::graphics("terrain.vert", "sea_proxy.frag");
-  bare_ = GlProgram::graphics("terrain.vert", "bare.frag", {"GEOCEAN_BARE 1"});
+  program_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag");
+  underOcean_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", {"GEOCEAN_UNDER_OCEAN 1"});
+  seaProxy_ = gl::GlProgram::graphics("terrain.vert", "sea_proxy.frag");
+  bare_ = gl::GlProgram::graphics("terrain.vert", "bare.frag", {"GEOCEAN_BARE 1"});
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
   glNamedBufferStorage(vbo_, GLsizeiptr(options_.poolTiles) * kVertsPerTile * kFloatsPerVertex * sizeof(float),
@@ -121,10 +121,10 @@ TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
   return b;
 }
 
-void TerrainRenderer::select(const Key& k, const ViewMatrices& vm, const ViewPose& pose, std::vector<Key>& out,
+void TerrainRenderer::select(const Key& k, const camera::Camera& cam, std::vector<Key>& out,
                              int depth) {
   const Bounds b = bounds(k);
-  const glm::dvec3 rel = b.center - vm.eyeEcef;
+  const glm::dvec3 rel = b.center - cam.eyeEcef();
   const double dist = glm::length(rel);
   // Horizon, in the space where the ellipsoid is the unit sphere (x, y / a,
   // z / b: straight lines stay straight): the occluder is the sphere of the
@@ -135,7 +135,7 @@ void TerrainRenderer::select(const Key& k, const ViewMatrices& vm, const ViewPos
   const auto scaled = [](const glm::dvec3& p) {
     return glm::dvec3(p.x / geo::kWgs84A, p.y / geo::kWgs84A, p.z / geo::kWgs84B);
   };
-  const glm::dvec3 eyeS = scaled(vm.eyeEcef);
+  const glm::dvec3 eyeS = scaled(cam.eyeEcef());
   const double eyeR = glm::length(eyeS);
   const double rOcc = 1.0 - options_.occluderDepthM / geo::kWgs84B;
   if (eyeR > rOcc) {
@@ -150,20 +150,20 @@ void TerrainRenderer::select(const Key& k, const ViewMatrices& vm, const ViewPos
     if (ang - angRadius > limit) return;
   }
   // Frustum: side planes through the eye, and in front of it.
-  const double z = glm::dot(rel, vm.forward);
+  const double z = glm::dot(rel, cam.forward());
   if (z < -b.radius) return;
-  const double tanY = std::tan(0.5 * pose.fovYDeg * kDeg), tanX = tanY * pose.width / pose.height;
-  const double x = glm::dot(rel, vm.right), y = glm::dot(rel, vm.up);
+  const double tanY = std::tan(0.5 * cam.vfovDeg() * kDeg), tanX = tanY * cam.widthPx() / cam.heightPx();
+  const double x = glm::dot(rel, cam.right()), y = glm::dot(rel, cam.up());
   if (std::abs(x) - z * tanX > b.radius * std::sqrt(1.0 + tanX * tanX)) return;
   if (std::abs(y) - z * tanY > b.radius * std::sqrt(1.0 + tanY * tanY)) return;
 
   double lat0, lat1, lon0, lon1;
   tileRange(k, lat0, lat1, lon0, lon1);
-  const double pxPerM = pose.height / (2.0 * tanY);
-  if (skipOpenWater_ && b.allWater && underOpenWater(lat0, lat1, lon0, lon1, b, dist, vm, pxPerM)) return;
+  const double pxPerM = cam.heightPx() / (2.0 * tanY);
+  if (waterLayer_ && b.allWater && underOpenWater(lat0, lat1, lon0, lon1, b, dist, cam, pxPerM)) return;
   const double latEq = (lat0 <= 0.0 && lat1 >= 0.0) ? 0.0 : std::min(std::abs(lat0), std::abs(lat1));
   const double extentM = std::max((lat1 - lat0), (lon1 - lon0) * std::cos(latEq * kDeg)) * kDeg * geo::kWgs84A;
-  const double nearest = std::max(dist - b.radius, vm.nearM);
+  const double nearest = std::max(dist - b.radius, cam.nearM());
   const double cellPx = extentM / (kGrid - 1) / nearest * pxPerM;
   // Open water is flat and hidden under the wave grid: level 7 cells (2.4 km)
   // already follow the ellipsoid within 0.12 m (chord sag s^2 / 8R), far
@@ -171,39 +171,25 @@ void TerrainRenderer::select(const Key& k, const ViewMatrices& vm, const ViewPos
   const int maxLevel = b.allWater ? std::min(maxLevel_, 7) : maxLevel_;
   if (k.level < maxLevel && cellPx > options_.pixelErrorPx && depth < 40) {
     for (int cy = 0; cy < 2; ++cy)
-      for (int cx = 0; cx < 2; ++cx) select({k.level + 1, 2 * k.x + cx, 2 * k.y + cy}, vm, pose, out, depth + 1);
+      for (int cx = 0; cx < 2; ++cx) select({k.level + 1, 2 * k.x + cx, 2 * k.y + cy}, cam, out, depth + 1);
     return;
   }
   out.push_back(k);
 }
 
 bool TerrainRenderer::underOpenWater(double lat0, double lat1, double lon0, double lon1, const Bounds& b, double dist,
-                                     const ViewMatrices& vm, double pxPerM) const {
-  // The ocean layer draws every pixel of this tile opaque, and none of its
-  // grid cells over it is skipped as land, if the water texture is water
-  // throughout the tile and a margin around it: the B-spline's 2 texels, the
-  // mipmap footprint (up to 3 texels per pixel of the view's footprint at the
-  // tile's worst point) and, for the grid, 16 pixels (two 8 px cells, whose
-  // corners must be water for the cell to be drawn).
-  const WaterIndex& wi = world_.waterIndex();
-  if (wi.width() == 0) return false;
-  // Footprint of a pixel at the tile's farthest point, widened by the
-  // grazing angle there: cos = (eye height over the tangent plane) / distance.
-  // Over the tile, the point moves by <= radius and its normal turns by
-  // <= radius / 6.3e6 m (the ellipsoid's smallest radius of curvature).
+                                     const camera::Camera& cam, double pxPerM) const {
+  // The layer decides from the footprint of a pixel at the tile's farthest
+  // point, widened by the grazing angle there: cos = (eye height over the
+  // tangent plane) / distance. Over the tile, the point moves by <= radius
+  // and its normal turns by <= radius / 6.3e6 m (the ellipsoid's smallest
+  // radius of curvature).
   const glm::dvec3 up = geo::surfaceNormal(0.5 * (lat0 + lat1), 0.5 * (lon0 + lon1));
   const double farM = dist + b.radius;
-  const double cosView = (glm::dot(vm.eyeEcef - b.center, up) - b.radius * (1.0 + 1.1 * dist / 6.3e6)) / farM;
+  const double cosView = (glm::dot(cam.eyeEcef() - b.center, up) - b.radius * (1.0 + 1.1 * dist / 6.3e6)) / farM;
   if (cosView < 0.05) return false;
   const double footprintM = farM / (pxPerM * cosView);
-  const double maxAbsLat = std::max(std::abs(lat0), std::abs(lat1));
-  const double texelM = std::min(wi.latStepDeg(), wi.lonStepDeg() * std::cos(std::min(maxAbsLat, 89.0) * kDeg)) * kDeg *
-                        geo::kWgs84B;
-  const double tpp = footprintM / texelM;
-  const double margin = 3.0 + (3.0 + 2.0 * options_.oceanCellPx) * tpp;
-  if (margin > 256.0) return false;
-  return wi.allWater(wi.texelX(lon0) - margin, wi.texelX(lon1) + margin, wi.texelY(lat0) - margin,
-                     wi.texelY(lat1) + margin);
+  return waterLayer_->coversOpaquely(lat0, lat1, lon0, lon1, footprintM);
 }
 
 const TerrainRenderer::Slot& TerrainRenderer::acquire(const Key& k, TerrainStats& stats) {
@@ -245,13 +231,16 @@ const TerrainRenderer::Slot& TerrainRenderer::acquire(const Key& k, TerrainStats
   return cache_.emplace(k, Slot{index, center, lru_.begin()}).first->second;
 }
 
-TerrainStats TerrainRenderer::draw(const ViewMatrices& vm, const ViewPose& pose, const Lighting& light, bool bare,
-                                   SeaShading sea) {
+TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Lighting& light, bool bare,
+                                   SeaShading sea, const Layer* waterLayer) {
   TerrainStats stats;
   std::vector<Key> tiles;
-  skipOpenWater_ = sea == SeaShading::UnderOcean && options_.skipOpenWater;
+  waterLayer_ = sea == SeaShading::UnderOcean && options_.skipOpenWater && waterLayer && waterLayer->info().opaqueWater
+                    ? waterLayer
+                    : nullptr;
+  const double oceanCellPx = waterLayer ? waterLayer->info().cellPx : 0.0;
   for (int y = 0; y < 2; ++y)
-    for (int x = 0; x < 4; ++x) select({0, x, y}, vm, pose, tiles, 0);
+    for (int x = 0; x < 4; ++x) select({0, x, y}, cam, tiles, 0);
   // More visible tiles than slots would thrash: keep the coarsest that fit.
   if (int(tiles.size()) > options_.poolTiles) tiles.resize(options_.poolTiles);
 
@@ -261,10 +250,10 @@ TerrainStats TerrainRenderer::draw(const ViewMatrices& vm, const ViewPose& pose,
     slots.push_back(&acquire(k, stats));
     stats.maxLevel = std::max(stats.maxLevel, k.level);
   }
-  const auto pass = [&](const GlProgram& prog) {
+  const auto pass = [&](const gl::GlProgram& prog) {
     prog.use();
     world_.bind();
-    glUniformMatrix4fv(prog.uniform("uViewProj"), 1, GL_FALSE, &vm.viewProj[0][0]);
+    glUniformMatrix4fv(prog.uniform("uViewProj"), 1, GL_FALSE, &cam.gpu().viewProj[0][0]);
     glUniform4fv(prog.uniform("uImageryGeo"), 1, &world_.imageryGeo()[0]);
     glUniform4fv(prog.uniform("uElevationGeo"), 1, &world_.elevationGeo()[0]);
     glUniform4fv(prog.uniform("uWaterGeo"), 1, &world_.waterGeo()[0]);
@@ -273,16 +262,16 @@ TerrainStats TerrainRenderer::draw(const ViewMatrices& vm, const ViewPose& pose,
     const glm::vec3 sun(light.sunEcef);
     glUniform3fv(prog.uniform("uSunDir"), 1, &sun[0]);
     // The eye's distance from the Earth's centre, for the atmosphere.
-    glUniform1f(prog.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
+    glUniform1f(prog.uniform("uEyeRadiusM"), float(glm::length(cam.eyeEcef())));
     glUniform1i(prog.uniform("uSeaShading"), sea == SeaShading::None ? 0 : 1);
-    glUniform1f(prog.uniform("uOceanCellPx"), float(options_.oceanCellPx));
+    glUniform1f(prog.uniform("uOceanCellPx"), float(oceanCellPx));
     glUniform1f(prog.uniform("uOceanCellRadians"),
-                float(2.0 * std::tan(0.5 * pose.fovYDeg * kDeg) / pose.height * options_.oceanCellPx));
+                float(2.0 * std::tan(0.5 * cam.vfovDeg() * kDeg) / cam.heightPx() * oceanCellPx));
     const GLint locOffset = prog.uniform("uTileOffset"), locSkirt = prog.uniform("uSkirtM");
     glBindVertexArray(vao_);
     for (std::size_t i = 0; i < tiles.size(); ++i) {
       const Key& k = tiles[i];
-      const glm::vec3 off(slots[i]->centerEcef - vm.eyeEcef);  // double difference, then float
+      const glm::vec3 off(slots[i]->centerEcef - cam.eyeEcef());  // double difference, then float
       glUniform3fv(locOffset, 1, &off[0]);
       // Skirts hang deeper than the largest height error between levels
       // (a third of a cell: slopes up to 1:3) and the curvature sag of a cell.

@@ -8,8 +8,9 @@
 // surface and are shaded as distant sea (normals + roughness, no geometry).
 #pragma once
 
-#include "globe/render/GlProgram.h"
-#include "globe/render/ViewPose.h"
+#include "globe/gl/GlProgram.h"
+#include "globe/camera/Camera.h"
+#include "globe/render/Layer.h"
 #include "globe/render/WorldTextures.h"
 
 #include <glm/vec3.hpp>
@@ -21,11 +22,6 @@
 
 namespace geocean::render {
 
-struct Lighting {
-  glm::dvec3 sunEcef{1.0, 0.0, 0.0};  // unit vector towards the sun
-  double timeS = 0.0;
-};
-
 struct TerrainOptions {
   double exaggeration = 1.0;
   double pixelErrorPx = 8.0;  // split while a grid cell spans more pixels than this
@@ -36,9 +32,6 @@ struct TerrainOptions {
   int maxLevel = 16;
   int poolTiles = 768;        // GPU tile slots: memory stays flat
   double seaDropM = 30.0;     // water areas of the terrain sit this far below the sea
-  // The ocean layer's grid cell on screen (OceanOptions::cellPx): open water
-  // is left to the ocean where a whole cell around the pixel is water.
-  double oceanCellPx = 8.0;
   // Horizon culling: the lowest opaque surface (terrain water areas, wave
   // troughs) lies no deeper than this under the ellipsoid.
   double occluderDepthM = 100.0;
@@ -49,7 +42,7 @@ struct TerrainOptions {
   // with cheap vertex and depth passes may gain.
   bool seaProxy = false;
   // With an ocean layer, tiles that the ocean covers opaquely (open water
-  // with a margin, WaterIndex) are not drawn at all.
+  // with a margin, world::WaterIndex) are not drawn at all.
   bool skipOpenWater = true;
 };
 
@@ -78,8 +71,10 @@ class TerrainRenderer {
 
   // Chooses tiles for the view, builds missing ones, draws. `bare` uses
   // trivial shaders (the reference for frame-time ratios).
-  TerrainStats draw(const ViewMatrices& vm, const ViewPose& pose, const Lighting& light, bool bare = false,
-                    SeaShading sea = SeaShading::DistantSea);
+  // waterLayer: a layer whose info().opaqueWater lets the terrain leave out
+  // the tiles it covers (TerrainOptions::skipOpenWater), or nullptr.
+  TerrainStats draw(const camera::Camera& cam, const camera::Lighting& light, bool bare = false,
+                    SeaShading sea = SeaShading::DistantSea, const Layer* waterLayer = nullptr);
 
   const TerrainOptions& options() const { return options_; }
   void setSkipOpenWater(bool on) { options_.skipOpenWater = on; }
@@ -107,18 +102,18 @@ class TerrainRenderer {
     bool allWater = false;  // every sample is water: no relief to refine
   };
 
-  void select(const Key& k, const ViewMatrices& vm, const ViewPose& pose, std::vector<Key>& out, int depth);
+  void select(const Key& k, const camera::Camera& cam, std::vector<Key>& out, int depth);
   Bounds bounds(const Key& k) const;
   const Slot& acquire(const Key& k, TerrainStats& stats);
   // pxPerM: pixels per metre at 1 m distance.
   bool underOpenWater(double lat0, double lat1, double lon0, double lon1, const Bounds& b, double dist,
-                      const ViewMatrices& vm, double pxPerM) const;
+                      const camera::Camera& cam, double pxPerM) const;
   void tileRange(const Key& k, double& lat0, double& lat1, double& lon0, double& lon1) const;
 
   const WorldTextures& world_;
   TerrainOptions options_;
-  GlProgram program_, underOcean_, bare_, seaProxy_;
-  bool skipOpenWater_ = false;  // this draw: leave out tiles under open water
+  gl::GlProgram program_, underOcean_, bare_, seaProxy_;
+  const Layer* waterLayer_ = nullptr;  // this draw: leave out tiles it covers opaquely
   int maxLevel_ = 16;           // options_.maxLevel capped by the data's resolution
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
   GLsizei indexCount_ = 0;

@@ -2,9 +2,9 @@
 // resources in the host's context, draw and release.
 #include "plugin/capi/CapiSupport.h"
 
-#include "globe/render/GlProgram.h"
-#include "globe/render/WorldTextures.h"
+#include "globe/gl/GlProgram.h"
 #include "plugin/render/OceanRenderer.h"
+#include "plugin/render/OceanWorld.h"
 
 #include <dlfcn.h>
 
@@ -44,80 +44,26 @@ void* currentGlContext() {
   return nullptr;
 }
 
-// Global equirectangular texture layers for the ocean shaders, from the
-// ocean's rasters: a global raster in memory is copied pixel for pixel (the
-// viewer's own textures, so the picture matches it); anything else is
-// resampled through the classifier onto a global grid at the raster's step.
-geocean::render::WorldData worldDataFor(const Snapshot& snap) {
-  using geocean::render::WorldLayer;
-  geocean::render::WorldData d;
-  d.imagery.width = d.imagery.height = 1;  // the ocean shaders never sample imagery
-  d.imagery.channels = 3;
-  d.imagery.values = {0.0f, 0.0f, 0.0f};
-  d.imagery.lonStepDeg = 360.0;
-  d.imagery.latStepDeg = -180.0;
-  auto directly = [](const std::shared_ptr<const Raster>& r) {
-    return r && r->inMemory() && r->transform().global && r->transform().latStepDeg < 0 &&
-           std::abs(r->transform().latStepDeg * r->height() + 180.0) < 1e-6;
-  };
-  // A global grid with the raster's steps, at most 5' (the default mask).
-  auto globalGrid = [](const std::shared_ptr<const Raster>& r) {
-    WorldLayer l;
-    const double step = r ? std::max(std::abs(r->transform().lonStepDeg), 1.0 / 12.0) : 1.0;
-    l.width = std::max(1, int(std::lround(360.0 / step)));
-    l.height = std::max(1, int(std::lround(180.0 / step)));
-    l.lonStepDeg = 360.0 / l.width;
-    l.latStepDeg = -180.0 / l.height;
-    l.values.resize(std::size_t(l.width) * l.height);
-    return l;
-  };
-  auto centres = [](const WorldLayer& l, std::vector<double>& lat, std::vector<double>& lon) {
-    lat.resize(l.values.size());
-    lon.resize(l.values.size());
-    for (int y = 0; y < l.height; ++y)
-      for (int x = 0; x < l.width; ++x) {
-        lat[std::size_t(y) * l.width + x] = l.originLatDeg + (y + 0.5) * l.latStepDeg;
-        lon[std::size_t(y) * l.width + x] = l.originLonDeg + (x + 0.5) * l.lonStepDeg;
-      }
-  };
-  std::vector<double> lat, lon;
-  if (snap.elevation && directly(snap.elevation)) {
-    d.elevation = geocean::render::layerOf(*snap.elevation, 0);
-  } else if (snap.elevation) {
-    d.elevation = globalGrid(snap.elevation);
-    centres(d.elevation, lat, lon);
-    snap.landSea->elevationBatch(lat.data(), lon.data(), lat.size(), d.elevation.values.data());
-  } else {
-    d.elevation = globalGrid(nullptr);
-    // No relief: deep water everywhere, as the queries assume.
-    std::fill(d.elevation.values.begin(), d.elevation.values.end(), -10000.0f);
-  }
-  // NaN (nodata) would poison the vertex shader: sea level, as the viewer does.
-  for (float& v : d.elevation.values)
-    if (v != v) v = 0.0f;
-  if (snap.mask && directly(snap.mask)) {
-    d.water = geocean::render::layerOf(*snap.mask, 0);
-    for (float& v : d.water.values) v = (v == 0.0f || v == 2.0f) ? 1.0f : 0.0f;
-  } else if (snap.landSea) {
-    d.water = globalGrid(snap.mask ? snap.mask : snap.elevation);
-    centres(d.water, lat, lon);
-    std::vector<geocean::ocean::Surface> cls(lat.size());
-    snap.landSea->classifyBatch(lat.data(), lon.data(), lat.size(), cls.data());
-    for (std::size_t i = 0; i < cls.size(); ++i)
-      d.water.values[i] = cls[i] == geocean::ocean::Surface::Land ? 0.0f : 1.0f;
-  } else {
-    d.water = globalGrid(nullptr);
-    std::fill(d.water.values.begin(), d.water.values.end(), 1.0f);
-  }
-  return d;
-}
-
 // The GL resources of one ocean, in the context current at their creation.
 struct GlResources {
   void* context = nullptr;
   std::shared_ptr<const Snapshot> builtFrom;  // rebuilt when the state changes
-  std::shared_ptr<const geocean::render::WorldTextures> world;
   std::unique_ptr<geocean::ocean_render::OceanRenderer> renderer;
+};
+
+// The ocean's world grids (CPU) for a snapshot's rasters: its textures and
+// its answer to "do you cover this opaquely" come from them.
+struct WorldCache {
+  std::shared_ptr<const Raster> mask, elevation;
+  std::shared_ptr<const geocean::world::WorldGrids> grids;
+  const geocean::world::WorldGrids& of(const Snapshot& snap) {
+    if (!grids || mask != snap.mask || elevation != snap.elevation) {
+      grids = geocean::ocean_render::oceanWorld(snap.mask, snap.elevation, snap.landSea.get());
+      mask = snap.mask;
+      elevation = snap.elevation;
+    }
+    return *grids;
+  }
 };
 
 // Saves the GL state the ocean's draw and resource creation change, and
@@ -204,9 +150,8 @@ bool allFinite(const double* v, int n) {
 
 // A host view, validated and turned into what the ocean renderer reads.
 struct FrameView {
-  geocean::render::ViewMatrices vm;
-  geocean::render::ViewPose pose;
-  geocean::render::Lighting light;
+  geocean::camera::Camera cam;
+  geocean::camera::Lighting light{};
   bool reference = false;
 };
 
@@ -247,29 +192,11 @@ FrameView frameViewOf(const geocean_view* v) {
     bad("projection_matrix aspect " + std::to_string(aspect) + " does not match the viewport's " +
         std::to_string(viewportAspect));
 
-  FrameView f;
-  auto& vm = f.vm;
-  vm.eyeEcef = {v->eye_ecef_m[0], v->eye_ecef_m[1], v->eye_ecef_m[2]};
-  vm.right = right;
-  vm.up = up;
-  vm.forward = -back;
-  glm::dmat4 view(1.0), proj(0.0);
-  for (int c = 0; c < 3; ++c)
-    for (int r = 0; r < 3; ++r) view[c][r] = m[4 * c + r];
+  glm::dmat4 proj(0.0);
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) proj[c][r] = p[4 * c + r];
-  vm.nearM = p[14] != 0.0 ? std::abs(p[14]) : 1.0;
-  vm.view = glm::mat4(view);
-  vm.proj = glm::mat4(proj);
-  vm.viewProjD = proj * view;
-  vm.viewProj = glm::mat4(vm.viewProjD);
-  const geocean::geo::Geodetic g = geocean::geo::fromEcef(vm.eyeEcef);
-  f.pose.latDeg = g.latDeg;
-  f.pose.lonDeg = g.lonDeg;
-  f.pose.altM = g.heightM;
-  f.pose.fovYDeg = 2.0 * std::atan(1.0 / p[5]) * 180.0 / 3.14159265358979323846;
-  f.pose.width = w;
-  f.pose.height = h;
+  FrameView f{geocean::camera::Camera::fromHost({v->eye_ecef_m[0], v->eye_ecef_m[1], v->eye_ecef_m[2]}, -back, right,
+                                                 up, proj, w, h)};
   f.light.sunEcef = glm::normalize(sun);
   f.light.timeS = v->time_s;
   if (v->draw_flags & ~GEOCEAN_DRAW_REFERENCE)
@@ -278,27 +205,23 @@ FrameView frameViewOf(const geocean_view* v) {
   return f;
 }
 
-// The camera fields of a geocean_view from the viewer's own matrices, in
-// double (the same numbers the viewer draws with).
-void fillView(geocean_view* view, const geocean::render::ViewMatrices& vm, const geocean::render::ViewPose& pose) {
-  for (int i = 0; i < 3; ++i) view->eye_ecef_m[i] = vm.eyeEcef[i];
+// The camera fields of a geocean_view from a camera, in double (the same
+// numbers the viewer draws with).
+void fillView(geocean_view* view, const geocean::camera::Camera& cam) {
+  for (int i = 0; i < 3; ++i) view->eye_ecef_m[i] = cam.eyeEcef()[i];
   double* m = view->view_matrix;
   std::fill(m, m + 16, 0.0);
   for (int c = 0; c < 3; ++c) {
-    m[4 * c + 0] = vm.right[c];
-    m[4 * c + 1] = vm.up[c];
-    m[4 * c + 2] = -vm.forward[c];
+    m[4 * c + 0] = cam.right()[c];
+    m[4 * c + 1] = cam.up()[c];
+    m[4 * c + 2] = -cam.forward()[c];
   }
   m[15] = 1.0;
-  double* p = view->projection_matrix;
-  std::fill(p, p + 16, 0.0);
-  const double f = 1.0 / std::tan(0.5 * pose.fovYDeg * 3.14159265358979323846 / 180.0);
-  p[0] = f / (double(pose.width) / double(pose.height));  // as render::viewMatrices, to the last bit
-  p[5] = f;
-  p[11] = -1.0;      // w = -z_view
-  p[14] = vm.nearM;  // reversed Z: depth = near / -z_view
-  view->viewport_width_px = pose.width;
-  view->viewport_height_px = pose.height;
+  const glm::dmat4& proj = cam.gpu().projD;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) view->projection_matrix[4 * c + r] = proj[c][r];
+  view->viewport_width_px = cam.widthPx();
+  view->viewport_height_px = cam.heightPx();
 }
 
 }  // namespace
@@ -306,16 +229,16 @@ void fillView(geocean_view* view, const geocean::render::ViewMatrices& vm, const
 namespace geocean::capi {
 struct DrawState {
   std::optional<FrameView> view;
+  // The host's extra inputs for the next draws (geocean_set_layer_inputs).
+  std::optional<geocean_layer_inputs> inputs;
   std::unique_ptr<GlResources> gl;
+  WorldCache world;
 };
 void DrawStateDeleter::operator()(DrawState* d) const { delete d; }
 void releaseDrawState(std::unique_ptr<DrawState, DrawStateDeleter>& d) {
-  if (d && d->gl) {
-    if (currentGlContext() == d->gl->context)
-      d->gl.reset();
-    else
-      (void)d->gl.release();  // no GL call without its context: the context owns them now
-  }
+  // Without their context, the GL names are left to it (no GL call can
+  // reach them); the CPU side (grids, grid frame, wave tables) is freed.
+  if (d && d->gl && currentGlContext() != d->gl->context && d->gl->renderer) d->gl->renderer->abandonGl();
   d.reset();
 }
 }  // namespace geocean::capi
@@ -334,8 +257,8 @@ GEOCEAN_API geocean_status geocean_view_init(geocean_view* view) {
     requireNonNull(view, "view");
     *view = geocean_view{};
     view->struct_size = sizeof(geocean_view);
-    const geocean::render::ViewPose pose;  // 10,000 km over (0, 0), looking down, 1280x720, 45 deg
-    fillView(view, geocean::render::viewMatrices(pose, pose.altM), pose);
+    const geocean::camera::ViewPose pose;  // 10,000 km over (0, 0), looking down, 1280x720, 45 deg
+    fillView(view, geocean::camera::Camera::fromView(pose));
     view->time_s = 0.0;
     view->sun_dir_ecef[0] = 1.0;
   });
@@ -357,7 +280,7 @@ GEOCEAN_API geocean_status geocean_view_from_pose(geocean_view* view, double lat
     if (!(fov_y_deg >= 1.0 && fov_y_deg <= 170.0)) bad("fov_y_deg", fov_y_deg, "within 1 .. 170");
     if (width_px < 1 || width_px > 16384) bad("width_px", width_px, "within 1 .. 16384");
     if (height_px < 1 || height_px > 16384) bad("height_px", height_px, "within 1 .. 16384");
-    geocean::render::ViewPose pose;
+    geocean::camera::ViewPose pose;
     pose.latDeg = lat_deg;
     pose.lonDeg = lon_deg;
     pose.altM = height_m;
@@ -367,7 +290,7 @@ GEOCEAN_API geocean_status geocean_view_from_pose(geocean_view* view, double lat
     pose.width = width_px;
     pose.height = height_px;
     // Near plane from the height above the sea (the host knows no better here).
-    fillView(view, geocean::render::viewMatrices(pose, height_m), pose);
+    fillView(view, geocean::camera::Camera::fromView(pose));
   });
 }
 
@@ -407,20 +330,18 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
         ds.gl->context = ctx;
       }
       GlResources& gl = *ds.gl;
-      if (!gl.builtFrom || gl.builtFrom->mask != snap->mask || gl.builtFrom->elevation != snap->elevation) {
-        gl.renderer.reset();
-        gl.world = std::make_shared<const geocean::render::WorldTextures>(worldDataFor(*snap));
-      }
-      if (!gl.renderer || gl.builtFrom->waves != snap->waves) {
+      if (!gl.renderer || gl.builtFrom->mask != snap->mask || gl.builtFrom->elevation != snap->elevation ||
+          gl.builtFrom->waves != snap->waves) {
+        ds.world.of(*snap);
         geocean::ocean_render::OceanOptions o;
         o.model = snap->model;
         o.sea = snap->seaState;
         gl.renderer.reset();
-        gl.renderer = std::make_unique<geocean::ocean_render::OceanRenderer>(gl.world, snap->landSea, o);
+        gl.renderer = std::make_unique<geocean::ocean_render::OceanRenderer>(ds.world.grids, snap->landSea, o);
       }
       gl.builtFrom = snap;
-      gl.renderer->draw(ds.view->vm, ds.view->pose, ds.view->light, ds.view->reference);
-    } catch (const geocean::render::ShaderError& e) {
+      gl.renderer->draw(ds.view->cam, ds.view->light, ds.view->reference);
+    } catch (const geocean::gl::ShaderError& e) {
       fail(GEOCEAN_ERROR_GL, e.what());
     }
   });
@@ -437,6 +358,65 @@ GEOCEAN_API geocean_status geocean_release_gl(geocean_ocean* ocean) {
     if (ctx != ocean->draw->gl->context)
       fail(GEOCEAN_ERROR_GL, "the current context is not the one the ocean's GL resources were made in");
     ocean->draw->gl.reset();
+  });
+}
+
+GEOCEAN_API geocean_status geocean_get_layer_info(const geocean_ocean* ocean, geocean_layer_info* out) {
+  return guard("geocean_get_layer_info", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(out, "out");
+    if (out->struct_size < sizeof(geocean_layer_info))
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "out->struct_size " + std::to_string(out->struct_size) +
+                                               " is smaller than " + std::to_string(sizeof(geocean_layer_info)));
+    out->flags = GEOCEAN_LAYER_OPAQUE_WATER;  // the ocean's optics (reflection, refraction) come later
+    out->cell_px = geocean::ocean_render::OceanOptions{}.cellPx;
+  });
+}
+
+GEOCEAN_API geocean_status geocean_covers_opaquely(geocean_ocean* ocean, double lat0_deg, double lat1_deg,
+                                                   double lon0_deg, double lon1_deg, double pixel_footprint_m,
+                                                   int32_t* out_covers) {
+  return guard("geocean_covers_opaquely", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(out_covers, "out_covers");
+    const double v[] = {lat0_deg, lat1_deg, lon0_deg, lon1_deg, pixel_footprint_m};
+    if (!allFinite(v, 5)) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "a bound or the footprint is not finite");
+    if (!(pixel_footprint_m > 0.0))
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
+           "pixel_footprint_m " + std::to_string(pixel_footprint_m) + " is not > 0");
+    *out_covers = 0;
+    const auto snap = ocean->current();
+    if (!snap->mask && !snap->elevation) return;
+    const auto& grids = drawState(ocean).world.of(*snap);
+    *out_covers = geocean::ocean_render::coversOpaquely(grids, geocean::ocean_render::OceanOptions{}.cellPx, lat0_deg,
+                                                        lat1_deg, lon0_deg, lon1_deg, pixel_footprint_m)
+                      ? 1
+                      : 0;
+  });
+}
+
+GEOCEAN_API geocean_status geocean_set_layer_inputs(geocean_ocean* ocean, const geocean_layer_inputs* inputs) {
+  return guard("geocean_set_layer_inputs", [&] {
+    requireNonNull(ocean, "ocean");
+    DrawState& ds = drawState(ocean);
+    if (!inputs) {
+      ds.inputs.reset();
+      return;
+    }
+    if (inputs->struct_size < sizeof(geocean_layer_inputs))
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "inputs->struct_size " + std::to_string(inputs->struct_size) +
+                                               " is smaller than " + std::to_string(sizeof(geocean_layer_inputs)));
+    const std::pair<uint32_t, const char*> names[] = {{inputs->scene_color_texture, "scene_color_texture"},
+                                                      {inputs->scene_depth_texture, "scene_depth_texture"}};
+    for (const auto& [name, field] : names) {
+      if (name == 0) continue;
+      if (!currentGlContext())
+        fail(GEOCEAN_ERROR_NO_GL_CONTEXT, std::string("inputs->") + field + " is set but no GL context is current");
+      if (!glIsTexture(name))
+        fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
+             std::string("inputs->") + field + " " + std::to_string(name) + " is not a texture of the current context");
+    }
+    ds.inputs = *inputs;
   });
 }
 

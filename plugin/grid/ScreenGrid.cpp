@@ -291,7 +291,7 @@ struct ScreenGrid::Impl {
   std::optional<tbb::task_arena> arena;
 };
 
-ScreenGrid::ScreenGrid(GridOptions o, SurfaceClassifier classifier)
+ScreenGrid::ScreenGrid(GridOptions o, ocean::SurfaceClassifier classifier)
     : options_(o), classifier_(std::move(classifier)), impl_(std::make_unique<Impl>()) {
   auto bad = [](const std::string& what) { throw std::invalid_argument("grid: " + what); };
   if (o.cols < 0 || o.cols == 1 || o.rows < 0 || o.rows == 1 || o.cols > 16384 || o.rows > 16384)

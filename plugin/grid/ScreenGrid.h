@@ -15,7 +15,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <vector>
 
@@ -48,18 +47,13 @@ struct GridVertex {
 };
 static_assert(sizeof(GridVertex) == 32, "GridVertex is a GPU layout");
 
-// Classifies n points; by default ocean::LandSea::classifyBatch. Called
-// concurrently from several threads: once per grid row on its span of ray
-// hits, and on the limb points (two per grid column or row) whose lat/lon
-// and class the horizon vertices copy. Must be deterministic per point.
-using SurfaceClassifier =
-    std::function<void(const double* latDeg, const double* lonDeg, std::size_t n, ocean::Surface* out)>;
-// Header-only so the grid library itself does not link the raster stack.
-inline SurfaceClassifier classifierFor(std::shared_ptr<const ocean::LandSea> landSea) {
-  return [ls = std::move(landSea)](const double* lat, const double* lon, std::size_t n, ocean::Surface* out) {
-    ls->classifyBatch(lat, lon, n, out);
-  };
-}
+// The classifier (plugin/landsea/LandSea.h) is called once per grid row on
+// its span of ray hits, and on the limb points (two per grid column or row)
+// whose lat/lon and class the horizon vertices copy. Header-only, so the grid
+// library itself does not link the raster stack.
+// The grid's former names, still used by plugin/render:
+using SurfaceClassifier = ocean::SurfaceClassifier;
+using ocean::classifierFor;
 
 struct GridOptions {
   // Grid size in vertices; 0 means "from cellPx": one vertex every cellPx
@@ -115,7 +109,7 @@ NdcRect clampRectangle(const camera::Camera& cam, double maxDisplacementM);
 class ScreenGrid {
  public:
   // Throws std::invalid_argument naming the option for a bad size, cellPx or displacement.
-  explicit ScreenGrid(GridOptions options, SurfaceClassifier classifier = {});
+  explicit ScreenGrid(GridOptions options, ocean::SurfaceClassifier classifier = {});
   ~ScreenGrid();
   ScreenGrid(const ScreenGrid&) = delete;
   ScreenGrid& operator=(const ScreenGrid&) = delete;
@@ -129,7 +123,7 @@ class ScreenGrid {
  private:
   struct Impl;
   GridOptions options_;
-  SurfaceClassifier classifier_;
+  ocean::SurfaceClassifier classifier_;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -4,12 +4,14 @@
 #pragma once
 
 #include "globe/raster/Raster.h"
+#include "globe/world/Surface.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -18,16 +20,11 @@
 
 namespace geocean::ocean {
 
-enum class Surface : std::uint8_t { Ocean = 0, Land = 1, Lake = 2 };
-const char* toString(Surface s);  // "ocean" | "land" | "lake"
-
-// How mask values map to classes (default: 0 ocean, 1 land, 2 lake;
-// values >= 256 or unmapped count as land).
-struct MaskEncoding {
-  std::array<Surface, 256> classOf{};
-  MaskEncoding();
-  static MaskEncoding parse(const std::string& spec);  // "0=ocean,1=land,2=lake,3=land"
-};
+// The classes and the mask encoding are the host's (globe/world), shared
+// with the renderers' water rule.
+using world::MaskEncoding;
+using world::Surface;
+using world::toString;
 
 class LandSea {
  public:
@@ -87,5 +84,16 @@ class LandSea {
   mutable std::vector<std::uint8_t> nearWater_;  // 1 = water within two cells
   mutable std::once_flag nearWaterOnce_;
 };
+
+// Classifies n points; by default LandSea::classifyBatch. Consumers (the
+// screen grid, the picker) call it concurrently from several threads, so it
+// must be thread-safe and deterministic per point.
+using SurfaceClassifier =
+    std::function<void(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out)>;
+inline SurfaceClassifier classifierFor(std::shared_ptr<const LandSea> landSea) {
+  return [ls = std::move(landSea)](const double* lat, const double* lon, std::size_t n, Surface* out) {
+    ls->classifyBatch(lat, lon, n, out);
+  };
+}
 
 }  // namespace geocean::ocean

@@ -1,4 +1,7 @@
 #include "plugin/render/OceanRenderer.h"
+#include "plugin/render/OceanWorld.h"
+
+#include "globe/gl/Texture.h"
 
 #include "globe/camera/Camera.h"
 #include "globe/raster/World.h"
@@ -17,9 +20,14 @@ std::shared_ptr<const ocean::LandSea> defaultLandSea() {
   return std::make_shared<ocean::LandSea>(raster::Raster::open(files.mask), raster::Raster::open(files.elevation));
 }
 
-OceanRenderer::OceanRenderer(std::shared_ptr<const render::WorldTextures> world,
+OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
                              std::shared_ptr<const ocean::LandSea> landSea, OceanOptions options)
     : world_(std::move(world)), options_(options) {
+  // The ocean's own textures (the host may draw another world, or none).
+  const auto& e = world_->elevation();
+  elevationTex_ = gl::redGeoTexture(e.values.data(), e.channels, e.width, e.height, GL_R32F, false);
+  const auto& w = world_->water();
+  waterTex_ = gl::redGeoTexture(w.values.data(), w.channels, w.width, w.height, GL_R8, true);
   std::string err;
   waves_ = waves::WaveField::create(options_.model, options_.sea, err);
   if (!waves_) throw std::invalid_argument("sea state: " + err);
@@ -41,18 +49,18 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const render::WorldTextures> world,
                                     : options_.model == waves::Model::Fft    ? "WV_MODEL 2"
                                                                              : "WV_MODEL 0"};
   if (options_.model == waves::Model::Fft) model.push_back("WV_FFT 1");
-  program_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", model);
+  program_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", model);
   {
     auto open = model;
     open.push_back("GEOCEAN_OPEN_WATER 1");
-    openWater_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", open);
+    openWater_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", open);
     open.back() = "GEOCEAN_VERTEX_COVERAGE 1";
-    smoothCoast_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", open);
+    smoothCoast_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", open);
     open.back() = "GEOCEAN_FAR_SHADED 1";
-    farShaded_ = render::GlProgram::graphics("ocean.vert", "ocean.frag", open);
+    farShaded_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", open);
   }
   model.push_back("GEOCEAN_BARE 1");
-  bare_ = render::GlProgram::graphics("ocean.vert", "bare.frag", model);
+  bare_ = gl::GlProgram::graphics("ocean.vert", "bare.frag", model);
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
   glCreateBuffers(1, &ibo_);
@@ -74,10 +82,18 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const render::WorldTextures> world,
 }
 
 OceanRenderer::~OceanRenderer() {
+  if (glAbandoned_) return;
+  const GLuint tex[] = {elevationTex_, waterTex_};
+  glDeleteTextures(2, tex);
   glDeleteVertexArrays(1, &vao_);
   glDeleteBuffers(1, &vbo_);
   glDeleteBuffers(1, &ibo_);
   glDeleteBuffers(5, ssbo_);
+}
+
+void OceanRenderer::abandonGl() {
+  glAbandoned_ = true;
+  for (gl::GlProgram* p : {&program_, &smoothCoast_, &openWater_, &farShaded_, &bare_}) p->abandon();
 }
 
 namespace {
@@ -155,7 +171,7 @@ std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenC
   return out;
 }
 
-CellGroups partitionCells(const grid::GridFrame& f, const render::WaterIndex& wi, double cellPx, const ScreenCull& view,
+CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi, double cellPx, const ScreenCull& view,
                           bool cull, bool group, std::vector<std::uint32_t>& idx) {
   // Cells whose every vertex stays beyond one side of the screen cannot
   // reach it (the clamp rectangle adds such cells at low altitude: 2 m above
@@ -226,10 +242,7 @@ CellGroups partitionCells(const grid::GridFrame& f, const render::WaterIndex& wi
   return {sharp, smooth.size(), open.size(), farOpen.size()};
 }
 
-void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose& pose, const render::Lighting& light,
-                         bool bare) {
-  const camera::Camera cam = camera::Camera::fromEcef(vm.eyeEcef, vm.forward, vm.up, pose.fovYDeg, pose.width,
-                                                      pose.height);
+void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& light, bool bare) {
   const auto t0 = std::chrono::steady_clock::now();
   grid_->build(cam, frame_);
   std::vector<std::uint32_t> idx = grid::compactIndices(frame_);
@@ -239,10 +252,10 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
   // the ocean's fragment cost on llvmpipe. cull.cellRadians is also
   // ocean.vert's uCellRadians: the CPU's far and cull tests use its numbers.
   ScreenCull cull;
-  cull.forward = vm.forward, cull.right = vm.right, cull.up = vm.up;
-  cull.tanY = std::tan(0.5 * pose.fovYDeg * 3.14159265358979 / 180.0);
-  cull.tanX = cull.tanY * pose.width / pose.height;
-  cull.cellRadians = 2.0 * cull.tanY / pose.height * options_.cellPx;
+  cull.forward = cam.forward(), cull.right = cam.right(), cull.up = cam.up();
+  cull.tanY = std::tan(0.5 * cam.vfovDeg() * 3.14159265358979 / 180.0);
+  cull.tanX = cull.tanY * cam.widthPx() / cam.heightPx();
+  cull.cellRadians = 2.0 * cull.tanY / cam.heightPx() * options_.cellPx;
   cull.maxDisplacementM = waves_->maxDisplacementM();
   cull.waves = &*waves_;
   if (options_.farVertexShading && !octaveWavelengthM_.empty())
@@ -270,7 +283,7 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
 
   // Wave patch at the ground point under the eye: offsets stay small near
   // the camera, where precision is visible.
-  const geo::Geodetic g = geo::fromEcef(vm.eyeEcef);
+  const geo::Geodetic g = geo::fromEcef(cam.eyeEcef());
   const glm::dvec3 origin = geo::toEcef({g.latDeg, g.lonDeg, 0.0});
   waves_->gpuPatch(origin, light.timeS, patch_);
   upload(ssbo_[0], patch_.octaves);
@@ -292,9 +305,10 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
     }
   }
 
-  const auto setUniforms = [&](const render::GlProgram& p) {
-    glUniformMatrix4fv(p.uniform("uViewProj"), 1, GL_FALSE, &vm.viewProj[0][0]);
-    const glm::vec3 eyeMinusO(vm.eyeEcef - origin);
+  const glm::vec4 elevationGeo = world_->elevation().geo(), waterGeo = world_->water().geo();
+  const auto setUniforms = [&](const gl::GlProgram& p) {
+    glUniformMatrix4fv(p.uniform("uViewProj"), 1, GL_FALSE, &cam.gpu().viewProj[0][0]);
+    const glm::vec3 eyeMinusO(cam.eyeEcef() - origin);
     glUniform3fv(p.uniform("uEyeMinusOrigin"), 1, &eyeMinusO[0]);
     glUniform1i(p.uniform("uOctaveCount"), int(patch_.octaves.size()));
     glUniform1i(p.uniform("uWaveCount"), int(patch_.waves.size()));
@@ -303,11 +317,11 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
     // A cell's footprint on the ground is this x its distance.
     glUniform1f(p.uniform("uCellRadians"), float(cull.cellRadians));
     glUniform1f(p.uniform("uMaxVerticalM"), float(waves_->maxVerticalM()));
-    glUniform4fv(p.uniform("uElevationGeo"), 1, &world_->elevationGeo()[0]);
-    glUniform4fv(p.uniform("uWaterGeo"), 1, &world_->waterGeo()[0]);
+    glUniform4fv(p.uniform("uElevationGeo"), 1, &elevationGeo[0]);
+    glUniform4fv(p.uniform("uWaterGeo"), 1, &waterGeo[0]);
     const glm::vec3 sun(light.sunEcef);
     glUniform3fv(p.uniform("uSunDir"), 1, &sun[0]);
-    glUniform1f(p.uniform("uEyeRadiusM"), float(glm::length(vm.eyeEcef)));
+    glUniform1f(p.uniform("uEyeRadiusM"), float(glm::length(cam.eyeEcef())));
     glUniform1f(p.uniform("uEyeAltM"), float(g.heightM));
     glUniform1f(p.uniform("uRefLonDeg"), float(g.lonDeg));
     glUniform1f(p.uniform("uTimeS"), float(std::fmod(light.timeS, 3600.0)));
@@ -330,8 +344,9 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(0.0f, 256.0f);
   glBindVertexArray(vao_);
-  world_->bind();
-  const std::pair<const render::GlProgram*, std::size_t> passes[4] = {{bare ? &bare_ : &program_, groups.sharp},
+  glBindTextureUnit(1, elevationTex_);
+  glBindTextureUnit(2, waterTex_);
+  const std::pair<const gl::GlProgram*, std::size_t> passes[4] = {{bare ? &bare_ : &program_, groups.sharp},
                                                                        {&smoothCoast_, groups.smooth},
                                                                        {&openWater_, groups.open},
                                                                        {&farShaded_, groups.farOpen}};
@@ -357,26 +372,8 @@ void OceanRenderer::draw(const render::ViewMatrices& vm, const render::ViewPose&
     }
 }
 
-}  // namespace geocean::ocean_render
-
-namespace geocean::ocean_render {
-std::string addDefaultOcean(render::GlobeRenderer& renderer, std::shared_ptr<const render::WorldTextures> world,
-                            const std::string& modelName, double windMps, double windFromDeg,
-                            std::shared_ptr<OceanRenderer>* created) {
-  OceanOptions oo;
-  const auto model = waves::parseModel(modelName);
-  if (!model || *model == waves::Model::NoisePaper)
-    return "--waves '" + modelName + "' is not a GPU wave model (noise, gerstner, fft)";
-  oo.model = *model;
-  oo.sea.windSpeedMps = windMps;
-  oo.sea.windFromDeg = windFromDeg;
-  try {
-    auto o = std::make_shared<OceanRenderer>(std::move(world), defaultLandSea(), oo);
-    renderer.addLayer(o);
-    if (created) *created = o;
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return {};
+bool OceanRenderer::coversOpaquely(double lat0, double lat1, double lon0, double lon1, double footprintM) const {
+  return ocean_render::coversOpaquely(*world_, options_.cellPx, lat0, lat1, lon0, lon1, footprintM);
 }
+
 }  // namespace geocean::ocean_render

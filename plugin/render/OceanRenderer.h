@@ -6,7 +6,9 @@
 // octaves that would alias are dropped and become roughness.
 #pragma once
 
-#include "globe/render/GlobeRenderer.h"
+#include "globe/camera/Camera.h"
+#include "globe/gl/GlProgram.h"
+#include "globe/world/WorldGrids.h"
 #include "plugin/grid/ScreenGrid.h"
 #include "plugin/landsea/LandSea.h"
 #include "plugin/waves/WaveField.h"
@@ -55,20 +57,30 @@ struct ScreenCull {
 // 4 bottom, 8 top) under any wave displacement.
 std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenCull& view);
 // With `cull`, drops cells that stay off screen; with `group`, sorts the rest.
-CellGroups partitionCells(const grid::GridFrame& f, const render::WaterIndex& wi, double cellPx, const ScreenCull& view,
+CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi, double cellPx, const ScreenCull& view,
                           bool cull, bool group, std::vector<std::uint32_t>& idx);
 
-class OceanRenderer : public render::Layer {
+// Draws into the current context's bound framebuffer; the host decides
+// when (plugin/capi's geocean_draw, or a test's layer).
+class OceanRenderer {
  public:
-  // landSea: classifier for land cells (nullptr: all sea). Throws on a bad
-  // sea state (the message names the field) or a shader error.
-  OceanRenderer(std::shared_ptr<const render::WorldTextures> world, std::shared_ptr<const ocean::LandSea> landSea,
+  // world: the ocean's elevation and water grids (its own textures are made
+  // from them); landSea: classifier for land cells (nullptr: all sea).
+  // Throws on a bad sea state (the message names the field) or a shader error.
+  OceanRenderer(std::shared_ptr<const world::WorldGrids> world, std::shared_ptr<const ocean::LandSea> landSea,
                 OceanOptions options = {});
-  ~OceanRenderer() override;
+  ~OceanRenderer();
+  // Without the context of its GL objects: the destructor then makes no GL
+  // call (the context owns the names) and frees only the CPU side.
+  void abandonGl();
+  OceanRenderer(const OceanRenderer&) = delete;
+  OceanRenderer& operator=(const OceanRenderer&) = delete;
 
-  const char* name() const override { return "ocean"; }
-  void draw(const render::ViewMatrices& vm, const render::ViewPose& pose, const render::Lighting& light,
-            bool bare) override;
+  void draw(const camera::Camera& cam, const camera::Lighting& light, bool bare);
+  // The host/layer contract: whether every pixel over the rectangle is
+  // drawn opaque for pixels of this footprint (metres), and the cell size.
+  bool coversOpaquely(double lat0Deg, double lat1Deg, double lon0Deg, double lon1Deg, double pixelFootprintM) const;
+  double cellPx() const { return options_.cellPx; }
 
   const waves::WaveField& waves() const { return *waves_; }
   const grid::GridFrame& lastFrame() const { return frame_; }
@@ -82,29 +94,23 @@ class OceanRenderer : public render::Layer {
   double lastGridMs() const { return gridMs_; }
 
  private:
-  std::shared_ptr<const render::WorldTextures> world_;
+  std::shared_ptr<const world::WorldGrids> world_;
+  GLuint elevationTex_ = 0, waterTex_ = 0;
   OceanOptions options_;
   std::optional<waves::WaveField> waves_;
   std::unique_ptr<grid::ScreenGrid> grid_;
   grid::GridFrame frame_;
   waves::GpuPatch patch_;
-  render::GlProgram program_, smoothCoast_, openWater_, farShaded_, bare_;
+  gl::GlProgram program_, smoothCoast_, openWater_, farShaded_, bare_;
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0, ssbo_[5] = {0, 0, 0, 0, 0};  // octaves, waves, frame, FFT planes, texels
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;
   bool writeData_ = false;
+  bool glAbandoned_ = false;
   double gridMs_ = 0.0;
 };
 
 // The default world's classifier (5' mask + ETOPO) for the grid.
 std::shared_ptr<const ocean::LandSea> defaultLandSea();
 
-}  // namespace geocean::ocean_render
-
-namespace geocean::ocean_render {
-// Adds the ocean layer for the default world to a renderer; returns an
-// error message naming the option (empty on success).
-std::string addDefaultOcean(render::GlobeRenderer& renderer, std::shared_ptr<const render::WorldTextures> world,
-                            const std::string& modelName, double windMps, double windFromDeg,
-                            std::shared_ptr<OceanRenderer>* created = nullptr);
 }  // namespace geocean::ocean_render

@@ -4,7 +4,7 @@
 // golden images in tests/render pin down.
 #include "globe/host/OceanLayer.h"
 #include "globe/render/Session.h"
-#include "plugin/render/OceanRenderer.h"
+#include "tests/render/DirectOcean.h"
 
 #include <gtest/gtest.h>
 
@@ -20,7 +20,7 @@ struct Diff {
   long differing = 0;
 };
 
-Diff compare(const render::Image& a, const render::Image& b) {
+Diff compare(const gl::Image& a, const gl::Image& b) {
   Diff d;
   for (std::size_t i = 0; i < a.rgba.size(); ++i) {
     const int e = std::abs(int(a.rgba[i]) - int(b.rgba[i]));
@@ -34,30 +34,30 @@ TEST(CapiViewer, PluginOceanDrawsWhatTheLinkedRendererDraws) {
   // The test executable is not beside the plugin: point the loader at it.
   setenv("GEOCEAN_PLUGIN", GEOCEAN_PLUGIN_BUILD_PATH, 1);
   constexpr int kW = 192, kH = 128;
-  render::Session s = render::Session::headless(render::loadDefaultWorld(), kW, kH);
-  ASSERT_EQ(ocean_render::addDefaultOcean(*s.renderer, s.world, "gerstner", 12.0, 250.0), "");
+  render::Session s = render::Session::headless(world::loadDefaultWorld(), kW, kH);
+  ASSERT_EQ(render::test::addDirectOcean(*s.renderer, s.world->grids(), "gerstner", 12.0, 250.0), "");
   render::GlobeRenderer viaPlugin(s.world);
   std::shared_ptr<host::PluginOceanLayer> layer;
   ASSERT_EQ(host::addPluginOcean(viaPlugin, "gerstner", 12.0, 250.0, &layer), "");
 
   // Strait of Gibraltar from 3 km looking east (coast, shoreline cut, waves),
   // and 15 m over the open Atlantic at the horizon (grazing grid, glint).
-  render::ViewPose coast;
+  camera::ViewPose coast;
   coast.latDeg = 36.0, coast.lonDeg = -5.75, coast.altM = 3000.0, coast.headingDeg = 90.0, coast.pitchDeg = -25.0;
-  render::ViewPose horizon;
+  camera::ViewPose horizon;
   horizon.latDeg = 30.0, horizon.lonDeg = -40.0, horizon.altM = 15.0, horizon.headingDeg = 200.0,
   horizon.pitchDeg = -3.0;
-  for (render::ViewPose pose : {coast, horizon}) {
+  for (camera::ViewPose pose : {coast, horizon}) {
     pose.width = kW, pose.height = kH;
     render::FrameSettings fs;
     fs.timeS = 12.5;
     fs.sunEcef = render::sunForView(pose, 120.0, 30.0);
     s.render(pose, fs);
-    const render::Image linked = s.image();
+    const gl::Image linked = s.image();
     s.target->bind();
     glViewport(0, 0, kW, kH);
     viaPlugin.render(pose, fs);
-    const render::Image plugin = s.image();
+    const gl::Image plugin = s.image();
     const Diff d = compare(linked, plugin);
     // Same shaders, same matrices to the last bit, same textures: identical.
     EXPECT_EQ(d.max, 0) << "lat " << pose.latDeg << ": " << d.differing << " channel values differ";

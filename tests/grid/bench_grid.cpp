@@ -27,13 +27,13 @@ const camera::Camera& benchCamera() {
   return c;
 }
 
-grid::SurfaceClassifier worldClassifier() {
-  static grid::SurfaceClassifier c = [] {
+ocean::SurfaceClassifier worldClassifier() {
+  static ocean::SurfaceClassifier c = [] {
     try {
       auto mask = raster::Raster::open(raster::defaultWorld().mask);
-      return grid::classifierFor(std::make_shared<ocean::LandSea>(mask, nullptr));
+      return ocean::classifierFor(std::make_shared<ocean::LandSea>(mask, nullptr));
     } catch (const std::exception&) {
-      return grid::SurfaceClassifier{};  // no data: all ocean
+      return ocean::SurfaceClassifier{};  // no data: all ocean
     }
   }();
   return c;
@@ -46,7 +46,7 @@ void BM_GridBuild(benchmark::State& st) {
   o.threads = threads;
   o.maxDisplacementM = 5.0;
   o.mode = st.range(2) ? grid::GridMode::Ispg : grid::GridMode::Direct;
-  grid::ScreenGrid g(o, st.range(3) ? worldClassifier() : grid::SurfaceClassifier{});
+  grid::ScreenGrid g(o, st.range(3) ? worldClassifier() : ocean::SurfaceClassifier{});
   grid::GridFrame f;
   g.build(benchCamera(), f);
   for (auto _ : st) {

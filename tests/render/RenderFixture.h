@@ -3,13 +3,23 @@
 #pragma once
 
 #include "globe/render/Session.h"
-#include "plugin/render/OceanRenderer.h"
+#include "tests/render/DirectOcean.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <memory>
 #include <string>
+
+namespace geocean::render {
+using camera::ViewPose;
+using gl::Framebuffer;
+using gl::Image;
+using gl::GlProgram;
+using gl::ShaderError;
+using gl::readImage;
+using world::loadDefaultWorld;
+}  // namespace geocean::render
 
 namespace geocean::render::test {
 
@@ -31,6 +41,6 @@ ImageDiff compare(const Image& a, const Image& b);
 void expectMatchesGolden(const Image& img, const std::string& name, double maxMean, double maxFractionOver16);
 
 // Pixel (x, y) of the image projected from an ECEF point, or false if behind.
-bool projectToPixel(const ViewMatrices& vm, const ViewPose& pose, const glm::dvec3& ecef, double& x, double& y);
+bool projectToPixel(const camera::Camera& cam, const ViewPose& pose, const glm::dvec3& ecef, double& x, double& y);
 
 }  // namespace geocean::render::test

@@ -12,7 +12,7 @@
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
 #include "globe/render/Session.h"
-#include "plugin/render/OceanRenderer.h"
+#include "tests/render/DirectOcean.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  render::ViewPose base;
+  camera::ViewPose base;
   render::FlightPlan plan;
   try {
     render::parseSize(size, base);
@@ -99,10 +99,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   plan.headingDeg = 90.0;  // as geocean fly
-  render::Session s = render::Session::headless(render::loadDefaultWorld(), base.width, base.height, terrain);
+  render::Session s = render::Session::headless(world::loadDefaultWorld(), base.width, base.height, terrain);
   std::shared_ptr<ocean_render::OceanRenderer> oceanLayer;
   if (ocean) {
-    const std::string err = ocean_render::addDefaultOcean(*s.renderer, s.world, "noise", 10.0, 270.0, &oceanLayer);
+    const std::string err = render::test::addDirectOcean(*s.renderer, s.world->grids(), "noise", 10.0, 270.0, &oceanLayer);
     if (!err.empty()) {
       std::fprintf(stderr, "bench_render: %s\n", err.c_str());
       return 2;
@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
            "total_cpu_ms,grid_ms,bare_terrain_cpu_ms,bare_ocean_cpu_ms,bare_total_cpu_ms\n";
   }
   for (int f = 0; f < frames; ++f) {
-    const render::ViewPose pose = render::flightPose(plan, double(f) / (frames - 1), base);
+    const camera::ViewPose pose = render::flightPose(plan, double(f) / (frames - 1), base);
     render::FrameSettings fs;
     fs.timeS = f / 30.0;
     fs.sunEcef = sun;

@@ -2,7 +2,7 @@
 // rendered surface against the CPU sea-height query, and steadiness.
 #include "RenderFixture.h"
 
-#include "globe/render/Framebuffer.h"
+#include "globe/gl/Framebuffer.h"
 
 #include <cmath>
 #include <cstdio>
@@ -84,9 +84,9 @@ TEST(Ocean, RenderedSurfaceMatchesSeaHeightWithin1cm) {
   // linear interpolation between vertices stays far below 1 cm.
   ocean_render::OceanOptions oo;
   oo.cellPx = 2.0;
-  auto ocean = std::make_shared<ocean_render::OceanRenderer>(s.world, ocean_render::defaultLandSea(), oo);
+  auto ocean = std::make_shared<ocean_render::OceanRenderer>(s.world->grids(), ocean_render::defaultLandSea(), oo);
   GlobeRenderer renderer(s.world);
-  renderer.addLayer(ocean);
+  renderer.addLayer(std::make_shared<test::DirectOceanLayer>(ocean));
   ocean->setWriteData(true);
   const ViewPose p = seaPose(-30.0, -120.0, 10.0, 30.0, -60.0, 128);
   Framebuffer fb(p.width, p.height, true);
@@ -96,14 +96,14 @@ TEST(Ocean, RenderedSurfaceMatchesSeaHeightWithin1cm) {
   fs.sunEcef = sunForView(p);
   renderer.render(p, fs);
   const std::vector<float> data = fb.readData();
-  const ViewMatrices vm = renderer.matrices(p);
+  const camera::Camera cam = renderer.camera(p);
   int checked = 0;
   double worst = 0.0;
   for (int y = 8; y < p.height; y += 12)
     for (int x = 8; x < p.width; x += 12) {
       const float* q = &data[(std::size_t(y) * p.width + x) * 4];
       if (q[3] != 1.0f) continue;
-      const glm::dvec3 ecef = vm.eyeEcef + glm::dvec3(q[0], q[1], q[2]);
+      const glm::dvec3 ecef = cam.eyeEcef() + glm::dvec3(q[0], q[1], q[2]);
       const geo::Geodetic g = geo::fromEcef(ecef);
       const double expected = ocean->waves().surfaceAt(g.latDeg, g.lonDeg, fs.timeS).heightM;
       worst = std::max(worst, std::abs(g.heightM - expected));

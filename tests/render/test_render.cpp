@@ -2,7 +2,7 @@
 // the Earth, where land and sea are) and against golden images.
 #include "RenderFixture.h"
 
-#include "globe/render/Framebuffer.h"
+#include "globe/gl/Framebuffer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +17,7 @@ std::shared_ptr<ocean_render::OceanRenderer> g_ocean;
 Session& session() {
   static std::unique_ptr<Session> s = [] {
     auto p = std::make_unique<Session>(Session::headless(loadDefaultWorld(), 256, 256));
-    const std::string err = ocean_render::addDefaultOcean(*p->renderer, p->world, "noise", 10.0, 270.0, &g_ocean);
+    const std::string err = addDirectOcean(*p->renderer, p->world->grids(), "noise", 10.0, 270.0, &g_ocean);
     if (!err.empty()) throw std::runtime_error(err);
     return p;
   }();
@@ -68,8 +68,8 @@ void expectMatchesGolden(const Image& img, const std::string& name, double maxMe
   EXPECT_LE(d.fractionOver16, maxFractionOver16) << name << ": pixels off by > 16; actual " << actual;
 }
 
-bool projectToPixel(const ViewMatrices& vm, const ViewPose& pose, const glm::dvec3& ecef, double& x, double& y) {
-  const glm::dvec4 c = vm.viewProjD * glm::dvec4(ecef - vm.eyeEcef, 1.0);
+bool projectToPixel(const camera::Camera& cam, const ViewPose& pose, const glm::dvec3& ecef, double& x, double& y) {
+  const glm::dvec4 c = cam.gpu().viewProjD * glm::dvec4(ecef - cam.eyeEcef(), 1.0);
   if (c.w <= 0.0) return false;
   x = (c.x / c.w * 0.5 + 0.5) * pose.width;
   y = (0.5 - c.y / c.w * 0.5) * pose.height;
@@ -129,17 +129,17 @@ TEST(Render, GibraltarFrom50KmShowsLandAndSeaWhereTheyAre) {
   fs.sunEcef = sunForView(p);
   s.render(p, fs);
   const Image img = s.image();
-  const ViewMatrices vm = s.renderer->matrices(p);
+  const camera::Camera cam = s.renderer->camera(p);
   double x, y;
   // Known places (GSHHG shorelines, `geocean query` agrees): the Strait
   // between Spain north of the Rock and Jebel Musa in Morocco. The 4' Blue
   // Marble blurs coastal land towards blue, so land is told from sea by its
   // colour distance from the sea pixel rather than by hue alone.
-  ASSERT_TRUE(projectToPixel(vm, p, geo::toEcef({35.97, -5.50, 0.0}), x, y));
+  ASSERT_TRUE(projectToPixel(cam, p, geo::toEcef({35.97, -5.50, 0.0}), x, y));
   const std::uint8_t* sea = px(img, int(x), int(y));
   EXPECT_TRUE(isSea(sea)) << x << "," << y;
   for (const auto& ll : {glm::dvec2(36.17, -5.40), glm::dvec2(35.88, -5.40)}) {
-    ASSERT_TRUE(projectToPixel(vm, p, geo::toEcef({ll.x, ll.y, 0.0}), x, y));
+    ASSERT_TRUE(projectToPixel(cam, p, geo::toEcef({ll.x, ll.y, 0.0}), x, y));
     const std::uint8_t* land = px(img, int(x), int(y));
     const int dist = std::abs(land[0] - sea[0]) + std::abs(land[1] - sea[1]) + std::abs(land[2] - sea[2]);
     EXPECT_GT(dist, 30) << "land at " << ll.x << "," << ll.y << " looks like sea";

@@ -1,7 +1,7 @@
 // Shader building: every embedded stage compiles, and failures name the file.
 #include "RenderFixture.h"
 
-#include "globe/render/GlProgram.h"
+#include "globe/gl/GlProgram.h"
 #include "shaders/Shaders.h"
 
 namespace geocean::render::test {

@@ -1,7 +1,7 @@
 // WaterIndex against a brute-force scan of the same layer: random land on
 // a small global grid, random rectangles (wrapping the antimeridian, past
 // the poles, wider than the globe), and bad bounds.
-#include "globe/render/WaterIndex.h"
+#include "globe/world/WaterIndex.h"
 #include "globe/render/WorldTextures.h"
 
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <limits>
 #include <random>
 
-namespace geocean::render {
+namespace geocean::world {
 namespace {
 
 WorldLayer layer(int w, int h, double landShare, unsigned seed) {
@@ -73,4 +73,4 @@ TEST(WaterIndex, MapsLonLatToTexelsAndRejectsBadBounds) {
 }
 
 }  // namespace
-}  // namespace geocean::render
+}  // namespace geocean::world

@@ -350,6 +350,42 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean);
  * the context (they are freed when the host destroys it). */
 GEOCEAN_API geocean_status geocean_release_gl(geocean_ocean* ocean);
 
+/* ---- The host/layer contract (since ABI 1.2) ----------------------------
+ * A host that draws the ocean as a layer over its own terrain asks it what it
+ * covers (instead of assuming), so the host may leave out terrain under
+ * opaque water, and which extra inputs its draw wants. */
+#define GEOCEAN_LAYER_OPAQUE_WATER 1u       /* geocean_covers_opaquely answers */
+#define GEOCEAN_LAYER_WANTS_SCENE_COPY 4u   /* the scene's colour and depth before the ocean */
+typedef struct geocean_layer_info {
+  uint32_t struct_size; /* sizeof(geocean_layer_info), set by the caller */
+  uint32_t flags;       /* GEOCEAN_LAYER_* */
+  double cell_px;       /* the ocean's grid cell on screen, pixels */
+} geocean_layer_info;
+/* Fills *out (set out->struct_size first). Needs no GL context. Errors:
+ * NULL_ARGUMENT, INVALID_ARGUMENT (struct_size too small). */
+GEOCEAN_API geocean_status geocean_get_layer_info(const geocean_ocean* ocean, geocean_layer_info* out);
+/* *out_covers = 1 when the ocean draws every pixel over the rectangle
+ * [lat0, lat1] x [lon0, lon1] (degrees) opaquely, for pixels whose footprint
+ * on the surface there is up to pixel_footprint_m metres; 0 otherwise (also
+ * without rasters). Builds the ocean's water grids on first use (no GL).
+ * Render thread (same rule as geocean_draw). Errors: NULL_ARGUMENT,
+ * INVALID_ARGUMENT (a non-finite value, footprint <= 0). */
+GEOCEAN_API geocean_status geocean_covers_opaquely(geocean_ocean* ocean, double lat0_deg, double lat1_deg,
+                                                   double lon0_deg, double lon1_deg, double pixel_footprint_m,
+                                                   int32_t* out_covers);
+/* Inputs the host made for the next geocean_draw when the layer info asked
+ * for them: GL texture names in the draw's context (0 = not given). */
+typedef struct geocean_layer_inputs {
+  uint32_t struct_size;         /* sizeof(geocean_layer_inputs) */
+  uint32_t scene_color_texture; /* RGBA8 copy of the scene before the ocean */
+  uint32_t scene_depth_texture; /* DEPTH32F copy, reversed Z */
+} geocean_layer_inputs;
+/* Sets (or with NULL clears) the inputs of the next draws. Call with the
+ * draw's context current when a texture name is non-zero. Errors:
+ * NULL_ARGUMENT, INVALID_ARGUMENT (struct_size, a name that is not a
+ * texture of the current context), NO_GL_CONTEXT. */
+GEOCEAN_API geocean_status geocean_set_layer_inputs(geocean_ocean* ocean, const geocean_layer_inputs* inputs);
+
 #ifdef __cplusplus
 }
 #endif

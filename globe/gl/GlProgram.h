@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace geocean::render {
+namespace geocean::gl {
 
 class ShaderError : public std::runtime_error {
  public:
@@ -30,6 +30,9 @@ class GlProgram {
   GlProgram& operator=(const GlProgram&) = delete;
 
   GLuint id() const { return id_; }
+  // Forgets the program without a GL call (its context is gone or not
+  // current: the context owns it now).
+  void abandon() { id_ = 0; }
   void use() const { glUseProgram(id_); }
   // Uniform location, -1 if the uniform is absent or optimised away.
   GLint uniform(const char* name) const { return glGetUniformLocation(id_, name); }
@@ -41,4 +44,4 @@ class GlProgram {
 // Compiles one stage; throws ShaderError with path and log on failure.
 GLuint compileStage(GLenum stage, const std::string& stageName, const std::vector<std::string>& defines);
 
-}  // namespace geocean::render
+}  // namespace geocean::gl

@@ -1,11 +1,11 @@
-#include "globe/render/WaterIndex.h"
+#include "globe/world/WaterIndex.h"
 
-#include "globe/render/WorldTextures.h"
+#include "globe/world/WorldData.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace geocean::render {
+namespace geocean::world {
 
 WaterIndex::WaterIndex(const WorldLayer& water)
     : width_(water.width),
@@ -82,4 +82,4 @@ bool WaterIndex::allWater(double x0, double x1, double y0, double y1) const {
   return !anyLand(ix0, width_ - 1, iy0, iy1) && !anyLand(0, ix1 - width_, iy0, iy1);
 }
 
-}  // namespace geocean::render
+}  // namespace geocean::world

@@ -1,4 +1,4 @@
-#include "globe/render/GlDebug.h"
+#include "globe/gl/GlDebug.h"
 
 #include <epoxy/gl.h>
 
@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-namespace geocean::render {
+namespace geocean::gl {
 
 namespace {
 std::atomic<std::size_t> gErrors{0};
@@ -50,4 +50,4 @@ std::string glErrors(const char* where) {
   return out.empty() ? out : std::string("GL error at ") + where + ": " + out;
 }
 
-}  // namespace geocean::render
+}  // namespace geocean::gl

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace geocean::render {
+namespace geocean::gl {
 
 struct Image {
   int width = 0, height = 0;
@@ -38,10 +38,30 @@ class Framebuffer {
   GLuint fbo_ = 0, color_ = 0, data_ = 0, depth_ = 0;
 };
 
+// A colour (RGBA8) + depth (DEPTH32F) target whose attachments are textures,
+// so a later pass can sample them (reflections, scene copies).
+class TextureTarget {
+ public:
+  TextureTarget() = default;
+  ~TextureTarget();
+  TextureTarget(const TextureTarget&) = delete;
+  TextureTarget& operator=(const TextureTarget&) = delete;
+  // (Re)allocates when the size changes.
+  void ensure(int width, int height);
+  GLuint fbo() const { return fbo_; }
+  GLuint color() const { return color_; }
+  GLuint depth() const { return depth_; }
+
+ private:
+  void release();
+  GLuint fbo_ = 0, color_ = 0, depth_ = 0;
+  int width_ = 0, height_ = 0;
+};
+
 // Writes an image as PNG through OpenImageIO; throws std::runtime_error
 // naming the file when it cannot be written.
 void writePng(const std::string& path, const Image& image);
 // Reads a PNG/any OIIO format into RGBA8; throws naming the file.
 Image readImage(const std::string& path);
 
-}  // namespace geocean::render
+}  // namespace geocean::gl

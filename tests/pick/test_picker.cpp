@@ -1,7 +1,8 @@
 // Embree picking with double refinement, against truths outside the picker:
 // the long-double closed form for the ellipsoid, GeographicLib positions of
 // terrain vertices, and a classifier written here.
-#include "plugin/grid/Picker.h"
+#include "globe/geo/Ellipsoid.h"
+#include "plugin/pick/Picker.h"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +10,8 @@
 #include <random>
 
 using namespace geocean;
-using grid::PickRay;
-using grid::Picker;
+using pick::PickRay;
+using pick::Picker;
 
 namespace {
 // First root t >= 0 of the ray with WGS84 in long double (64-bit mantissa).
@@ -59,9 +60,9 @@ TEST(Picker, OneMetreAboveTheSeaHitsAtOneMetre) {
     for (double lon : {0.0, 180.0, -179.9999, 33.3}) {
       const glm::dvec3 o = geo::toEcef({lat, lon, 1.0});
       const Picker p(nullptr, {}, o);
-      const grid::PickResult r = p.pick({o, -geo::surfaceNormal(lat, lon)});
+      const pick::PickResult r = p.pick({o, -geo::surfaceNormal(lat, lon)});
       ASSERT_TRUE(r.hit);
-      EXPECT_EQ(r.kind, grid::HitKind::Sea);
+      EXPECT_EQ(r.kind, pick::HitKind::Sea);
       EXPECT_NEAR(r.distanceM, 1.0, 1e-6);  // GeographicLib Forward, nm
       EXPECT_NEAR(r.heightM, 0.0, 1e-6);
       EXPECT_NEAR(r.latDeg, lat, 1e-9);
@@ -88,7 +89,7 @@ TEST(Picker, SeaHitsWithin1mmOfLongDouble) {
       rays.push_back({f.originEcef - f.north * 3e6, f.north});
     }
   }
-  std::vector<grid::PickResult> res(rays.size());
+  std::vector<pick::PickResult> res(rays.size());
   p.pickBatch(rays.data(), rays.size(), res.data());
   int hits = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -112,32 +113,32 @@ TEST(Picker, TerrainIsHitBeforeTheSeaAndRefinedInDouble) {
   EXPECT_GT(p.terrainTriangles(), 2 * 359 * 179u);
   // Straight down onto a plateau vertex (pixel centre lat 10.5, lon 20.5).
   const glm::dvec3 v = geo::toEcef({10.5, 20.5, 5000.0});
-  const grid::PickResult r = p.pick({v + 1000.0 * geo::surfaceNormal(10.5, 20.5), -geo::surfaceNormal(10.5, 20.5)});
+  const pick::PickResult r = p.pick({v + 1000.0 * geo::surfaceNormal(10.5, 20.5), -geo::surfaceNormal(10.5, 20.5)});
   ASSERT_TRUE(r.hit);
-  EXPECT_EQ(r.kind, grid::HitKind::Terrain);
+  EXPECT_EQ(r.kind, pick::HitKind::Terrain);
   EXPECT_EQ(r.surface, ocean::Surface::Land);
   EXPECT_NEAR(r.distanceM, 1000.0, 1e-6);  // the vertex lies on its triangles exactly
   EXPECT_NEAR(r.heightM, 5000.0, 1e-6);
   // Over the ocean the terrain is 4 km down: the sea is hit first, at 0 m.
   const glm::dvec3 o = geo::toEcef({-40.0, -30.0, 20.0});
-  const grid::PickResult s = p.pick({o, -geo::surfaceNormal(-40.0, -30.0)});
+  const pick::PickResult s = p.pick({o, -geo::surfaceNormal(-40.0, -30.0)});
   ASSERT_TRUE(s.hit);
-  EXPECT_EQ(s.kind, grid::HitKind::Sea);
+  EXPECT_EQ(s.kind, pick::HitKind::Sea);
   EXPECT_EQ(s.surface, ocean::Surface::Ocean);
   EXPECT_NEAR(s.distanceM, 20.0, 1e-6);
   // A polder 10 m below the ellipsoid, classified land: the ray goes through
   // the (absent) sea surface and stops on the terrain.
   const glm::dvec3 q = geo::toEcef({0.5, 44.5, 100.0});
-  const grid::PickResult t = p.pick({q, -geo::surfaceNormal(0.5, 44.5)});
+  const pick::PickResult t = p.pick({q, -geo::surfaceNormal(0.5, 44.5)});
   ASSERT_TRUE(t.hit);
-  EXPECT_EQ(t.kind, grid::HitKind::Terrain);
+  EXPECT_EQ(t.kind, pick::HitKind::Terrain);
   EXPECT_NEAR(t.heightM, -10.0, 1e-6);
   EXPECT_NEAR(t.distanceM, 110.0, 1e-6);
   // Terrain over a lake reports the lake.
   const glm::dvec3 l = geo::toEcef({-25.5, 105.5, 100.0});
-  const grid::PickResult lr = p.pick({l, -geo::surfaceNormal(-25.5, 105.5)});
+  const pick::PickResult lr = p.pick({l, -geo::surfaceNormal(-25.5, 105.5)});
   ASSERT_TRUE(lr.hit);
-  EXPECT_EQ(lr.kind, grid::HitKind::Terrain);
+  EXPECT_EQ(lr.kind, pick::HitKind::Terrain);
   EXPECT_EQ(lr.surface, ocean::Surface::Lake);
   EXPECT_NEAR(lr.heightM, -4000.0, 1e-6);
 }
@@ -150,9 +151,9 @@ TEST(Picker, SideOnRayHitsTheCliffNotTheSeaBehindIt) {
   // 15.5 reaches the ray near lon 15.3 (the flat triangles sag below the
   // lon/lat interpolation by up to ~240 m in a 1-degree cell).
   const geo::EnuFrame f = geo::enuFrame({10.5, 14.9, 3000.0});
-  const grid::PickResult r = p.pick({f.originEcef, f.east});
+  const pick::PickResult r = p.pick({f.originEcef, f.east});
   ASSERT_TRUE(r.hit);
-  EXPECT_EQ(r.kind, grid::HitKind::Terrain);
+  EXPECT_EQ(r.kind, pick::HitKind::Terrain);
   EXPECT_GT(r.lonDeg, 15.2);
   EXPECT_LT(r.lonDeg, 15.4);
   // A level ray rises by s^2 / (2 N) over the ellipsoid (N ~ 6.378e6 m, the
@@ -172,10 +173,10 @@ TEST(Picker, BatchMatchesSingleAndRejectsBadRays) {
   }
   rays.push_back({glm::dvec3(7e6, 0, 0), glm::dvec3(0.0)});
   rays.push_back({glm::dvec3(NAN, 0, 0), glm::dvec3(1, 0, 0)});
-  std::vector<grid::PickResult> res(rays.size());
+  std::vector<pick::PickResult> res(rays.size());
   p.pickBatch(rays.data(), rays.size(), res.data());
   for (std::size_t i = 0; i < 100; ++i) {
-    const grid::PickResult s = p.pick(rays[i]);
+    const pick::PickResult s = p.pick(rays[i]);
     EXPECT_EQ(s.hit, res[i].hit);
     EXPECT_EQ(s.distanceM, res[i].distanceM);
   }
@@ -209,25 +210,25 @@ TEST(Picker, TerrainAlongTheRayOnlyGivesTheWholeMeshAnswers) {
     const geo::EnuFrame f = geo::enuFrame({i % 3 ? lat : 0.3 * lat, lon, -3000.0 * u01(rng)});
     rays.push_back({f.originEcef, -f.up + u(rng) * f.east + u(rng) * f.north});
   }
-  std::vector<grid::PickResult> want(rays.size());
+  std::vector<pick::PickResult> want(rays.size());
   whole.pickBatch(rays.data(), rays.size(), want.data());
   int terrainHits = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const Picker one(terrain, classify, rays[i].originEcef, std::vector<PickRay>{rays[i]});
     EXPECT_LT(one.terrainTriangles(), whole.terrainTriangles() / 10) << i;
-    const grid::PickResult r = one.pick(rays[i]);
+    const pick::PickResult r = one.pick(rays[i]);
     ASSERT_EQ(r.hit, want[i].hit) << i;
     EXPECT_EQ(r.kind, want[i].kind) << i;
     EXPECT_EQ(r.surface, want[i].surface) << i;
     // Same double triangles; Embree may report the neighbour across an
     // edge, whose plane meets the ray at the same point to rounding.
     EXPECT_NEAR(r.distanceM, want[i].distanceM, 1e-6 * (1.0 + want[i].distanceM)) << i;
-    terrainHits += want[i].kind == grid::HitKind::Terrain;
+    terrainHits += want[i].kind == pick::HitKind::Terrain;
   }
   EXPECT_GT(terrainHits, 60);  // the test exercises the terrain, not only the sea
   // Several rays in one scene.
   const Picker some(terrain, classify, origin, rays);
-  std::vector<grid::PickResult> got(rays.size());
+  std::vector<pick::PickResult> got(rays.size());
   some.pickBatch(rays.data(), rays.size(), got.data());
   for (std::size_t i = 0; i < rays.size(); ++i) {
     ASSERT_EQ(got[i].hit, want[i].hit) << i;
@@ -263,13 +264,13 @@ TEST(Picker, TerrainAlongTheRayOnlyOnARegionalRaster) {
     const double az = 3.14159265 * u(rng), down = i % 2 ? 0.05 * u01(rng) : 0.3 + u01(rng);
     rays.push_back({f.originEcef, std::cos(az) * f.east + std::sin(az) * f.north - down * f.up});
   }
-  std::vector<grid::PickResult> want(rays.size());
+  std::vector<pick::PickResult> want(rays.size());
   whole.pickBatch(rays.data(), rays.size(), want.data());
   int hits = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const Picker one(terrain, land, rays[i].originEcef, std::vector<PickRay>{rays[i]});
     EXPECT_LT(one.terrainTriangles(), whole.terrainTriangles() / 4) << i;
-    const grid::PickResult r = one.pick(rays[i]);
+    const pick::PickResult r = one.pick(rays[i]);
     ASSERT_EQ(r.hit, want[i].hit) << i;
     EXPECT_EQ(r.kind, want[i].kind) << i;
     EXPECT_NEAR(r.distanceM, want[i].distanceM, 1e-6 * (1.0 + want[i].distanceM)) << i;

@@ -1,4 +1,4 @@
-#include "globe/render/Framebuffer.h"
+#include "globe/gl/Framebuffer.h"
 
 #include "globe/raster/ImageIo.h"
 #include "globe/raster/Raster.h"
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace geocean::render {
+namespace geocean::gl {
 
 Framebuffer::Framebuffer(int width, int height, bool withDataTarget) : width_(width), height_(height) {
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
@@ -100,4 +100,36 @@ Image readImage(const std::string& path) {
   return img;
 }
 
-}  // namespace geocean::render
+TextureTarget::~TextureTarget() { release(); }
+
+void TextureTarget::release() {
+  if (fbo_) glDeleteFramebuffers(1, &fbo_);
+  const GLuint t[] = {color_, depth_};
+  glDeleteTextures(2, t);
+  fbo_ = color_ = depth_ = 0;
+  width_ = height_ = 0;
+}
+
+void TextureTarget::ensure(int w, int h) {
+  if (fbo_ && w == width_ && h == height_) return;
+  release();
+  glCreateTextures(GL_TEXTURE_2D, 1, &color_);
+  glTextureStorage2D(color_, 1, GL_RGBA8, w, h);
+  glCreateTextures(GL_TEXTURE_2D, 1, &depth_);
+  glTextureStorage2D(depth_, 1, GL_DEPTH_COMPONENT32F, w, h);
+  for (GLuint t : {color_, depth_}) {
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+  glCreateFramebuffers(1, &fbo_);
+  glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, color_, 0);
+  glNamedFramebufferTexture(fbo_, GL_DEPTH_ATTACHMENT, depth_, 0);
+  if (glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("texture target " + std::to_string(w) + "x" + std::to_string(h) + " is incomplete");
+  width_ = w;
+  height_ = h;
+}
+
+}  // namespace geocean::gl

@@ -1,7 +1,7 @@
 // Screen and ray picking through Embree 3: one scene holds the sea (a user
 // geometry for the WGS84 ellipsoid, present where the classifier says
-// ocean) and the terrain (the elevation raster as a triangle mesh), so a
-// pick returns the first hit on terrain or sea.
+// ocean) and an instance of the terrain scene (globe/terrain: the elevation
+// raster as a triangle mesh), so a pick returns the first hit on terrain or sea.
 //
 // Embree works in single precision: at Earth scale that alone is metres of
 // error. The scene is built relative to a local origin (the camera or the
@@ -13,16 +13,17 @@
 #pragma once
 
 #include "globe/raster/Raster.h"
-#include "plugin/grid/ScreenGrid.h"
+#include "globe/terrain/TerrainMesh.h"
+#include "plugin/landsea/LandSea.h"
 
 #include <glm/vec3.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
-#include <string>
 #include <vector>
 
-namespace geocean::grid {
+namespace geocean::pick {
 
 enum class HitKind : std::uint8_t { None, Sea, Terrain };
 
@@ -35,10 +36,8 @@ struct PickResult {
   ocean::Surface surface = ocean::Surface::Ocean;  // sea: Ocean; terrain: Land or Lake
 };
 
-struct PickRay {
-  glm::dvec3 originEcef{0.0};
-  glm::dvec3 dir{0.0};  // any length > 0
-};
+// ECEF origin and a direction of any length > 0.
+using PickRay = terrain::Ray;
 
 class Picker {
  public:
@@ -46,16 +45,16 @@ class Picker {
   // where the sea surface exists (nullptr: everywhere) and lake vs land for
   // terrain hits. localOriginEcef: where float precision is best.
   // Throws std::runtime_error with Embree's message if the device or scene fails.
-  Picker(std::shared_ptr<const raster::Raster> elevation, SurfaceClassifier classifier,
+  Picker(std::shared_ptr<const raster::Raster> elevation, ocean::SurfaceClassifier classifier,
          const glm::dvec3& localOriginEcef);
   // For a few known rays (a CLI pick): the terrain mesh holds only the
   // raster cells these rays pass over while within the raster's height
-  // range (plus one cell around), built from the same vertices and
-  // triangles as the whole-raster scene, so these rays get the same
-  // answers at a fraction of the build time (the world's 1.2 M triangles
-  // take ~1 s). Other rays may miss terrain. Falls back to the whole
-  // raster if the rays cross too many cells.
-  Picker(std::shared_ptr<const raster::Raster> elevation, SurfaceClassifier classifier,
+  // range (plus one cell around; terrain::cellsAlong), built from the same
+  // vertices and triangles as the whole-raster scene, so these rays get the
+  // same answers at a fraction of the build time (the world's 1.2 M
+  // triangles take ~1 s). Other rays may miss terrain. Falls back to the
+  // whole raster if the rays cross too many cells.
+  Picker(std::shared_ptr<const raster::Raster> elevation, ocean::SurfaceClassifier classifier,
          const glm::dvec3& localOriginEcef, const std::vector<PickRay>& onlyAlong);
   ~Picker();
   Picker(const Picker&) = delete;
@@ -69,10 +68,10 @@ class Picker {
   std::size_t terrainTriangles() const;
 
  private:
-  Picker(std::shared_ptr<const raster::Raster> elevation, SurfaceClassifier classifier,
+  Picker(std::shared_ptr<const raster::Raster> elevation, ocean::SurfaceClassifier classifier,
          const glm::dvec3& localOriginEcef, const std::vector<PickRay>* onlyAlong);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace geocean::grid
+}  // namespace geocean::pick

@@ -1,10 +1,10 @@
-#include "globe/render/GlProgram.h"
+#include "globe/gl/GlProgram.h"
 
 #include "shaders/Shaders.h"
 
 #include <sstream>
 
-namespace geocean::render {
+namespace geocean::gl {
 
 namespace {
 // The embedded files a stage pulls in, for the error message.
@@ -110,4 +110,4 @@ GlProgram& GlProgram::operator=(GlProgram&& o) noexcept {
   return *this;
 }
 
-}  // namespace geocean::render
+}  // namespace geocean::gl

@@ -1,11 +1,11 @@
 // The default world from data/ through the raster reader (globe/raster).
 #include "globe/raster/Raster.h"
 #include "globe/raster/World.h"
-#include "globe/render/WorldTextures.h"
+#include "globe/world/WorldData.h"
 
 #include <algorithm>
 
-namespace geocean::render {
+namespace geocean::world {
 
 WorldLayer layerOf(const raster::Raster& r, int channel) {
   if (!r.inMemory())
@@ -35,13 +35,20 @@ WorldData loadDefaultWorld() {
   WorldData d;
   d.imagery = layerOf(*raster::Raster::open(files.imagery));
   d.elevation = layerOf(*raster::Raster::open(files.elevation));
-  // NaN (nodata) elevations would poison the vertex shader: treat as sea level.
-  for (float& v : d.elevation.values)
-    if (v != v) v = 0.0f;
-  d.water = layerOf(*raster::Raster::open(files.mask));
-  // Mask classes -> water fraction: ocean (0) and lake (2) are water.
-  for (float& v : d.water.values) v = (v == 0.0f || v == 2.0f) ? 1.0f : 0.0f;
+  nodataToSeaLevel(d.elevation);
+  d.water = waterLayerOf(*raster::Raster::open(files.mask));
   return d;
 }
 
-}  // namespace geocean::render
+WorldLayer waterLayerOf(const raster::Raster& mask, const MaskEncoding& encoding) {
+  WorldLayer l = layerOf(mask, 0);
+  for (float& v : l.values) v = encoding.isWater(v) ? 1.0f : 0.0f;
+  return l;
+}
+
+void nodataToSeaLevel(WorldLayer& elevation) {
+  for (float& v : elevation.values)
+    if (v != v) v = 0.0f;
+}
+
+}  // namespace geocean::world

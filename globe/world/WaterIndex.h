@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace geocean::render {
+namespace geocean::world {
 
 struct WorldLayer;
 
@@ -55,4 +55,4 @@ class WaterIndex {
   std::vector<Level> levels_;
 };
 
-}  // namespace geocean::render
+}  // namespace geocean::world

@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <string>
 
-namespace geocean::render {
+namespace geocean::gl {
 
 // Installs the callback when debug output is wanted; returns whether it is on.
 // Messages of high/medium severity go to stderr and are counted.
@@ -19,4 +19,4 @@ std::size_t glDebugErrorCount();
 // glGetError() drained into one message naming `where`; empty when clean.
 std::string glErrors(const char* where);
 
-}  // namespace geocean::render
+}  // namespace geocean::gl

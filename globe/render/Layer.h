@@ -1,0 +1,52 @@
+// The host/layer contract: what a layer drawn over the terrain (the ocean
+// plugin, or any other) tells the host, and what the host gives it. The
+// host never assumes what a layer covers: it asks.
+#pragma once
+
+#include "globe/camera/Camera.h"
+
+#include <epoxy/gl.h>
+
+namespace geocean::render {
+
+// What the host runs for a layer before its draw (LayerInfo::wants bits).
+enum LayerInput : unsigned {
+  // A copy of the scene's colour and depth so far (refraction, soft
+  // shorelines). A mirrored pass for reflections is the optics issue's.
+  kLayerWantsSceneCopy = 2u,
+};
+
+struct LayerInfo {
+  // The layer draws water opaquely where coversOpaquely() says so: the
+  // terrain may leave those tiles out.
+  bool opaqueWater = false;
+  double cellPx = 0.0;  // the layer's grid cell on screen, pixels (0: none)
+  unsigned wants = 0;   // LayerInput bits
+};
+
+// Filled by the host for the inputs a layer asked for (0 where not asked).
+struct LayerInputs {
+  GLuint sceneColor = 0;  // RGBA8 copy of the colour attachment 0 after the terrain
+  GLuint sceneDepth = 0;  // DEPTH32F copy (reversed Z: 0 far, 1 at the near plane)
+};
+
+class Layer {
+ public:
+  virtual ~Layer() = default;
+  virtual const char* name() const = 0;
+  virtual LayerInfo info() const { return {}; }
+  // True when the layer draws every pixel over the geographic rectangle
+  // opaquely, for pixels whose footprint on the surface there is up to
+  // pixelFootprintM metres (only asked of layers with info().opaqueWater).
+  virtual bool coversOpaquely(double lat0Deg, double lat1Deg, double lon0Deg, double lon1Deg,
+                              double pixelFootprintM) const {
+    (void)lat0Deg, (void)lat1Deg, (void)lon0Deg, (void)lon1Deg, (void)pixelFootprintM;
+    return false;
+  }
+  // Draws into the bound framebuffer (reversed Z, GL_GREATER). `bare`:
+  // trivial shaders, the reference draw for frame-time ratios.
+  virtual void draw(const camera::Camera& cam, const camera::Lighting& light, bool bare,
+                    const LayerInputs& inputs) = 0;
+};
+
+}  // namespace geocean::render

@@ -1,0 +1,50 @@
+// The world as global lon/lat grids on the CPU (no GL): imagery, elevation
+// and water coverage, from rasters. The host uploads them as textures
+// (globe/render/WorldTextures) and the ocean plugin makes its own from its
+// rasters (plugin/render), both through this one description.
+#pragma once
+
+#include "globe/world/Surface.h"
+
+#include <glm/vec4.hpp>
+
+#include <vector>
+
+namespace geocean::raster {
+class Raster;
+}
+
+namespace geocean::world {
+
+// Row 0 first as stored, any global lon/lat grid.
+struct WorldLayer {
+  int width = 0, height = 0, channels = 1;
+  std::vector<float> values;               // row-major, channels interleaved
+  double originLonDeg = -180.0, originLatDeg = 90.0;  // edge of pixel (0, 0)
+  double lonStepDeg = 1.0, latStepDeg = -1.0;         // per pixel
+  // (originLonDeg, originLatDeg, lonSpanDeg, latSpanDeg): what a shader
+  // needs to map lon/lat to texture coordinates.
+  glm::vec4 geo() const {
+    return {float(originLonDeg), float(originLatDeg), float(lonStepDeg * width), float(latStepDeg * height)};
+  }
+};
+
+struct WorldData {
+  WorldLayer imagery;    // RGB 0..255, sRGB
+  WorldLayer elevation;  // metres, ocean negative
+  WorldLayer water;      // 1 water (ocean or lake), 0 land
+};
+
+// An in-memory raster as a layer: all channels, or only `channel` (>= 0).
+// Throws raster::RasterError for a cache-backed raster (too big to upload).
+WorldLayer layerOf(const raster::Raster& r, int channel = -1);
+// A mask raster as water coverage (1 water, 0 land) by the encoding's rule.
+WorldLayer waterLayerOf(const raster::Raster& mask, const MaskEncoding& encoding = {});
+// NaN (nodata) elevations would poison a vertex shader: sea level instead.
+void nodataToSeaLevel(WorldLayer& elevation);
+
+// Loads the default world (globe/raster/World.h): imagery, ETOPO relief and
+// the 5' land/sea mask. Throws raster::RasterError naming the file.
+WorldData loadDefaultWorld();
+
+}  // namespace geocean::world

@@ -1,0 +1,97 @@
+#include "plugin/render/OceanWorld.h"
+
+#include "globe/geo/Ellipsoid.h"
+#include "globe/raster/Raster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace geocean::ocean_render {
+
+namespace {
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+}  // namespace
+
+// The ocean's global equirectangular layers from its rasters: a global raster in memory is copied pixel for pixel (the
+// viewer's own textures, so the picture matches it); anything else is
+// resampled through the classifier onto a global grid at the raster's step.
+std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const raster::Raster>& mask,
+                                                    const std::shared_ptr<const raster::Raster>& elevation,
+                                                    const ocean::LandSea* landSea, const world::MaskEncoding& encoding) {
+  using world::WorldLayer;
+  using raster::Raster;
+  world::WorldData d;
+  auto directly = [](const std::shared_ptr<const Raster>& r) {
+    return r && r->inMemory() && r->transform().global && r->transform().latStepDeg < 0 &&
+           std::abs(r->transform().latStepDeg * r->height() + 180.0) < 1e-6;
+  };
+  // A global grid with the raster's steps, at most 5' (the default mask).
+  auto globalGrid = [](const std::shared_ptr<const Raster>& r) {
+    WorldLayer l;
+    const double step = r ? std::max(std::abs(r->transform().lonStepDeg), 1.0 / 12.0) : 1.0;
+    l.width = std::max(1, int(std::lround(360.0 / step)));
+    l.height = std::max(1, int(std::lround(180.0 / step)));
+    l.lonStepDeg = 360.0 / l.width;
+    l.latStepDeg = -180.0 / l.height;
+    l.values.resize(std::size_t(l.width) * l.height);
+    return l;
+  };
+  auto centres = [](const WorldLayer& l, std::vector<double>& lat, std::vector<double>& lon) {
+    lat.resize(l.values.size());
+    lon.resize(l.values.size());
+    for (int y = 0; y < l.height; ++y)
+      for (int x = 0; x < l.width; ++x) {
+        lat[std::size_t(y) * l.width + x] = l.originLatDeg + (y + 0.5) * l.latStepDeg;
+        lon[std::size_t(y) * l.width + x] = l.originLonDeg + (x + 0.5) * l.lonStepDeg;
+      }
+  };
+  std::vector<double> lat, lon;
+  if (elevation && directly(elevation)) {
+    d.elevation = world::layerOf(*elevation, 0);
+  } else if (elevation) {
+    d.elevation = globalGrid(elevation);
+    centres(d.elevation, lat, lon);
+    landSea->elevationBatch(lat.data(), lon.data(), lat.size(), d.elevation.values.data());
+  } else {
+    d.elevation = globalGrid(nullptr);
+    // No relief: deep water everywhere, as the queries assume.
+    std::fill(d.elevation.values.begin(), d.elevation.values.end(), -10000.0f);
+  }
+  world::nodataToSeaLevel(d.elevation);  // as the viewer does
+  if (mask && directly(mask)) {
+    d.water = world::waterLayerOf(*mask, encoding);
+  } else if (landSea) {
+    d.water = globalGrid(mask ? mask : elevation);
+    centres(d.water, lat, lon);
+    std::vector<ocean::Surface> cls(lat.size());
+    landSea->classifyBatch(lat.data(), lon.data(), lat.size(), cls.data());
+    for (std::size_t i = 0; i < cls.size(); ++i)
+      d.water.values[i] = cls[i] == ocean::Surface::Land ? 0.0f : 1.0f;
+  } else {
+    d.water = globalGrid(nullptr);
+    std::fill(d.water.values.begin(), d.water.values.end(), 1.0f);
+  }
+  return std::make_shared<const world::WorldGrids>(std::move(d.elevation), std::move(d.water));
+}
+
+bool coversOpaquely(const world::WorldGrids& world, double cellPx, double lat0, double lat1, double lon0, double lon1,
+                    double footprintM) {
+  // Every pixel over the rectangle is drawn opaque, and none of the grid
+  // cells over it is skipped as land, if the water layer is water
+  // throughout it and a margin around it: the B-spline's 2 texels, the
+  // mipmap footprint (up to 3 texels per pixel of footprintM) and, for the
+  // grid, two cells (whose corners must be water for a cell to be drawn).
+  const world::WaterIndex& wi = world.waterIndex();
+  if (wi.width() == 0) return false;
+  const double maxAbsLat = std::max(std::abs(lat0), std::abs(lat1));
+  const double texelM = std::min(wi.latStepDeg(), wi.lonStepDeg() * std::cos(std::min(maxAbsLat, 89.0) * kDeg)) * kDeg *
+                        geo::kWgs84B;
+  const double tpp = footprintM / texelM;
+  const double margin = 3.0 + (3.0 + 2.0 * cellPx) * tpp;
+  if (margin > 256.0) return false;
+  return wi.allWater(wi.texelX(lon0) - margin, wi.texelX(lon1) + margin, wi.texelY(lat0) - margin,
+                     wi.texelY(lat1) + margin);
+}
+
+}  // namespace geocean::ocean_render

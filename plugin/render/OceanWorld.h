@@ -1,0 +1,28 @@
+// The ocean's own world grids (elevation for depth, water coverage for the
+// shoreline) from its rasters, for its textures and its water index. Global
+// in-memory rasters are copied pixel for pixel (so the ocean's shoreline is
+// the host's when both load the same mask); anything else is resampled
+// through the classifier. The mask encoding decides what is water.
+#pragma once
+
+#include "globe/world/WorldGrids.h"
+#include "plugin/landsea/LandSea.h"
+
+#include <memory>
+
+namespace geocean::ocean_render {
+
+// mask, elevation, landSea may each be null (no relief: deep water; no
+// classes: water everywhere).
+std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const raster::Raster>& mask,
+                                                    const std::shared_ptr<const raster::Raster>& elevation,
+                                                    const ocean::LandSea* landSea,
+                                                    const world::MaskEncoding& encoding = {});
+
+// The ocean's side of the host/layer contract: true when it draws every
+// pixel over the rectangle opaque, for pixels whose footprint there is up to
+// footprintM metres, with grid cells of cellPx pixels.
+bool coversOpaquely(const world::WorldGrids& world, double cellPx, double lat0Deg, double lat1Deg, double lon0Deg,
+                    double lon1Deg, double footprintM);
+
+}  // namespace geocean::ocean_render

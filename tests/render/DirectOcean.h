@@ -1,0 +1,55 @@
+// A host layer that draws plugin/render's OceanRenderer in-process (tests
+// and benchmarks: the geocean executable draws the ocean through the C ABI
+// instead, globe/host/OceanLayer).
+#pragma once
+
+#include "globe/render/GlobeRenderer.h"
+#include "globe/render/Layer.h"
+#include "plugin/render/OceanRenderer.h"
+#include "plugin/waves/WaveField.h"
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace geocean::render::test {
+
+class DirectOceanLayer : public Layer {
+ public:
+  explicit DirectOceanLayer(std::shared_ptr<ocean_render::OceanRenderer> ocean) : ocean_(std::move(ocean)) {}
+  const char* name() const override { return "ocean"; }
+  LayerInfo info() const override { return {true, ocean_->cellPx(), 0u}; }
+  bool coversOpaquely(double lat0, double lat1, double lon0, double lon1, double footprintM) const override {
+    return ocean_->coversOpaquely(lat0, lat1, lon0, lon1, footprintM);
+  }
+  void draw(const camera::Camera& cam, const camera::Lighting& light, bool bare, const LayerInputs&) override {
+    ocean_->draw(cam, light, bare);
+  }
+
+ private:
+  std::shared_ptr<ocean_render::OceanRenderer> ocean_;
+};
+
+// The default world's ocean (model by CLI name) on `grids`, added to the
+// renderer; returns an error message naming the option (empty on success).
+inline std::string addDirectOcean(GlobeRenderer& renderer, std::shared_ptr<const world::WorldGrids> grids,
+                                  const std::string& modelName, double windMps, double windFromDeg,
+                                  std::shared_ptr<ocean_render::OceanRenderer>* created = nullptr) {
+  ocean_render::OceanOptions oo;
+  const auto model = waves::parseModel(modelName);
+  if (!model || *model == waves::Model::NoisePaper)
+    return "--waves '" + modelName + "' is not a GPU wave model (noise, gerstner, fft)";
+  oo.model = *model;
+  oo.sea.windSpeedMps = windMps;
+  oo.sea.windFromDeg = windFromDeg;
+  try {
+    auto o = std::make_shared<ocean_render::OceanRenderer>(std::move(grids), ocean_render::defaultLandSea(), oo);
+    renderer.addLayer(std::make_shared<DirectOceanLayer>(o));
+    if (created) *created = o;
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return {};
+}
+
+}  // namespace geocean::render::test
