@@ -4,6 +4,7 @@
 #pragma once
 
 #include "globe/raster/Raster.h"
+#include "globe/world/Surface.h"
 
 #include <algorithm>
 #include <array>
@@ -19,16 +20,11 @@
 
 namespace geocean::ocean {
 
-enum class Surface : std::uint8_t { Ocean = 0, Land = 1, Lake = 2 };
-const char* toString(Surface s);  // "ocean" | "land" | "lake"
-
-// How mask values map to classes (default: 0 ocean, 1 land, 2 lake;
-// values >= 256 or unmapped count as land).
-struct MaskEncoding {
-  std::array<Surface, 256> classOf{};
-  MaskEncoding();
-  static MaskEncoding parse(const std::string& spec);  // "0=ocean,1=land,2=lake,3=land"
-};
+// The classes and the mask encoding are the host's (globe/world), shared
+// with the renderers' water rule.
+using world::MaskEncoding;
+using world::Surface;
+using world::toString;
 
 class LandSea {
  public:
