@@ -5,6 +5,8 @@
 #include "globe/gl/HeadlessContext.h"
 #include "globe/host/OceanPlugin.h"
 
+#include <malloc.h>
+
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
@@ -321,6 +323,44 @@ TEST(CapiGl, DestroyWithoutTheContextCurrentDoesNotCrash) {
   host.reset();  // the host destroys its context first (it takes the ocean's GL objects with it)
   api().destroy(h);
   EXPECT_EQ(lastError(), "");
+}
+
+// Heap in use (small chunks + mmapped ones: the grids are mmapped).
+std::size_t heapInUse() {
+  const struct mallinfo2 m = mallinfo2();
+  return m.uordblks + m.hblkhd;
+}
+
+// What geocean_destroy frees of an ocean on the default world, in a process
+// whose host has already destroyed the context of its draws.
+std::size_t freedByDestroy(bool drawFirst) {
+  auto host = std::make_unique<Host>();
+  EXPECT_TRUE(host->ctx);
+  Ocean o;
+  EXPECT_EQ(api().setDefaultWorld(o.h), GEOCEAN_OK) << lastError();
+  if (drawFirst) {
+    const geocean_view v = nadir(30.0, -40.0, 500.0);
+    EXPECT_EQ(api().update(o.h, &v), GEOCEAN_OK);
+    host->beginFrame();
+    EXPECT_EQ(api().draw(o.h), GEOCEAN_OK) << lastError();
+  }
+  host.reset();  // no context current from here
+  const std::size_t before = heapInUse();
+  api().destroy(o.h);
+  o.h = nullptr;
+  const std::size_t after = heapInUse();
+  return before > after ? before - after : 0;
+}
+
+TEST(CapiGl, DestroyWithoutTheContextFreesTheCpuSide) {
+  // Without its context only the GL names may be abandoned: the ocean's
+  // water and elevation grids (5' water as floats: 4320 x 2160 x 4 B =
+  // 37.3 MB) must go too. The difference to an ocean that never drew is
+  // what the draw state held on the CPU.
+  const std::size_t plain = freedByDestroy(false);
+  const std::size_t drawn = freedByDestroy(true);
+  EXPECT_GT(drawn, plain + std::size_t(30) * 1024 * 1024) << "freed " << drawn << " B after a draw, " << plain
+                                                           << " B without one";
 }
 
 }  // namespace

@@ -1,0 +1,2 @@
+#include "plugin/landsea/LandSea.h"
+#include "plugin/ocean/Ocean.h"

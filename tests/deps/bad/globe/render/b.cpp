@@ -1,0 +1,1 @@
+#include "plugin/waves/WaveField.h"

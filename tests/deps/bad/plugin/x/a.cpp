@@ -1,0 +1,1 @@
+#include "globe/render/GlobeRenderer.h"
