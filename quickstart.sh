@@ -14,6 +14,8 @@ packages=(
   libgtest-dev libbenchmark-dev
   proj-bin gmt gmt-gshhg-low xvfb xauth
   libkissfft-dev libhwy-dev libimgui-dev
+  pybind11-dev python3-numpy python3-xarray python3-dask python3-distributed python3-pytest
+  libbullet-dev clang libclang-rt-14-dev gmt-gshhg-full xdotool
 )
 missing=()
 for p in "${packages[@]}"; do
