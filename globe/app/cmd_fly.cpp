@@ -4,7 +4,9 @@
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
 #include "globe/render/Session.h"
+#if GEOCEAN_WITH_HUD
 #include "globe/gl/Hud.h"
+#endif
 #include "globe/host/OceanLayer.h"
 
 #include <epoxy/gl.h>
@@ -91,6 +93,7 @@ int runFly(const FlyArgs& a) {
       return kExitBadInput;
     }
   }
+#if GEOCEAN_WITH_HUD
   std::unique_ptr<gl::Hud> hud;  // declared after the session: destroyed while its context lives
   if (a.hud) {
     std::string err;
@@ -100,6 +103,12 @@ int runFly(const FlyArgs& a) {
       return kExitNoDisplay;
     }
   }
+#else
+  if (a.hud) {
+    std::fprintf(stderr, "geocean fly: --hud: this geocean was built with GEOCEAN_BUILD_VIEWER=OFF (no HUD)\n");
+    return kExitBadInput;
+  }
+#endif
   csv << "frame,time_s,lat,lon,alt_m,pitch_deg,tiles,sky_ms,terrain_ms,ocean_ms,total_ms";
   if (a.reference) csv << ",bare_terrain_ms,bare_ocean_ms,bare_total_ms";
   csv << "\n";
@@ -113,6 +122,7 @@ int runFly(const FlyArgs& a) {
     fs.sunEcef = sun;
     fs.timed = true;
     const auto t = s.render(pose, fs);
+#if GEOCEAN_WITH_HUD
     if (hud) {  // drawn after the timed passes, so timings.csv is the same with or without it
       gl::HudValues hv;
       hv.latDeg = pose.latDeg, hv.lonDeg = pose.lonDeg, hv.altM = pose.altM;
@@ -125,6 +135,7 @@ int runFly(const FlyArgs& a) {
       glViewport(0, 0, pose.width, pose.height);
       hud->draw(pose.width, pose.height, 1.0 / a.fps, hv);
     }
+#endif
     if (!a.noImages) {
       char name[64];
       std::snprintf(name, sizeof name, "/frame_%05d.png", f);
