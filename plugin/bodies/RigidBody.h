@@ -88,11 +88,20 @@ class Wrench {
     addForceAtOffset(forceEcef, pointEcef - comEcef);
   }
   void addTorque(const glm::dvec3& torqueEcef) { torque_ += torqueEcef; }
+  // Added (hydrodynamic) mass along the body axes (kg) and added moments of
+  // inertia about them (kg m^2), diagonal in body axes: the integrator solves
+  // (M + A) a = F + M g. Each must be >= 0 (Simulation checks).
+  void addAddedMass(const glm::dvec3& massBodyKg, const glm::dvec3& inertiaBodyKgM2) {
+    addedMass_ += massBodyKg;
+    addedInertia_ += inertiaBodyKgM2;
+  }
   const glm::dvec3& force() const { return force_; }
   const glm::dvec3& torque() const { return torque_; }
+  const glm::dvec3& addedMassBody() const { return addedMass_; }
+  const glm::dvec3& addedInertiaBody() const { return addedInertia_; }
 
  private:
-  glm::dvec3 force_{0.0}, torque_{0.0};
+  glm::dvec3 force_{0.0}, torque_{0.0}, addedMass_{0.0}, addedInertia_{0.0};
 };
 
 // For drawing between fixed steps: position along the step, orientation by

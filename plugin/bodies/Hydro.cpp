@@ -1,0 +1,398 @@
+#include "plugin/bodies/Hydro.h"
+
+#include "plugin/bodies/Validate.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <limits>
+#include <stdexcept>
+
+namespace geocean::bodies {
+
+using detail::fail;
+using detail::requireNonNegative;
+using detail::requirePositive;
+
+namespace {
+
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+// Columns: the body's axes in the step's ENU frame.
+glm::dmat3 bodyToEnu(const BodyState& s, const StepContext& ctx) {
+  glm::dmat3 R;
+  for (int k = 0; k < 3; ++k) {
+    glm::dvec3 axis(0.0);
+    axis[k] = 1.0;
+    R[k] = ctx.enu.toLocal(s.bodyToEcef(axis));
+  }
+  return R;
+}
+
+// ITTC-1957 model-ship correlation line; Blasius' laminar plate below 5e5.
+double frictionCoefficient(double reynolds) {
+  reynolds = std::max(reynolds, 1.0);
+  if (reynolds < 5e5) return 1.328 / std::sqrt(reynolds);
+  const double l = std::log10(reynolds) - 2.0;
+  return 0.075 / (l * l);
+}
+
+struct Vtx {
+  glm::dvec3 r;   // ENU offset from the centre of mass
+  double d;       // depth below the local surface (> 0 wet)
+  double p;       // pressure (Pa)
+};
+
+// Per-thread scratch for the per-vertex arrays (no allocation per step).
+struct Scratch {
+  std::vector<glm::dvec3> off;
+  std::vector<double> lat, lon, h, t;
+  std::vector<SeaSample> sea;
+  std::vector<Vtx> v;
+  void resize(std::size_t n) {
+    off.resize(n), lat.resize(n), lon.resize(n), h.resize(n), t.resize(n), sea.resize(n), v.resize(n);
+  }
+};
+
+Scratch& scratch() {
+  thread_local Scratch s;
+  return s;
+}
+
+}  // namespace
+
+void offsetsToGeodetic(const StepContext& ctx, const glm::dvec3* off, std::size_t n, double* latDeg, double* lonDeg,
+                       double* heightM) {
+  constexpr double a = 6378137.0, f = 1.0 / 298.257223563, e2 = f * (2.0 - f);
+  const double phi = ctx.geodetic.latDeg / kDeg;
+  const double s = std::sin(phi), c = std::cos(phi);
+  if (std::abs(c) < 0.0174524) {  // above 89 degrees: tan(lat) > 57 feeds the neglected third order
+    for (std::size_t i = 0; i < n; ++i) {
+      const geo::Geodetic g = geo::fromEcef(ctx.enu.originEcef + ctx.enu.toEcef(off[i]));
+      latDeg[i] = g.latDeg, lonDeg[i] = g.lonDeg, heightM[i] = g.heightM;
+    }
+    return;
+  }
+  const double w = std::sqrt(1.0 - e2 * s * s);
+  const double Nh = a / w + ctx.geodetic.heightM, Mh = a * (1.0 - e2) / (w * w * w) + ctx.geodetic.heightM;
+  const double tanPhi = s / c;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double e = off[i].x, nn = off[i].y, u = off[i].z;
+    // Second order: moving east along the tangent plane lowers the latitude
+    // by e^2 tan(phi) / (2 N^2); moving north stretches the parallel.
+    latDeg[i] = ctx.geodetic.latDeg + kDeg * (nn / Mh - e * e * tanPhi / (2.0 * Nh * Nh));
+    lonDeg[i] = ctx.geodetic.lonDeg + kDeg * (e / (Nh * c)) * (1.0 + nn * tanPhi / Nh);
+    heightM[i] = ctx.geodetic.heightM + u + 0.5 * (e * e / Nh + nn * nn / Mh);
+  }
+}
+
+double rectangularPlateAddedMassCoefficient(double aspect) {
+  // DNV-RP-C205 (2010) table A-2, rectangular plates: b/a, C_A.
+  static constexpr std::array<std::array<double, 2>, 12> kTable{{{1.0, 0.579}, {1.25, 0.642}, {1.5, 0.704},
+                                                                  {1.59, 0.719}, {2.0, 0.757}, {2.5, 0.801},
+                                                                  {3.0, 0.830}, {4.0, 0.872}, {5.0, 0.897},
+                                                                  {6.25, 0.917}, {8.0, 0.934}, {10.0, 0.947}}};
+  if (!(aspect >= 1.0)) fail("plate aspect ratio b/a", aspect, "", "must be >= 1");
+  if (aspect >= 10.0) return 1.0 - 0.53 / aspect;
+  for (std::size_t i = 1; i < kTable.size(); ++i) {
+    if (aspect <= kTable[i][0]) {
+      const double u = (aspect - kTable[i - 1][0]) / (kTable[i][0] - kTable[i - 1][0]);
+      return kTable[i - 1][1] + u * (kTable[i][1] - kTable[i - 1][1]);
+    }
+  }
+  return 0.947;
+}
+
+// ---- HullForce ---------------------------------------------------------------
+
+HullForce::HullForce(std::shared_ptr<const HullMesh> hull, std::shared_ptr<const SeaSurface> sea,
+                     HullForceOptions options)
+    : hull_(std::move(hull)), sea_(std::move(sea)), options_(options) {
+  if (!hull_) throw std::invalid_argument("geocean::bodies: HullForce hull is null");
+  if (!sea_) throw std::invalid_argument("geocean::bodies: HullForce sea is null");
+  requirePositive("water density", options_.water.densityKgM3, "kg/m^3");
+  requirePositive("water kinematic viscosity", options_.water.kinematicViscosityM2ps, "m^2/s");
+  requireNonNegative("pressure drag coefficient", options_.pressureDragCoefficient, "");
+  requirePositive("acceleration probe half-width", options_.accelerationProbeS, "s");
+  requireNonNegative("heave damping ratio", options_.heaveDampingRatio, "");
+  requireNonNegative("roll damping ratio", options_.rollDampingRatio, "");
+  requireNonNegative("pitch damping ratio", options_.pitchDampingRatio, "");
+  const glm::dvec3 ext = hull_->maxCorner() - hull_->minCorner();
+  lengthM_ = ext.x;
+  const double rho = options_.water.densityKgM3;
+  if (hull_->kind() == "cylinder") {
+    const double R = std::sqrt(hull_->volumeM3() / (std::numbers::pi * ext.z));
+    a33Full_ = 4.0 / 3.0 * rho * R * R * R;
+    awpFull_ = std::numbers::pi * R * R;
+  } else {
+    const double a = std::min(ext.x, ext.y), b = std::max(ext.x, ext.y);
+    a33Full_ = 0.5 * rectangularPlateAddedMassCoefficient(b / a) * rho * std::numbers::pi / 4.0 * a * a * b;
+    awpFull_ = ext.x * ext.y;
+  }
+}
+
+void HullForce::accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const {
+  const HullEvaluation e = evaluate(body.state, body.mass, ctx);
+  wrench.addForce(e.wrench.force());
+  wrench.addTorque(e.wrench.torque());
+  wrench.addAddedMass(e.wrench.addedMassBody(), e.wrench.addedInertiaBody());
+}
+
+HullEvaluation HullForce::evaluate(const BodyState& state, const MassProperties& mass, const StepContext& ctx) const {
+  HullEvaluation out;
+  const auto& verts = hull_->vertices();
+  const auto& idx = hull_->indices();
+  const std::size_t n = verts.size();
+  Scratch& S = scratch();
+  S.resize(std::max<std::size_t>(n, 3));
+  const glm::dmat3 R = bodyToEnu(state, ctx);
+  for (std::size_t i = 0; i < n; ++i) S.off[i] = R * verts[i];
+  offsetsToGeodetic(ctx, S.off.data(), n, S.lat.data(), S.lon.data(), S.h.data());
+  std::fill(S.t.begin(), S.t.begin() + n, ctx.timeS);
+  sea_->sample(S.lat.data(), S.lon.data(), S.t.data(), n, false, S.sea.data());
+
+  // The centre: the surface and the water's velocity at t, and its vertical
+  // velocity at t -+ dt_probe for the acceleration.
+  const double probe = options_.accelerationProbeS;
+  std::array<double, 3> cLat{}, cLon{}, cT{ctx.timeS, ctx.timeS - probe, ctx.timeS + probe};
+  cLat.fill(ctx.geodetic.latDeg), cLon.fill(ctx.geodetic.lonDeg);
+  std::array<SeaSample, 3> c;
+  sea_->sample(cLat.data(), cLon.data(), cT.data(), 3, true, c.data());
+  out.seaHeightM = c[0].heightM;
+
+  const double rho = options_.water.densityKgM3, g = ctx.gravityMps2, rhoG = rho * g;
+  const double k = sea_->decayWaveNumberPerM();
+  bool anyWet = false;
+  double lowest = ctx.geodetic.heightM;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double eta = S.sea[i].heightM;
+    lowest = std::min(lowest, S.h[i]);
+    const double d = std::isnan(eta) ? -1e300 : eta - S.h[i];
+    double p = 0.0;
+    if (d > 0.0) {
+      anyWet = true;
+      p = k > 0.0 ? rhoG * (d - eta * (1.0 - std::exp(-k * d))) : rhoG * d;
+      p = std::max(p, 0.0);
+    }
+    S.v[i] = Vtx{S.off[i], d, p};
+  }
+  out.keelDepthM = std::isnan(c[0].heightM) ? std::numeric_limits<double>::quiet_NaN() : c[0].heightM - lowest;
+  if (!anyWet) return out;
+
+  const glm::dvec3 vCom = ctx.enu.toLocal(state.velocityEcef);
+  const glm::dvec3 wEnu = ctx.enu.toLocal(state.angularVelocityEcef());
+  const glm::dvec3 vWater0 = std::isnan(c[0].heightM)
+                                 ? glm::dvec3(0.0)
+                                 : glm::dvec3(c[0].horizontalVelocityEnMps, c[0].verticalVelocityMps);
+  const double relSpeed = glm::length(vCom - vWater0);
+  const double cf = options_.skinFriction ? frictionCoefficient(relSpeed * lengthM_ /
+                                                                 options_.water.kinematicViscosityM2ps)
+                                          : 0.0;
+  const double cd = options_.pressureDragCoefficient;
+
+  glm::dvec3 F(0.0), T(0.0), volMoment(0.0);
+  double vol = 0.0, areaUp = 0.0, wpX = 0.0, wpY = 0.0, wpXX = 0.0, wpYY = 0.0;
+  // The body's x and y axes laid horizontal (for the waterplane's moments).
+  auto horizontal = [](glm::dvec3 v) {
+    v.z = 0.0;
+    const double l = glm::length(v);
+    return l > 1e-9 ? v / l : glm::dvec3(0.0);
+  };
+  glm::dvec3 hx = horizontal(R[0]), hy = horizontal(R[1]);
+  if (hx == glm::dvec3(0.0)) hx = glm::normalize(glm::cross(hy, glm::dvec3(0, 0, 1)));
+  if (hy == glm::dvec3(0.0)) hy = glm::normalize(glm::cross(glm::dvec3(0, 0, 1), hx));
+  auto integrate = [&](const Vtx& a, const Vtx& b, const Vtx& cc) {
+    const glm::dvec3 Sv = 0.5 * glm::cross(b.r - a.r, cc.r - a.r);  // area x outward normal
+    const double P = a.p + b.p + cc.p;
+    const glm::dvec3 sr = a.r + b.r + cc.r;
+    F -= (P / 3.0) * Sv;
+    T -= glm::cross((a.p * a.r + b.p * b.r + cc.p * cc.r + P * sr) / 12.0, Sv);
+    const double D = a.d + b.d + cc.d;
+    vol -= D / 3.0 * Sv.z;
+    volMoment -= (a.d * a.r + b.d * b.r + cc.d * cc.r + D * sr) / 12.0 * Sv.z;
+    areaUp += Sv.z;
+    // Second moments of the waterplane, -integral of (offset along the
+    // body's horizontal axes)^2 n_up dA: int f^2 = A/6 (sum f_i^2 + sum f_i f_j).
+    const double xa = glm::dot(a.r, hx), xb = glm::dot(b.r, hx), xc = glm::dot(cc.r, hx);
+    const double ya = glm::dot(a.r, hy), yb = glm::dot(b.r, hy), yc = glm::dot(cc.r, hy);
+    wpX += Sv.z * (xa + xb + xc) / 3.0, wpY += Sv.z * (ya + yb + yc) / 3.0;
+    wpXX += Sv.z * (xa * xa + xb * xb + xc * xc + xa * xb + xb * xc + xc * xa) / 6.0;
+    wpYY += Sv.z * (ya * ya + yb * yb + yc * yc + ya * yb + yb * yc + yc * ya) / 6.0;
+    // Drag on the velocity relative to the water at the centroid.
+    const double A = glm::length(Sv);
+    if (A <= 0.0) return;
+    const glm::dvec3 nrm = Sv / A, rc = sr / 3.0;
+    const glm::dvec3 vRel = vCom + glm::cross(wEnu, rc) - vWater0 * std::exp(-k * (D / 3.0));
+    const double vn = glm::dot(vRel, nrm);
+    glm::dvec3 fd = -0.25 * rho * cd * std::abs(vn) * vn * A * nrm;
+    const glm::dvec3 vt = vRel - vn * nrm;
+    fd -= 0.5 * rho * cf * glm::length(vt) * A * vt;
+    F += fd;
+    T += glm::cross(rc, fd);
+  };
+  for (std::size_t t = 0; t < idx.size(); t += 3) {
+    const Vtx* tri[3] = {&S.v[idx[t]], &S.v[idx[t + 1]], &S.v[idx[t + 2]]};
+    const int wet = (tri[0]->d > 0.0) + (tri[1]->d > 0.0) + (tri[2]->d > 0.0);
+    if (wet == 0) continue;
+    if (wet == 3) {
+      integrate(*tri[0], *tri[1], *tri[2]);
+      continue;
+    }
+    // Clip (Sutherland-Hodgman) at d = 0, where the pressure is 0 too.
+    std::array<Vtx, 4> poly;
+    int m = 0;
+    for (int e = 0; e < 3; ++e) {
+      const Vtx &p = *tri[e], &q = *tri[(e + 1) % 3];
+      if (p.d > 0.0) poly[m++] = p;
+      if ((p.d > 0.0) != (q.d > 0.0)) {
+        const double s = p.d / (p.d - q.d);
+        poly[m++] = Vtx{p.r + s * (q.r - p.r), 0.0, 0.0};
+      }
+    }
+    for (int j = 1; j + 1 < m; ++j) integrate(poly[0], poly[j], poly[j + 1]);
+  }
+  out.submergedVolumeM3 = vol;
+  out.waterplaneAreaM2 = -areaUp;
+  if (vol > 0.0) {
+    out.buoyancyCentreEnu = volMoment / vol;
+  }
+
+  const double awp = out.waterplaneAreaM2;
+  double a33 = 0.0;
+  if (options_.addedMass && awp > 0.0) {
+    const double frac = std::min(1.0, awp / awpFull_);
+    a33 = a33Full_ * frac * std::sqrt(frac);
+    out.heaveAddedMassKg = a33;
+    out.wrench.addAddedMass(glm::dvec3(0.0, 0.0, a33), glm::dvec3(0.0));
+    // Morison / G.I. Taylor long-wave term: a33 times the water's vertical
+    // acceleration at the keel, along the body's heave axis.
+    if (!std::isnan(c[1].heightM) && !std::isnan(c[2].heightM)) {
+      const double keel = std::max(out.keelDepthM, 0.0);
+      const double aw = (c[2].verticalVelocityMps - c[1].verticalVelocityMps) / (2.0 * probe) * std::exp(-k * keel);
+      const glm::dvec3 zb = R[2];
+      F += a33 * zb.z * aw * zb;
+    }
+  }
+  // Radiation damping (linear, fractions of critical).
+  if (awp > 0.0 && vol > 0.0) {
+    const double keel = std::max(out.keelDepthM, 0.0);
+    const double vzRel = vCom.z - vWater0.z * std::exp(-k * keel);
+    F.z -= 2.0 * options_.heaveDampingRatio * std::sqrt((mass.massKg() + a33) * rhoG * awp) * vzRel;
+    // GM about the centre of mass: z_B + I_wp / V, I_wp about the waterplane's centroid.
+    const double Ixx = -(wpYY - wpY * wpY / -areaUp), Iyy = -(wpXX - wpX * wpX / -areaUp);
+    const double zB = out.buoyancyCentreEnu.z;
+    out.metacentricHeightM = {zB + Ixx / vol, zB + Iyy / vol};
+    const glm::dvec3 wBody = state.angularVelocityBody;
+    const glm::dmat3& I = mass.inertiaBody();
+    glm::dvec3 tauBody(0.0);
+    if (out.metacentricHeightM.x > 0.0)
+      tauBody.x = -2.0 * options_.rollDampingRatio * std::sqrt(I[0][0] * rhoG * vol * out.metacentricHeightM.x) * wBody.x;
+    if (out.metacentricHeightM.y > 0.0)
+      tauBody.y = -2.0 * options_.pitchDampingRatio * std::sqrt(I[1][1] * rhoG * vol * out.metacentricHeightM.y) * wBody.y;
+    T += R * tauBody;
+  }
+  out.wrench.addForce(ctx.enu.toEcef(F));
+  out.wrench.addTorque(ctx.enu.toEcef(T));
+  return out;
+}
+
+// ---- ContactPointForce -------------------------------------------------------
+
+ContactPointForce::ContactPointForce(std::vector<glm::dvec3> pointsBody, double volumeM3, double columnHeightM,
+                                     double waterplaneAreaM2, std::shared_ptr<const SeaSurface> sea,
+                                     ContactPointOptions options)
+    : points_(std::move(pointsBody)),
+      volume_(volumeM3),
+      column_(columnHeightM),
+      area_(waterplaneAreaM2),
+      sea_(std::move(sea)),
+      options_(options) {
+  if (points_.empty()) fail("contact point count", 0.0, "", "must be > 0");
+  for (std::size_t i = 0; i < points_.size(); ++i)
+    detail::requireFinite("contact point " + std::to_string(i), points_[i], "m");
+  requirePositive("contact point volume", volume_, "m^3");
+  requirePositive("contact point column height", column_, "m");
+  requirePositive("contact point waterplane area", area_, "m^2");
+  requirePositive("water density", options_.water.densityKgM3, "kg/m^3");
+  requireNonNegative("contact point drag coefficient", options_.dragCoefficient, "");
+  if (!sea_) throw std::invalid_argument("geocean::bodies: ContactPointForce sea is null");
+}
+
+std::shared_ptr<ContactPointForce> ContactPointForce::hollowCylinderProxy(double lengthM, double outerRadiusM, int nx,
+                                                                          std::shared_ptr<const SeaSurface> sea,
+                                                                          ContactPointOptions options) {
+  requirePositive("proxy length", lengthM, "m");
+  requirePositive("proxy outer radius", outerRadiusM, "m");
+  if (nx < 1 || nx > 256) fail("proxy points along the length", nx, "", "must be 1..256");
+  std::vector<glm::dvec3> pts;
+  for (int j = 0; j < nx; ++j)
+    for (double side : {-0.5, 0.5})
+      pts.emplace_back(lengthM * ((j + 0.5) / nx - 0.5), side * outerRadiusM, 0.0);
+  return std::make_shared<ContactPointForce>(std::move(pts), std::numbers::pi * outerRadiusM * outerRadiusM * lengthM,
+                                             2.0 * outerRadiusM, 2.0 * outerRadiusM * lengthM, std::move(sea),
+                                             options);
+}
+
+void ContactPointForce::accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const {
+  const std::size_t n = points_.size();
+  Scratch& S = scratch();
+  S.resize(n);
+  const glm::dmat3 R = bodyToEnu(body.state, ctx);
+  for (std::size_t i = 0; i < n; ++i) S.off[i] = R * points_[i];
+  offsetsToGeodetic(ctx, S.off.data(), n, S.lat.data(), S.lon.data(), S.h.data());
+  std::fill(S.t.begin(), S.t.begin() + n, ctx.timeS);
+  sea_->sample(S.lat.data(), S.lon.data(), S.t.data(), n, true, S.sea.data());
+  const double rho = options_.water.densityKgM3, k = sea_->decayWaveNumberPerM();
+  const double vi = volume_ / n, ai = area_ / n;
+  const glm::dvec3 vCom = ctx.enu.toLocal(body.state.velocityEcef);
+  const glm::dvec3 wEnu = ctx.enu.toLocal(body.state.angularVelocityEcef());
+  glm::dvec3 F(0.0), T(0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const SeaSample& s = S.sea[i];
+    if (std::isnan(s.heightM)) continue;
+    const double d = s.heightM - S.h[i];
+    const double frac = std::clamp(d / column_ + 0.5, 0.0, 1.0);
+    if (frac <= 0.0) continue;
+    glm::dvec3 f(0.0, 0.0, rho * ctx.gravityMps2 * vi * frac);  // Fn_i
+    const glm::dvec3 vWater = glm::dvec3(s.horizontalVelocityEnMps, s.verticalVelocityMps) * std::exp(-k * std::max(d, 0.0));
+    const glm::dvec3 vRel = vCom + glm::cross(wEnu, S.off[i]) - vWater;
+    f -= 0.5 * rho * options_.dragCoefficient * ai * frac * glm::length(vRel) * vRel;  // Fd_i
+    F += f;
+    T += glm::cross(S.off[i], f);  // eq. 4
+  }
+  wrench.addForce(ctx.enu.toEcef(F));
+  wrench.addTorque(ctx.enu.toEcef(T));
+}
+
+// ---- Thrust, Repulsion -----------------------------------------------------------
+
+Thrust::Thrust(double newtons) : newtons_(newtons) { detail::requireFinite("thrust", newtons, "N"); }
+
+void Thrust::accumulate(const Body& body, const StepContext&, Wrench& wrench) const {
+  wrench.addForce(newtons_ * body.state.bodyToEcef(glm::dvec3(1.0, 0.0, 0.0)));
+}
+
+Repulsion::Repulsion(const Simulation& sim, double radiusM, double stiffnessNpm)
+    : sim_(&sim), radius_(radiusM), stiffness_(stiffnessNpm) {
+  requirePositive("repulsion radius", radiusM, "m");
+  requirePositive("repulsion stiffness", stiffnessNpm, "N/m");
+}
+
+void Repulsion::accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const {
+  glm::dvec3 F(0.0);
+  for (const Body& o : sim_->bodies()) {
+    if (o.id == body.id) continue;
+    glm::dvec3 d = ctx.enu.toLocal(o.state.positionEcef - body.state.positionEcef);
+    d.z = 0.0;
+    const double dist = glm::length(d);
+    const double overlap = 2.0 * radius_ - dist;
+    if (overlap <= 0.0 || dist <= 0.0) continue;
+    F -= stiffness_ * overlap * d / dist;
+  }
+  wrench.addForce(ctx.enu.toEcef(F));
+}
+
+}  // namespace geocean::bodies

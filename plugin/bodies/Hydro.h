@@ -1,0 +1,196 @@
+// Forces of the water on floating bodies.
+//
+// HullForce (the default): the hull mesh is clipped against the sea surface
+// every step and the water pressure is integrated over each submerged
+// triangle:
+//   * depth d of every vertex below the sea surface exactly above it (the
+//     SeaSurface's height at the vertex's latitude and longitude minus the
+//     vertex's height above the ellipsoid);
+//   * each triangle is clipped where d, linear along its edges, is 0;
+//   * pressure p = rho g (d - eta (1 - e^{-k d})), eta the surface height
+//     above still water (height 0): hydrostatic under a flat sea, and with
+//     waves the linear (Airy) deep-water pressure p = rho g (-z + eta e^{k z})
+//     with Wheeler's stretching (the decay counted from the instantaneous
+//     surface, so p = 0 on it): the Froude-Krylov pressure of the waves
+//     (Dean & Dalrymple, Water Wave Mechanics, 1991, sec. 4.4; Wheeler,
+//     J. Petroleum Technology 22, 1970). k is SeaSurface::decayWaveNumberPerM.
+//   * force -(integral of p n dA) and its moment, exact for p linear over the
+//     triangle (integral p r dA = A/12 (sum p_i r_i + sum p_i sum r_i)); with
+//     hydrostatic pressure the closed clipped hull plus the zero-pressure
+//     waterplane give exactly rho g V_submerged (divergence theorem).
+//   * added mass in heave, a33 = 1/2 C_A rho pi/4 B^2 L for a box or boat of
+//     waterplane length L and beam B <= L (half of the flat rectangular plate
+//     in infinite fluid, the infinite-frequency limit of a floating body;
+//     C_A from DNV-RP-C205 (2010) table A-2), a33 = 4/3 rho R^3 for the
+//     vertical cylinder (half of Newman's disc, 8/3 rho R^3, Marine
+//     Hydrodynamics table 4.3); scaled by (A_wp / A_wp,full)^{3/2} as the
+//     waterplane A_wp shrinks. It enters the integrator's mass matrix
+//     (Wrench::addAddedMass) and, as in Morison's equation, a33 times the
+//     water's vertical acceleration at the keel (central difference of the
+//     surface's vertical velocity, decayed by e^{-k d_keel}) is a force: the
+//     long-wave diffraction term, which makes the heave follow long swell.
+//     Not modelled: added mass in surge, sway, roll, pitch and yaw; wave
+//     radiation damping (the damping is the drag below).
+//   * drag per submerged triangle on the velocity relative to the water
+//     (orbital velocity from the surface at the centre, decayed e^{-k d}):
+//     pressure drag -1/2 rho (C_D / 2) |v_n| v_n A n on every face, the
+//     advancing faces' stagnation and the retreating faces' base suction
+//     sharing C_D = 1 (Hoerner, Fluid-Dynamic Drag, 1965, ch. 3: a flat plate
+//     normal to the flow 1.17, bluff bodies ~1; counting only advancing
+//     faces would rectify a heaving asymmetric hull's oscillation into
+//     thrust), and skin friction 1/2 rho C_f |v_t| v_t A with the ITTC-1957
+//     line C_f = 0.075 / (log10 Re - 2)^2 (Blasius 1.328 / sqrt(Re) below
+//     Re = 5e5), Re = |v| L / nu.
+//   * wave-radiation damping, linear, as fractions of critical damping of
+//     the current hydrostatic stiffness: heave zeta 0.1 on the velocity
+//     relative to the water, c = 2 zeta sqrt((m + a33) rho g A_wp); roll
+//     zeta 0.05 and pitch 0.1 on the body's rates, c = 2 zeta sqrt(I rho g V
+//     GM) with GM = z_B + I_wp / V about the centre of mass (I_wp of the
+//     clipped waterplane, from the wetted surface: the closed hull's
+//     integral of y^2 n_up dA is 0); none while GM <= 0. Typical ship values
+//     at resonance (Journee & Massie, Offshore Hydromechanics, 2001, ch. 6:
+//     heave and pitch strongly damped by radiation, roll lightly).
+//
+// ContactPointForce: paper 000 sec. 2.1, eq. 3-4 (one option): n points
+// fixed in the body, each carrying 1/n of the volume over a vertical column;
+// buoyancy rho g V_i f_i along the local up (f_i the column's submerged
+// fraction from the sea height at the point), drag on the point's velocity
+// relative to the water, torque from the same points (eq. 4). Gravity acts at
+// the centre of mass (Simulation). Use with MassProperties::isotropicFrom of
+// the hollow-cylinder proxy (eq. 2).
+//
+// Thrust: the engine force F_e along the hull's x axis at the centre of mass.
+// Repulsion: F_c between bodies (paper eq. 3), a spring on the overlap of
+// their horizontal radii.
+//
+// All models are const and keep no state: they may be evaluated for
+// different bodies on different threads at once.
+#pragma once
+
+#include "plugin/bodies/Hull.h"
+#include "plugin/bodies/Sea.h"
+#include "plugin/bodies/Simulation.h"
+
+#include <memory>
+#include <vector>
+
+namespace geocean::bodies {
+
+struct WaterProperties {
+  // ITTC Recommended Procedure 7.5-02-01-03 (2011), sea water at 15 C,
+  // salinity 35 g/kg: 1025.9 kg/m^3, 1.1892e-6 m^2/s (1025 is the usual round figure).
+  double densityKgM3 = 1025.0;
+  double kinematicViscosityM2ps = 1.1892e-6;
+};
+
+struct HullForceOptions {
+  WaterProperties water;
+  double pressureDragCoefficient = 1.0;  // on faces advancing into the water (Hoerner)
+  bool skinFriction = true;              // ITTC-1957
+  bool addedMass = true;                 // heave a33 (see above)
+  double heaveDampingRatio = 0.1;        // radiation damping, fractions of critical (see above)
+  double rollDampingRatio = 0.05;
+  double pitchDampingRatio = 0.1;
+  double accelerationProbeS = 0.05;      // half-width of the central difference of the water's vertical velocity
+};
+
+// What the water does to one body at one instant (tests, tools, the CLI).
+struct HullEvaluation {
+  Wrench wrench;                     // everything HullForce adds (no gravity)
+  double submergedVolumeM3 = 0.0;    // of the clipped hull (exact on a flat sea)
+  double waterplaneAreaM2 = 0.0;     // -(sum of n_up dA) over the wetted surface
+  glm::dvec3 buoyancyCentreEnu{0.0}; // centre of the clipped volume, ENU offset from the centre of mass
+  double keelDepthM = 0.0;           // lowest vertex below the sea surface at the centre of mass (<0: above)
+  double seaHeightM = 0.0;           // sea surface above the ellipsoid at the centre (NaN: no sea)
+  double heaveAddedMassKg = 0.0;     // a33 used this step
+  glm::dvec2 metacentricHeightM{0.0};  // GM transverse (roll, about body x) and longitudinal (pitch)
+};
+
+class HullForce final : public ForceModel {
+ public:
+  HullForce(std::shared_ptr<const HullMesh> hull, std::shared_ptr<const SeaSurface> sea, HullForceOptions options = {});
+
+  void accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const override;
+  HullEvaluation evaluate(const BodyState& state, const MassProperties& mass, const StepContext& ctx) const;
+
+  // a33 at the full waterplane (kg) and the waterplane area it belongs to (m^2).
+  double fullHeaveAddedMassKg() const { return a33Full_; }
+  double fullWaterplaneAreaM2() const { return awpFull_; }
+  const HullMesh& hull() const { return *hull_; }
+  const HullForceOptions& options() const { return options_; }
+
+ private:
+  std::shared_ptr<const HullMesh> hull_;
+  std::shared_ptr<const SeaSurface> sea_;
+  HullForceOptions options_;
+  double a33Full_ = 0.0, awpFull_ = 0.0, lengthM_ = 0.0;
+};
+
+// C_A of a flat rectangular plate of aspect ratio b/a >= 1 (DNV-RP-C205
+// table A-2, linear between its rows; 1 - 0.53 a/b beyond b/a = 10, which
+// meets the table's 0.947 at 10 and its limit 1).
+double rectangularPlateAddedMassCoefficient(double aspect);
+
+struct ContactPointOptions {
+  WaterProperties water;
+  double dragCoefficient = 1.0;  // quadratic, on each point's share of the waterplane (Hoerner)
+};
+
+class ContactPointForce final : public ForceModel {
+ public:
+  // pointsBody: the contact points (body axes, about the centre of mass);
+  // volumeM3: the displacement when every column is fully under; columnHeightM:
+  // the vertical extent of each point's column, centred on the point;
+  // waterplaneAreaM2: shared among the points for the drag.
+  ContactPointForce(std::vector<glm::dvec3> pointsBody, double volumeM3, double columnHeightM,
+                    double waterplaneAreaM2, std::shared_ptr<const SeaSurface> sea, ContactPointOptions options = {});
+  // Paper 000's hull proxy: a hollow cylinder of length L and outer radius R
+  // along x, with nx x 2 points on its horizontal mid-plane (the proxy's
+  // displacement pi R^2 L over columns of height 2R).
+  static std::shared_ptr<ContactPointForce> hollowCylinderProxy(double lengthM, double outerRadiusM, int nx,
+                                                                std::shared_ptr<const SeaSurface> sea,
+                                                                ContactPointOptions options = {});
+
+  void accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const override;
+  const std::vector<glm::dvec3>& points() const { return points_; }
+
+ private:
+  std::vector<glm::dvec3> points_;
+  double volume_, column_, area_;
+  std::shared_ptr<const SeaSurface> sea_;
+  ContactPointOptions options_;
+};
+
+// Engine force along the body's x axis (bow) at the centre of mass (N).
+class Thrust final : public ForceModel {
+ public:
+  explicit Thrust(double newtons);
+  void accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const override;
+
+ private:
+  double newtons_;
+};
+
+// Repulsion between bodies (paper 000 eq. 3, F_c): each body is a disc of
+// radiusM in the local horizontal; overlapping discs push apart with
+// stiffness N/m of overlap. Reads the other bodies' states from `sim` at the
+// step's start (Simulation computes every force before any body moves).
+class Repulsion final : public ForceModel {
+ public:
+  Repulsion(const Simulation& sim, double radiusM, double stiffnessNpm);
+  void accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const override;
+
+ private:
+  const Simulation* sim_;
+  double radius_, stiffness_;
+};
+
+// Geodetic coordinates of ENU offsets from the step's centre of mass, to
+// second order in |offset| / R (latitude and longitude to first order,
+// the height with the ellipsoid's curvature): over 100 m the height is
+// within 1e-8 m and the horizontal position within 1 mm of GeographicLib
+// (tests/bodies). Above 89 degrees of latitude it calls GeographicLib.
+void offsetsToGeodetic(const StepContext& ctx, const glm::dvec3* offsetsEnu, std::size_t n, double* latDeg,
+                       double* lonDeg, double* heightM);
+
+}  // namespace geocean::bodies

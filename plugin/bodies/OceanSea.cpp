@@ -1,0 +1,53 @@
+#include "plugin/bodies/OceanSea.h"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+namespace geocean::bodies {
+
+OceanSea::OceanSea(std::shared_ptr<const ocean::Snapshot> snapshot) : snap_(std::move(snapshot)) {
+  if (!snap_) throw std::invalid_argument("geocean::bodies: OceanSea snapshot is null");
+  if (snap_->waves) k_ = 2.0 * std::numbers::pi / snap_->waves->peakWavelengthM();
+}
+
+void OceanSea::sample(const double* latDeg, const double* lonDeg, const double* tS, std::size_t n, bool velocities,
+                      SeaSample* out) const {
+  if (n == 0) return;
+  thread_local std::vector<double> h, vz, vh;
+  thread_local std::vector<ocean::Surface> cls;
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  if (!snap_->waves) {
+    cls.resize(n);
+    if (snap_->landSea) {
+      snap_->classify(latDeg, lonDeg, n, cls.data());
+    } else {
+      std::fill(cls.begin(), cls.end(), ocean::Surface::Ocean);
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      out[i] = SeaSample{cls[i] == ocean::Surface::Ocean ? 0.0 : kNaN, 0.0, {0.0, 0.0}};
+    return;
+  }
+  h.resize(n);
+  ocean::SurfaceOutputs o;
+  o.heightM = h.data();
+  if (velocities) {
+    vz.resize(n), vh.resize(2 * n);
+    o.verticalVelocityMps = vz.data();
+    o.horizontalVelocityEnMps = vh.data();
+  }
+  snap_->querySurface(ocean::Points{latDeg, lonDeg, n, tS, true}, o);
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i].heightM = h[i];
+    if (velocities && !std::isnan(h[i])) {
+      out[i].verticalVelocityMps = vz[i];
+      out[i].horizontalVelocityEnMps = {vh[2 * i], vh[2 * i + 1]};
+    } else {
+      out[i].verticalVelocityMps = 0.0;
+      out[i].horizontalVelocityEnMps = {0.0, 0.0};
+    }
+  }
+}
+
+}  // namespace geocean::bodies

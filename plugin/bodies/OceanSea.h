@@ -1,0 +1,33 @@
+// The sea of the ocean façade (plugin/ocean): the surface the renderer draws
+// and `geocean query` prints, for the bodies' forces. Target
+// geocean_bodies_ocean (geocean_bodies itself stays free of the waves).
+#pragma once
+
+#include "plugin/bodies/Sea.h"
+#include "plugin/ocean/Ocean.h"
+
+#include <memory>
+
+namespace geocean::bodies {
+
+class OceanSea final : public SeaSurface {
+ public:
+  // Reads one immutable snapshot (a later setter on the Ocean is not seen:
+  // make a new OceanSea from ocean.current()). Without a sea state the sea is
+  // flat at height 0 where the snapshot says ocean (everywhere without
+  // rasters); land and lakes have no sea (NaN) either way.
+  explicit OceanSea(std::shared_ptr<const ocean::Snapshot> snapshot);
+  void sample(const double* latDeg, const double* lonDeg, const double* tS, std::size_t n, bool velocities,
+              SeaSample* out) const override;
+  // 2 pi / the spectrum's peak wavelength (0 without waves): the decay of
+  // the dominant waves' pressure; shorter components decay faster than this
+  // in reality, so their pressure at depth is overestimated.
+  double decayWaveNumberPerM() const override { return k_; }
+  const ocean::Snapshot& snapshot() const { return *snap_; }
+
+ private:
+  std::shared_ptr<const ocean::Snapshot> snap_;
+  double k_ = 0.0;
+};
+
+}  // namespace geocean::bodies
