@@ -86,5 +86,10 @@ void main() {
   float depth = max(vDepthM, (water - 0.5) * 120.0);
   vSeaColor = seaColorLit(up, normalize(-p), up, uSunDir, vSun, depth, 0.18, 0.0);
 #endif
+#ifdef GEOCEAN_CLIP_SEA
+  // The mirrored pass of a reflection: only what stands above the sea is
+  // reflected (water areas lie 30 m under it, skirts hang below).
+  gl_ClipDistance[0] = h + 0.5;
+#endif
   gl_Position = uViewProj * vec4(p, 1.0);
 }

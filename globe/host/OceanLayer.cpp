@@ -14,7 +14,8 @@ PluginOceanLayer::PluginOceanLayer(std::shared_ptr<const OceanPlugin> plugin, ge
   if (a.getLayerInfo(ocean_, &li) != GEOCEAN_OK) throw std::runtime_error(a.lastError());
   info_.opaqueWater = (li.flags & GEOCEAN_LAYER_OPAQUE_WATER) != 0 && a.coversOpaquely;
   info_.cellPx = li.cell_px;
-  info_.wants = (li.flags & GEOCEAN_LAYER_WANTS_SCENE_COPY) ? render::kLayerWantsSceneCopy : 0u;
+  info_.wants = ((li.flags & GEOCEAN_LAYER_WANTS_REFLECTION) ? render::kLayerWantsReflection : 0u) |
+                ((li.flags & GEOCEAN_LAYER_WANTS_SCENE_COPY) ? render::kLayerWantsSceneCopy : 0u);
 }
 
 PluginOceanLayer::~PluginOceanLayer() { plugin_->api().destroy(ocean_); }
@@ -61,8 +62,10 @@ void PluginOceanLayer::draw(const camera::Camera& cam, const camera::Lighting& l
   if (a.setLayerInputs && info_.wants) {
     geocean_layer_inputs in{};
     in.struct_size = sizeof in;
+    in.reflection_color_texture = inputs.reflectionColor;
     in.scene_color_texture = inputs.sceneColor;
     in.scene_depth_texture = inputs.sceneDepth;
+    in.reflection_view = hostView(defaults, inputs.reflectionCamera, light);
     if (a.setLayerInputs(ocean_, &in) != GEOCEAN_OK)
       throw std::runtime_error(std::string("ocean plugin: ") + a.lastError());
   }

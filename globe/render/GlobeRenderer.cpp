@@ -44,7 +44,8 @@ camera::Camera GlobeRenderer::camera(const camera::ViewPose& pose) const {
 }
 
 void GlobeRenderer::drawScene(const camera::Camera& cam, const camera::Lighting& light, const FrameSettings& settings,
-                              FrameTimes& t, const Layer* waterLayer, SeaShading sea) {
+                              FrameTimes& t, const Layer* waterLayer, SeaShading sea,
+                              const camera::Camera* mirroredFrom) {
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glClearDepth(0.0);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
@@ -88,13 +89,15 @@ void GlobeRenderer::drawScene(const camera::Camera& cam, const camera::Lighting&
   ts = Clock::now();
   cs = cpuMs();
   glDisable(GL_CULL_FACE);
-  t.terrain = terrain_.draw(cam, light, settings.bare, sea, waterLayer);
+  t.terrain = mirroredFrom ? terrain_.drawMirrored(cam, *mirroredFrom, light)
+                           : terrain_.draw(cam, light, settings.bare, sea, waterLayer);
   if (settings.timed) glFinish();
   t.terrainMs += msSince(ts);
   t.terrainCpuMs += cpuMs() - cs;
 }
 
-void GlobeRenderer::makeLayerInputs(const camera::Camera& cam, unsigned wants, LayerInputs& in) {
+void GlobeRenderer::makeLayerInputs(const camera::Camera& cam, const camera::Lighting& light,
+                                    const FrameSettings& settings, unsigned wants, LayerInputs& in) {
   const int w = cam.widthPx(), h = cam.heightPx();
   GLint target = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
@@ -106,6 +109,23 @@ void GlobeRenderer::makeLayerInputs(const camera::Camera& cam, unsigned wants, L
     glBlitNamedFramebuffer(GLuint(target), sceneCopy_.fbo(), 0, 0, w, h, 0, 0, w, h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
     in.sceneColor = sceneCopy_.color();
     in.sceneDepth = sceneCopy_.depth();
+  }
+  if (wants & kLayerWantsReflection) {
+    // The eye mirrored in the sea-level plane under it sees what the sea
+    // reflects. It is a proper camera (right = -mirror(right)), so its image
+    // is the mirror's flipped left-right: layers project mirrored points
+    // with its matrices rather than reuse screen positions.
+    const glm::dvec3 n = geo::surfaceNormal(cam.latDeg(), cam.lonDeg());
+    const auto mirror = [&](const glm::dvec3& v) { return v - 2.0 * glm::dot(v, n) * n; };
+    const glm::dvec3 eye = cam.eyeEcef() - 2.0 * cam.heightM() * n;
+    in.reflectionCamera = camera::Camera::fromEcef(eye, mirror(cam.forward()), mirror(cam.up()), cam.vfovDeg(), w, h,
+                                                   cam.heightM());
+    reflection_.ensure(w, h);
+    glBindFramebuffer(GL_FRAMEBUFFER, reflection_.fbo());
+    FrameTimes scratch;
+    drawScene(in.reflectionCamera, light, settings, scratch, nullptr, SeaShading::None, &cam);
+    glBindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
+    in.reflectionColor = reflection_.color();
   }
 }
 
@@ -131,7 +151,7 @@ FrameTimes GlobeRenderer::render(const camera::ViewPose& pose, const FrameSettin
   auto ts = Clock::now();
   double cs = cpuMs();
   LayerInputs inputs;
-  if (wants && !settings.bare) makeLayerInputs(cam, wants, inputs);
+  if (wants && !settings.bare) makeLayerInputs(cam, light, settings, wants, inputs);
   for (auto& l : layers_) l->draw(cam, light, settings.bare, inputs);
   if (settings.timed) glFinish();
   t.layersMs = msSince(ts);

@@ -54,16 +54,20 @@ class GlobeRenderer {
  private:
   std::shared_ptr<const WorldTextures> world_;
   TerrainRenderer terrain_;
-  // Draws sky and terrain (no layers) into the bound framebuffer.
+  // Draws sky and terrain (no layers) into the bound framebuffer; with
+  // mirroredFrom, `cam` is its mirror image and only terrain above the sea
+  // is drawn (the reflection pass).
   void drawScene(const camera::Camera& cam, const camera::Lighting& light, const FrameSettings& settings,
-                 FrameTimes& t, const Layer* waterLayer, SeaShading sea);
+                 FrameTimes& t, const Layer* waterLayer, SeaShading sea,
+                 const camera::Camera* mirroredFrom = nullptr);
   // The inputs the layers asked for (LayerInfo::wants), made after the terrain.
-  void makeLayerInputs(const camera::Camera& cam, unsigned wants, LayerInputs& in);
+  void makeLayerInputs(const camera::Camera& cam, const camera::Lighting& light, const FrameSettings& settings,
+                       unsigned wants, LayerInputs& in);
 
   gl::GlProgram sky_;
   GLuint emptyVao_ = 0;
-  // The layers' scene copy (made on first need, per size).
-  gl::TextureTarget sceneCopy_;
+  // The layers' inputs (made on first need, per size).
+  gl::TextureTarget sceneCopy_, reflection_;
   std::vector<std::shared_ptr<Layer>> layers_;
 };
 

@@ -11,9 +11,8 @@ namespace geocean::render {
 
 // What the host runs for a layer before its draw (LayerInfo::wants bits).
 enum LayerInput : unsigned {
-  // A copy of the scene's colour and depth so far (refraction, soft
-  // shorelines). A mirrored pass for reflections is the optics issue's.
-  kLayerWantsSceneCopy = 2u,
+  kLayerWantsReflection = 1u,  // sky and terrain mirrored in the sea-level plane under the eye
+  kLayerWantsSceneCopy = 2u,   // a copy of the scene's colour and depth so far (refraction)
 };
 
 struct LayerInfo {
@@ -26,8 +25,12 @@ struct LayerInfo {
 
 // Filled by the host for the inputs a layer asked for (0 where not asked).
 struct LayerInputs {
-  GLuint sceneColor = 0;  // RGBA8 copy of the colour attachment 0 after the terrain
-  GLuint sceneDepth = 0;  // DEPTH32F copy (reversed Z: 0 far, 1 at the near plane)
+  GLuint reflectionColor = 0;  // RGBA8, the viewport's size
+  GLuint sceneColor = 0;       // RGBA8 copy of the colour attachment 0 after the terrain
+  GLuint sceneDepth = 0;       // DEPTH32F copy (reversed Z: 0 far, 1 at the near plane)
+  // The mirrored camera the reflection was drawn with (valid with
+  // reflectionColor): project a mirrored point with its gpu() matrices.
+  camera::Camera reflectionCamera = camera::Camera::fromView({});
 };
 
 class Layer {

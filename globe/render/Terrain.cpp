@@ -231,6 +231,71 @@ const TerrainRenderer::Slot& TerrainRenderer::acquire(const Key& k, TerrainStats
   return cache_.emplace(k, Slot{index, center, lru_.begin()}).first->second;
 }
 
+void TerrainRenderer::selectTiles(const camera::Camera& cam, std::vector<Key>& tiles, std::vector<const Slot*>& slots,
+                                  TerrainStats& stats) {
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) select({0, x, y}, cam, tiles, 0);
+  // More visible tiles than slots would thrash: keep the coarsest that fit.
+  if (int(tiles.size()) > options_.poolTiles) tiles.resize(options_.poolTiles);
+  slots.reserve(tiles.size());
+  for (const Key& k : tiles) {
+    slots.push_back(&acquire(k, stats));
+    stats.maxLevel = std::max(stats.maxLevel, k.level);
+  }
+}
+
+void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera& cam, const camera::Lighting& light,
+                              SeaShading sea, double oceanCellPx, const std::vector<Key>& tiles,
+                              const std::vector<const Slot*>& slots) {
+  prog.use();
+  world_.bind();
+  glUniformMatrix4fv(prog.uniform("uViewProj"), 1, GL_FALSE, &cam.gpu().viewProj[0][0]);
+  glUniform4fv(prog.uniform("uImageryGeo"), 1, &world_.imageryGeo()[0]);
+  glUniform4fv(prog.uniform("uElevationGeo"), 1, &world_.elevationGeo()[0]);
+  glUniform4fv(prog.uniform("uWaterGeo"), 1, &world_.waterGeo()[0]);
+  glUniform1f(prog.uniform("uExaggeration"), float(options_.exaggeration));
+  glUniform1f(prog.uniform("uSeaDropM"), float(options_.seaDropM));
+  const glm::vec3 sun(light.sunEcef);
+  glUniform3fv(prog.uniform("uSunDir"), 1, &sun[0]);
+  // The eye's distance from the Earth's centre, for the atmosphere.
+  glUniform1f(prog.uniform("uEyeRadiusM"), float(glm::length(cam.eyeEcef())));
+  glUniform1i(prog.uniform("uSeaShading"), sea == SeaShading::None ? 0 : 1);
+  glUniform1f(prog.uniform("uOceanCellPx"), float(oceanCellPx));
+  glUniform1f(prog.uniform("uOceanCellRadians"),
+              float(2.0 * std::tan(0.5 * cam.vfovDeg() * kDeg) / cam.heightPx() * oceanCellPx));
+  const GLint locOffset = prog.uniform("uTileOffset"), locSkirt = prog.uniform("uSkirtM");
+  glBindVertexArray(vao_);
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    const Key& k = tiles[i];
+    const glm::vec3 off(slots[i]->centerEcef - cam.eyeEcef());  // double difference, then float
+    glUniform3fv(locOffset, 1, &off[0]);
+    // Skirts hang deeper than the largest height error between levels
+    // (a third of a cell: slopes up to 1:3) and the curvature sag of a cell.
+    const double cellM = 90.0 / double(1 << k.level) / (kGrid - 1) * kDeg * geo::kWgs84A;
+    glUniform1f(locSkirt, float(std::max(5.0, 0.35 * cellM * std::max(1.0, options_.exaggeration))));
+    glDrawElementsBaseVertex(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr, slots[i]->index * kVertsPerTile);
+  }
+}
+
+TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const camera::Camera& selectFrom,
+                                           const camera::Lighting& light) {
+  if (mirrored_.id() == 0)  // compiled on the first reflection a layer asks for
+    mirrored_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", {"GEOCEAN_CLIP_SEA 1"});
+  TerrainStats stats;
+  std::vector<Key> tiles;
+  std::vector<const Slot*> slots;
+  waterLayer_ = nullptr;
+  // The real eye chooses the tiles: the mirrored one is under the sea, where
+  // the horizon test would hide everything.
+  selectTiles(selectFrom, tiles, slots, stats);
+  glEnable(GL_CLIP_DISTANCE0);
+  drawTiles(mirrored_, mirrored, light, SeaShading::None, 0.0, tiles, slots);
+  glDisable(GL_CLIP_DISTANCE0);
+  stats.tilesDrawn = int(tiles.size());
+  glBindVertexArray(0);
+  return stats;
+}
+
 TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Lighting& light, bool bare,
                                    SeaShading sea, const Layer* waterLayer) {
   TerrainStats stats;
@@ -239,47 +304,9 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
                     ? waterLayer
                     : nullptr;
   const double oceanCellPx = waterLayer ? waterLayer->info().cellPx : 0.0;
-  for (int y = 0; y < 2; ++y)
-    for (int x = 0; x < 4; ++x) select({0, x, y}, cam, tiles, 0);
-  // More visible tiles than slots would thrash: keep the coarsest that fit.
-  if (int(tiles.size()) > options_.poolTiles) tiles.resize(options_.poolTiles);
-
   std::vector<const Slot*> slots;
-  slots.reserve(tiles.size());
-  for (const Key& k : tiles) {
-    slots.push_back(&acquire(k, stats));
-    stats.maxLevel = std::max(stats.maxLevel, k.level);
-  }
-  const auto pass = [&](const gl::GlProgram& prog) {
-    prog.use();
-    world_.bind();
-    glUniformMatrix4fv(prog.uniform("uViewProj"), 1, GL_FALSE, &cam.gpu().viewProj[0][0]);
-    glUniform4fv(prog.uniform("uImageryGeo"), 1, &world_.imageryGeo()[0]);
-    glUniform4fv(prog.uniform("uElevationGeo"), 1, &world_.elevationGeo()[0]);
-    glUniform4fv(prog.uniform("uWaterGeo"), 1, &world_.waterGeo()[0]);
-    glUniform1f(prog.uniform("uExaggeration"), float(options_.exaggeration));
-    glUniform1f(prog.uniform("uSeaDropM"), float(options_.seaDropM));
-    const glm::vec3 sun(light.sunEcef);
-    glUniform3fv(prog.uniform("uSunDir"), 1, &sun[0]);
-    // The eye's distance from the Earth's centre, for the atmosphere.
-    glUniform1f(prog.uniform("uEyeRadiusM"), float(glm::length(cam.eyeEcef())));
-    glUniform1i(prog.uniform("uSeaShading"), sea == SeaShading::None ? 0 : 1);
-    glUniform1f(prog.uniform("uOceanCellPx"), float(oceanCellPx));
-    glUniform1f(prog.uniform("uOceanCellRadians"),
-                float(2.0 * std::tan(0.5 * cam.vfovDeg() * kDeg) / cam.heightPx() * oceanCellPx));
-    const GLint locOffset = prog.uniform("uTileOffset"), locSkirt = prog.uniform("uSkirtM");
-    glBindVertexArray(vao_);
-    for (std::size_t i = 0; i < tiles.size(); ++i) {
-      const Key& k = tiles[i];
-      const glm::vec3 off(slots[i]->centerEcef - cam.eyeEcef());  // double difference, then float
-      glUniform3fv(locOffset, 1, &off[0]);
-      // Skirts hang deeper than the largest height error between levels
-      // (a third of a cell: slopes up to 1:3) and the curvature sag of a cell.
-      const double cellM = 90.0 / double(1 << k.level) / (kGrid - 1) * kDeg * geo::kWgs84A;
-      glUniform1f(locSkirt, float(std::max(5.0, 0.35 * cellM * std::max(1.0, options_.exaggeration))));
-      glDrawElementsBaseVertex(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr, slots[i]->index * kVertsPerTile);
-    }
-  };
+  selectTiles(cam, tiles, slots, stats);
+  const auto pass = [&](const gl::GlProgram& prog) { drawTiles(prog, cam, light, sea, oceanCellPx, tiles, slots); };
   if (!bare && sea == SeaShading::UnderOcean && options_.seaProxy) {
     // Depth only, where the ocean layer will cover the pixel: the same
     // surface pulled a few float-depth units towards the eye (reversed Z),

@@ -76,6 +76,11 @@ class TerrainRenderer {
   TerrainStats draw(const camera::Camera& cam, const camera::Lighting& light, bool bare = false,
                     SeaShading sea = SeaShading::DistantSea, const Layer* waterLayer = nullptr);
 
+  // The terrain above the sea, mirrored: drawn with the mirrored camera,
+  // its tiles chosen from the real one (a reflection pass).
+  TerrainStats drawMirrored(const camera::Camera& mirrored, const camera::Camera& selectFrom,
+                            const camera::Lighting& light);
+
   const TerrainOptions& options() const { return options_; }
   void setSkipOpenWater(bool on) { options_.skipOpenWater = on; }
 
@@ -105,6 +110,10 @@ class TerrainRenderer {
   void select(const Key& k, const camera::Camera& cam, std::vector<Key>& out, int depth);
   Bounds bounds(const Key& k) const;
   const Slot& acquire(const Key& k, TerrainStats& stats);
+  void selectTiles(const camera::Camera& cam, std::vector<Key>& tiles, std::vector<const Slot*>& slots,
+                   TerrainStats& stats);
+  void drawTiles(const gl::GlProgram& prog, const camera::Camera& cam, const camera::Lighting& light, SeaShading sea,
+                 double oceanCellPx, const std::vector<Key>& tiles, const std::vector<const Slot*>& slots);
   // pxPerM: pixels per metre at 1 m distance.
   bool underOpenWater(double lat0, double lat1, double lon0, double lon1, const Bounds& b, double dist,
                       const camera::Camera& cam, double pxPerM) const;
@@ -112,7 +121,7 @@ class TerrainRenderer {
 
   const WorldTextures& world_;
   TerrainOptions options_;
-  gl::GlProgram program_, underOcean_, bare_, seaProxy_;
+  gl::GlProgram program_, underOcean_, bare_, seaProxy_, mirrored_;
   const Layer* waterLayer_ = nullptr;  // this draw: leave out tiles it covers opaquely
   int maxLevel_ = 16;           // options_.maxLevel capped by the data's resolution
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;

@@ -406,7 +406,8 @@ GEOCEAN_API geocean_status geocean_set_layer_inputs(geocean_ocean* ocean, const 
     if (inputs->struct_size < sizeof(geocean_layer_inputs))
       fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "inputs->struct_size " + std::to_string(inputs->struct_size) +
                                                " is smaller than " + std::to_string(sizeof(geocean_layer_inputs)));
-    const std::pair<uint32_t, const char*> names[] = {{inputs->scene_color_texture, "scene_color_texture"},
+    const std::pair<uint32_t, const char*> names[] = {{inputs->reflection_color_texture, "reflection_color_texture"},
+                                                      {inputs->scene_color_texture, "scene_color_texture"},
                                                       {inputs->scene_depth_texture, "scene_depth_texture"}};
     for (const auto& [name, field] : names) {
       if (name == 0) continue;
@@ -416,6 +417,7 @@ GEOCEAN_API geocean_status geocean_set_layer_inputs(geocean_ocean* ocean, const 
         fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
              std::string("inputs->") + field + " " + std::to_string(name) + " is not a texture of the current context");
     }
+    if (inputs->reflection_color_texture) (void)frameViewOf(&inputs->reflection_view);  // validates it
     ds.inputs = *inputs;
   });
 }

@@ -355,6 +355,7 @@ GEOCEAN_API geocean_status geocean_release_gl(geocean_ocean* ocean);
  * covers (instead of assuming), so the host may leave out terrain under
  * opaque water, and which extra inputs its draw wants. */
 #define GEOCEAN_LAYER_OPAQUE_WATER 1u       /* geocean_covers_opaquely answers */
+#define GEOCEAN_LAYER_WANTS_REFLECTION 2u   /* sky and terrain mirrored in the sea plane */
 #define GEOCEAN_LAYER_WANTS_SCENE_COPY 4u   /* the scene's colour and depth before the ocean */
 typedef struct geocean_layer_info {
   uint32_t struct_size; /* sizeof(geocean_layer_info), set by the caller */
@@ -374,16 +375,20 @@ GEOCEAN_API geocean_status geocean_covers_opaquely(geocean_ocean* ocean, double 
                                                    double lon0_deg, double lon1_deg, double pixel_footprint_m,
                                                    int32_t* out_covers);
 /* Inputs the host made for the next geocean_draw when the layer info asked
- * for them: GL texture names in the draw's context (0 = not given). */
+ * for them: GL texture names in the draw's context (0 = not given) and, for
+ * the reflection, the mirrored camera it was drawn with (as a geocean_view:
+ * project mirrored points with its matrices). */
 typedef struct geocean_layer_inputs {
-  uint32_t struct_size;         /* sizeof(geocean_layer_inputs) */
-  uint32_t scene_color_texture; /* RGBA8 copy of the scene before the ocean */
-  uint32_t scene_depth_texture; /* DEPTH32F copy, reversed Z */
+  uint32_t struct_size;              /* sizeof(geocean_layer_inputs) */
+  uint32_t reflection_color_texture; /* RGBA8, viewport size */
+  uint32_t scene_color_texture;      /* RGBA8 copy of the scene before the ocean */
+  uint32_t scene_depth_texture;      /* DEPTH32F copy, reversed Z */
+  geocean_view reflection_view;      /* valid with reflection_color_texture */
 } geocean_layer_inputs;
 /* Sets (or with NULL clears) the inputs of the next draws. Call with the
  * draw's context current when a texture name is non-zero. Errors:
  * NULL_ARGUMENT, INVALID_ARGUMENT (struct_size, a name that is not a
- * texture of the current context), NO_GL_CONTEXT. */
+ * texture of the current context, a bad reflection_view), NO_GL_CONTEXT. */
 GEOCEAN_API geocean_status geocean_set_layer_inputs(geocean_ocean* ocean, const geocean_layer_inputs* inputs);
 
 #ifdef __cplusplus
