@@ -2,6 +2,7 @@
 // it: version checks, misuse (NULL handles, wrong order, bad rasters, bad
 // arguments), results at known places, thread-local errors.
 #include "globe/host/OceanPlugin.h"
+#include "tests/support/Subprocess.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +11,10 @@
 #include <cmath>
 #include <chrono>
 #include <cstdlib>
+#include <optional>
+#include <sstream>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -542,3 +546,279 @@ TEST(CapiRender, ViewFromPoseLooksWhereThePoseSays) {
   EXPECT_NEAR(v.projection_matrix[5], 1.0 / std::tan(22.5 * M_PI / 180.0), 1e-12);
   EXPECT_EQ(v.projection_matrix[11], -1.0);
 }
+
+// ---- ABI 1.2: read options, mask encoding, the one-pass surface query ----
+
+namespace {
+
+// All outputs of geocean_query_surface for n points.
+struct SurfaceAnswers {
+  std::vector<uint8_t> cls;
+  std::vector<float> elevation;
+  std::vector<double> height, normal, w, uv;
+  geocean_surface_outputs out{};
+  explicit SurfaceAnswers(std::size_t n) : cls(n), elevation(n), height(n), normal(3 * n), w(n), uv(2 * n) {
+    EXPECT_EQ(plugin().api().surfaceOutputsInit(&out), GEOCEAN_OK);
+    out.surface_class = cls.data();
+    out.elevation_m = elevation.data();
+    out.height_m = height.data();
+    out.normal_enu = normal.data();
+    out.vertical_velocity_mps = w.data();
+    out.horizontal_velocity_en_mps = uv.data();
+  }
+};
+
+TEST(CapiV12, NewFunctionsRejectNullsAndBadStructsNamingTheField) {
+  const auto& a = plugin().api();
+  ASSERT_NE(a.querySurface, nullptr);  // a 1.2 plugin resolves them all
+  EXPECT_EQ(a.rasterOptionsInit(nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(a.surfaceOutputsInit(nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  geocean_raster_options ro;
+  ASSERT_EQ(a.rasterOptionsInit(&ro), GEOCEAN_OK);
+  EXPECT_EQ(ro.struct_size, sizeof(geocean_raster_options));
+  EXPECT_EQ(ro.georef, GEOCEAN_GEOREF_FROM_FILE);
+  EXPECT_EQ(ro.few_lookups, 0);
+  EXPECT_EQ(a.setMaskFileWithOptions(nullptr, "x.tif", &ro), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(a.setMaskEncoding(nullptr, "0=ocean"), GEOCEAN_ERROR_NULL_ARGUMENT);
+  Ocean o;
+  EXPECT_EQ(a.setElevationFileWithOptions(o.h, "x.tif", nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(lastError(), "geocean_set_elevation_file_with_options: options is NULL");
+  EXPECT_EQ(a.setDefaultWorldWithOptions(o.h, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  ro.georef = 7;
+  EXPECT_EQ(a.setMaskFileWithOptions(o.h, "x.tif", &ro), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_EQ(lastError(), "geocean_set_mask_file_with_options: options->georef 7 is not a geocean_georef");
+  ro.georef = GEOCEAN_GEOREF_FROM_FILE;
+  ro.struct_size = 4;
+  EXPECT_EQ(a.setMaskFileWithOptions(o.h, "x.tif", &ro), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("options->struct_size 4"), std::string::npos) << lastError();
+  ASSERT_EQ(a.rasterOptionsInit(&ro), GEOCEAN_OK);
+  EXPECT_EQ(a.setMaskFileWithOptions(o.h, "/nonexistent/m.tif", &ro), GEOCEAN_ERROR_RASTER);
+  EXPECT_NE(lastError().find("/nonexistent/m.tif"), std::string::npos) << lastError();
+  EXPECT_EQ(a.setMaskEncoding(o.h, "0=sea"), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("'sea'"), std::string::npos) << lastError();
+
+  const double lat[2] = {0, 1}, lon[2] = {0, 1}, t[2] = {0, std::nan("")};
+  SurfaceAnswers s(2);
+  EXPECT_EQ(a.querySurface(nullptr, 2, lat, lon, t, 1, &s.out), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(a.querySurface(o.h, 2, lat, lon, t, 1, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  // No sea state: sea outputs are not ready, class and elevation are.
+  EXPECT_EQ(a.querySurface(o.h, 2, lat, lon, t, 1, &s.out), GEOCEAN_ERROR_NOT_READY);
+  EXPECT_EQ(lastError(), "geocean_query_surface: no sea state: call geocean_set_sea_state first");
+  geocean_surface_outputs classOnly;
+  ASSERT_EQ(a.surfaceOutputsInit(&classOnly), GEOCEAN_OK);
+  classOnly.surface_class = s.cls.data();
+  classOnly.elevation_m = s.elevation.data();
+  s.cls = {9, 9};
+  ASSERT_EQ(a.querySurface(o.h, 2, lat, lon, nullptr, 0, &classOnly), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(s.cls, (std::vector<uint8_t>{GEOCEAN_SURFACE_OCEAN, GEOCEAN_SURFACE_OCEAN}));  // no rasters: deep ocean
+  EXPECT_TRUE(std::isnan(s.elevation[0]));
+  const auto sea = seaState(10.0);
+  ASSERT_EQ(a.setSeaState(o.h, &sea), GEOCEAN_OK);
+  EXPECT_EQ(a.querySurface(o.h, 2, lat, lon, t, 3, &s.out), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("time_count 3 is neither 1 nor count (2)"), std::string::npos) << lastError();
+  EXPECT_EQ(a.querySurface(o.h, 2, lat, lon, t, 2, &s.out), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("time_s[1] nan is not finite"), std::string::npos) << lastError();
+  EXPECT_EQ(a.querySurface(o.h, 2, lat, lon, nullptr, 1, &s.out), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(a.querySurface(o.h, 2, nullptr, lon, t, 1, &s.out), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(a.querySurface(o.h, 0, nullptr, nullptr, nullptr, 0, &s.out), GEOCEAN_OK);
+  geocean_surface_outputs old = s.out;
+  old.struct_size = 8;
+  EXPECT_EQ(a.querySurface(o.h, 2, lat, lon, t, 1, &old), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("outputs->struct_size 8"), std::string::npos) << lastError();
+  ASSERT_EQ(a.querySurface(o.h, 2, lat, lon, t, 1, &s.out), GEOCEAN_OK) << lastError();
+  EXPECT_TRUE(std::isfinite(s.height[0]) && std::isfinite(s.height[1]));
+}
+
+// Known places: the open Pacific is ocean and the Swiss plateau land; an
+// encoding that swaps the mask's 0 and 1 swaps them; NULL restores it.
+TEST(CapiV12, MaskEncodingSwapsKnownPlaces) {
+  setenv("GEOCEAN_DATA", GEOCEAN_DATA_DIR, 1);
+  Ocean o;
+  const auto& a = plugin().api();
+  ASSERT_EQ(a.setDefaultWorld(o.h), GEOCEAN_OK) << lastError();
+  const double lat[2] = {0.0, 46.8}, lon[2] = {-150.0, 8.2};
+  uint8_t c[2] = {9, 9};
+  ASSERT_EQ(a.queryClass(o.h, 2, lat, lon, c), GEOCEAN_OK);
+  EXPECT_EQ(c[0], GEOCEAN_SURFACE_OCEAN);
+  EXPECT_EQ(c[1], GEOCEAN_SURFACE_LAND);
+  ASSERT_EQ(a.setMaskEncoding(o.h, "0=land,1=ocean,2=lake"), GEOCEAN_OK) << lastError();
+  ASSERT_EQ(a.queryClass(o.h, 2, lat, lon, c), GEOCEAN_OK);
+  EXPECT_EQ(c[0], GEOCEAN_SURFACE_LAND);
+  EXPECT_EQ(c[1], GEOCEAN_SURFACE_OCEAN);
+  ASSERT_EQ(a.setMaskEncoding(o.h, nullptr), GEOCEAN_OK);
+  ASSERT_EQ(a.queryClass(o.h, 2, lat, lon, c), GEOCEAN_OK);
+  EXPECT_EQ(c[0], GEOCEAN_SURFACE_OCEAN);
+  EXPECT_EQ(c[1], GEOCEAN_SURFACE_LAND);
+}
+
+// One JSON row of `geocean query --format json`; NaN where it printed null.
+struct CliRow {
+  std::string surface;
+  double elevation = 0, height = 0, normal[3] = {0, 0, 0}, w = 0;
+};
+// The CLI prints floats (elevation) in float's shortest form: read those as float.
+double jsonNumber(const std::string& line, const std::string& key, bool isFloat = false) {
+  const std::size_t k = line.find("\"" + key + "\":");
+  EXPECT_NE(k, std::string::npos) << key << " in " << line;
+  const char* p = line.c_str() + k + key.size() + 3;
+  if (std::string_view(p).substr(0, 4) == "null") return std::nan("");
+  return isFloat ? double(std::strtof(p, nullptr)) : std::strtod(p, nullptr);
+}
+std::vector<CliRow> parseCliJson(const std::string& out) {
+  std::vector<CliRow> rows;
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);) {
+    CliRow r;
+    const std::size_t s = line.find("\"surface\":\"") + 11;
+    r.surface = line.substr(s, line.find('"', s) - s);
+    r.elevation = jsonNumber(line, "elevation_m", true);
+    r.height = jsonNumber(line, "sea_height_m");
+    r.w = jsonNumber(line, "vertical_velocity_mps");
+    const std::size_t n = line.find("\"normal\":[");
+    if (n == std::string::npos) {
+      r.normal[0] = r.normal[1] = r.normal[2] = std::nan("");
+    } else {
+      const char* p = line.c_str() + n + 10;
+      for (double& v : r.normal) {
+        char* e = nullptr;
+        v = std::strtod(p, &e);
+        p = e + 1;  // the comma or the bracket
+      }
+    }
+    rows.push_back(r);
+  }
+  return rows;
+}
+const char* className(uint8_t c) { return c == GEOCEAN_SURFACE_OCEAN ? "ocean" : c == GEOCEAN_SURFACE_LAND ? "land" : "lake"; }
+// Same bits, or both NaN (the CLI's null).
+bool same(double a, double b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
+
+// The ABI gives exactly what `geocean query` prints (the CLI prints the
+// shortest round-trip form, so parsing it back gives the same double), for
+// every model, per-row times and rows without one (--time), in a batch and
+// for one point (which reads only its tiles: few_lookups).
+TEST(CapiV12, QuerySurfaceGivesExactlyTheCliAnswers) {
+  setenv("GEOCEAN_DATA", GEOCEAN_DATA_DIR, 1);
+  const auto& a = plugin().api();
+  // Open ocean, coasts, land, a lake, poles, the antimeridian, the Caspian.
+  const std::vector<double> lat = {0.0, 10.0, -33.9, 46.8, 35.95, -48.88, 47.7, 90.0, -90.0, -17.0, 42.0, 60.1, -0.5};
+  const std::vector<double> lon = {-150.0, -140.0, 151.5, 8.2, -5.6, -123.39, -87.5, 0.0, 0.0, 180.0, 50.5, -179.99, 33.0};
+  const double defaultTime = 17.25;
+  std::vector<std::optional<double>> rowTime(lat.size());
+  for (std::size_t i = 0; i < lat.size(); ++i)
+    if (i % 4 != 3) rowTime[i] = 2.5 * double(i % 5);  // few distinct times: the FFT builds a table per time
+  std::ostringstream csv;
+  csv.precision(17);
+  std::vector<double> t(lat.size());
+  for (std::size_t i = 0; i < lat.size(); ++i) {
+    csv << lat[i] << ',' << lon[i];
+    if (rowTime[i]) csv << ',' << *rowTime[i];
+    csv << '\n';
+    t[i] = rowTime[i].value_or(defaultTime);
+  }
+  const char* cliSea = " --wind 12 --wind-dir 200 --fetch 50000 --seed 7 --anchor 10,-140";
+  for (auto model : {GEOCEAN_WAVES_NOISE, GEOCEAN_WAVES_NOISE_PAPER, GEOCEAN_WAVES_GERSTNER, GEOCEAN_WAVES_FFT}) {
+    const char* name[] = {"noise", "noise-paper", "gerstner", "fft"};
+    auto s = seaState(12.0, model);
+    s.wind_from_deg = 200.0;
+    s.fetch_m = 50000.0;
+    s.seed = 7;
+    s.anchor_lat_deg = 10.0;
+    s.anchor_lon_deg = -140.0;
+    const std::string args = std::string(" --format json --waves ") + name[model] + cliSea;
+    const auto r = geocean::test::run(std::string(GEOCEAN_EXE) + " query --points - --time 17.25" + args, csv.str());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto rows = parseCliJson(r.out);
+    ASSERT_EQ(rows.size(), lat.size()) << r.out;
+    Ocean o;
+    ASSERT_EQ(a.setDefaultWorld(o.h), GEOCEAN_OK) << lastError();
+    ASSERT_EQ(a.setSeaState(o.h, &s), GEOCEAN_OK) << lastError();
+    SurfaceAnswers ans(lat.size());
+    ASSERT_EQ(a.querySurface(o.h, lat.size(), lat.data(), lon.data(), t.data(), t.size(), &ans.out), GEOCEAN_OK)
+        << lastError();
+    int sea = 0;
+    for (std::size_t i = 0; i < lat.size(); ++i) {
+      EXPECT_EQ(rows[i].surface, className(ans.cls[i])) << name[model] << " row " << i;
+      EXPECT_TRUE(same(rows[i].elevation, double(ans.elevation[i]))) << name[model] << " row " << i;
+      EXPECT_TRUE(same(rows[i].height, ans.height[i])) << name[model] << " row " << i << ": " << rows[i].height
+                                                       << " vs " << ans.height[i];
+      for (int k = 0; k < 3; ++k) EXPECT_TRUE(same(rows[i].normal[k], ans.normal[3 * i + k])) << name[model] << " row " << i;
+      EXPECT_TRUE(same(rows[i].w, ans.w[i])) << name[model] << " row " << i;
+      sea += std::isfinite(ans.height[i]);
+    }
+    EXPECT_GE(sea, 6) << name[model];  // the comparison covered real sea points
+    EXPECT_LE(sea, int(lat.size()) - 4) << name[model];  // and land and lakes
+
+    // One point from the command line: its tiles only, on both sides.
+    const auto one = geocean::test::run(std::string(GEOCEAN_EXE) + " query -33.9 151.5 --time 4.5" + args);
+    ASSERT_EQ(one.exitCode, 0) << one.err;
+    const auto oneRow = parseCliJson(one.out);
+    ASSERT_EQ(oneRow.size(), 1u);
+    Ocean few;
+    geocean_raster_options ro;
+    ASSERT_EQ(a.rasterOptionsInit(&ro), GEOCEAN_OK);
+    ro.few_lookups = 1;
+    ASSERT_EQ(a.setDefaultWorldWithOptions(few.h, &ro), GEOCEAN_OK) << lastError();
+    ASSERT_EQ(a.setSeaState(few.h, &s), GEOCEAN_OK);
+    SurfaceAnswers p(1);
+    const double pl = -33.9, pn = 151.5, pt = 4.5;
+    ASSERT_EQ(a.querySurface(few.h, 1, &pl, &pn, &pt, 1, &p.out), GEOCEAN_OK) << lastError();
+    EXPECT_EQ(oneRow[0].surface, "ocean");
+    EXPECT_EQ(oneRow[0].height, p.height[0]) << name[model];
+    EXPECT_EQ(oneRow[0].w, p.w[0]) << name[model];
+    EXPECT_EQ(oneRow[0].elevation, double(p.elevation[0])) << name[model];
+  }
+}
+
+// A single Gerstner component in deep water, through the ABI only. Linear
+// wave theory: the surface particle's horizontal velocity is omega * eta
+// along the travel direction, and the surface at a fixed point repeats
+// with period 2 pi / omega. So the ratio velocity / height, fitted over
+// many points and times, must be one constant omega, and the heights must
+// repeat after 2 pi / omega. Tolerances: 1e-6 of a * omega for the fit
+// (the rest point is found to 1e-5 m), 1e-5 of the crest height for the
+// period (omega's fit error times 2 pi).
+TEST(CapiV12, HorizontalVelocityOfOneWaveIsOmegaTimesHeight) {
+  const auto& a = plugin().api();
+  Ocean o;  // no rasters: deep ocean
+  auto s = seaState(8.0, GEOCEAN_WAVES_GERSTNER);
+  s.gerstner_components = 1;
+  ASSERT_EQ(a.setSeaState(o.h, &s), GEOCEAN_OK) << lastError();
+  std::vector<double> lat, lon, t;
+  for (int i = 0; i < 50; ++i) {
+    lat.push_back(0.002 * (i % 10));
+    lon.push_back(0.003 * (i / 10));
+    t.push_back(0.61 * i);
+  }
+  SurfaceAnswers r(lat.size());
+  ASSERT_EQ(a.querySurface(o.h, lat.size(), lat.data(), lon.data(), t.data(), t.size(), &r.out), GEOCEAN_OK);
+  // Direction from the largest velocity; omega by least squares of u = omega * eta.
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < lat.size(); ++i)
+    if (std::hypot(r.uv[2 * i], r.uv[2 * i + 1]) > std::hypot(r.uv[2 * best], r.uv[2 * best + 1])) best = i;
+  const double sg = r.height[best] > 0 ? 1.0 : -1.0;
+  const double de = sg * r.uv[2 * best] / std::hypot(r.uv[2 * best], r.uv[2 * best + 1]);
+  const double dn = sg * r.uv[2 * best + 1] / std::hypot(r.uv[2 * best], r.uv[2 * best + 1]);
+  double sxy = 0, sxx = 0, crest = 0, maxU = 0;
+  for (std::size_t i = 0; i < lat.size(); ++i) {
+    sxy += r.height[i] * (r.uv[2 * i] * de + r.uv[2 * i + 1] * dn);
+    sxx += r.height[i] * r.height[i];
+    crest = std::max(crest, std::abs(r.height[i]));
+    maxU = std::max(maxU, std::hypot(r.uv[2 * i], r.uv[2 * i + 1]));
+  }
+  const double omega = sxy / sxx;
+  ASSERT_GT(omega, 0.1);  // a wind sea at 8 m/s: 0.3 .. 10 rad/s
+  ASSERT_LT(omega, 10.0);
+  for (std::size_t i = 0; i < lat.size(); ++i) {
+    EXPECT_NEAR(r.uv[2 * i], omega * r.height[i] * de, 1e-6 * maxU) << i;
+    EXPECT_NEAR(r.uv[2 * i + 1], omega * r.height[i] * dn, 1e-6 * maxU) << i;
+  }
+  // The same points one period later.
+  std::vector<double> t2(t);
+  for (double& x : t2) x += 2.0 * M_PI / omega;
+  SurfaceAnswers r2(lat.size());
+  ASSERT_EQ(a.querySurface(o.h, lat.size(), lat.data(), lon.data(), t2.data(), t2.size(), &r2.out), GEOCEAN_OK);
+  for (std::size_t i = 0; i < lat.size(); ++i) EXPECT_NEAR(r2.height[i], r.height[i], 1e-5 * crest) << i;
+}
+
+}  // namespace
