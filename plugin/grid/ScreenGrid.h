@@ -51,9 +51,6 @@ static_assert(sizeof(GridVertex) == 32, "GridVertex is a GPU layout");
 // its span of ray hits, and on the limb points (two per grid column or row)
 // whose lat/lon and class the horizon vertices copy. Header-only, so the grid
 // library itself does not link the raster stack.
-// The grid's former names, still used by plugin/render:
-using SurfaceClassifier = ocean::SurfaceClassifier;
-using ocean::classifierFor;
 
 struct GridOptions {
   // Grid size in vertices; 0 means "from cellPx": one vertex every cellPx

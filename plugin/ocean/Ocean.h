@@ -63,9 +63,8 @@ struct SurfaceOutputs {
   bool wantsSea() const { return heightM || normalEnu || verticalVelocityMps || horizontalVelocityEnMps; }
 };
 
-// Classes for a batch of points, as the picker and the screen grid take them
-// (the same signature as grid::SurfaceClassifier).
-using Classifier = std::function<void(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out)>;
+// Classes for a batch of points, as the picker and the screen grid take them.
+using Classifier = SurfaceClassifier;
 
 // Everything a query reads, immutable once published. The renderer (the
 // ABI's draw half) reads the members and compares snapshot pointers.

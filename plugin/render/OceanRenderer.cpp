@@ -39,7 +39,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   // Cells are skipped only where the drawn shoreline cannot reach (the
   // fragment shader cuts the exact coastline); nearest-cell classes would
   // drop sea that the smooth shoreline shows as water.
-  grid::SurfaceClassifier classifier;
+  ocean::SurfaceClassifier classifier;
   if (landSea)
     classifier = [ls = landSea](const double* lat, const double* lon, std::size_t n, ocean::Surface* out) {
       ls->classifyNearWaterBatch(lat, lon, n, out);
