@@ -89,6 +89,39 @@ MassProperties HullMesh::massProperties(double densityKgM3) const {
   return MassProperties(densityKgM3 * volume_, densityKgM3 * unitInertia_);
 }
 
+double HullMesh::volumeBelow(double zc) const {
+  // Divergence theorem with the field (0, 0, z - zc): the plane's lid adds 0.
+  double v = 0.0;
+  for (std::size_t t = 0; t < indices_.size(); t += 3) {
+    glm::dvec3 p[3] = {vertices_[indices_[t]], vertices_[indices_[t + 1]], vertices_[indices_[t + 2]]};
+    glm::dvec3 poly[4];
+    int m = 0;
+    for (int e = 0; e < 3; ++e) {
+      const glm::dvec3 &a = p[e], &b = p[(e + 1) % 3];
+      const bool ia = a.z < zc, ib = b.z < zc;
+      if (ia) poly[m++] = a;
+      if (ia != ib) poly[m++] = a + (zc - a.z) / (b.z - a.z) * (b - a);
+    }
+    for (int j = 1; j + 1 < m; ++j) {
+      const glm::dvec3 S = 0.5 * glm::cross(poly[j] - poly[0], poly[j + 1] - poly[0]);
+      v += S.z * ((poly[0].z + poly[j].z + poly[j + 1].z) / 3.0 - zc);
+    }
+  }
+  return v;
+}
+
+double HullMesh::restingWaterlineZ(double densityRatio) const {
+  if (!(densityRatio > 0.0 && densityRatio < 1.0))
+    fail("density ratio body / water", densityRatio, "", "must be in (0, 1) for the body to float");
+  double lo = min_.z, hi = max_.z;
+  const double target = densityRatio * volume_;
+  for (int i = 0; i < 200 && hi - lo > 1e-12 * (max_.z - min_.z); ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (volumeBelow(mid) < target ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 HullMesh HullMesh::box(const glm::dvec3& sizeM, int facetsPerEdge) {
   requirePositive("box length", sizeM.x, "m");
   requirePositive("box beam", sizeM.y, "m");

@@ -58,6 +58,14 @@ class HullMesh {
   // triangle mesh", 2004). Exact for the polyhedron.
   MassProperties massProperties(double densityKgM3) const;
 
+  // Volume below the body-axis plane z = zBody (exact: the clipped polyhedron).
+  double volumeBelow(double zBody) const;
+  // The z of the plane under which volumeBelow = densityRatio * volume, by
+  // bisection to 1e-12 of the height: an upright body of density
+  // densityRatio * rho_water floats with its centre of mass -restingWaterlineZ
+  // above the still water (densityRatio in (0, 1)).
+  double restingWaterlineZ(double densityRatio) const;
+
  private:
   std::vector<glm::dvec3> vertices_;
   std::vector<std::uint32_t> indices_;

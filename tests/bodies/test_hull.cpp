@@ -119,3 +119,14 @@ TEST(BodyHull, TangentOffsetsToGeodeticMatchGeographicLib) {
     }
   }
 }
+
+TEST(BodyHull, VolumeBelowAPlaneAndTheRestingWaterline) {
+  // Box: linear in the plane's height; cylinder: pi r^2 times the depth.
+  const HullMesh box = HullMesh::box({4.0, 2.0, 3.0});
+  EXPECT_NEAR(box.volumeBelow(0.0), 12.0, 1e-12);
+  EXPECT_NEAR(box.volumeBelow(-1.0), 4.0, 1e-12);
+  EXPECT_NEAR(box.restingWaterlineZ(0.25), -0.75, 1e-9);  // draft 0.25 H, centre 0.75 m above
+  const HullMesh cyl = HullMesh::cylinder(1.0, 2.0);
+  EXPECT_NEAR(cyl.volumeBelow(0.3), std::numbers::pi * 1.3, 1e-12);
+  EXPECT_THROW(box.restingWaterlineZ(1.2), std::invalid_argument);
+}
