@@ -23,6 +23,7 @@
 #endif
 
 using namespace geocean::capi;
+using geocean::ocean::Ocean;
 
 namespace {
 
@@ -35,7 +36,8 @@ geocean::raster::OpenOptions openOptions(int32_t georef, const char* what = "geo
   switch (georef) {
     case GEOCEAN_GEOREF_FROM_FILE: o.georef = geocean::raster::Georef::FromFile; break;
     case GEOCEAN_GEOREF_GLOBAL_EQUIRECT: o.georef = geocean::raster::Georef::GlobalEquirect; break;
-    default: fail(GEOCEAN_ERROR_INVALID_ARGUMENT, std::string(what) + " " + std::to_string(georef) + " is not a geocean_georef");
+    default:
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, std::string(what) + " " + std::to_string(georef) + " is not a geocean_georef");
   }
   return o;
 }
@@ -90,6 +92,19 @@ std::string installedDataDir() {
   return fs::exists(d / "landmask_5m.tif", ec) ? d.string() : std::string();
 }
 
+// The four file setters: handle and path checked, options converted, then
+// the façade's setter (Ocean::setMaskFile or setElevationFile).
+using FileSetter = void (Ocean::*)(const std::string&, const geocean::raster::OpenOptions&);
+template <class Options>
+geocean_status setFile(const char* function, geocean_ocean* ocean, const char* path, FileSetter set,
+                       Options options) {
+  return guard(function, [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(path, "path");
+    (ocean->core.*set)(path, openOptions(options));
+  });
+}
+
 }  // namespace
 
 extern "C" {
@@ -138,20 +153,13 @@ GEOCEAN_API void geocean_destroy(geocean_ocean* ocean) {
 }
 
 GEOCEAN_API geocean_status geocean_set_mask_file(geocean_ocean* ocean, const char* path, geocean_georef georef) {
-  return guard("geocean_set_mask_file", [&] {
-    requireNonNull(ocean, "ocean");
-    requireNonNull(path, "path");
-    ocean->core.setMaskFile(path, openOptions(static_cast<int32_t>(georef)));
-  });
+  return setFile("geocean_set_mask_file", ocean, path, &Ocean::setMaskFile, static_cast<int32_t>(georef));
 }
 
 GEOCEAN_API geocean_status geocean_set_elevation_file(geocean_ocean* ocean, const char* path,
                                                       geocean_georef georef) {
-  return guard("geocean_set_elevation_file", [&] {
-    requireNonNull(ocean, "ocean");
-    requireNonNull(path, "path");
-    ocean->core.setElevationFile(path, openOptions(static_cast<int32_t>(georef)));
-  });
+  return setFile("geocean_set_elevation_file", ocean, path, &Ocean::setElevationFile,
+                 static_cast<int32_t>(georef));
 }
 
 GEOCEAN_API geocean_status geocean_raster_options_init(geocean_raster_options* options) {
@@ -165,20 +173,13 @@ GEOCEAN_API geocean_status geocean_raster_options_init(geocean_raster_options* o
 
 GEOCEAN_API geocean_status geocean_set_mask_file_with_options(geocean_ocean* ocean, const char* path,
                                                               const geocean_raster_options* options) {
-  return guard("geocean_set_mask_file_with_options", [&] {
-    requireNonNull(ocean, "ocean");
-    requireNonNull(path, "path");
-    ocean->core.setMaskFile(path, openOptions(options));
-  });
+  return setFile("geocean_set_mask_file_with_options", ocean, path, &Ocean::setMaskFile, options);
 }
 
 GEOCEAN_API geocean_status geocean_set_elevation_file_with_options(geocean_ocean* ocean, const char* path,
                                                                    const geocean_raster_options* options) {
-  return guard("geocean_set_elevation_file_with_options", [&] {
-    requireNonNull(ocean, "ocean");
-    requireNonNull(path, "path");
-    ocean->core.setElevationFile(path, openOptions(options));
-  });
+  return setFile("geocean_set_elevation_file_with_options", ocean, path, &Ocean::setElevationFile,
+                 options);
 }
 
 GEOCEAN_API geocean_status geocean_set_mask_pixels(geocean_ocean* ocean, const float* values, int32_t width,
@@ -201,7 +202,7 @@ GEOCEAN_API geocean_status geocean_set_elevation_pixels(geocean_ocean* ocean, co
 GEOCEAN_API geocean_status geocean_set_default_world(geocean_ocean* ocean) {
   return guard("geocean_set_default_world", [&] {
     requireNonNull(ocean, "ocean");
-    ocean->core.setDefaultWorld(geocean::ocean::Ocean::defaultWorldDir(installedDataDir));
+    ocean->core.setDefaultWorld(Ocean::defaultWorldDir(installedDataDir));
   });
 }
 
@@ -210,7 +211,7 @@ GEOCEAN_API geocean_status geocean_set_default_world_with_options(geocean_ocean*
   return guard("geocean_set_default_world_with_options", [&] {
     requireNonNull(ocean, "ocean");
     const auto o = openOptions(options);
-    ocean->core.setDefaultWorld(geocean::ocean::Ocean::defaultWorldDir(installedDataDir), o);
+    ocean->core.setDefaultWorld(Ocean::defaultWorldDir(installedDataDir), o);
   });
 }
 

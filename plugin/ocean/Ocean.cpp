@@ -79,12 +79,7 @@ double Snapshot::significantWaveHeightM() const {
   return waves->spectrumHsM();
 }
 
-Classifier Snapshot::classifier() const {
-  if (!landSea) return {};
-  return [ls = landSea](const double* lat, const double* lon, std::size_t n, Surface* out) {
-    ls->classifyBatch(lat, lon, n, out);
-  };
-}
+Classifier Snapshot::classifier() const { return landSea ? classifierFor(landSea) : Classifier(); }
 
 void Snapshot::querySurface(const Points& p, const SurfaceOutputs& out) const {
   if (out.wantsSea() && !sea) throw NotReady(NotReady::Missing::SeaState);
@@ -95,6 +90,13 @@ void Snapshot::querySurface(const Points& p, const SurfaceOutputs& out) const {
   constexpr std::size_t kGrain = 4096;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, p.count, kGrain),
                     [&](const tbb::blocked_range<std::size_t>& r) { queryRange(p, r.begin(), r.end(), out); });
+}
+
+void Snapshot::querySurfaceOnThisThread(const Points& p, const SurfaceOutputs& out) const {
+  if (out.wantsSea() && !sea) throw NotReady(NotReady::Missing::SeaState);
+  if (p.count == 0) return;
+  if (out.wantsSea() && !p.timeS) throw std::invalid_argument("sea-surface query: timeS is null");
+  queryRange(p, 0, p.count, out);
 }
 
 void Snapshot::queryRange(const Points& p, std::size_t begin, std::size_t end, const SurfaceOutputs& out) const {

@@ -88,6 +88,9 @@ struct Snapshot {
   // Throws NotReady when a sea output is asked for without a sea state,
   // std::invalid_argument when its times are missing.
   void querySurface(const Points& points, const SurfaceOutputs& out) const;
+  // The same answers on the calling thread only (no TBB): for callers that
+  // parallelise themselves over small batches (plugin/bodies, per body).
+  void querySurfaceOnThisThread(const Points& points, const SurfaceOutputs& out) const;
   // Significant wave height (m) of the sea state's spectrum. Throws NotReady.
   double significantWaveHeightM() const;
   // For the picker: the classes of this snapshot (empty without rasters:
