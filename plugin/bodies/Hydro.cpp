@@ -116,7 +116,6 @@ HullForce::HullForce(std::shared_ptr<const HullMesh> hull, std::shared_ptr<const
   requirePositive("water density", options_.water.densityKgM3, "kg/m^3");
   requirePositive("water kinematic viscosity", options_.water.kinematicViscosityM2ps, "m^2/s");
   requireNonNegative("pressure drag coefficient", options_.pressureDragCoefficient, "");
-  requirePositive("acceleration probe half-width", options_.accelerationProbeS, "s");
   requireNonNegative("heave damping ratio", options_.heaveDampingRatio, "");
   requireNonNegative("roll damping ratio", options_.rollDampingRatio, "");
   requireNonNegative("pitch damping ratio", options_.pitchDampingRatio, "");
@@ -155,12 +154,14 @@ HullEvaluation HullForce::evaluate(const BodyState& state, const MassProperties&
   sea_->sample(S.lat.data(), S.lon.data(), S.t.data(), n, false, S.sea.data());
 
   // The centre: the surface and the water's velocity at t, and its vertical
-  // velocity at t -+ dt_probe for the acceleration.
-  const double probe = options_.accelerationProbeS;
-  std::array<double, 3> cLat{}, cLon{}, cT{ctx.timeS, ctx.timeS - probe, ctx.timeS + probe};
+  // velocity one step earlier for the acceleration (a backward difference,
+  // lagging by dt/2: 0.5 % of a radian for a 12 s swell at 60 Hz; at the
+  // previous step's time, which the FFT model still has in its cache).
+  const double probe = ctx.stepS;
+  std::array<double, 2> cLat{}, cLon{}, cT{ctx.timeS, ctx.timeS - probe};
   cLat.fill(ctx.geodetic.latDeg), cLon.fill(ctx.geodetic.lonDeg);
-  std::array<SeaSample, 3> c;
-  sea_->sample(cLat.data(), cLon.data(), cT.data(), 3, true, c.data());
+  std::array<SeaSample, 2> c;
+  sea_->sample(cLat.data(), cLon.data(), cT.data(), 2, true, c.data());
   out.seaHeightM = c[0].heightM;
 
   const double rho = options_.water.densityKgM3, g = ctx.gravityMps2, rhoG = rho * g;
@@ -269,9 +270,9 @@ HullEvaluation HullForce::evaluate(const BodyState& state, const MassProperties&
     out.wrench.addAddedMass(glm::dvec3(0.0, 0.0, a33), glm::dvec3(0.0));
     // Morison / G.I. Taylor long-wave term: a33 times the water's vertical
     // acceleration at the keel, along the body's heave axis.
-    if (!std::isnan(c[1].heightM) && !std::isnan(c[2].heightM)) {
+    if (!std::isnan(c[0].heightM) && !std::isnan(c[1].heightM)) {
       const double keel = std::max(out.keelDepthM, 0.0);
-      const double aw = (c[2].verticalVelocityMps - c[1].verticalVelocityMps) / (2.0 * probe) * std::exp(-k * keel);
+      const double aw = (c[0].verticalVelocityMps - c[1].verticalVelocityMps) / probe * std::exp(-k * keel);
       const glm::dvec3 zb = R[2];
       F += a33 * zb.z * aw * zb;
     }

@@ -26,8 +26,9 @@
 //     Hydrodynamics table 4.3); scaled by (A_wp / A_wp,full)^{3/2} as the
 //     waterplane A_wp shrinks. It enters the integrator's mass matrix
 //     (Wrench::addAddedMass) and, as in Morison's equation, a33 times the
-//     water's vertical acceleration at the keel (central difference of the
-//     surface's vertical velocity, decayed by e^{-k d_keel}) is a force: the
+//     water's vertical acceleration at the keel (backward difference over
+//     one step of the surface's vertical velocity, decayed by e^{-k d_keel})
+//     is a force: the
 //     long-wave diffraction term, which makes the heave follow long swell.
 //     Not modelled: added mass in surge, sway, roll, pitch and yaw; wave
 //     radiation damping (the damping is the drag below).
@@ -91,7 +92,6 @@ struct HullForceOptions {
   double heaveDampingRatio = 0.1;        // radiation damping, fractions of critical (see above)
   double rollDampingRatio = 0.05;
   double pitchDampingRatio = 0.1;
-  double accelerationProbeS = 0.05;      // half-width of the central difference of the water's vertical velocity
 };
 
 // What the water does to one body at one instant (tests, tools, the CLI).

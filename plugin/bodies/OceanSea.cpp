@@ -37,7 +37,7 @@ void OceanSea::sample(const double* latDeg, const double* lonDeg, const double* 
     o.verticalVelocityMps = vz.data();
     o.horizontalVelocityEnMps = vh.data();
   }
-  snap_->querySurface(ocean::Points{latDeg, lonDeg, n, tS, true}, o);
+  snap_->querySurfaceOnThisThread(ocean::Points{latDeg, lonDeg, n, tS, true}, o);
   for (std::size_t i = 0; i < n; ++i) {
     out[i].heightM = h[i];
     if (velocities && !std::isnan(h[i])) {

@@ -1,0 +1,91 @@
+// Body-steps per second: each hull kind on each wave model (one core), many
+// bodies at once (one and two threads: two Simulations side by side, as the
+// Simulation itself steps on one thread), and paper 000's contact-point
+// bodies. Prints a Markdown table for docs/PERFORMANCE.md.
+#include "plugin/bodies/Hull.h"
+#include "plugin/bodies/Hydro.h"
+#include "plugin/bodies/OceanSea.h"
+#include "plugin/bodies/Simulation.h"
+
+#include <glm/gtc/quaternion.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <thread>
+#include <vector>
+
+using namespace geocean;
+using namespace geocean::bodies;
+
+namespace {
+
+std::shared_ptr<const SeaSurface> makeSea(const char* model) {
+  if (std::string(model) == "none") return std::make_shared<FlatSea>();
+  ocean::Ocean o;
+  waves::SeaState s;
+  s.windSpeedMps = 10.0;
+  s.anchorLatDeg = 30.0, s.anchorLonDeg = -40.0;
+  o.setSeaState(*waves::parseModel(model), s);
+  return std::make_shared<OceanSea>(o.current());
+}
+
+// n bodies on a grid 60 m apart around (30, -40), stepped `steps` times at 60 Hz.
+double bodyStepsPerSecond(const HullMesh& hull, bool points, std::shared_ptr<const SeaSurface> sea, int n, int steps,
+                          int threads) {
+  auto work = [&](int part, double& seconds) {
+    Simulation sim({.stepS = 1.0 / 60});
+    auto hf = std::make_shared<HullForce>(std::make_shared<HullMesh>(hull), sea);
+    const glm::dvec3 ext = hull.maxCorner() - hull.minCorner();
+    auto cp = ContactPointForce::hollowCylinderProxy(ext.x, 0.5 * ext.y, 4, sea);
+    for (int i = part; i < n; i += threads) {
+      const geo::Geodetic p{30.0 + (i / 20) * 5.4e-4, -40.0 + (i % 20) * 6.2e-4, -hull.restingWaterlineZ(0.45)};
+      const geo::EnuFrame f = geo::enuFrame(p);
+      BodyState s;
+      s.positionEcef = f.originEcef;
+      s.orientation = glm::quat_cast(f.rotation());
+      const BodyId id = sim.addBody(hull.massProperties(0.45 * 1025), s);
+      sim.addBodyForce(id, points ? std::shared_ptr<const ForceModel>(cp) : hf);
+    }
+    sim.advanceTo(10 / 60.0);  // warm up
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < steps; ++k) sim.step();
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  std::vector<double> secs(threads);
+  std::vector<std::thread> pool;
+  for (int p = 0; p < threads; ++p) pool.emplace_back(work, p, std::ref(secs[p]));
+  for (auto& t : pool) t.join();
+  double worst = 0;
+  for (double s : secs) worst = std::max(worst, s);
+  return double(n) * steps / worst;
+}
+
+}  // namespace
+
+int main() {
+  const HullMesh box = HullMesh::box({8.0, 4.0, 2.0}), cyl = HullMesh::cylinder(1.0, 3.0),
+                 boat = HullMesh::boat(20.0);
+  const char* models[] = {"none", "noise", "gerstner", "fft"};
+  std::printf("| hull (triangles) | none | noise | gerstner | fft |\n|---|---|---|---|---|\n");
+  struct H {
+    const char* name;
+    const HullMesh* h;
+    bool points;
+  } hulls[] = {{"box", &box, false}, {"cylinder", &cyl, false}, {"boat", &boat, false}, {"contact points (8)", &boat, true}};
+  std::vector<std::shared_ptr<const SeaSurface>> seas;
+  for (const char* m : models) seas.push_back(makeSea(m));
+  for (const H& h : hulls) {
+    std::printf("| %s (%zu) |", h.name, h.points ? std::size_t(0) : h.h->triangleCount());
+    for (std::size_t m = 0; m < seas.size(); ++m)
+      std::printf(" %.0f |", bodyStepsPerSecond(*h.h, h.points, seas[m], 20, 300, 1));
+    std::printf("\n");
+  }
+  const auto gerstner = seas[2];
+  for (int threads : {1, 2}) {
+    const double boats = bodyStepsPerSecond(boat, false, gerstner, 200, 120, threads);
+    const double pts = bodyStepsPerSecond(boat, true, gerstner, 1000, 60, threads);
+    std::printf("threads %d: 200 boats on gerstner %.0f body-steps/s = %.1f Hz; 1000 contact-point bodies %.0f body-steps/s = %.1f Hz\n",
+                threads, boats, boats / 200, pts, pts / 1000);
+  }
+}
