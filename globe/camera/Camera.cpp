@@ -79,15 +79,19 @@ Camera Camera::fromEcef(const glm::dvec3& eye, const glm::dvec3& forward, const 
   if (!(rl > 1e-12)) throw std::invalid_argument("camera: up hint is parallel to the forward direction");
   c.right_ = r / rl;
   c.up_ = glm::cross(c.right_, c.forward_);
-  c.vfovDeg_ = vfovDeg;
-  c.width_ = w;
-  c.height_ = h;
-  const geo::Geodetic g = geo::fromEcef(eye);
-  c.heightM_ = g.heightM;
-  c.latDeg_ = g.latDeg;
-  c.lonDeg_ = g.lonDeg;
+  c.lensAtEye(vfovDeg, w, h);
   c.finish(altAboveSurfaceM);
   return c;
+}
+
+void Camera::lensAtEye(double vfovDeg, int w, int h) {
+  vfovDeg_ = vfovDeg;
+  width_ = w;
+  height_ = h;
+  const geo::Geodetic g = geo::fromEcef(eye_);
+  heightM_ = g.heightM;
+  latDeg_ = g.latDeg;
+  lonDeg_ = g.lonDeg;
 }
 
 Camera Camera::fromHost(const glm::dvec3& eye, const glm::dvec3& forward, const glm::dvec3& right,
@@ -100,26 +104,10 @@ Camera Camera::fromHost(const glm::dvec3& eye, const glm::dvec3& forward, const 
   c.forward_ = forward;
   c.right_ = right;
   c.up_ = up;
-  c.vfovDeg_ = vfov;
-  c.width_ = w;
-  c.height_ = h;
-  const geo::Geodetic g = geo::fromEcef(eye);
-  c.heightM_ = g.heightM;
-  c.latDeg_ = g.latDeg;
-  c.lonDeg_ = g.lonDeg;
+  c.lensAtEye(vfov, w, h);
   c.finish(std::numeric_limits<double>::quiet_NaN());
   c.nearM_ = proj[3][2] != 0.0 ? std::abs(proj[3][2]) : 1.0;
-  glm::dmat4 view(1.0);
-  for (int i = 0; i < 3; ++i) {
-    view[i][0] = right[i];
-    view[i][1] = up[i];
-    view[i][2] = -forward[i];
-  }
-  c.gpu_.view = glm::mat4(view);
-  c.gpu_.proj = glm::mat4(proj);
-  c.gpu_.projD = proj;
-  c.gpu_.viewProjD = proj * view;
-  c.gpu_.viewProj = glm::mat4(c.gpu_.viewProjD);
+  c.setGpu(proj);
   return c;
 }
 
@@ -130,13 +118,7 @@ void Camera::finish(double altAboveSurfaceM) {
   // Horizon of the sea plus the horizon of the highest terrain (9 km), with
   // a 1 % margin; at least 10 km so an eye near the surface sees to its horizon.
   farM_ = std::max(1e4, 1.01 * (horizonDistance(geo::kWgs84A, h) + horizonDistance(geo::kWgs84A, 9000.0)));
-  // The renderers' matrices, in double then rounded.
-  glm::dmat4 view(1.0);
-  for (int i = 0; i < 3; ++i) {
-    view[i][0] = right_[i];
-    view[i][1] = up_[i];
-    view[i][2] = -forward_[i];
-  }
+  // The renderers' projection, in double.
   const double f = 1.0 / std::tan(0.5 * vfovDeg_ * (kPi / 180.0));
   const double aspect = double(width_) / double(height_);
   glm::dmat4 proj(0.0);
@@ -144,6 +126,16 @@ void Camera::finish(double altAboveSurfaceM) {
   proj[1][1] = f;
   proj[2][3] = -1.0;    // w = -z_view
   proj[3][2] = nearM_;  // z = near  ->  depth = near / -z_view: 1 at near, 0 at infinity
+  setGpu(proj);
+}
+
+void Camera::setGpu(const glm::dmat4& proj) {
+  glm::dmat4 view(1.0);
+  for (int i = 0; i < 3; ++i) {
+    view[i][0] = right_[i];
+    view[i][1] = up_[i];
+    view[i][2] = -forward_[i];
+  }
   gpu_.view = glm::mat4(view);
   gpu_.proj = glm::mat4(proj);
   gpu_.projD = proj;

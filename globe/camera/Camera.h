@@ -132,6 +132,8 @@ class Camera {
 
  private:
   void finish(double altAboveSurfaceM);
+  void lensAtEye(double vfovDeg, int widthPx, int heightPx);  // and the eye's geodetic position
+  void setGpu(const glm::dmat4& projection);                  // the view from the basis
   glm::dvec3 eye_{0.0}, forward_{0.0}, right_{0.0}, up_{0.0};
   double heightM_ = 0.0, latDeg_ = 0.0, lonDeg_ = 0.0, vfovDeg_ = 60.0, tanY_ = 0.0, nearM_ = 0.0, farM_ = 0.0;
   GpuMatrices gpu_;
