@@ -69,4 +69,44 @@ std::string parsePointRow(std::string_view line, long row, PointRow& out) {
   return {};
 }
 
+std::string parseNumberList(std::string_view text, std::size_t n, std::string_view what, std::vector<double>& out) {
+  out.clear();
+  std::size_t pos = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', pos);
+    const std::string_view tok = text.substr(pos, comma == std::string_view::npos ? std::string_view::npos : comma - pos);
+    const auto v = parseNumber(tok);
+    if (!v)
+      return std::string(what) + ": '" + std::string(tok) + "' in '" + std::string(text) + "' is not a finite number";
+    out.push_back(*v);
+    if (comma == std::string_view::npos) break;
+    pos = comma + 1;
+  }
+  if (out.size() != n)
+    return std::string(what) + ": expected " + std::to_string(n) + " comma-separated numbers, got " +
+           std::to_string(out.size()) + " in '" + std::string(text) + "'";
+  return {};
+}
+
+bool isRayHeaderRow(std::string_view line) {
+  return line.find_first_of("abcdefghijklmnopqrstuvwxyz") != std::string_view::npos &&
+         line.find("ox") != std::string_view::npos;
+}
+
+std::string parseRayRow(std::string_view line, std::string_view what, RayRow& out) {
+  std::vector<double> v;
+  v.reserve(6);
+  if (auto e = parseNumberList(line, 6, what, v); !e.empty()) return e;
+  if (!(std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]) > 0.0)) {
+    char b[120];
+    std::snprintf(b, sizeof b, ": direction %g,%g,%g is zero", v[3], v[4], v[5]);
+    return std::string(what) + b;
+  }
+  for (int i = 0; i < 3; ++i) {
+    out.origin[i] = v[i];
+    out.direction[i] = v[3 + i];
+  }
+  return {};
+}
+
 }  // namespace geocean::app

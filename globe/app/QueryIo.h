@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace geocean::app {
 
@@ -26,5 +27,21 @@ std::string parsePointRow(std::string_view line, long rowNumber, PointRow& out);
 
 // True for a header row such as "lat,lon,time".
 bool isHeaderRow(std::string_view line);
+
+// Splits "a,b,c" into exactly n finite numbers; the error names `what`, the
+// token and the text, or is empty.
+std::string parseNumberList(std::string_view text, std::size_t n, std::string_view what, std::vector<double>& out);
+
+// A row of `geocean pick --rays`: ECEF origin (m) and direction.
+struct RayRow {
+  double origin[3] = {0, 0, 0}, direction[3] = {0, 0, 0};
+};
+
+// True for the first row of a --rays file when it is a header ("ox,oy,oz,dx,dy,dz").
+bool isRayHeaderRow(std::string_view line);
+
+// Parses "ox,oy,oz,dx,dy,dz" (six finite numbers, a direction of non-zero
+// length). Returns the error, starting with `what`, or empty on success.
+std::string parseRayRow(std::string_view line, std::string_view what, RayRow& out);
 
 }  // namespace geocean::app

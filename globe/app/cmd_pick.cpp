@@ -26,25 +26,6 @@ struct PickOptions {
   bool noTerrain = false, global = false;
 };
 
-// Splits "a,b,c" into exactly n finite numbers; the error names the option and the value.
-std::string parseList(const std::string& text, std::size_t n, const char* what, std::vector<double>& out) {
-  out.clear();
-  std::size_t pos = 0;
-  while (true) {
-    const std::size_t comma = text.find(',', pos);
-    const std::string tok = text.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
-    const auto v = parseNumber(tok);
-    if (!v) return std::string(what) + ": '" + tok + "' in '" + text + "' is not a finite number";
-    out.push_back(*v);
-    if (comma == std::string::npos) break;
-    pos = comma + 1;
-  }
-  if (out.size() != n)
-    return std::string(what) + ": expected " + std::to_string(n) + " comma-separated numbers, got " +
-           std::to_string(out.size()) + " in '" + text + "'";
-  return {};
-}
-
 void appendDouble(std::string& s, double v) {
   char b[32];
   auto r = std::to_chars(b, b + sizeof b, v);
@@ -118,7 +99,7 @@ int runPick(const PickOptions& o) {
   std::vector<pick::PickRay> rays;
   std::vector<double> v;
   if (!o.ray.empty()) {
-    if (auto e = parseList(o.ray, 6, "--ray", v); !e.empty()) {
+    if (auto e = parseNumberList(o.ray, 6, "--ray", v); !e.empty()) {
       std::fprintf(stderr, "geocean pick: %s\n", e.c_str());
       return kExitBadInput;
     }
@@ -128,7 +109,7 @@ int runPick(const PickOptions& o) {
       return kExitBadInput;
     }
   } else if (!o.cameraPose.empty()) {
-    if (auto e = parseList(o.cameraPose, 5, "--camera", v); !e.empty()) {
+    if (auto e = parseNumberList(o.cameraPose, 5, "--camera", v); !e.empty()) {
       std::fprintf(stderr, "geocean pick: %s\n", e.c_str());
       return kExitBadInput;
     }
@@ -143,7 +124,7 @@ int runPick(const PickOptions& o) {
       std::fprintf(stderr, "geocean pick: --camera needs --pixel X,Y\n");
       return kExitBadInput;
     }
-    if (auto e = parseList(o.pixel, 2, "--pixel", px); !e.empty()) {
+    if (auto e = parseNumberList(o.pixel, 2, "--pixel", px); !e.empty()) {
       std::fprintf(stderr, "geocean pick: %s\n", e.c_str());
       return kExitBadInput;
     }
@@ -207,23 +188,16 @@ int runPick(const PickOptions& o) {
     ++row;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.find_first_not_of(" \t") == std::string::npos) continue;
-    if (row == 1 && line.find_first_of("abcdefghijklmnopqrstuvwxyz") != std::string::npos &&
-        line.find("ox") != std::string::npos)
-      continue;  // header "ox,oy,oz,dx,dy,dz"
+    if (row == 1 && isRayHeaderRow(line)) continue;  // header "ox,oy,oz,dx,dy,dz"
     const std::string what = "--rays " + o.rays + " row " + std::to_string(row);
-    if (auto e = parseList(line, 6, what.c_str(), v); !e.empty()) {
+    RayRow rr;
+    if (auto e = parseRayRow(line, what, rr); !e.empty()) {
       flush();  // rows before the bad one are answered
       std::fflush(stdout);
       std::fprintf(stderr, "geocean pick: %s\n", e.c_str());
       return kExitBadInput;
     }
-    if (!(glm::length(glm::dvec3(v[3], v[4], v[5])) > 0.0)) {
-      flush();
-      std::fflush(stdout);
-      std::fprintf(stderr, "geocean pick: %s: direction %g,%g,%g is zero\n", what.c_str(), v[3], v[4], v[5]);
-      return kExitBadInput;
-    }
-    rays.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}});
+    rays.push_back({{rr.origin[0], rr.origin[1], rr.origin[2]}, {rr.direction[0], rr.direction[1], rr.direction[2]}});
     if (rays.size() == 8192) flush();
   }
   flush();
