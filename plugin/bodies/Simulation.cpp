@@ -47,7 +47,7 @@ BodyId Simulation::addBody(const MassProperties& mass, const BodyState& state) {
   BodyState s = state;
   s.orientation = glm::normalize(s.orientation);
   const BodyId id = nextId_++;
-  bodies_.push_back(Body{id, mass, s, s, {}});
+  bodies_.push_back(Body{id, mass, s, s, {}, {}});
   return id;
 }
 
@@ -73,6 +73,11 @@ void Simulation::addForceModel(std::shared_ptr<const ForceModel> model) {
 void Simulation::addBodyForce(BodyId id, std::shared_ptr<const ForceModel> model) {
   if (!model) throw std::invalid_argument("geocean::bodies: force model is null");
   body(id).forces.push_back(std::move(model));
+}
+
+void Simulation::addBodyConstraint(BodyId id, std::shared_ptr<const StepConstraint> constraint) {
+  if (!constraint) throw std::invalid_argument("geocean::bodies: step constraint is null");
+  body(id).constraints.push_back(std::move(constraint));
 }
 
 StepContext Simulation::context(const BodyState& s) const {
@@ -124,7 +129,10 @@ void Simulation::step() {
     }
   }
   // Phase 2: integrate.
-  for (std::size_t i = 0; i < bodies_.size(); ++i) integrate(bodies_[i], ctx[i], wrenches_[i]);
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    integrate(bodies_[i], ctx[i], wrenches_[i]);
+    for (const auto& c : bodies_[i].constraints) c->afterStep(bodies_[i], bodies_[i].previous);
+  }
   ++steps_;
 }
 

@@ -35,6 +35,7 @@ namespace geocean::bodies {
 using BodyId = std::uint64_t;
 
 class ForceModel;
+class StepConstraint;
 
 struct Body {
   BodyId id = 0;
@@ -42,6 +43,7 @@ struct Body {
   BodyState state;     // at Simulation::time()
   BodyState previous;  // one step earlier (the start state before the first step)
   std::vector<std::shared_ptr<const ForceModel>> forces;  // this body's own models
+  std::vector<std::shared_ptr<const StepConstraint>> constraints;  // run after each step (contacts)
 };
 
 // What a force model sees of the step: the state is body.state at timeS.
@@ -59,6 +61,14 @@ class ForceModel {
  public:
   virtual ~ForceModel() = default;
   virtual void accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const = 0;
+};
+
+// Runs after a body's integration with its state at the step's start, and
+// may correct the new state (terrain contact: TerrainContact in Terrain.h).
+class StepConstraint {
+ public:
+  virtual ~StepConstraint() = default;
+  virtual void afterStep(Body& body, const BodyState& before) const = 0;
 };
 
 struct SimulationConfig {
@@ -84,6 +94,7 @@ class Simulation {
 
   void addForceModel(std::shared_ptr<const ForceModel> model);  // acts on every body
   void addBodyForce(BodyId id, std::shared_ptr<const ForceModel> model);
+  void addBodyConstraint(BodyId id, std::shared_ptr<const StepConstraint> constraint);
 
   // Runs every whole step ending at or before tS (tS >= time()); returns how many.
   std::int64_t advanceTo(double tS);

@@ -1,0 +1,156 @@
+#include "plugin/bodies/Terrain.h"
+
+#include "plugin/bodies/Validate.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace geocean::bodies {
+
+using detail::fail;
+
+HeightField::HeightField(const geo::Geodetic& origin, int nx, int ny, double spacingM, std::vector<double> heightsM)
+    : frame_(geo::enuFrame(origin)), nx_(nx), ny_(ny), s_(spacingM), h_(std::move(heightsM)) {
+  if (nx < 2 || ny < 2) fail("height field size", std::min(nx, ny), "vertices", "must be >= 2 each way");
+  detail::requirePositive("height field spacing", spacingM, "m");
+  if (h_.size() != std::size_t(nx) * ny)
+    fail("height field sample count", double(h_.size()), "", "must be nx * ny = " + std::to_string(std::size_t(nx) * ny));
+  for (std::size_t k = 0; k < h_.size(); ++k)
+    if (!std::isfinite(h_[k])) fail("height field sample " + std::to_string(k), h_[k], "m", "must be finite");
+  cellMax_.resize(std::size_t(nx - 1) * (ny - 1));
+  for (int j = 0; j + 1 < ny; ++j)
+    for (int i = 0; i + 1 < nx; ++i) {
+      const double m = std::max({h_[std::size_t(j) * nx + i], h_[std::size_t(j) * nx + i + 1],
+                                 h_[std::size_t(j + 1) * nx + i], h_[std::size_t(j + 1) * nx + i + 1]});
+      // Rounded up so the float bound never cuts below the true maximum.
+      cellMax_[std::size_t(j) * (nx - 1) + i] = std::nextafter(static_cast<float>(m), std::numeric_limits<float>::max());
+    }
+}
+
+void HeightField::testCell(int i, int j, const glm::dvec3& a, const glm::dvec3& b, std::optional<Hit>& best) const {
+  const glm::dvec3 v00 = vertex(i, j), v10 = vertex(i + 1, j), v01 = vertex(i, j + 1), v11 = vertex(i + 1, j + 1);
+  const glm::dvec3 tris[2][3] = {{v00, v10, v11}, {v00, v11, v01}};
+  const glm::dvec3 d = b - a;
+  for (const auto& tr : tris) {
+    const glm::dvec3 e1 = tr[1] - tr[0], e2 = tr[2] - tr[0];
+    const glm::dvec3 pv = glm::cross(d, e2);
+    const double det = glm::dot(e1, pv);  // = -d . (e1 x e2): > 0 going down through the upward face
+    if (!(det > 0.0)) continue;
+    const glm::dvec3 tv = a - tr[0];
+    const double u = glm::dot(tv, pv) / det;
+    if (u < 0.0 || u > 1.0) continue;
+    const glm::dvec3 qv = glm::cross(tv, e1);
+    const double v = glm::dot(d, qv) / det;
+    if (v < 0.0 || u + v > 1.0) continue;
+    const double t = glm::dot(e2, qv) / det;
+    if (t < 0.0 || t > 1.0) continue;
+    if (!best || t < best->t) best = Hit{t, a + t * d, glm::normalize(glm::cross(e1, e2))};
+  }
+}
+
+std::optional<HeightField::Hit> HeightField::sweep(const glm::dvec3& a, const glm::dvec3& b) const {
+  const glm::dvec3 d = b - a;
+  // Clip the ground projection to the grid (Liang-Barsky).
+  double t0 = 0.0, t1 = 1.0;
+  const double lo[2] = {0.0, 0.0}, hi[2] = {(nx_ - 1) * s_, (ny_ - 1) * s_};
+  for (int k = 0; k < 2; ++k) {
+    if (d[k] == 0.0) {
+      if (a[k] < lo[k] || a[k] > hi[k]) return std::nullopt;
+      continue;
+    }
+    double ta = (lo[k] - a[k]) / d[k], tb = (hi[k] - a[k]) / d[k];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta), t1 = std::min(t1, tb);
+  }
+  if (t0 > t1) return std::nullopt;
+  // Amanatides-Woo over the cells, in order along the segment.
+  const glm::dvec3 p = a + t0 * d;
+  int i = std::clamp(int(std::floor(p.x / s_)), 0, nx_ - 2), j = std::clamp(int(std::floor(p.y / s_)), 0, ny_ - 2);
+  const int si = d.x > 0 ? 1 : (d.x < 0 ? -1 : 0), sj = d.y > 0 ? 1 : (d.y < 0 ? -1 : 0);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  auto nextBoundary = [&](int cell, int step, double origin, double dir) {
+    if (step == 0) return kInf;
+    const double edge = (cell + (step > 0 ? 1 : 0)) * s_;
+    return (edge - origin) / dir;
+  };
+  double tMaxX = nextBoundary(i, si, a.x, d.x), tMaxY = nextBoundary(j, sj, a.y, d.y);
+  const double tDx = si ? s_ / std::abs(d.x) : kInf, tDy = sj ? s_ / std::abs(d.y) : kInf;
+  double tEnter = t0;
+  for (;;) {
+    const double tExit = std::min({tMaxX, tMaxY, t1});
+    // Coarse: the segment's lowest point over this cell against the cell's highest vertex.
+    const double zLow = std::min(a.z + tEnter * d.z, a.z + tExit * d.z);
+    if (zLow <= cellMax_[std::size_t(j) * (nx_ - 1) + i]) {
+      std::optional<Hit> hit;
+      testCell(i, j, a, b, hit);
+      if (hit) return hit;
+    }
+    if (tExit >= t1) return std::nullopt;
+    if (tMaxX < tMaxY) {
+      i += si, tEnter = tMaxX, tMaxX += tDx;
+    } else {
+      j += sj, tEnter = tMaxY, tMaxY += tDy;
+    }
+    if (i < 0 || j < 0 || i > nx_ - 2 || j > ny_ - 2) return std::nullopt;
+  }
+}
+
+std::optional<HeightField::Hit> HeightField::sweepBruteForce(const glm::dvec3& a, const glm::dvec3& b) const {
+  std::optional<Hit> best;
+  for (int j = 0; j + 1 < ny_; ++j)
+    for (int i = 0; i + 1 < nx_; ++i) testCell(i, j, a, b, best);
+  return best;
+}
+
+double HeightField::heightAt(double x, double y) const {
+  if (!(x >= 0.0 && y >= 0.0 && x <= (nx_ - 1) * s_ && y <= (ny_ - 1) * s_))
+    return std::numeric_limits<double>::quiet_NaN();
+  const int i = std::min(int(x / s_), nx_ - 2), j = std::min(int(y / s_), ny_ - 2);
+  const double fx = x / s_ - i, fy = y / s_ - j;
+  const double h00 = h_[std::size_t(j) * nx_ + i], h10 = h_[std::size_t(j) * nx_ + i + 1];
+  const double h01 = h_[std::size_t(j + 1) * nx_ + i], h11 = h_[std::size_t(j + 1) * nx_ + i + 1];
+  return fx >= fy ? h00 + fx * (h10 - h00) + fy * (h11 - h10) : h00 + fy * (h01 - h00) + fx * (h11 - h01);
+}
+
+TerrainContact::TerrainContact(std::shared_ptr<const HeightField> terrain, std::vector<glm::dvec3> points)
+    : terrain_(std::move(terrain)), points_(std::move(points)) {
+  if (!terrain_) throw std::invalid_argument("geocean::bodies: TerrainContact terrain is null");
+  if (points_.empty()) fail("terrain contact point count", 0.0, "", "must be > 0");
+}
+
+void TerrainContact::afterStep(Body& body, const BodyState& before) const {
+  BodyState& s = body.state;
+  const HeightField& T = *terrain_;
+  // Swept test: the earliest hit of any point between the two poses.
+  std::optional<HeightField::Hit> first;
+  for (const auto& p : points_) {
+    const glm::dvec3 a = T.toPatch(before.positionEcef + before.bodyToEcef(p));
+    const glm::dvec3 b = T.toPatch(s.positionEcef + s.bodyToEcef(p));
+    if (auto h = T.sweep(a, b); h && (!first || h->t < first->t)) first = h;
+  }
+  if (first) {
+    s.positionEcef = before.positionEcef + first->t * (s.positionEcef - before.positionEcef);
+    const glm::dvec3 n = T.frame().toEcef(first->normalEnu);
+    const double vn = glm::dot(s.velocityEcef, n);
+    if (vn < 0.0) s.velocityEcef -= vn * n;
+  }
+  // Static pass: lift by the deepest point (vertical lifts keep every point's
+  // ground position, so after it none is below the surface).
+  double deepest = 0.0;
+  for (const auto& p : points_) {
+    const glm::dvec3 q = T.toPatch(s.positionEcef + s.bodyToEcef(p));
+    const double h = T.heightAt(q.x, q.y);
+    if (!std::isnan(h)) deepest = std::max(deepest, h - q.z);
+  }
+  if (deepest > 0.0) {
+    s.positionEcef += (deepest + 1e-9) * T.frame().up;
+    const double vu = glm::dot(s.velocityEcef, T.frame().up);
+    if (vu < 0.0) s.velocityEcef -= vu * T.frame().up;
+  }
+}
+
+}  // namespace geocean::bodies
