@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <memory>
 #include <numbers>
@@ -170,6 +171,8 @@ TEST(BodyBuoyancy, BoxFloatsAtDraftRhoBodyOverRhoWaterTimesHeight) {
     for (double v : h) mean += v / h.size();
     const double measured = H / 2 - mean;
     EXPECT_NEAR(measured, draft, 0.005 * draft) << density;  // the brief's 0.5 %
+    std::printf("[ measured ] density %.0f: draft %.6f m vs (rho_b/rho_w) H %.6f m (%.2e)\n", density, measured, draft,
+                measured / draft - 1);
   }
 }
 
@@ -188,6 +191,8 @@ TEST(BodyBuoyancy, HeavePeriodIsTwoPiRootOfMassPlusAddedMassOverRhoGAwp) {
   ASSERT_GE(c.size(), 4u);
   const double measured = (c.back() - c.front()) / (c.size() - 1);
   EXPECT_NEAR(measured, T, 0.02 * T) << "a33 = " << f.force->fullHeaveAddedMassKg();
+  std::printf("[ measured ] heave period %.4f s vs 2 pi sqrt((m + a33) / rho g A_wp) %.4f s (a33 %.0f kg)\n", measured, T,
+              f.force->fullHeaveAddedMassKg());
 }
 
 TEST(BodyStability, RollPeriodFollowsTheMetacentricHeight) {
@@ -212,6 +217,7 @@ TEST(BodyStability, RollPeriodFollowsTheMetacentricHeight) {
   ASSERT_GE(c.size(), 3u);
   const double measured = (c.back() - c.front()) / (c.size() - 1);
   EXPECT_NEAR(measured, T, 0.03 * T) << "GM = " << GM;
+  std::printf("[ measured ] roll period %.4f s vs GM formula %.4f s (GM %.3f m)\n", measured, T, GM);
 }
 
 TEST(BodyStability, BoxWithNegativeMetacentricHeightCapsizes) {
@@ -256,6 +262,7 @@ TEST(BodyWaves, HeaveFollowsLongSwellAndIgnoresShortWaves) {
       }
     }
     const double response = amplitudeAt(t, h, sea->omega(), wn) / c.amp;
+    std::printf("[ measured ] lambda %.0f m: heave response %.4f\n", c.lambda, response);
     EXPECT_GE(response, c.lo) << "lambda " << c.lambda;
     EXPECT_LE(response, c.hi) << "lambda " << c.lambda;
   }
@@ -277,6 +284,7 @@ TEST(BodyBuoyancy, BodyAtRestOnACalmSeaDriftsLessThanAMillimetrePerMinute) {
     const geo::EnuFrame enu = geo::enuFrame(geo::fromEcef(p0));
     const glm::dvec3 d = enu.toLocal(f.state().positionEcef - p0);
     EXPECT_LT(std::hypot(d.x, d.y), 1e-3) << hull.kind();
+    std::printf("[ measured ] %s at rest: %.3g m in 60 s\n", hull.kind().c_str(), std::hypot(d.x, d.y));
   }
 }
 
@@ -330,6 +338,7 @@ TEST(BodyWaves, HalvingTheStepChangesASixtySecondTrajectoryByOrderDt) {
   const double e1 = glm::length(a.positionEcef - b.positionEcef), e2 = glm::length(b.positionEcef - c.positionEcef);
   // First order: the difference halves with dt (ratio 2; 1.5..2.7 allows
   // the O(dt^2) remainder at these steps).
+  std::printf("[ measured ] 60 s: |x(1/30) - x(1/60)| %.4g m, |x(1/60) - x(1/120)| %.4g m, ratio %.3f\n", e1, e2, e1 / e2);
   EXPECT_GT(e1 / e2, 1.5) << e1 << " " << e2;
   EXPECT_LT(e1 / e2, 2.7) << e1 << " " << e2;
   EXPECT_LT(e2, 0.5);
