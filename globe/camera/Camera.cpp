@@ -29,22 +29,26 @@ double horizonDistance(double r, double h) { return std::sqrt(std::max(0.0, h * 
 
 double nearPlaneM(double altAboveSurfaceM) { return std::clamp(0.1 * std::abs(altAboveSurfaceM), 0.01, 5.0e4); }
 
-Camera Camera::fromView(const ViewPose& v, double altAboveSurfaceM) {
-  return fromGeodetic({v.latDeg, v.lonDeg, v.altM, v.headingDeg, v.pitchDeg, 0.0}, v.fovYDeg, v.width, v.height,
-                      altAboveSurfaceM);
+Camera Camera::fromGeodetic(ViewPose pose, double vfovDeg, int w, int h, double altAboveSurfaceM) {
+  pose.fovYDeg = vfovDeg;
+  pose.width = w;
+  pose.height = h;
+  return fromView(pose, altAboveSurfaceM);
 }
 
-Camera Camera::fromGeodetic(const GeodeticPose& p, double vfovDeg, int w, int h, double altAboveSurfaceM) {
+Camera Camera::fromView(const ViewPose& p, double altAboveSurfaceM) {
+  const double vfovDeg = p.fovYDeg;
+  const int w = p.width, h = p.height;
   checkFinite(p.latDeg, "latitude");
   checkFinite(p.lonDeg, "longitude");
-  checkFinite(p.heightM, "height");
+  checkFinite(p.altM, "height");
   checkFinite(p.headingDeg, "heading");
   checkFinite(p.pitchDeg, "pitch");
   checkFinite(p.rollDeg, "roll");
   if (std::abs(p.latDeg) > 90.0)
     throw std::invalid_argument("camera: latitude " + std::to_string(p.latDeg) + " is outside [-90, 90]");
   checkView(vfovDeg, w, h);
-  const geo::EnuFrame f = geo::enuFrame({p.latDeg, p.lonDeg, p.heightM});
+  const geo::EnuFrame f = geo::enuFrame({p.latDeg, p.lonDeg, p.altM});
   const double ch = std::cos(rad(p.headingDeg)), sh = std::sin(rad(p.headingDeg));
   const double cp = std::cos(rad(p.pitchDeg)), sp = std::sin(rad(p.pitchDeg));
   Camera c;
@@ -58,7 +62,7 @@ Camera Camera::fromGeodetic(const GeodeticPose& p, double vfovDeg, int w, int h,
   c.vfovDeg_ = vfovDeg;
   c.width_ = w;
   c.height_ = h;
-  c.heightM_ = p.heightM;
+  c.heightM_ = p.altM;
   c.latDeg_ = p.latDeg;
   c.lonDeg_ = p.lonDeg;
   c.finish(altAboveSurfaceM);

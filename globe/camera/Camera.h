@@ -18,12 +18,15 @@
 
 namespace geocean::camera {
 
-// What applications edit (flights, the CLI, the viewer): the eye, where it
-// looks, and the lens. Camera::fromView turns it into the one camera.
+// The pose applications edit (flights, the CLI, the viewer, tests): the
+// eye, where it looks, and the lens. Camera::fromView turns it into the one
+// camera. heading: clockwise from north; pitch: 0 is level, -90 looks
+// straight down; roll: clockwise about the view direction.
 struct ViewPose {
   double latDeg = 0.0, lonDeg = 0.0, altM = 1.0e7;  // eye, altitude above the ellipsoid
   double headingDeg = 0.0;  // 0 north, 90 east
   double pitchDeg = -90.0;  // 0 horizontal, -90 straight down
+  double rollDeg = 0.0;
   double fovYDeg = 45.0;
   int width = 1280, height = 720;
 };
@@ -51,26 +54,16 @@ struct Lighting {
   double timeS = 0.0;
 };
 
-// Geodetic pose. heading: clockwise from north; pitch: 0 is level, -90 looks
-// straight down; roll: clockwise about the view direction.
-struct GeodeticPose {
-  double latDeg = 0.0;
-  double lonDeg = 0.0;
-  double heightM = 1000.0;  // eye height above the ellipsoid
-  double headingDeg = 0.0;
-  double pitchDeg = -90.0;
-  double rollDeg = 0.0;
-};
-
 class Camera {
  public:
   // Throws std::invalid_argument naming the field for a non-finite pose, a
   // field of view outside (0, 180) degrees or a non-positive viewport.
   // altAboveSurfaceM: the eye's height above the terrain or sea under it,
   // for the near plane (NaN: the height above the ellipsoid).
-  static Camera fromGeodetic(const GeodeticPose& pose, double vfovDeg, int widthPx, int heightPx,
-                             double altAboveSurfaceM = std::numeric_limits<double>::quiet_NaN());
   static Camera fromView(const ViewPose& pose, double altAboveSurfaceM = std::numeric_limits<double>::quiet_NaN());
+  // The same with the lens given apart (the pose's fov and size ignored).
+  static Camera fromGeodetic(ViewPose pose, double vfovDeg, int widthPx, int heightPx,
+                             double altAboveSurfaceM = std::numeric_limits<double>::quiet_NaN());
   // forward and upHint need not be unit length; upHint must not be parallel to forward.
   static Camera fromEcef(const glm::dvec3& eyeEcef, const glm::dvec3& forward, const glm::dvec3& upHint,
                          double vfovDeg, int widthPx, int heightPx,

@@ -11,7 +11,7 @@
 
 using namespace geocean;
 using camera::Camera;
-using camera::GeodeticPose;
+using camera::ViewPose;
 
 namespace {
 void expectVecNear(const glm::dvec3& a, const glm::dvec3& b, double tol) {

@@ -71,7 +71,7 @@ TEST(ClampSpheres, DisplacedMeshCoversEverySeaPixel) {
   int seaPixels = 0, slits = 0, slitsWithout = 0;
   for (int trial = 0; trial < 80; ++trial) {
     const double alt = std::pow(10.0, 7.3 * u(rng));  // 1 m .. 20,000 km
-    const camera::GeodeticPose pose{-89.0 + 178.0 * u(rng), -180.0 + 360.0 * u(rng), alt,
+    const camera::ViewPose pose{-89.0 + 178.0 * u(rng), -180.0 + 360.0 * u(rng), alt,
                                     360.0 * u(rng), -90.0 + 95.0 * u(rng), -20.0 + 40.0 * u(rng)};
     const Camera cam = Camera::fromGeodetic(pose, 30.0 + 60.0 * u(rng), kW, kH);
     // Waves up to 15 m, but below a quarter of the eye height (a camera under

@@ -29,13 +29,13 @@ struct Points {
 
 std::vector<Points> testPoints() {
   std::vector<Points> out;
-  const camera::GeodeticPose poses[] = {{36.0, -6.5, 2000.0, 90.0, -20.0, 0.0},     // Gibraltar (bench camera)
+  const camera::ViewPose poses[] = {{36.0, -6.5, 2000.0, 90.0, -20.0, 0.0},     // Gibraltar (bench camera)
                                 {51.0, 1.5, 30000.0, 200.0, -45.0, 0.0},    // Dover strait
                                 {-33.9, 18.4, 5e5, 0.0, -90.0, 0.0},        // Cape Town
                                 {64.0, -22.0, 1e6, 0.0, -60.0, 0.0},        // Iceland
                                 {0.0, 179.99, 2e7, 0.0, -90.0, 0.0},        // whole Earth at lon 180
                                 {89.0, 30.0, 3e6, 180.0, -90.0, 0.0}};      // near the pole
-  for (const camera::GeodeticPose& pose : poses) {
+  for (const camera::ViewPose& pose : poses) {
     const camera::Camera cam = camera::Camera::fromGeodetic(pose, 60.0, 1280, 720);
     Points p{{cam.eyeEcef().x, cam.eyeEcef().y, cam.eyeEcef().z}, {}, {}, {}};
     const glm::dvec3 F = cam.forward(), R = cam.right() * cam.tanHalfX(), U = cam.up() * cam.tanHalfY();

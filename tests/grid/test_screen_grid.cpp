@@ -124,7 +124,7 @@ TEST(ScreenGrid, NoJitterAtOneMetre) {
   for (const auto& [lat, lon] : {std::pair{0.0, 0.0}, std::pair{89.99, 30.0}, std::pair{-89.99, -100.0},
                                   std::pair{10.0, 180.0}, std::pair{-10.0, -179.99999}}) {
     for (double pitch : {-90.0, -30.0, -5.0}) {
-      const camera::GeodeticPose pose{lat, lon, 1.0, 45.0, pitch, 0.0};
+      const camera::ViewPose pose{lat, lon, 1.0, 45.0, pitch, 0.0};
       const Camera a = Camera::fromGeodetic(pose, 60.0, 256, 160);
       // The same pose 1 mm to the east, computed in ECEF so the orientation is identical.
       const geo::EnuFrame enu = geo::enuFrame({lat, lon, 1.0});
