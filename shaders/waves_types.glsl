@@ -78,6 +78,17 @@ struct WvResult {
   // (t1, t2) of wv_tangentFrame: (a11, a12, a22, det); identity for the
   // noise model. The CPU uses it for Newton steps of the sea-height query.
   WR4 jac;
+#ifdef __cplusplus
+#ifdef __clang__
+#if __clang_major__ < 16
+  // C++ before Clang 16 (Debian's Clang 14 builds the fuzzers, tests/fuzz)
+  // has no parenthesised aggregate initialisation, which the GLSL
+  // constructor syntax WvResult(a, b, c, d) needs; the layout is unchanged.
+  WvResult() = default;
+  WvResult(WR4 d, WR4 n, WR4 h, WR4 j) : disp(d), normal(n), hvel(h), jac(j) {}
+#endif
+#endif
+#endif
 };
 
 #endif

@@ -112,7 +112,16 @@ void LandSea::classifyBatch(const double* lat, const double* lon, std::size_t n,
   if (!classes_.empty()) {
     bool allInside = true;
     const std::uint8_t* cls = classes_.data();
+#if defined(__clang__) && __clang_major__ < 16
+    // Clang before 16 cannot test the x86-64 levels by name (the libFuzzer
+    // build, tests/fuzz): x86-64-v4's AVX-512 features, as Clang 14 can test them.
+    static const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                               __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
+                               __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx2") &&
+                               __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
+#else
     static const bool avx512 = __builtin_cpu_supports("x86-64-v4");
+#endif
     constexpr std::size_t kBlock = 512;
     std::int32_t idx[kBlock];
     for (std::size_t b = 0; b < n; b += kBlock) {
