@@ -207,7 +207,8 @@ std::optional<GeoTransform> readWorldFile(const std::string& imagePath) {
     if (v[1] != 0.0 || v[2] != 0.0)
       throw RasterError(w.string() + ": world file rotation terms (" + fmt("%g", v[1]) + ", " + fmt("%g", v[2]) +
                         ") are not zero; only north-up rasters are supported");
-    if (!(v[0] > 0.0) || !(v[3] != 0.0) || !std::isfinite(v[4]) || !std::isfinite(v[5]))
+    if (!(v[0] > 0.0) || !(v[3] != 0.0) || !std::isfinite(v[0]) || !std::isfinite(v[3]) || !std::isfinite(v[4]) ||
+        !std::isfinite(v[5]))
       throw RasterError(w.string() + ": world file pixel size (" + fmt("%g", v[0]) + ", " + fmt("%g", v[3]) + ") is invalid");
     GeoTransform t;
     t.lonStepDeg = v[0];

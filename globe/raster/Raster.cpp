@@ -164,13 +164,16 @@ Footprint nearestCell(const GeoTransform& t, int w, int h, double lat, double lo
   Footprint f;
   if (!std::isfinite(lat) || !std::isfinite(lon)) return f;
   const double x = t.pixelX(lon), y = t.pixelY(lat);
+  if (!std::isfinite(x) || !std::isfinite(y)) return f;
   if (!t.global && (x < 0 || x >= w)) return f;
   // Latitudes beyond the raster: clamp only for rasters reaching the poles.
   const bool polar = std::abs(t.originLatDeg) >= 90.0 - 1e-9 || std::abs(t.latOf(h)) >= 90.0 - 1e-9;
   if ((y < 0 || y >= h) && !(t.global && polar)) return f;
   f.valid = true;
-  f.x0 = std::clamp(static_cast<int>(std::floor(x)), 0, w - 1);
-  f.y0 = std::clamp(static_cast<int>(std::floor(y)), 0, h - 1);
+  // Clamped in double: a latitude far beyond a polar raster (fuzz_worldfile:
+  // y = -2e298) must not overflow the int conversion.
+  f.x0 = static_cast<int>(std::clamp(std::floor(x), 0.0, double(w - 1)));
+  f.y0 = static_cast<int>(std::clamp(std::floor(y), 0.0, double(h - 1)));
   return f;
 }
 
@@ -178,7 +181,7 @@ Footprint bilinearCell(const GeoTransform& t, int w, int h, double lat, double l
   Footprint f = nearestCell(t, w, h, lat, lon);
   if (!f.valid) return f;
   const double x = t.pixelX(lon) - 0.5, y = std::clamp(t.pixelY(lat) - 0.5, 0.0, double(h - 1));
-  const double fx = std::floor(x), fy = std::floor(y);
+  const double fx = std::clamp(std::floor(x), -1.0, double(w)), fy = std::floor(y);
   f.wx = static_cast<float>(x - fx);
   f.wy = static_cast<float>(y - fy);
   int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
