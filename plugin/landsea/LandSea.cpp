@@ -148,6 +148,11 @@ void LandSea::classifyBatch(const double* lat, const double* lon, std::size_t n,
   if (mask_) {
     mask_->sampleNearestBatch(lat, lon, n, v.data());
     for (std::size_t i = 0; i < n; ++i) out[i] = classOfValue(v[i]);
+  } else {
+    // Elevation only: points it cannot sample (non-finite) are land, as in
+    // classify(); without this they kept whatever the caller's buffer held
+    // (fuzz_capi_pixels: class 196 from geocean_query_class).
+    std::fill(out, out + n, Surface::Land);
   }
   if (!elevation_) return;
   std::vector<double> la, lo;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <sstream>
 
@@ -175,4 +176,20 @@ TEST(LandSea, NearWaterCoversEveryWaterCellAndTwoCellsAround) {
   EXPECT_EQ(ls.classify(36.04, -5.6), Surface::Land);
   EXPECT_EQ(t[0], Surface::Ocean);
   EXPECT_EQ(t[1], Surface::Land);
+}
+
+// Regression (fuzz_capi_pixels): with an elevation raster alone, points it
+// cannot sample (NaN, infinite) are land in a batch too, as classify() says;
+// they used to keep whatever the caller's buffer held.
+TEST(LandSea, ElevationAloneBatchSetsEveryPoint) {
+  const ocean::LandSea elevOnly(nullptr, defaultElevation());
+  const double nan = std::nan(""), inf = INFINITY;
+  const double lat[] = {nan, 0.0, inf, 23.0, 0.0};
+  const double lon[] = {0.0, -150.0, 0.0, 10.0, nan};
+  Surface out[5];
+  std::memset(out, 196, sizeof out);
+  elevOnly.classifyBatch(lat, lon, 5, out);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(out[i], elevOnly.classify(lat[i], lon[i])) << i;
+  EXPECT_EQ(out[0], Surface::Land);
+  EXPECT_EQ(out[1], Surface::Ocean);
 }
