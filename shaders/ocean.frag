@@ -1,6 +1,6 @@
 // Ocean surface: coverage-cut shoreline (anti-aliased), depth colour from
-// the relief, Fresnel sky reflection, sun glint whose roughness grows with
-// distance, crest foam and the shore foam band of paper 000 (eq. 9-11).
+// the relief, Fresnel sky reflection, Cox-Munk sun glitter from the slopes
+// not drawn, whitecaps and the shore foam band of paper 000 (eq. 9-11).
 #include "geo_uv.glsl"
 
 in vec3 vEyeRel;
@@ -13,6 +13,8 @@ in vec3 vHazeTr;
 in vec3 vHazeIn;
 in float vDepthM;
 in float vFar;
+in float vMss;
+in float vFoamM;
 #ifdef GEOCEAN_VERTEX_COVERAGE
 in float vCoverage;
 #endif
@@ -48,7 +50,7 @@ void main() {
 #ifdef GEOCEAN_FAR_SHADED
   outColor = vec4(vColor, alpha);
 #else
-  outColor = vec4(oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, vDepthM, vFar, w), alpha);
+  outColor = vec4(oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, vFoamM, w), alpha);
 #endif
   outData = uWriteData != 0 ? vec4(vEyeRel, 1.0) : vec4(0.0);
 }

@@ -27,6 +27,12 @@ uniform vec3 uEyeMinusOrigin;
 uniform int uOctaveCount;
 uniform int uWaveCount;
 uniform float uOctaveWavelengthM[16];
+// Mean square slope of the spectrum's waves not drawn (WaveField's
+// slopeVarianceAbove): noise, [c] with c octaves kept; Gerstner and FFT,
+// [0] all waves, [1] those shorter than the model's shortest.
+uniform float uMssAbove[17];
+// Whitecaps' crest height by octaves drawn (noise; the other models: all alike).
+uniform float uFoamHeightM[17];
 uniform float uCellRadians;
 uniform float uRefLonDeg;  // the eye's longitude
 uniform vec4 uElevationGeo;
@@ -47,6 +53,8 @@ out vec3 vHazeTr;
 out vec3 vHazeIn;
 out float vDepthM;
 out float vFar;
+out float vMss;
+out float vFoamM;
 #ifdef GEOCEAN_FAR_SHADED
 // Far open water (OceanRenderer): the waves have faded into roughness and
 // nothing left varies within a cell, so the colour is made per vertex.
@@ -84,6 +92,8 @@ void main() {
   float elev = textureLod(uElevation, geoUv(lonLat, uElevationGeo), 0.0).r;
   float depth = elev < -500.0 ? 1e30 : max(-elev, 1.0);
   WvResult r = wv_gerstner(0, uWaveCount, d, fr, depth);
+  float mssDrawn = uMssAbove[0] - uMssAbove[1], mssRest = uMssAbove[1];
+  vFoamM = uFoamHeightM[0];
 #elif WV_MODEL == 2
   // The tables are bilinear per texel: where a grid cell spans several
   // texels of the coarse cascade the surface would alias, so displacement
@@ -93,8 +103,14 @@ void main() {
   float fftKeep = 1.0 - smoothstep(0.5, 1.5, footprint / max(uFftTexelM, 1e-3));
   r.disp *= fftKeep;
   r.normal.xyz = normalize(mix(up, r.normal.xyz, fftKeep));
+  // What the fade removes from the normal goes to the roughness.
+  float mssDrawn = (uMssAbove[0] - uMssAbove[1]) * fftKeep * fftKeep;
+  float mssRest = uMssAbove[0] - mssDrawn;
+  vFoamM = uFoamHeightM[0];
 #else
   WvResult r = wv_solidNoise(0, count, d, fr);
+  float mssDrawn = uMssAbove[0] - uMssAbove[count], mssRest = uMssAbove[count];
+  vFoamM = uFoamHeightM[count];
 #endif
   // A flat cell between vertices on the ellipsoid sags below it, at its
   // centre, by d^2/(8R) over its diagonal d = sqrt(2) L, i.e. L^2/(4R) (L:
@@ -114,7 +130,7 @@ void main() {
   vEyeRel = p;
   vUp = up;
 #ifdef GEOCEAN_BARE
-  vSun = vec3(1.0), vHazeTr = vec3(1.0), vHazeIn = vec3(0.0), vDepthM = 0.0, vFar = 0.0;
+  vSun = vec3(1.0), vHazeTr = vec3(1.0), vHazeIn = vec3(0.0), vDepthM = 0.0, vFar = 0.0, vMss = 0.0, vFoamM = 0.0;
 #else
   vSun = sunLight(dot(uSunDir, up));
   float t = hazeAmount(length(p), uEyeAltM, 0.0);
@@ -126,10 +142,14 @@ void main() {
   vDepthM = -textureLod(uElevation, geoUv(lonLat, uElevationGeo), lod).r;
   // Distant sea: geometry fades to the mean normal, slopes to roughness.
   vFar = smoothstep(0.02, 0.5, footprint / max(uOctaveWavelengthM[0], 1e-3));
+  // ocean_shading.glsl turns the drawn normal towards the mean by 0.7 far
+  // (slopes x (1 - 0.7 far)): the slope variance it takes goes to roughness.
+  float kept = (1.0 - 0.7 * vFar) * (1.0 - 0.7 * vFar);
+  vMss = mssRest + (1.0 - kept) * mssDrawn;
 #endif
   vLonLat = lonLat;
 #ifdef GEOCEAN_FAR_SHADED
-  vColor = oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, vDepthM, vFar, 1.0);
+  vColor = oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, vFoamM, 1.0);
 #endif
 #ifdef GEOCEAN_VERTEX_COVERAGE
   vCoverage = textureBSplineGather(uWater, geoUv(lonLat, uWaterGeo));

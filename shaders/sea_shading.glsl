@@ -1,8 +1,8 @@
 // Shading of the sea surface, shared by the wave-grid ocean and by the
 // terrain's distant water: Fresnel reflection of the sky, a water body
 // colour from depth (shallow water turns turquoise, deep water dark blue),
-// sun specular widened by `roughness` (distant waves become roughness
-// instead of aliasing geometry), and foam.
+// sun glitter from the slope variance of the waves not drawn (Cox-Munk
+// microfacets), and foam.
 #include "atmosphere.glsl"
 
 float fresnelSchlick(float cosTheta) {
@@ -10,12 +10,40 @@ float fresnelSchlick(float cosTheta) {
   return 0.02 + 0.98 * x2 * x2 * x;
 }
 
-// depthM: water depth below the sea (positive). n: surface normal, v: unit
-// vector from the surface towards the eye, up: local vertical; sun =
-// sunLight(dot(sunDir, up)), computed once per vertex by the callers. The
-// reflected sky is the one seen from near the sea (the view from orbit
-// reflects the same dome).
-vec3 seaColorLit(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM, float roughness, float foam) {
+// The sun's irradiance at normal incidence, in the sky model's radiance
+// units: the scene's own sun, the one that lights the sea body, foam and the
+// host's terrain. (A real clear sky's zenith is ~0.04 / sr of the sun's
+// irradiance, against skyLow's 0.22 that would be 5.5: the glitter tail from
+// 50 km then greys the sea past the host's land, see plugin/render/README.md.)
+const float kSunIrradiance = 1.0;
+// The sun's angular radius (4.65 mrad): a facet tilt of half of it still
+// reflects the disc, so the disc widens the slope distribution by (r/2)^2.
+const float kSunDiscMss = 0.0000054;
+
+// Fresnel reflectance of sea water (n = 1.34), unpolarised, exact: the
+// glitter is seen at 50-80 degrees of incidence, where Schlick's form is
+// 10-15 % high.
+float fresnelWater(float cosI) {
+  float c = clamp(cosI, 1e-3, 1.0);
+  float cosT = sqrt(1.0 - (1.0 - c * c) / (1.34 * 1.34));
+  float rs = (c - 1.34 * cosT) / (c + 1.34 * cosT), rp = (cosT - 1.34 * c) / (cosT + 1.34 * c);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+// Smith shadowing for Gaussian (Beckmann) slopes of mean square slope mss,
+// Walter et al. (2007)'s rational form of Lambda.
+float smithLambda(float cosT, float mss) {
+  float a = cosT / (sqrt(mss * max(1.0 - cosT * cosT, 1e-6)));
+  return a >= 1.6 ? 0.0 : (1.0 - 1.259 * a + 0.396 * a * a) / (3.535 * a + 2.181 * a * a);
+}
+
+// depthM: water depth below the sea (positive). n: surface normal of the
+// waves drawn, v: unit vector from the surface towards the eye, up: local
+// vertical; sun = sunLight(dot(sunDir, up)), computed once per vertex by the
+// callers. mss: mean square slope of the waves not drawn (their microfacets,
+// about n). The reflected sky is the one seen from near the sea (the view
+// from orbit reflects the same dome).
+vec3 seaColorMss(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM, float mss, float foam) {
   float ndv = max(dot(n, v), 1e-3);
   vec3 r = reflect(-v, n);
   // Reflections from below the horizon see the sea, not the sky.
@@ -28,13 +56,24 @@ vec3 seaColorLit(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM, f
   vec3 deep = vec3(0.004, 0.025, 0.06);
   vec3 body = mix(deep, vec3(0.05, 0.28, 0.30), shallow) * (0.35 + 0.65 * max(dot(sunDir, up), 0.0)) * light;
   vec3 c = mix(body, sky, F);
-  // Sun glint: normalised Blinn-Phong whose exponent falls with roughness.
-  vec3 hv = normalize(sunDir + v);
-  float a2 = max(roughness * roughness, 1e-4);
-  float spec = pow(max(dot(n, hv), 0.0), 2.0 / a2 - 2.0) / (3.14159 * a2);
-  c += sun * spec * F * 0.25 * step(0.0, dot(sunDir, n));
+  // Sun glitter (Cox & Munk 1954; Bruneton et al. 2010, eq. 13): facets of
+  // Gaussian slopes that mirror the sun into the eye, L = E F(v.h) p(slope)
+  // G / (4 n.v (n.h)^4), p the Beckmann density of mean square slope mss.
+  float m = max(mss, 1e-4) + kSunDiscMss;
+  vec3 h = normalize(sunDir + v);
+  float ndh = max(dot(n, h), 1e-3), ndl = dot(n, sunDir);
+  float ndh2 = ndh * ndh;
+  float D = exp((ndh2 - 1.0) / (ndh2 * m)) / (3.14159265 * m * ndh2 * ndh2);
+  float G = 1.0 / (1.0 + smithLambda(ndv, m) + smithLambda(max(ndl, 1e-3), m));
+  c += kSunIrradiance * sun * (fresnelWater(dot(v, h)) * D * G / (4.0 * ndv)) * step(0.0, ndl);
   vec3 foamColor = vec3(0.85, 0.9, 0.92) * (light * 0.9 + 0.1);
   return mix(c, foamColor, clamp(foam, 0.0, 1.0));
+}
+
+// The terrain's distant sea gives a roughness; its mean square slope is
+// roughness^2 (Beckmann).
+vec3 seaColorLit(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM, float roughness, float foam) {
+  return seaColorMss(n, v, up, sunDir, sun, depthM, roughness * roughness, foam);
 }
 
 vec3 seaColor(vec3 n, vec3 v, vec3 up, vec3 sunDir, float depthM, float roughness, float foam) {

@@ -79,6 +79,86 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   for (const auto& o : waves_->octaves()) octaveWavelengthM_.push_back(float(1.0 / o.frequencyPerM));
   // Models without octaves fade by the spectrum's peak wavelength.
   if (octaveWavelengthM_.empty()) octaveWavelengthM_.push_back(float(waves_->peakWavelengthM()));
+  // Roughness: the slope variance of the spectrum's waves shorter than the
+  // shortest drawn. A noise octave of lattice frequency f carries wave
+  // numbers about 2 pi f, its band reaching up to sqrt 2 x that.
+  constexpr double kTwoPi = 6.283185307179586;
+  const waves::SeaState& sea = waves_->seaState();
+  mssAbove_.assign(17, 0.0f);
+  mssAbove_[0] = float(waves::slopeVarianceAbove(sea, 0.0));
+  if (options_.model == waves::Model::Noise) {
+    const auto& oc = waves_->octaves();
+    for (std::size_t c = 1; c < 17; ++c)
+      mssAbove_[c] = c <= oc.size() ? float(waves::slopeVarianceAbove(sea, kTwoPi * oc[c - 1].frequencyPerM * std::sqrt(2.0)))
+                                    : mssAbove_[c - 1];
+  } else {
+    double kMax = 0.0;  // the shortest wave drawn
+    for (const auto& c : waves_->components()) kMax = std::max(kMax, c.kRef);
+    // FFT: the fine cascade (5.3 / 7.3 peak wavelengths over 128 texels) to its Nyquist.
+    if (options_.model == waves::Model::Fft) kMax = kTwoPi / waves_->peakWavelengthM() * 7.3 / 5.3 * 64.0;
+    mssAbove_[1] = float(waves::slopeVarianceAbove(sea, kMax));
+  }
+  // Whitecaps: the crest height that the model's own heights (what
+  // ocean.vert displaces by, at rest points) exceed on Monahan's fraction W
+  // of the sea, from 16,384 points over 40 x 40 peak wavelengths at t = 0 and
+  // 300 s (a 1/W-quantile of 16 k samples: +-12 % in W at 0.5 % cover). For
+  // noise, per number of octaves ocean.vert keeps (dropping the short ones
+  // lowers the crests): the same sea with c octaves has the first c octaves
+  // of this one, scaled to the full Hs by sqrt(sum_all 4^-i / sum_c 4^-i).
+  whitecap_ = whitecapCover(sea.windSpeedMps);
+  foamHeightM_.assign(17, 0.0f);
+  const auto quantile = [&](const waves::WaveField& field) {
+    const double spanDeg = 40.0 * field.peakWavelengthM() / 111320.0;
+    constexpr std::size_t kN = 16384;
+    std::vector<double> h(kN), lat(kN), lon(kN), t(kN);
+    std::uint32_t state = 12345u;
+    const auto uniform = [&] { return double((state = state * 1664525u + 1013904223u) >> 8) / 16777216.0; };
+    for (std::size_t i = 0; i < kN; ++i) {
+      lat[i] = sea.anchorLatDeg + (uniform() - 0.5) * spanDeg, lon[i] = sea.anchorLonDeg + (uniform() - 0.5) * spanDeg;
+      t[i] = double(i & 1) * 300.0;
+    }
+    if (field.maxHorizontalM() == 0.0) {
+      // Heights only (noise): the surface above a point is the rest point's
+      // height, and the SIMD batch gives it 10x faster.
+      std::vector<waves::SurfacePoint> sp(kN);
+      field.surfaceBatch(lat.data(), lon.data(), t.data(), true, nullptr, kN, sp.data());
+      for (std::size_t i = 0; i < kN; ++i) h[i] = sp[i].heightM;
+    } else
+      for (std::size_t i = 0; i < kN; ++i) h[i] = field.sample(lat[i], lon[i], t[i]).displacementEnuM.z;
+    const std::size_t q = std::min(h.size() - 1, std::size_t((1.0 - whitecap_) * double(h.size())));
+    std::nth_element(h.begin(), h.begin() + std::ptrdiff_t(q), h.end());
+    return h[q];
+  };
+  foamHeightM_[0] = float(quantile(*waves_));
+  if (options_.model == waves::Model::Noise) {
+    const int n = sea.noiseOctaves;
+    const auto sumSq = [](int c) {
+      double s = 0.0;
+      for (int i = 0; i < c; ++i) s += std::pow(0.25, i);
+      return s;
+    };
+    foamHeightM_[0] = 1e30f;  // no octave drawn: no crest
+    for (int c = 1; c <= 16; ++c) {
+      if (c >= n) {
+        foamHeightM_[c] = float(quantile(*waves_));
+        for (int k = c + 1; k <= 16; ++k) foamHeightM_[k] = foamHeightM_[c];
+        break;
+      }
+      waves::SeaState sc = sea;
+      sc.noiseOctaves = c;
+      std::string why;
+      const auto wc = waves::WaveField::create(options_.model, sc, why);
+      foamHeightM_[c] = float(quantile(*wc) / std::sqrt(sumSq(n) / sumSq(c)));
+    }
+  } else
+    std::fill(foamHeightM_.begin() + 1, foamHeightM_.end(), foamHeightM_[0]);
+  // Soft edge: 2 % of Hs either side (an anti-aliased rim, not a halo).
+  foamSoftM_ = 0.02 * waves_->spectrumHsM();
+}
+
+double OceanRenderer::whitecapCover(double windSpeedMps) {
+  // Their fit is for U10; the sea state's wind is at 19.5 m (U10 = U19.5 / 1.026).
+  return std::min(3.84e-6 * std::pow(windSpeedMps / 1.026, 3.41), 1.0);
 }
 
 OceanRenderer::~OceanRenderer() {
@@ -316,7 +396,10 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
                  octaveWavelengthM_.data());
     // A cell's footprint on the ground is this x its distance.
     glUniform1f(p.uniform("uCellRadians"), float(cull.cellRadians));
-    glUniform1f(p.uniform("uMaxVerticalM"), float(waves_->maxVerticalM()));
+    glUniform1fv(p.uniform("uMssAbove"), 17, mssAbove_.data());
+    glUniform1fv(p.uniform("uFoamHeightM"), 17, foamHeightM_.data());
+    glUniform1f(p.uniform("uFoamSoftM"), float(foamSoftM_));
+    glUniform1f(p.uniform("uWhitecapCover"), float(whitecap_));
     glUniform4fv(p.uniform("uElevationGeo"), 1, &elevationGeo[0]);
     glUniform4fv(p.uniform("uWaterGeo"), 1, &waterGeo[0]);
     const glm::vec3 sun(light.sunEcef);

@@ -89,6 +89,13 @@ class OceanRenderer {
   void setCheapCoverage(bool on) { options_.cheapCoverage = on; }
   void setCullOffscreen(bool on) { options_.cullOffscreen = on; }
   void setFarVertexShading(bool on) { options_.farVertexShading = on; }
+  // The shading's sea statistics: mean square slope of the spectrum's waves
+  // not drawn (ocean.vert's uMssAbove), and the whitecaps' crest height.
+  const std::vector<float>& mssAbove() const { return mssAbove_; }
+  // With c noise octaves drawn (Gerstner, FFT: all entries alike).
+  double foamHeightM(int octavesDrawn = 16) const { return foamHeightM_[std::size_t(octavesDrawn)]; }
+  // Monahan & O'Muircheartaigh (1980): whitecap cover W = 3.84e-6 U10^3.41.
+  static double whitecapCover(double windSpeedMps);
   // CPU time of the last draw's grid build (ScreenGrid::build + index
   // compaction), wall ms: the part of the ocean pass that is not GL.
   double lastGridMs() const { return gridMs_; }
@@ -105,6 +112,9 @@ class OceanRenderer {
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0, ssbo_[5] = {0, 0, 0, 0, 0};  // octaves, waves, frame, FFT planes, texels
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;
+  std::vector<float> mssAbove_;
+  std::vector<float> foamHeightM_;
+  double foamSoftM_ = 0.0, whitecap_ = 0.0;
   bool writeData_ = false;
   bool glAbandoned_ = false;
   double gridMs_ = 0.0;

@@ -626,4 +626,35 @@ void WaveField::surfaceBatch(const double* latDeg, const double* lonDeg, const d
     out[i] = surfaceAt(latDeg[i], lonDeg[i], timesPerPoint ? tS[i] : tS[0], depthM ? depthM[i] : kDeepWaterM);
 }
 
+double slopeVarianceAbove(const SeaState& sea, double kMinRadPerM) {
+  // Elfouhaily, Chapron, Katsaros & Vandemark (1997), JGR 102(C7), eq. 30-33,
+  // 38-41, 44: curvature spectrum B(k) = k^3 S(k) = B_l + B_h, so the slope
+  // variance is the integral of B over ln k. Wind at 10 m from the sea
+  // state's 19.5 m (PM's reference height, U10 = U19.5 / 1.026).
+  const double u10 = std::max(sea.windSpeedMps / 1.026, 0.1);
+  constexpr double kM = 370.0, cM = 0.23, omegaC = 0.84;  // capillary peak; inverse wave age (fully developed)
+  const double kP = kG * (omegaC / u10) * (omegaC / u10), cP = std::sqrt(kG / kP);
+  const double uStar = std::sqrt((0.81 + 0.065 * u10) * 1e-3) * u10;  // drag coefficient of Wu (1982)
+  const double alphaM = 0.01 * (uStar <= cM ? 1.0 + std::log(uStar / cM) : 1.0 + 3.0 * std::log(uStar / cM));
+  const double alphaP = 6e-3 * std::sqrt(omegaC);
+  const double sigma = 0.08 * (1.0 + 4.0 / (omegaC * omegaC * omegaC)), gamma = 1.7;
+  // Midpoint rule in ln k from max(kMin, 1e-4) to 1e4 rad/m (B falls as
+  // exp(-(k/kM)^2/4) beyond the capillary peak): 0.1 % with 2000 steps.
+  const double lo = std::log(std::max(kMinRadPerM, 1e-4)), hi = std::log(1e4);
+  if (!(lo < hi)) return 0.0;
+  const int n = 2000;
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double k = std::exp(lo + (hi - lo) * (i + 0.5) / n);
+    const double c = std::sqrt(kG / k * (1.0 + (k / kM) * (k / kM)));
+    const double lpm = std::exp(-1.25 * (kP / k) * (kP / k));
+    const double g = std::sqrt(k / kP) - 1.0;
+    const double jp = std::pow(gamma, std::exp(-g * g / (2.0 * sigma * sigma)));
+    const double bl = 0.5 * alphaP * cP / c * lpm * jp * std::exp(-omegaC / std::sqrt(10.0) * g);
+    const double bh = 0.5 * alphaM * cM / c * lpm * jp * std::exp(-0.25 * (k / kM - 1.0) * (k / kM - 1.0));
+    sum += bl + bh;
+  }
+  return sum * (hi - lo) / n;
+}
+
 }  // namespace geocean::waves

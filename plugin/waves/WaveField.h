@@ -214,6 +214,16 @@ double piersonMoskowitz(double omega, double windSpeedMps);
 double jonswap(double omega, double windSpeedMps, double fetchM);
 // Peak angular frequency of the sea state's spectrum.
 double peakOmega(const SeaState& sea);
+// Mean square slope (both axes summed, deep water) of the sea state's waves
+// with wave numbers above kMinRadPerM (0: all of them), for the renderer's
+// microfacet roughness: what its grid leaves out. The spectrum is
+// Elfouhaily et al. (1997)'s unified one for this wind, fully developed: its
+// long-wave part has the peak of the Pierson-Moskowitz sea the models draw,
+// its short-wave part the wind-driven gravity-capillary waves (2 mm - 1 m)
+// the models do not; PM's own omega^-5 tail gives a slope variance that
+// grows only with log U, where Cox & Munk (1954) measured 0.003 + 5.12e-3 U.
+double slopeVarianceAbove(const SeaState& sea, double kMinRadPerM);
+
 // Full dispersion relation solved to machine precision (bisection + Newton);
 // the reference the shared kernel's explicit form is tested against.
 double waveNumberExact(double omega, double depthM);

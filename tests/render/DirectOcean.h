@@ -25,6 +25,9 @@ class DirectOceanLayer : public Layer {
   void draw(const camera::Camera& cam, const camera::Lighting& light, bool bare, const LayerInputs&) override {
     ocean_->draw(cam, light, bare);
   }
+  // Tests draw other sea states in the same session (one GL context).
+  void setOcean(std::shared_ptr<ocean_render::OceanRenderer> ocean) { ocean_ = std::move(ocean); }
+  const std::shared_ptr<ocean_render::OceanRenderer>& ocean() const { return ocean_; }
 
  private:
   std::shared_ptr<ocean_render::OceanRenderer> ocean_;
@@ -34,7 +37,8 @@ class DirectOceanLayer : public Layer {
 // renderer; returns an error message naming the option (empty on success).
 inline std::string addDirectOcean(GlobeRenderer& renderer, std::shared_ptr<const world::WorldGrids> grids,
                                   const std::string& modelName, double windMps, double windFromDeg,
-                                  std::shared_ptr<ocean_render::OceanRenderer>* created = nullptr) {
+                                  std::shared_ptr<ocean_render::OceanRenderer>* created = nullptr,
+                                  std::shared_ptr<DirectOceanLayer>* layer = nullptr) {
   ocean_render::OceanOptions oo;
   const auto model = waves::parseModel(modelName);
   if (!model || *model == waves::Model::NoisePaper)
@@ -44,8 +48,10 @@ inline std::string addDirectOcean(GlobeRenderer& renderer, std::shared_ptr<const
   oo.sea.windFromDeg = windFromDeg;
   try {
     auto o = std::make_shared<ocean_render::OceanRenderer>(std::move(grids), ocean_render::defaultLandSea(), oo);
-    renderer.addLayer(std::make_shared<DirectOceanLayer>(o));
+    auto l = std::make_shared<DirectOceanLayer>(o);
+    renderer.addLayer(l);
     if (created) *created = o;
+    if (layer) *layer = l;
   } catch (const std::invalid_argument& e) {
     return e.what();
   }

@@ -28,6 +28,10 @@ Session& session();
 // The ocean layer of session().
 ocean_render::OceanRenderer& sessionOcean();
 
+// Draws `ocean` instead of the session's own until the guard goes (null:
+// back to the default ocean).
+void useOcean(std::shared_ptr<ocean_render::OceanRenderer> ocean);
+
 // Image difference in 8-bit units over RGB.
 struct ImageDiff {
   double mean = 0.0;

@@ -12,12 +12,13 @@ namespace geocean::render::test {
 
 namespace {
 std::shared_ptr<ocean_render::OceanRenderer> g_ocean;
+std::shared_ptr<DirectOceanLayer> g_layer;
 }
 
 Session& session() {
   static std::unique_ptr<Session> s = [] {
     auto p = std::make_unique<Session>(Session::headless(loadDefaultWorld(), 256, 256));
-    const std::string err = addDirectOcean(*p->renderer, p->world->grids(), "noise", 10.0, 270.0, &g_ocean);
+    const std::string err = addDirectOcean(*p->renderer, p->world->grids(), "noise", 10.0, 270.0, &g_ocean, &g_layer);
     if (!err.empty()) throw std::runtime_error(err);
     return p;
   }();
@@ -27,6 +28,11 @@ Session& session() {
 ocean_render::OceanRenderer& sessionOcean() {
   session();
   return *g_ocean;
+}
+
+void useOcean(std::shared_ptr<ocean_render::OceanRenderer> ocean) {
+  session();
+  g_layer->setOcean(ocean ? std::move(ocean) : g_ocean);
 }
 
 ImageDiff compare(const Image& a, const Image& b) {
