@@ -1,6 +1,7 @@
 // `geocean pick`: the first hit on terrain or sea along a ray, through the
 // Embree scene of plugin/pick/Picker.h (double-refined).
 #include "globe/app/Command.h"
+#include "globe/app/LayerOptions.h"
 #include "globe/app/QueryIo.h"
 #include "globe/camera/Camera.h"
 #include "globe/raster/World.h"
@@ -21,7 +22,7 @@ namespace {
 
 struct PickOptions {
   std::string ray, rays, cameraPose, size = "1280x720", pixel, format = "text";
-  std::string elevation, mask;
+  LayerOptions layers;
   double fovDeg = 60.0;
   bool noTerrain = false, global = false;
 };
@@ -74,15 +75,15 @@ struct World {
 };
 
 World openWorld(const PickOptions& o) {
-  const auto files = raster::defaultWorld();
   raster::OpenOptions ro;
   if (o.global) ro.georef = raster::Georef::GlobalEquirect;
-  auto mask = raster::Raster::open(o.mask.empty() ? files.mask : o.mask, ro);
-  std::shared_ptr<const raster::Raster> elevation;
-  if (!o.noTerrain) elevation = raster::Raster::open(o.elevation.empty() ? files.elevation : o.elevation, ro);
+  LayerOptions layers = o.layers;
+  layers.noElevation = o.noTerrain;
   ocean::Ocean ocean;
-  ocean.setRasters(std::move(mask), std::move(elevation));
+  applyLayers(ocean, layers, ro);
   const auto snap = ocean.current();
+  // The terrain: the stack's drawing elevation (its finest regional layer
+  // when there are several; one raster, as the Embree scene takes it).
   return {snap->elevation, snap->classifier()};
 }
 
@@ -145,6 +146,9 @@ int runPick(const PickOptions& o) {
   std::unique_ptr<World> world;
   try {
     world = std::make_unique<World>(openWorld(o));
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "geocean pick: %s\n", e.what());
+    return kExitBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "geocean pick: %s\n", e.what());
     return kExitDataError;
@@ -217,8 +221,7 @@ const Register reg{{"pick", "first hit on terrain or sea along a ray (Embree, re
                       sub.add_option("--size", o->size, "viewport WxH in pixels (default 1280x720)");
                       sub.add_option("--pixel", o->pixel, "X,Y: pixel column and row (0,0 = top-left); the ray passes through its centre");
                       sub.add_option("--format", o->format, "text (CSV) or json");
-                      sub.add_option("--elevation", o->elevation, "terrain raster (default: the world's ETOPO)");
-                      sub.add_option("--mask", o->mask, "land/sea/lake mask raster (default: the world's)");
+                      addLayerOptions(sub, o->layers);
                       sub.add_flag("--global", o->global, "rasters are global equirectangular, north up");
                       sub.add_flag("--no-terrain", o->noTerrain, "pick the sea surface only");
                       return [o] { return runPick(*o); };

@@ -2,6 +2,7 @@
 // (height above the ellipsoid, normal, vertical velocity) at points, one
 // point from the command line or a stream of CSV rows.
 #include "globe/app/Command.h"
+#include "globe/app/LayerOptions.h"
 #include "globe/app/QueryIo.h"
 #include "globe/raster/World.h"
 #include "plugin/ocean/Ocean.h"
@@ -29,7 +30,7 @@ struct QueryOptions {
   std::vector<std::string> latLon;  // positional LAT LON
   std::string points;               // CSV file or "-"
   std::string format = "text";
-  std::string mask, elevation, maskEncoding;
+  LayerOptions layers;
   bool global = false;
   // Sea state (strings: parsed here so that bad values get our messages).
   std::string waves = "noise", time = "0", wind, beaufort, windDir = "270", fetch = "0", seed = "1",
@@ -122,17 +123,12 @@ struct Results {
 class Querier {
  public:
   Querier(const QueryOptions& o, bool batch, const WaveSetup& w) : format_(o.format), timeS_(w.timeS) {
-    const auto world = raster::defaultWorld();
     raster::OpenOptions ro;
     if (o.global) ro.georef = raster::Georef::GlobalEquirect;
     // A single point reads only its tiles (libtiff); batches load the
     // (small) default rasters into memory for throughput.
     if (!batch) ro.fewLookups = true;
-    auto mask = raster::Raster::open(o.mask.empty() ? world.mask : o.mask, ro);
-    auto elev = raster::Raster::open(o.elevation.empty() ? world.elevation : o.elevation, ro);
-    // The encoding before the rasters: the land/sea is then built once.
-    if (!o.maskEncoding.empty()) ocean_.setMaskEncoding(ocean::MaskEncoding::parse(o.maskEncoding));
-    ocean_.setRasters(std::move(mask), std::move(elev));
+    applyLayers(ocean_, o.layers, ro);
     if (!w.noSea) ocean_.setSeaState(w.model, w.sea);  // parseWaveOptions checked the ranges first
     snap_ = ocean_.current();
     withSea_ = !w.noSea;
@@ -388,7 +384,7 @@ int runQuery(const QueryOptions& o) {
 }
 
 // `geocean demo`: the famous-places tour through the same query path.
-int runDemo() {
+int runDemo(const LayerOptions& layers) {
   struct Place {
     const char* name;
     double lat, lon;
@@ -400,7 +396,18 @@ int runDemo() {
       {"North Pole", 90.0, 0.0},          {"South Pole", -90.0, 0.0},      {"Fiji, lon 180", -17.0, 180.0},
   };
   QueryOptions o;
-  Querier q(o, /*batch=*/true, WaveSetup{});
+  o.layers = layers;
+  std::unique_ptr<Querier> qp;
+  try {
+    qp = std::make_unique<Querier>(o, /*batch=*/true, WaveSetup{});
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "geocean demo: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "geocean demo: %s\n", e.what());
+    return kExitDataError;
+  }
+  Querier& q = *qp;
   std::vector<PointRow> pts;
   for (const auto& p : kPlaces) pts.push_back({p.lat, p.lon, std::nullopt});
   Results r;
@@ -418,7 +425,11 @@ int runDemo() {
 }
 
 const Register kDemo{{"demo", "Query a handful of famous places on the default world",
-                      [](CLI::App&) -> std::function<int()> { return [] { return runDemo(); }; }}};
+                      [](CLI::App& sub) -> std::function<int()> {
+                        auto layers = std::make_shared<LayerOptions>();
+                        addLayerOptions(sub, *layers);
+                        return [layers] { return runDemo(*layers); };
+                      }}};
 
 const Register kRegister{{"query", "Surface class (ocean/land/lake), terrain elevation and the sea surface at points",
                           [](CLI::App& sub) -> std::function<int()> {
@@ -427,10 +438,7 @@ const Register kRegister{{"query", "Surface class (ocean/land/lake), terrain ele
                                 ->expected(0, 2);
                             sub.add_option("--points", o->points, "CSV rows lat,lon[,time] (optional header); - for stdin");
                             sub.add_option("--format", o->format, "text (CSV) or json (one object per line)");
-                            sub.add_option("--mask", o->mask, "land/sea mask raster (default: data/landmask_5m.tif)");
-                            sub.add_option("--elevation", o->elevation, "elevation raster (default: data/etopo_20m.tif)");
-                            sub.add_option("--mask-encoding", o->maskEncoding,
-                                           "mask values, e.g. 0=ocean,1=land,2=lake (the default)");
+                            addLayerOptions(sub, o->layers);
                             sub.add_flag("--global", o->global, "rasters are whole-Earth equirectangular without georeferencing");
                             sub.add_option("--waves", o->waves, "wave model: noise (default), noise-paper, gerstner, fft; none: class and elevation only");
                             sub.add_option("--time", o->time, "simulation time in s (default 0); a row's own time overrides it");

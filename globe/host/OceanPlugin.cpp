@@ -104,6 +104,17 @@ std::unique_ptr<OceanPlugin> OceanPlugin::load(const std::string& path, std::str
         resolve(handle, "geocean_set_layer_inputs", a.setLayerInputs, file, error);
     if (!ok12) return nullptr;
   }
+  // ABI 1.3 raster layers: present in every plugin of minor >= 3.
+  if ((p->pluginAbi_ & 0xffffu) >= 3) {
+    const bool ok13 = resolve(handle, "geocean_add_mask_layer_file", a.addMaskLayerFile, file, error) &&
+                      resolve(handle, "geocean_add_elevation_layer_file", a.addElevationLayerFile, file, error) &&
+                      resolve(handle, "geocean_add_mask_layer_pixels", a.addMaskLayerPixels, file, error) &&
+                      resolve(handle, "geocean_add_elevation_layer_pixels", a.addElevationLayerPixels, file, error) &&
+                      resolve(handle, "geocean_remove_layer", a.removeLayer, file, error) &&
+                      resolve(handle, "geocean_clear_layers", a.clearLayers, file, error) &&
+                      resolve(handle, "geocean_layer_count", a.layerCount, file, error);
+    if (!ok13) return nullptr;
+  }
   return p;
 }
 

@@ -65,6 +65,17 @@ struct OceanApi {
   geocean_status (*getLayerInfo)(const geocean_ocean*, geocean_layer_info*) = nullptr;
   geocean_status (*coversOpaquely)(geocean_ocean*, double, double, double, double, double, int32_t*) = nullptr;
   geocean_status (*setLayerInputs)(geocean_ocean*, const geocean_layer_inputs*) = nullptr;
+  // ABI 1.3, raster layers (NULL when the plugin's minor is below 3).
+  geocean_status (*addMaskLayerFile)(geocean_ocean*, const char*, int32_t, const char*,
+                                     const geocean_raster_options*) = nullptr;
+  geocean_status (*addElevationLayerFile)(geocean_ocean*, const char*, int32_t, const geocean_raster_options*) = nullptr;
+  geocean_status (*addMaskLayerPixels)(geocean_ocean*, const char*, const float*, int32_t, int32_t,
+                                       const geocean_grid_placement*, int32_t, const char*) = nullptr;
+  geocean_status (*addElevationLayerPixels)(geocean_ocean*, const char*, const float*, int32_t, int32_t,
+                                            const geocean_grid_placement*, int32_t) = nullptr;
+  geocean_status (*removeLayer)(geocean_ocean*, const char*, size_t*) = nullptr;
+  geocean_status (*clearLayers)(geocean_ocean*) = nullptr;
+  geocean_status (*layerCount)(const geocean_ocean*, size_t*) = nullptr;
 };
 
 class OceanPlugin {

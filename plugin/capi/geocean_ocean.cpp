@@ -230,6 +230,82 @@ GEOCEAN_API geocean_status geocean_set_mask_encoding(geocean_ocean* ocean, const
   });
 }
 
+// ---- Layers (ABI 1.3) -------------------------------------------------------
+
+namespace {
+geocean::ocean::MaskEncoding encodingOf(const char* spec) {
+  return spec && *spec ? geocean::ocean::MaskEncoding::parse(spec) : geocean::ocean::MaskEncoding();
+}
+geocean::raster::OpenOptions layerOpenOptions(const geocean_raster_options* options) {
+  return options ? openOptions(options) : geocean::raster::OpenOptions{};
+}
+}  // namespace
+
+GEOCEAN_API geocean_status geocean_add_mask_layer_file(geocean_ocean* ocean, const char* path, int32_t priority,
+                                                       const char* encoding, const geocean_raster_options* options) {
+  return guard("geocean_add_mask_layer_file", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(path, "path");
+    ocean->core.addMaskLayerFile(path, priority, encodingOf(encoding), layerOpenOptions(options));
+  });
+}
+
+GEOCEAN_API geocean_status geocean_add_elevation_layer_file(geocean_ocean* ocean, const char* path,
+                                                            int32_t priority, const geocean_raster_options* options) {
+  return guard("geocean_add_elevation_layer_file", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(path, "path");
+    ocean->core.addElevationLayerFile(path, priority, layerOpenOptions(options));
+  });
+}
+
+GEOCEAN_API geocean_status geocean_add_mask_layer_pixels(geocean_ocean* ocean, const char* name, const float* values,
+                                                         int32_t width, int32_t height,
+                                                         const geocean_grid_placement* placement, int32_t priority,
+                                                         const char* encoding) {
+  return guard("geocean_add_mask_layer_pixels", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(name, "name");
+    const auto enc = encodingOf(encoding);  // before the copy: a bad spec costs nothing
+    ocean->core.addMaskLayer(fromMemory(values, width, height, placement, name), priority, enc);
+  });
+}
+
+GEOCEAN_API geocean_status geocean_add_elevation_layer_pixels(geocean_ocean* ocean, const char* name,
+                                                              const float* values_m, int32_t width, int32_t height,
+                                                              const geocean_grid_placement* placement,
+                                                              int32_t priority) {
+  return guard("geocean_add_elevation_layer_pixels", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(name, "name");
+    ocean->core.addElevationLayer(fromMemory(values_m, width, height, placement, name), priority);
+  });
+}
+
+GEOCEAN_API geocean_status geocean_remove_layer(geocean_ocean* ocean, const char* path, size_t* out_removed) {
+  return guard("geocean_remove_layer", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(path, "path");
+    const std::size_t n = ocean->core.removeLayer(path);
+    if (out_removed) *out_removed = n;
+  });
+}
+
+GEOCEAN_API geocean_status geocean_clear_layers(geocean_ocean* ocean) {
+  return guard("geocean_clear_layers", [&] {
+    requireNonNull(ocean, "ocean");
+    ocean->core.clearLayers();
+  });
+}
+
+GEOCEAN_API geocean_status geocean_layer_count(const geocean_ocean* ocean, size_t* out_count) {
+  return guard("geocean_layer_count", [&] {
+    requireNonNull(ocean, "ocean");
+    requireNonNull(out_count, "out_count");
+    *out_count = ocean->current()->layers.size();
+  });
+}
+
 GEOCEAN_API geocean_status geocean_query_class(const geocean_ocean* ocean, size_t count, const double* lat_deg,
                                                const double* lon_deg, uint8_t* out_class) {
   return guard("geocean_query_class", [&] {

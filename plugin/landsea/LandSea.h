@@ -26,13 +26,17 @@ using world::MaskEncoding;
 using world::Surface;
 using world::toString;
 
+// One mask and/or one elevation raster. The queries are virtual so a
+// layer stack (LayeredLandSea.h) is a LandSea to the sea query, the grid,
+// the picker and the renderer.
 class LandSea {
  public:
   LandSea(std::shared_ptr<const raster::Raster> mask, std::shared_ptr<const raster::Raster> elevation,
           MaskEncoding encoding = {});
+  virtual ~LandSea() = default;
 
-  Surface classify(double latDeg, double lonDeg) const;
-  void classifyBatch(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out) const;
+  virtual Surface classify(double latDeg, double lonDeg) const;
+  virtual void classifyBatch(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out) const;
 
   // For drawing water surfaces: Ocean where any mask cell within two cells
   // is ocean or lake, else Land. The renderers' shoreline is a smooth
@@ -40,19 +44,23 @@ class LandSea {
   // it can put water up to two cells beyond the nearest-cell class; geometry
   // skipped by this test is guaranteed dry. Falls back to classifyBatch
   // without an in-memory mask. The table is built on first use.
-  void classifyNearWaterBatch(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out) const;
+  virtual void classifyNearWaterBatch(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out) const;
 
   // Fraction of water (ocean or lake) around the point, in [0, 1]: the
   // bilinear blend of the four nearest mask cells. 0.5 is the coastline;
   // the renderer anti-aliases the shore with it.
-  float waterCoverage(double latDeg, double lonDeg) const;
+  virtual float waterCoverage(double latDeg, double lonDeg) const;
   // Terrain elevation (ocean depth negative) in metres, bilinear; NaN when
   // there is no elevation raster or no data there.
-  float elevationM(double latDeg, double lonDeg) const;
-  void elevationBatch(const double* latDeg, const double* lonDeg, std::size_t n, float* out) const;
+  virtual float elevationM(double latDeg, double lonDeg) const;
+  virtual void elevationBatch(const double* latDeg, const double* lonDeg, std::size_t n, float* out) const;
 
+  // The single rasters (null for a layer stack).
   const raster::Raster* mask() const { return mask_.get(); }
   const raster::Raster* elevation() const { return elevation_.get(); }
+
+ protected:
+  LandSea() = default;  // for LayeredLandSea, which answers every query itself
 
  private:
   Surface classOfValue(float maskValue) const;

@@ -2,6 +2,7 @@
 
 #include "globe/geo/Ellipsoid.h"
 #include "globe/raster/World.h"
+#include "plugin/landsea/LayeredLandSea.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -187,18 +188,66 @@ void Ocean::setElevationFile(const std::string& path, const raster::OpenOptions&
 }
 
 void Ocean::setMask(std::shared_ptr<const raster::Raster> mask) {
-  update([&](Snapshot& s) { s.mask = std::move(mask); });
+  update([&](Snapshot& s) { s.baseMask = std::move(mask); });
 }
 
 void Ocean::setElevation(std::shared_ptr<const raster::Raster> elevation) {
-  update([&](Snapshot& s) { s.elevation = std::move(elevation); });
+  update([&](Snapshot& s) { s.baseElevation = std::move(elevation); });
 }
 
 void Ocean::setRasters(std::shared_ptr<const raster::Raster> mask, std::shared_ptr<const raster::Raster> elevation) {
   update([&](Snapshot& s) {
-    s.mask = std::move(mask);
-    s.elevation = std::move(elevation);
+    s.baseMask = std::move(mask);
+    s.baseElevation = std::move(elevation);
   });
+}
+
+namespace {
+void addLayer(RasterLayer l, const std::function<void(const std::function<void(Snapshot&)>&)>& update) {
+  const char* kind = world::toString(l.kind);
+  if (!l.raster) throw std::invalid_argument(std::string(kind) + " layer: no raster");
+  if (l.priority <= world::kDefaultWorldPriority)
+    throw std::invalid_argument(l.raster->path() + ": " + kind + " layer priority " + std::to_string(l.priority) +
+                                " is not above the default world's (" + std::to_string(world::kDefaultWorldPriority) +
+                                ")");
+  update([&](Snapshot& s) {
+    for (const RasterLayer& o : s.layers)
+      if (o.kind == l.kind && o.raster->path() == l.raster->path())
+        throw std::invalid_argument(l.raster->path() + ": already a " + kind + " layer");
+    s.layers.push_back(std::move(l));
+  });
+}
+}  // namespace
+
+void Ocean::addMaskLayer(std::shared_ptr<const raster::Raster> mask, int priority, const MaskEncoding& encoding) {
+  addLayer({LayerKind::Mask, std::move(mask), encoding, priority}, [this](const auto& e) { update(e); });
+}
+
+void Ocean::addElevationLayer(std::shared_ptr<const raster::Raster> elevation, int priority) {
+  addLayer({LayerKind::Elevation, std::move(elevation), {}, priority}, [this](const auto& e) { update(e); });
+}
+
+void Ocean::addMaskLayerFile(const std::string& path, int priority, const MaskEncoding& encoding,
+                             const raster::OpenOptions& options) {
+  addMaskLayer(raster::Raster::open(path, options), priority, encoding);
+}
+
+void Ocean::addElevationLayerFile(const std::string& path, int priority, const raster::OpenOptions& options) {
+  addElevationLayer(raster::Raster::open(path, options), priority);
+}
+
+std::size_t Ocean::removeLayer(const std::string& path) {
+  std::size_t removed = 0;
+  update([&](Snapshot& s) {
+    const auto before = s.layers.size();
+    std::erase_if(s.layers, [&](const RasterLayer& l) { return l.raster->path() == path; });
+    removed = before - s.layers.size();
+  });
+  return removed;
+}
+
+void Ocean::clearLayers() {
+  update([](Snapshot& s) { s.layers.clear(); });
 }
 
 void Ocean::clearRasters() { setRasters(nullptr, nullptr); }
@@ -233,12 +282,32 @@ void Ocean::update(const std::function<void(Snapshot&)>& edit) {
   const std::shared_ptr<const Snapshot> prev = current();
   auto next = std::make_shared<Snapshot>(*prev);
   edit(*next);
-  const bool rastersChanged = next->mask != prev->mask || next->elevation != prev->elevation ||
-                              next->maskEncoding.classOf != prev->maskEncoding.classOf;
-  if (rastersChanged)
+  auto sameLayers = [](const std::vector<RasterLayer>& a, const std::vector<RasterLayer>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const RasterLayer& x, const RasterLayer& y) {
+      return x.kind == y.kind && x.raster == y.raster && x.priority == y.priority &&
+             x.encoding.classOf == y.encoding.classOf;
+    });
+  };
+  const bool rastersChanged = next->baseMask != prev->baseMask || next->baseElevation != prev->baseElevation ||
+                              next->maskEncoding.classOf != prev->maskEncoding.classOf ||
+                              !sameLayers(next->layers, prev->layers);
+  if (rastersChanged && next->layers.empty()) {
+    next->mask = next->baseMask;
+    next->elevation = next->baseElevation;
     next->landSea = next->mask || next->elevation
                         ? std::make_shared<const LandSea>(next->mask, next->elevation, next->maskEncoding)
                         : nullptr;
+  } else if (rastersChanged) {
+    std::vector<RasterLayer> all = next->layers;
+    if (next->baseMask)
+      all.push_back({LayerKind::Mask, next->baseMask, next->maskEncoding, world::kDefaultWorldPriority});
+    if (next->baseElevation)
+      all.push_back({LayerKind::Elevation, next->baseElevation, {}, world::kDefaultWorldPriority});
+    auto layered = std::make_shared<const LayeredLandSea>(std::move(all));
+    next->mask = layered->stack().drawingMask();
+    next->elevation = layered->stack().drawingElevation();
+    next->landSea = std::move(layered);
+  }
   if (rastersChanged || next->waves != prev->waves)
     next->sea = next->waves ? std::make_shared<const waves::SeaQuery>(*next->waves, next->landSea) : nullptr;
   std::lock_guard lock(mutex_);

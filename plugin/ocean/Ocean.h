@@ -16,6 +16,7 @@
 #pragma once
 
 #include "globe/raster/Raster.h"
+#include "globe/world/LayerStack.h"
 #include "plugin/landsea/LandSea.h"
 #include "plugin/waves/SeaQuery.h"
 #include "plugin/waves/WaveField.h"
@@ -26,8 +27,12 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace geocean::ocean {
+
+using world::LayerKind;
+using world::RasterLayer;
 
 // A query whose prerequisite is missing; `missing` says which, so a binding
 // can name its own setter in the message.
@@ -69,9 +74,19 @@ using Classifier = SurfaceClassifier;
 // Everything a query reads, immutable once published. The renderer (the
 // ABI's draw half) reads the members and compares snapshot pointers.
 struct Snapshot {
-  std::shared_ptr<const raster::Raster> mask, elevation;
+  // The base rasters (the bundled world, or what setMask/setElevation/
+  // setRasters gave), underneath every layer; maskEncoding is the base mask's.
+  std::shared_ptr<const raster::Raster> baseMask, baseElevation;
   MaskEncoding maskEncoding;
-  std::shared_ptr<const LandSea> landSea;  // null without rasters
+  // The user's layers over the base (issue 12), as added.
+  std::vector<RasterLayer> layers;
+  // What the draw half builds the ocean's grids from: without layers the
+  // base rasters; with layers the stack's drawingMask/drawingElevation
+  // (globe/world/LayerStack.h), resampled through landSea.
+  std::shared_ptr<const raster::Raster> mask, elevation;
+  // Without layers a LandSea over the base; with layers a LayeredLandSea
+  // (the first layer with data answers). Null without rasters.
+  std::shared_ptr<const LandSea> landSea;
   std::shared_ptr<const waves::WaveField> waves;  // null without a sea state
   std::shared_ptr<const waves::SeaQuery> sea;     // the query path over landSea and waves
   waves::Model model = waves::Model::Noise;       // what `waves` was made from
@@ -123,7 +138,27 @@ class Ocean {
   // Both at once (either may be null), one land/sea build.
   void setRasters(std::shared_ptr<const raster::Raster> mask, std::shared_ptr<const raster::Raster> elevation);
   void clearRasters();
+  // The base mask's encoding (each layer has its own).
   void setMaskEncoding(const MaskEncoding& encoding);
+
+  // Layers over the base rasters: at each point the first layer with data
+  // answers, by higher priority, then finer cell, then order of adding; the
+  // base rasters answer last (world::kDefaultWorldPriority). Masks classify
+  // by their encoding, elevation layers by sign (below 0 m ocean), so a
+  // user's relief finer than every mask decides land and sea there. Nodata
+  // is per raster (raster::OpenOptions::nodata or the file's GDAL_NODATA).
+  // Throws std::invalid_argument for a null raster, a priority at or below
+  // kDefaultWorldPriority, or a layer of the same kind and path already in
+  // the stack; the File forms raster::RasterError naming the file.
+  void addMaskLayer(std::shared_ptr<const raster::Raster> mask, int priority = 0, const MaskEncoding& encoding = {});
+  void addElevationLayer(std::shared_ptr<const raster::Raster> elevation, int priority = 0);
+  void addMaskLayerFile(const std::string& path, int priority = 0, const MaskEncoding& encoding = {},
+                        const raster::OpenOptions& options = {});
+  void addElevationLayerFile(const std::string& path, int priority = 0, const raster::OpenOptions& options = {});
+  // Removes the layers whose raster path (raster::Raster::path) is `path`;
+  // returns how many (0: nothing changed).
+  std::size_t removeLayer(const std::string& path);
+  void clearLayers();
 
   // Builds the wave field; throws std::invalid_argument naming the field and
   // value of a bad sea state.

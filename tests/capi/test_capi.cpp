@@ -53,10 +53,10 @@ TEST(CapiLoader, LoadsTheBuiltPluginAndChecksItsVersion) {
 TEST(CapiLoader, RefusesAHostOfAnotherMajorOrANewerMinor) {
   std::string error;
   EXPECT_EQ(OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error, 2u << 16), nullptr);
-  EXPECT_NE(error.find("plugin ABI 1.2 cannot serve a host built for ABI 2.0"), std::string::npos) << error;
+  EXPECT_NE(error.find("plugin ABI 1.3 cannot serve a host built for ABI 2.0"), std::string::npos) << error;
   error.clear();
   EXPECT_EQ(OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error, GEOCEAN_ABI_VERSION + 1), nullptr);
-  EXPECT_NE(error.find("ABI 1.3"), std::string::npos) << error;
+  EXPECT_NE(error.find("ABI 1.4"), std::string::npos) << error;
   // An older minor of the same major is served.
   EXPECT_TRUE(OceanPlugin::compatible(1u << 16, (1u << 16) | 3u));
   EXPECT_FALSE(OceanPlugin::compatible((1u << 16) | 3u, 1u << 16));
@@ -72,7 +72,7 @@ TEST(CapiMisuse, CreateRefusesAWrongAbiVersion) {
   geocean_ocean* h = reinterpret_cast<geocean_ocean*>(&h);  // garbage that must be overwritten
   EXPECT_EQ(plugin().api().create(0, &h), GEOCEAN_ERROR_ABI_VERSION);
   EXPECT_EQ(h, nullptr);
-  EXPECT_NE(lastError().find("host ABI 0.0 is not served by this plugin (ABI 1.2)"), std::string::npos);
+  EXPECT_NE(lastError().find("host ABI 0.0 is not served by this plugin (ABI 1.3)"), std::string::npos);
   EXPECT_EQ(plugin().api().create(GEOCEAN_ABI_VERSION, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
   EXPECT_NE(lastError().find("geocean_create: out is NULL"), std::string::npos) << lastError();
 }
@@ -822,3 +822,104 @@ TEST(CapiV12, HorizontalVelocityOfOneWaveIsOmegaTimesHeight) {
 }
 
 }  // namespace
+
+// ---- ABI 1.3: raster layers over the base rasters ----
+
+namespace {
+// A 290 m island peak at (0.25, 0.25) in a 200 m deep sea, 15" cells over
+// -0.5 .. 1 degrees: finer than the 5' default mask, which says ocean there.
+std::vector<float> islandPixels(geocean_grid_placement& p) {
+  constexpr int n = 360;
+  constexpr double step = 1.0 / 240.0;
+  p = {-0.5, 1.0, step, -step, 0, 0, 0.0};
+  std::vector<float> v(std::size_t(n) * n);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const double lat = 1.0 - (y + 0.5) * step, lon = -0.5 + (x + 0.5) * step;
+      const double r2 = ((lat - 0.25) * (lat - 0.25) + (lon - 0.25) * (lon - 0.25)) / (0.15 * 0.15);
+      v[std::size_t(y) * n + x] = float(-200.0 + 490.0 * std::exp(-r2));
+    }
+  return v;
+}
+uint8_t classAt(const geocean_ocean* o, double lat, double lon) {
+  uint8_t c = 9;
+  EXPECT_EQ(plugin().api().queryClass(o, 1, &lat, &lon, &c), GEOCEAN_OK) << lastError();
+  return c;
+}
+}  // namespace
+
+TEST(CapiV13, LayerFunctionsRejectNullsAndBadArgumentsNamingThem) {
+  const auto& a = plugin().api();
+  ASSERT_NE(a.layerCount, nullptr);  // a 1.3 plugin resolves them all
+  const float px = 0;
+  const auto pl = globalPlacement(1, 1);
+  size_t n = 0;
+  const std::vector<std::pair<const char*, geocean_status>> calls = {
+      {"geocean_add_mask_layer_file", a.addMaskLayerFile(nullptr, "x.tif", 0, nullptr, nullptr)},
+      {"geocean_add_elevation_layer_file", a.addElevationLayerFile(nullptr, "x.tif", 0, nullptr)},
+      {"geocean_add_mask_layer_pixels", a.addMaskLayerPixels(nullptr, "m", &px, 1, 1, &pl, 0, nullptr)},
+      {"geocean_add_elevation_layer_pixels", a.addElevationLayerPixels(nullptr, "e", &px, 1, 1, &pl, 0)},
+      {"geocean_remove_layer", a.removeLayer(nullptr, "x.tif", &n)},
+      {"geocean_clear_layers", a.clearLayers(nullptr)},
+      {"geocean_layer_count", a.layerCount(nullptr, &n)},
+  };
+  for (const auto& [name, status] : calls) {
+    EXPECT_EQ(status, GEOCEAN_ERROR_NULL_ARGUMENT) << name;
+  }
+  EXPECT_EQ(lastError(), "geocean_layer_count: ocean is NULL");
+  Ocean o;
+  EXPECT_EQ(a.addMaskLayerFile(o.h, nullptr, 0, nullptr, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(lastError(), "geocean_add_mask_layer_file: path is NULL");
+  EXPECT_EQ(a.addMaskLayerPixels(o.h, nullptr, &px, 1, 1, &pl, 0, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(lastError(), "geocean_add_mask_layer_pixels: name is NULL");
+  EXPECT_EQ(a.addMaskLayerFile(o.h, "/nonexistent/layer.tif", 0, nullptr, nullptr), GEOCEAN_ERROR_RASTER);
+  EXPECT_NE(lastError().find("/nonexistent/layer.tif"), std::string::npos) << lastError();
+  EXPECT_EQ(a.addMaskLayerPixels(o.h, "m", &px, 1, 1, &pl, INT32_MIN, nullptr), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("priority -2147483648 is not above the default world's"), std::string::npos)
+      << lastError();
+  EXPECT_EQ(a.addMaskLayerPixels(o.h, "m", &px, 1, 1, &pl, 0, "0=sea"), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("'sea'"), std::string::npos) << lastError();
+  ASSERT_EQ(a.addMaskLayerPixels(o.h, "m", &px, 1, 1, &pl, 0, nullptr), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(a.addMaskLayerPixels(o.h, "m", &px, 1, 1, &pl, 3, nullptr), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("m: already a mask layer"), std::string::npos) << lastError();
+  geocean_raster_options bad{};
+  EXPECT_EQ(a.addElevationLayerFile(o.h, GEOCEAN_DATA_DIR "/etopo_20m.tif", 0, &bad), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("options->struct_size 0"), std::string::npos) << lastError();
+  ASSERT_EQ(a.layerCount(o.h, &n), GEOCEAN_OK);
+  EXPECT_EQ(n, 1u);  // failed calls left the stack as it was
+}
+
+TEST(CapiV13, AnIslandLayerIsLandOverTheDefaultWorldUntilRemoved) {
+  setenv("GEOCEAN_DATA", GEOCEAN_DATA_DIR, 1);
+  Ocean o;
+  const auto& a = plugin().api();
+  ASSERT_EQ(a.setDefaultWorld(o.h), GEOCEAN_OK) << lastError();
+  ASSERT_EQ(classAt(o.h, 0.25, 0.25), GEOCEAN_SURFACE_OCEAN);  // the 5' mask's answer
+  geocean_grid_placement p;
+  const auto px = islandPixels(p);
+  ASSERT_EQ(a.addElevationLayerPixels(o.h, "island", px.data(), 360, 360, &p, 0), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(classAt(o.h, 0.25, 0.25), GEOCEAN_SURFACE_LAND);
+  EXPECT_EQ(classAt(o.h, 0.9, 0.9), GEOCEAN_SURFACE_OCEAN);
+  EXPECT_EQ(classAt(o.h, 42.0, 50.5), GEOCEAN_SURFACE_LAKE);  // the default world outside the layer
+  const double lat = 0.25, lon = 0.25;
+  float e = 0;
+  ASSERT_EQ(a.queryElevation(o.h, 1, &lat, &lon, &e), GEOCEAN_OK);
+  EXPECT_NEAR(e, 290.0, 2.0);
+  // A mask file layer too (the 1.25' world, through the cache), then removal by path.
+  const std::string fine = GEOCEAN_DATA_DIR "/landmask_1.25m.tif";
+  ASSERT_EQ(a.addMaskLayerFile(o.h, fine.c_str(), 0, "0=ocean,1=land,2=ocean", nullptr), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(classAt(o.h, 42.0, 50.5), GEOCEAN_SURFACE_OCEAN);  // its own encoding: lakes are ocean
+  EXPECT_EQ(classAt(o.h, 0.25, 0.25), GEOCEAN_SURFACE_LAND);   // 15" relief is finer than 1.25'
+  size_t n = 0, removed = 9;
+  ASSERT_EQ(a.layerCount(o.h, &n), GEOCEAN_OK);
+  EXPECT_EQ(n, 2u);
+  ASSERT_EQ(a.removeLayer(o.h, fine.c_str(), &removed), GEOCEAN_OK);
+  EXPECT_EQ(removed, 1u);
+  EXPECT_EQ(classAt(o.h, 42.0, 50.5), GEOCEAN_SURFACE_LAKE);
+  ASSERT_EQ(a.removeLayer(o.h, "no such layer", &removed), GEOCEAN_OK);
+  EXPECT_EQ(removed, 0u);
+  ASSERT_EQ(a.clearLayers(o.h), GEOCEAN_OK);
+  EXPECT_EQ(classAt(o.h, 0.25, 0.25), GEOCEAN_SURFACE_OCEAN);
+  ASSERT_EQ(a.layerCount(o.h, &n), GEOCEAN_OK);
+  EXPECT_EQ(n, 0u);
+}

@@ -44,7 +44,7 @@ extern "C" {
  * A host built against MAJOR.MINOR runs with a plugin of the same MAJOR and
  * a MINOR at least as high. */
 #define GEOCEAN_ABI_VERSION_MAJOR 1
-#define GEOCEAN_ABI_VERSION_MINOR 2
+#define GEOCEAN_ABI_VERSION_MINOR 3
 #define GEOCEAN_ABI_VERSION ((uint32_t)((GEOCEAN_ABI_VERSION_MAJOR << 16) | GEOCEAN_ABI_VERSION_MINOR))
 
 /* Enums that cross the boundary as values have int32_t as their C++
@@ -199,6 +199,50 @@ GEOCEAN_API geocean_status geocean_set_default_world_with_options(geocean_ocean*
  * Errors: NULL_ARGUMENT (ocean), INVALID_ARGUMENT (the message names the
  * bad item); the previous encoding stays. */
 GEOCEAN_API geocean_status geocean_set_mask_encoding(geocean_ocean* ocean, const char* spec);
+
+/* ---- Raster layers (ABI 1.3) -------------------------------------------
+ * Masks and elevations stacked over the rasters the setters above give (the
+ * base, e.g. the default world). At each point the first layer with data
+ * answers the class and the elevation: higher priority first, then the
+ * finer cell, then the order of adding; the base answers last. Masks
+ * classify by their own encoding, elevation layers by sign (below 0 m
+ * ocean), so a user's relief finer than every mask decides land and sea
+ * there. Nodata (the file's GDAL_NODATA, or a placement's) is "no data
+ * here": the next layer answers. A layer is named by its path (files) or
+ * the name given (memory); a kind holds each name once. */
+
+/* ABI 1.3: adds a mask layer from a file. priority: any value above
+ * INT32_MIN (the base's); 0 is the usual. encoding: as
+ * geocean_set_mask_encoding, NULL or "" for the default. options: NULL for
+ * the defaults. Errors: NULL_ARGUMENT (ocean, path), INVALID_ARGUMENT
+ * (priority, encoding, options, a mask layer of this path already added),
+ * RASTER (the message names the file). The previous state stays on error. */
+GEOCEAN_API geocean_status geocean_add_mask_layer_file(geocean_ocean* ocean, const char* path, int32_t priority,
+                                                       const char* encoding, const geocean_raster_options* options);
+/* ABI 1.3: adds an elevation layer (metres) from a file. Errors as
+ * geocean_add_mask_layer_file. */
+GEOCEAN_API geocean_status geocean_add_elevation_layer_file(geocean_ocean* ocean, const char* path,
+                                                            int32_t priority, const geocean_raster_options* options);
+/* ABI 1.3: the same from memory (width x height floats, row-major, copied),
+ * named `name` for geocean_remove_layer. Errors: NULL_ARGUMENT,
+ * INVALID_ARGUMENT (size, placement, priority, encoding, name in use). */
+GEOCEAN_API geocean_status geocean_add_mask_layer_pixels(geocean_ocean* ocean, const char* name, const float* values,
+                                                         int32_t width, int32_t height,
+                                                         const geocean_grid_placement* placement, int32_t priority,
+                                                         const char* encoding);
+GEOCEAN_API geocean_status geocean_add_elevation_layer_pixels(geocean_ocean* ocean, const char* name,
+                                                              const float* values_m, int32_t width, int32_t height,
+                                                              const geocean_grid_placement* placement,
+                                                              int32_t priority);
+/* ABI 1.3: removes the layers (of either kind) named `path`; *out_removed
+ * (may be NULL) gets how many, 0 when none was. Errors: NULL_ARGUMENT
+ * (ocean, path). */
+GEOCEAN_API geocean_status geocean_remove_layer(geocean_ocean* ocean, const char* path, size_t* out_removed);
+/* ABI 1.3: removes every layer (the base stays). Errors: NULL_ARGUMENT. */
+GEOCEAN_API geocean_status geocean_clear_layers(geocean_ocean* ocean);
+/* ABI 1.3: how many layers are added (the base not counted). Errors:
+ * NULL_ARGUMENT. */
+GEOCEAN_API geocean_status geocean_layer_count(const geocean_ocean* ocean, size_t* out_count);
 
 /* ---- Queries (thread-safe, any number of threads) ----------------------- */
 

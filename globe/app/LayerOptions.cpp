@@ -1,0 +1,55 @@
+#include "globe/app/LayerOptions.h"
+
+#include "globe/raster/World.h"
+
+#include <stdexcept>
+
+namespace geocean::app {
+
+void addLayerOptions(CLI::App& sub, LayerOptions& o, bool withEncoding) {
+  sub.add_option("--mask", o.masks,
+                 "land/sea/lake mask raster, repeatable: layers over the default world, the finest answers")
+      ->take_all()
+      ->expected(1);
+  sub.add_option("--elevation", o.elevations,
+                 "elevation raster, repeatable: layers over the default world; finer than every mask it decides "
+                 "land (> 0 m) and sea")
+      ->take_all()
+      ->expected(1);
+  if (withEncoding)
+    sub.add_option("--mask-encoding", o.maskEncoding,
+                   "mask values of the --mask files, e.g. 0=ocean,1=land,2=lake (the default)");
+  sub.add_flag("--no-default-world", o.noDefaultWorld, "no bundled world underneath: only the given rasters");
+}
+
+void applyLayers(ocean::Ocean& ocean, const LayerOptions& o, const raster::OpenOptions& ro) {
+  const bool noElevation = o.noElevation;
+  if (o.noDefaultWorld && o.masks.empty() && (o.elevations.empty() || noElevation))
+    throw std::invalid_argument("--no-default-world needs --mask or --elevation");
+  const ocean::MaskEncoding enc =
+      o.maskEncoding.empty() ? ocean::MaskEncoding{} : ocean::MaskEncoding::parse(o.maskEncoding);
+  if (!o.noDefaultWorld) {
+    const auto world = raster::defaultWorld();
+    // The encoding before the rasters: the land/sea is then built once.
+    if (o.masks.empty() && !o.maskEncoding.empty()) ocean.setMaskEncoding(enc);
+    ocean.setRasters(raster::Raster::open(world.mask, ro),
+                     noElevation ? nullptr : raster::Raster::open(world.elevation, ro));
+  }
+  for (const std::string& m : o.masks) ocean.addMaskLayerFile(m, 0, enc, ro);
+  if (!noElevation)
+    for (const std::string& e : o.elevations) ocean.addElevationLayerFile(e, 0, ro);
+}
+
+std::vector<world::LayerSource> layerSources(const LayerOptions& o) {
+  if (o.noDefaultWorld && o.masks.empty() && o.elevations.empty())
+    throw std::invalid_argument("--no-default-world needs --mask or --elevation");
+  // The drawn default world keeps its own encoding: an encoding without a mask would do nothing.
+  if (!o.maskEncoding.empty() && o.masks.empty()) throw std::invalid_argument("--mask-encoding needs --mask");
+  if (!o.maskEncoding.empty()) (void)ocean::MaskEncoding::parse(o.maskEncoding);  // named before any file is read
+  std::vector<world::LayerSource> s;
+  for (const std::string& m : o.masks) s.push_back({world::LayerKind::Mask, m, o.maskEncoding, 0});
+  for (const std::string& e : o.elevations) s.push_back({world::LayerKind::Elevation, e, "", 0});
+  return s;
+}
+
+}  // namespace geocean::app

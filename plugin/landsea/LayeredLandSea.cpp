@@ -1,0 +1,59 @@
+#include "plugin/landsea/LayeredLandSea.h"
+
+#include <cmath>
+#include <cstdint>
+
+namespace geocean::ocean {
+
+LayeredLandSea::LayeredLandSea(std::vector<world::RasterLayer> layers) : stack_(std::move(layers)) {
+  for (const world::RasterLayer& l : stack_.layers())
+    perLayer_.push_back(l.kind == world::LayerKind::Mask ? std::make_unique<const LandSea>(l.raster, nullptr, l.encoding)
+                                                        : std::make_unique<const LandSea>(nullptr, l.raster));
+}
+
+Surface LayeredLandSea::classify(double latDeg, double lonDeg) const {
+  Surface s;
+  stack_.classifyBatch(&latDeg, &lonDeg, 1, &s);
+  return s;
+}
+
+void LayeredLandSea::classifyBatch(const double* lat, const double* lon, std::size_t n, Surface* out) const {
+  stack_.classifyBatch(lat, lon, n, out);
+}
+
+void LayeredLandSea::classifyNearWaterBatch(const double* lat, const double* lon, std::size_t n, Surface* out) const {
+  std::vector<std::int32_t> by(n);
+  stack_.classifyBatch(lat, lon, n, out, by.data());
+  // Points grouped by their answering layer, each group through its test.
+  std::vector<double> la, lo;
+  std::vector<std::size_t> where;
+  std::vector<Surface> s;
+  for (std::size_t li = 0; li < perLayer_.size(); ++li) {
+    la.clear(), lo.clear(), where.clear();
+    for (std::size_t i = 0; i < n; ++i)
+      if (by[i] == std::int32_t(li)) la.push_back(lat[i]), lo.push_back(lon[i]), where.push_back(i);
+    if (where.empty()) continue;
+    s.resize(where.size());
+    perLayer_[li]->classifyNearWaterBatch(la.data(), lo.data(), where.size(), s.data());
+    for (std::size_t j = 0; j < where.size(); ++j) out[where[j]] = s[j];
+  }
+}
+
+float LayeredLandSea::waterCoverage(double latDeg, double lonDeg) const {
+  Surface s;
+  std::int32_t by = -1;
+  stack_.classifyBatch(&latDeg, &lonDeg, 1, &s, &by);
+  return by < 0 ? 0.0f : perLayer_[std::size_t(by)]->waterCoverage(latDeg, lonDeg);
+}
+
+float LayeredLandSea::elevationM(double latDeg, double lonDeg) const {
+  float e;
+  stack_.elevationBatch(&latDeg, &lonDeg, 1, &e);
+  return e;
+}
+
+void LayeredLandSea::elevationBatch(const double* lat, const double* lon, std::size_t n, float* out) const {
+  stack_.elevationBatch(lat, lon, n, out);
+}
+
+}  // namespace geocean::ocean
