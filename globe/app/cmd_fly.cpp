@@ -1,6 +1,7 @@
 // `geocean fly`: a scripted flight from orbit to 2 m above the sea, rendered
 // headless to PNG frames plus a CSV of per-frame timings.
 #include "globe/app/Command.h"
+#include "globe/app/LayerOptions.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
 #include "globe/render/Session.h"
@@ -35,6 +36,7 @@ struct FlyArgs {
   double windFromDeg = 270.0;
   bool reference = false;
   bool hud = false;
+  LayerOptions layers;
 };
 
 int runFly(const FlyArgs& a) {
@@ -75,7 +77,18 @@ int runFly(const FlyArgs& a) {
     std::fprintf(stderr, "geocean fly: cannot write '%s'\n", csvPath.c_str());
     return kExitBadInput;
   }
-  const world::WorldData data = world::loadDefaultWorld();
+  std::vector<world::LayerSource> sources;
+  world::WorldData data;
+  try {
+    sources = layerSources(a.layers);
+    data = world::loadLayeredWorld(sources, !a.layers.noDefaultWorld);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "geocean fly: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const raster::RasterError& e) {
+    std::fprintf(stderr, "geocean fly: %s\n", e.what());
+    return kExitDataError;
+  }
   render::Session s;
   try {
     s = render::Session::headless(data, base.width, base.height);
@@ -87,7 +100,8 @@ int runFly(const FlyArgs& a) {
   }
   std::shared_ptr<host::PluginOceanLayer> ocean;
   if (!a.noOcean) {
-    const std::string err = host::addPluginOcean(*s.renderer, a.waves, a.windMps, a.windFromDeg, &ocean);
+    const std::string err = host::addPluginOcean(*s.renderer, a.waves, a.windMps, a.windFromDeg, &ocean, sources,
+                                                 !a.layers.noDefaultWorld);
     if (!err.empty()) {
       std::fprintf(stderr, "geocean fly: %s\n", err.c_str());
       return kExitBadInput;
@@ -178,6 +192,7 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                       sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
                       sub.add_option("--wind", a->windMps, "wind speed, m/s");
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
+                      addLayerOptions(sub, a->layers);
                       return [a] { return runFly(*a); };
                     }}};
 

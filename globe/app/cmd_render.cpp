@@ -1,5 +1,6 @@
 // `geocean render`: one frame, headless (EGL), to a PNG.
 #include "globe/app/Command.h"
+#include "globe/app/LayerOptions.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Session.h"
 #include "globe/host/OceanLayer.h"
@@ -22,6 +23,7 @@ struct RenderArgs {
   std::string waves = "noise";
   double windMps = 10.0;
   double windFromDeg = 270.0;
+  LayerOptions layers;
 };
 
 int runRender(const RenderArgs& a) {
@@ -44,7 +46,18 @@ int runRender(const RenderArgs& a) {
     std::fprintf(stderr, "geocean render: %s\n", e.what());
     return kExitBadInput;
   }
-  const world::WorldData data = world::loadDefaultWorld();
+  std::vector<world::LayerSource> sources;
+  world::WorldData data;
+  try {
+    sources = layerSources(a.layers);
+    data = world::loadLayeredWorld(sources, !a.layers.noDefaultWorld);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "geocean render: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const raster::RasterError& e) {
+    std::fprintf(stderr, "geocean render: %s\n", e.what());
+    return kExitDataError;
+  }
   render::TerrainOptions terrain;
   terrain.exaggeration = a.exaggeration;
   render::Session s;
@@ -58,7 +71,8 @@ int runRender(const RenderArgs& a) {
   }
   if (!a.noOcean) {
     const std::string err =
-        host::addPluginOcean(*s.renderer, a.waves, a.windMps, a.windFromDeg);
+        host::addPluginOcean(*s.renderer, a.waves, a.windMps, a.windFromDeg, nullptr, sources,
+                             !a.layers.noDefaultWorld);
     if (!err.empty()) {
       std::fprintf(stderr, "geocean render: %s\n", err.c_str());
       return kExitBadInput;
@@ -91,6 +105,7 @@ const Register reg{{"render", "Render one frame headless to a PNG",
                       sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
                       sub.add_option("--wind", a->windMps, "wind speed, m/s");
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
+                      addLayerOptions(sub, a->layers);
                       return [a] { return runRender(*a); };
                     }}};
 

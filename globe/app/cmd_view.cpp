@@ -3,6 +3,7 @@
 // says so and points to the headless commands (exit code 4). --frames N
 // runs a scripted number of frames and exits (tests under Xvfb, memory).
 #include "globe/app/Command.h"
+#include "globe/app/LayerOptions.h"
 #include "globe/host/OceanLayer.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
@@ -38,6 +39,7 @@ struct ViewArgs {
   std::string screenshot;  // PNG of the last of --frames
   std::string statsCsv;    // per-frame CSV (position, sea, fps, resident memory)
   bool noHud = false;
+  LayerOptions layers;
 };
 
 // Height of the drawn sea surface above the ellipsoid exactly under the
@@ -172,6 +174,18 @@ int runView(const ViewArgs& a) {
     }
     stats << "frame,wall_s,lat,lon,alt_m,sea_height_m,fps,rss_kb,heap_in_use_kb,heap_held_kb,tiles,tiles_built\n";
   }
+  std::vector<world::LayerSource> sources;
+  world::WorldData data;
+  try {
+    sources = layerSources(a.layers);
+    data = world::loadLayeredWorld(sources, !a.layers.noDefaultWorld);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "geocean view: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const raster::RasterError& e) {
+    std::fprintf(stderr, "geocean view: %s\n", e.what());
+    return kExitDataError;
+  }
   if (!glfwInit()) {
     std::fprintf(stderr, "geocean view: cannot open the display '%s'; use geocean render\n", display ? display : "");
     return kExitNoDisplay;
@@ -192,11 +206,12 @@ int runView(const ViewArgs& a) {
   gl::enableGlDebug();
   int rc = kExitOk;
   {
-    auto world = std::make_shared<render::WorldTextures>(world::loadDefaultWorld());
+    auto world = std::make_shared<render::WorldTextures>(data);
     render::GlobeRenderer renderer(world);
     // The ocean through the plugin's C ABI, as any host engine loads it.
     std::shared_ptr<host::PluginOceanLayer> ocean;
-    if (const std::string oceanErr = host::addPluginOcean(renderer, "noise", 10.0, 270.0, &ocean);
+    if (const std::string oceanErr = host::addPluginOcean(renderer, "noise", 10.0, 270.0, &ocean, sources,
+                                                                    !a.layers.noDefaultWorld);
         !oceanErr.empty()) {
       std::fprintf(stderr, "geocean view: %s\n", oceanErr.c_str());
       rc = kExitBadInput;
@@ -327,6 +342,7 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                                      "heap_held_kb,tiles,tiles_built (resident set; malloc'd bytes in use and held "
                                      "from the system, kB; terrain tiles drawn, tiles made so far)");
                       sub.add_flag("--no-hud", a->noHud, "no HUD panel (H toggles it in the window)");
+                      addLayerOptions(sub, a->layers);
                       return [a] { return runView(*a); };
                     }}};
 

@@ -74,7 +74,8 @@ void PluginOceanLayer::draw(const camera::Camera& cam, const camera::Lighting& l
 }
 
 std::string addPluginOcean(render::GlobeRenderer& renderer, const std::string& modelName, double windMps,
-                           double windFromDeg, std::shared_ptr<PluginOceanLayer>* created) {
+                           double windFromDeg, std::shared_ptr<PluginOceanLayer>* created,
+                           const std::vector<world::LayerSource>& layers, bool defaultWorld) {
   std::string error;
   std::shared_ptr<const OceanPlugin> plugin = OceanPlugin::loadForExecutable(error);
   if (!plugin) return error;
@@ -94,7 +95,17 @@ std::string addPluginOcean(render::GlobeRenderer& renderer, const std::string& m
   geocean_ocean* ocean = nullptr;
   if (a.create(GEOCEAN_ABI_VERSION, &ocean) != GEOCEAN_OK) return a.lastError();
   auto layer = std::make_shared<PluginOceanLayer>(plugin, ocean);  // owns the ocean from here
-  if (a.setDefaultWorld(ocean) != GEOCEAN_OK || a.setSeaState(ocean, &s) != GEOCEAN_OK) return a.lastError();
+  if (defaultWorld && a.setDefaultWorld(ocean) != GEOCEAN_OK) return a.lastError();
+  if (!layers.empty() && !a.addMaskLayerFile)
+    return plugin->path() + ": plugin ABI below 1.3 takes no raster layers (--mask, --elevation)";
+  for (const world::LayerSource& l : layers) {
+    const geocean_status st =
+        l.kind == world::LayerKind::Mask
+            ? a.addMaskLayerFile(ocean, l.path.c_str(), l.priority, l.encoding.c_str(), nullptr)
+            : a.addElevationLayerFile(ocean, l.path.c_str(), l.priority, nullptr);
+    if (st != GEOCEAN_OK) return a.lastError();
+  }
+  if (a.setSeaState(ocean, &s) != GEOCEAN_OK) return a.lastError();
   renderer.addLayer(layer);
   if (created) *created = layer;
   return {};

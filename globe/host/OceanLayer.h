@@ -7,6 +7,7 @@
 #include "globe/host/OceanPlugin.h"
 #include "globe/render/GlobeRenderer.h"
 #include "globe/render/Layer.h"
+#include "globe/world/LayerStack.h"
 
 #include <memory>
 #include <string>
@@ -46,10 +47,13 @@ class PluginOceanLayer : public render::Layer {
 geocean_view hostView(const geocean_view& defaults, const camera::Camera& cam, const camera::Lighting& light);
 
 // Loads the plugin (OceanPlugin::loadForExecutable), gives an ocean the
-// default world and the sea state (model by CLI name, wind) and adds it to
-// the renderer. Returns an error message naming the option or the plugin
+// default world (unless !defaultWorld), the raster layers over it (ABI 1.3,
+// in this order: the host's world::openLayerStack builds the same stack)
+// and the sea state (model by CLI name, wind) and adds it to the renderer.
+// Returns an error message naming the option, the file or the plugin
 // problem (empty on success).
 std::string addPluginOcean(render::GlobeRenderer& renderer, const std::string& modelName, double windMps,
-                           double windFromDeg, std::shared_ptr<PluginOceanLayer>* created = nullptr);
+                           double windFromDeg, std::shared_ptr<PluginOceanLayer>* created = nullptr,
+                           const std::vector<world::LayerSource>& layers = {}, bool defaultWorld = true);
 
 }  // namespace geocean::host
