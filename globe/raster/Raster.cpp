@@ -200,6 +200,25 @@ Footprint bilinearCell(const GeoTransform& t, int w, int h, double lat, double l
   return f;
 }
 
+// Poles are single points (issue 12 item 5). For a global raster whose
+// first or last row ends at a pole: that row (0 or h - 1) when the latitude
+// lies between the row's centre and the pole, with the weight of the pole's
+// own value, 1 at the pole and 0 at the row centre; else -1.
+int polarRow(const GeoTransform& t, int h, double lat, double& poleWeight) {
+  if (!t.global || !std::isfinite(lat)) return -1;
+  const double y = t.pixelY(lat);
+  for (const int row : {0, h - 1}) {
+    const double edge = row == 0 ? 0.0 : double(h);  // the row's outer edge in pixel space
+    if (std::abs(std::abs(t.latOf(edge)) - 90.0) > 1e-9) continue;
+    const double fromPole = std::abs(y - edge);  // in rows
+    if (fromPole < 0.5 && (row == 0 ? y <= 0.5 : y >= h - 0.5)) {
+      poleWeight = 1.0 - 2.0 * fromPole;
+      return row;
+    }
+  }
+  return -1;
+}
+
 float blend(float v00, float v10, float v01, float v11, float wx, float wy) {
   const float w[4] = {(1 - wx) * (1 - wy), wx * (1 - wy), (1 - wx) * wy, wx * wy};
   const float v[4] = {v00, v10, v01, v11};
@@ -213,16 +232,45 @@ float blend(float v00, float v10, float v01, float v11, float wx, float wy) {
 }
 }  // namespace
 
+float Raster::poleValue(int row, int channel) const {
+  // Read per call (w pixels): only points within half a row of a pole get here.
+  std::vector<float> v;
+  v.reserve(std::size_t(width_));
+  for (int x = 0; x < width_; ++x)
+    if (const float p = pixel(x, row, channel); !std::isnan(p)) v.push_back(p);
+  if (v.empty()) return kNaN;
+  // The upper median: robust against a few odd cells, and for a mask ring of
+  // two classes the majority one.
+  const auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
 float Raster::sampleNearest(double latDeg, double lonDeg, int channel) const {
   const Footprint f = nearestCell(transform_, width_, height_, latDeg, lonDeg);
-  return f.valid ? pixel(f.x0, f.y0, channel) : kNaN;
+  if (!f.valid) return kNaN;
+  // At a pole itself every longitude is the same point: the polar row's one value.
+  double w = 0;
+  if (std::abs(latDeg) >= 90.0)
+    if (const int row = polarRow(transform_, height_, latDeg, w); row >= 0) return poleValue(row, channel);
+  return pixel(f.x0, f.y0, channel);
 }
 
 float Raster::sampleBilinear(double latDeg, double lonDeg, int channel) const {
   const Footprint f = bilinearCell(transform_, width_, height_, latDeg, lonDeg);
   if (!f.valid) return kNaN;
-  return blend(pixel(f.x0, f.y0, channel), pixel(f.x1, f.y0, channel), pixel(f.x0, f.y1, channel),
-               pixel(f.x1, f.y1, channel), f.wx, f.wy);
+  const float v = blend(pixel(f.x0, f.y0, channel), pixel(f.x1, f.y0, channel), pixel(f.x0, f.y1, channel),
+                        pixel(f.x1, f.y1, channel), f.wx, f.wy);
+  // Towards a pole the row's values blend into the pole's one (the row's
+  // median), so the value there does not depend on longitude and is
+  // continuous across it.
+  double w = 0;
+  const int row = polarRow(transform_, height_, latDeg, w);
+  if (row < 0) return v;
+  const float pole = poleValue(row, channel);
+  if (std::isnan(v)) return pole;
+  if (std::isnan(pole)) return v;
+  return float((1.0 - w) * v + w * pole);
 }
 
 namespace {
@@ -273,6 +321,8 @@ void Raster::sampleNearestBatch(const double* lat, const double* lon, std::size_
       out[idx[j]] = (v == nd) ? kNaN : v;
     }
   });
+  for (std::size_t i = 0; i < n; ++i)
+    if (std::abs(lat[i]) >= 90.0) out[i] = sampleNearest(lat[i], lon[i], channel);  // the pole's one value
 }
 
 void Raster::sampleBilinearBatch(const double* lat, const double* lon, std::size_t n, float* out, int channel) const {
@@ -309,6 +359,9 @@ void Raster::sampleBilinearBatch(const double* lat, const double* lon, std::size
       out[idx[j]] = blend(at(f.x0, f.y0), at(f.x1, f.y0), at(f.x0, f.y1), at(f.x1, f.y1), f.wx, f.wy);
     }
   });
+  double w = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (polarRow(transform_, height_, lat[i], w) >= 0) out[i] = sampleBilinear(lat[i], lon[i], channel);
 }
 
 }  // namespace geocean::raster

@@ -84,7 +84,10 @@ class Raster {
   float pixel(int x, int y, int channel = 0) const;
   // Nearest-pixel and bilinear samples at (lat, lon); NaN outside a
   // non-global raster or where nodata. Bilinear ignores nodata neighbours.
-  // Longitudes wrap for global rasters; latitudes clamp at the poles.
+  // Longitudes wrap for global rasters; latitudes clamp at the poles. A
+  // pole is one point: for a global raster whose first or last row ends
+  // there, nearest at the pole gives the row's median and bilinear blends
+  // into it over the half row next to the pole.
   float sampleNearest(double latDeg, double lonDeg, int channel = 0) const;
   float sampleBilinear(double latDeg, double lonDeg, int channel = 0) const;
   // Batches: sorted by tile internally when cached (coherent ImageCache access).
@@ -98,6 +101,9 @@ class Raster {
 
  protected:
   Raster() = default;
+  // The value at the pole a polar row touches: the row's upper median; NaN
+  // if the row is all nodata.
+  float poleValue(int row, int channel) const;
   struct CacheImpl;
   std::string path_;
   int width_ = 0, height_ = 0, channels_ = 1;

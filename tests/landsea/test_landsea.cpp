@@ -193,3 +193,71 @@ TEST(LandSea, ElevationAloneBatchSetsEveryPoint) {
   EXPECT_EQ(out[0], Surface::Land);
   EXPECT_EQ(out[1], Surface::Ocean);
 }
+
+// ---- Poles are single points (issue 12 item 5) ----
+
+TEST(Poles, ElevationAtAPoleDoesNotDependOnLongitude) {
+  const auto w = raster::defaultWorld();
+  raster::OpenOptions cached;
+  cached.inMemoryLimitBytes = 0;  // the ImageCache batch path too
+  for (const auto& r : {raster::Raster::open(w.elevation), raster::Raster::open(w.elevation, cached)}) {
+    const ocean::LandSea ls(nullptr, r);
+    for (const double pole : {-90.0, 90.0}) {
+      const float at0 = ls.elevationM(pole, 0.0);
+      ASSERT_FALSE(std::isnan(at0));
+      std::vector<double> lat, lon;
+      for (int i = 0; i < 72; ++i) lat.push_back(pole), lon.push_back(-180.0 + 5.0 * i + 0.37);
+      std::vector<float> e(lat.size());
+      ls.elevationBatch(lat.data(), lon.data(), lat.size(), e.data());
+      for (std::size_t i = 0; i < e.size(); ++i) {
+        EXPECT_EQ(e[i], at0) << pole << "," << lon[i] << (r->inMemory() ? " in memory" : " cached");
+        EXPECT_EQ(ls.elevationM(pole, lon[i]), at0) << pole << "," << lon[i];
+      }
+    }
+    // Points 2 cm apart across the South Pole (1 cm from it each side):
+    // before, up to 81 m apart.
+    const double oneCmDeg = 0.01 / 111694.0;
+    for (double lon = -180.0; lon < 180.0; lon += 7.5) {
+      const float a = ls.elevationM(-90.0 + oneCmDeg, lon), b = ls.elevationM(-90.0 + oneCmDeg, lon + 180.0);
+      EXPECT_NEAR(a, b, 0.05) << lon;
+    }
+  }
+}
+
+TEST(Poles, TheBlendIsContinuousFromTheRowCentreToThePole) {
+  // A global 10-degree raster whose polar rows are longitude ramps 0..35 and
+  // 1700..1735: the pole's value is the row's upper median (18, 1718).
+  std::vector<float> px(36 * 18);
+  for (int y = 0; y < 18; ++y)
+    for (int x = 0; x < 36; ++x) px[std::size_t(y) * 36 + x] = float(100 * y + x);
+  const auto r = raster::Raster::fromPixels(px, 36, 18, 1, {-180.0, 90.0, 10.0, -10.0, true});
+  for (double lon : {-175.0, -40.0, 0.0, 95.0, 179.0}) {
+    EXPECT_EQ(r->sampleBilinear(90.0, lon), 18.0f) << lon;
+    EXPECT_EQ(r->sampleBilinear(-90.0, lon), 1718.0f) << lon;
+    EXPECT_EQ(r->sampleNearest(90.0, lon), 18.0f) << lon;
+    // At the row's centre (lat 85) the row's own interpolation, untouched.
+    const float centre = r->sampleBilinear(85.0, lon);
+    EXPECT_NEAR(centre, r->sampleBilinear(85.0 - 1e-9, lon), 1e-3) << lon;
+    // In between, a straight blend: halfway in latitude, halfway in value.
+    EXPECT_NEAR(r->sampleBilinear(87.5, lon), 0.5 * (centre + 18.0), 1e-3) << lon;
+  }
+  // A regional raster has no pole: unchanged (NaN outside it).
+  const auto regional = raster::Raster::fromPixels(px, 36, 18, 1, {-180.0, 90.0, 5.0, -5.0, false});
+  EXPECT_EQ(regional->sampleNearest(89.0, -177.4), 0.0f);
+  EXPECT_EQ(regional->sampleBilinear(90.0, -177.5), 0.0f);
+}
+
+TEST(Poles, TheMaskAtAPoleIsOneClass) {
+  // A polar row of 25 land cells and 11 ocean cells: the pole is land at
+  // every longitude, the rows' own cells just off it keep their class.
+  std::vector<float> px(36 * 18, 0.0f);
+  for (int x = 0; x < 25; ++x) px[std::size_t(17) * 36 + x] = 1.0f;
+  const auto ring = raster::Raster::fromPixels(px, 36, 18, 1, {-180.0, 90.0, 10.0, -10.0, true});
+  for (double lon = -180.0; lon < 180.0; lon += 2.5) EXPECT_EQ(ring->sampleNearest(-90.0, lon), 1.0f) << lon;
+  EXPECT_EQ(ring->sampleNearest(-89.9, 175.0), 0.0f);
+  const auto mask = raster::Raster::open(raster::defaultWorld().mask);
+  for (double lon = -180.0; lon < 180.0; lon += 3.7) {
+    EXPECT_EQ(mask->sampleNearest(-90.0, lon), 1.0f) << lon;  // Antarctica
+    EXPECT_EQ(mask->sampleNearest(90.0, lon), 0.0f) << lon;   // the Arctic Ocean
+  }
+}
