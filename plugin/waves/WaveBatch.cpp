@@ -263,6 +263,15 @@ struct Out {
   }
 };
 
+// The cell modulo 2^32 as an int32 value, as WaveField's wrapCell32 (the
+// scalar path) takes it: the hash is the same, DemoteTo then never saturates.
+V WrapCell32(V fl) {
+  const D d;
+  const V m = hn::NegMulAdd(S(4294967296.0), hn::Floor(hn::Mul(fl, S(1.0 / 4294967296.0))), fl);
+  const V w = hn::IfThenElse(hn::Ge(m, S(2147483648.0)), hn::Sub(m, S(4294967296.0)), m);
+  return hn::IfThenElse(hn::IsFinite(fl), w, hn::Zero(d));
+}
+
 // surfaceAt for model Noise: octaveAt + wv_solidNoise at d = 0 + toEnu.
 void Noise(const NoiseOctave* oc, int count, const Points& pts, SurfacePoint* out) {
   const D d;
@@ -278,7 +287,7 @@ void Noise(const NoiseOctave* oc, int count, const Points& pts, SurfacePoint* ou
         q[k] = hn::MulAdd(S(o.vel[k]), b.t, Dot(S(o.row[k][0]), S(o.row[k][1]), S(o.row[k][2]), l.p[0], l.p[1], l.p[2]));
         const V fl = hn::Floor(q[k]);
         fr[k] = hn::Sub(q[k], fl);
-        cell[k] = hn::DemoteTo(di, fl);
+        cell[k] = hn::DemoteTo(di, WrapCell32(fl));
       }
       V nv, nx, ny, nz;
       Perlin3(fr[0], fr[1], fr[2], cell[0], cell[1], cell[2], o.seed, nv, nx, ny, nz);

@@ -105,6 +105,20 @@ kd::WvFrame makeFrame(const glm::dvec3& o) {
   return f;
 }
 
+// A lattice cell as the int32 the kernel hashes: cells are taken modulo
+// 2^32, whose hash (uint arithmetic in wv_hashCell*) is the same, so the
+// noise continues seamlessly where the drift v t leaves int32 (Unix-epoch
+// times, 1.7e9 s, did for the finest octaves: the conversion overflowed).
+// Exact for |cell| < 2^53; the same cells as before inside int32.
+double wrapCell32(double cell) {
+  if (!std::isfinite(cell)) return 0.0;
+  const double m = cell - 4294967296.0 * std::floor(cell * (1.0 / 4294967296.0));
+  return m >= 2147483648.0 ? m - 4294967296.0 : m;
+}
+glm::ivec3 wrapCells(const glm::dvec3& fl) {
+  return {int(wrapCell32(fl.x)), int(wrapCell32(fl.y)), int(wrapCell32(fl.z))};
+}
+
 kd::WvOctave octaveAt(const WaveField::Octave& oc, const glm::dvec3& o, double tS) {
   const glm::dvec3 q(glm::dot(oc.row[0], o) + oc.velocity.x * tS, glm::dot(oc.row[1], o) + oc.velocity.y * tS,
                      glm::dot(oc.row[2], o) + oc.velocity.z * tS);
@@ -114,7 +128,7 @@ kd::WvOctave octaveAt(const WaveField::Octave& oc, const glm::dvec3& o, double t
   w.row1 = glm::dvec4(oc.row[1], double(oc.seed));
   w.row2 = glm::dvec4(oc.row[2], 0.0);
   w.fracO = glm::dvec4(q - fl, 0.0);
-  w.cellO = glm::ivec4(glm::ivec3(fl), 0);
+  w.cellO = glm::ivec4(wrapCells(fl), 0);
   w.vel = glm::dvec4(oc.velocity, 0.0);
   return w;
 }
@@ -456,7 +470,7 @@ WaveSample WaveField::samplePaper(double latDeg, double lonDeg, double tS) const
     const double f = o.frequencyPerM;
     const glm::dvec2 q(x * f + o.velocity.x * tS, y * f + o.velocity.y * tS);
     const glm::dvec2 fl = glm::floor(q);
-    const glm::dvec3 nz = k.wv_perlin2(glm::ivec2(fl), q - fl, o.seed);
+    const glm::dvec3 nz = k.wv_perlin2(glm::ivec2(int(wrapCell32(fl.x)), int(wrapCell32(fl.y))), q - fl, o.seed);
     h += o.amplitudeM * nz.x;
     hx += o.amplitudeM * nz.y * f;
     hy += o.amplitudeM * nz.z * f;
