@@ -53,12 +53,16 @@ struct GlResources {
 
 // The ocean's world grids (CPU) for a snapshot's rasters: its textures and
 // its answer to "do you cover this opaquely" come from them.
+// Keyed by the snapshot's land/sea, which is rebuilt whenever a raster, a
+// layer or the mask encoding changes.
 struct WorldCache {
+  std::shared_ptr<const geocean::ocean::LandSea> landSea;
   std::shared_ptr<const Raster> mask, elevation;
   std::shared_ptr<const geocean::world::WorldGrids> grids;
   const geocean::world::WorldGrids& of(const Snapshot& snap) {
-    if (!grids || mask != snap.mask || elevation != snap.elevation) {
-      grids = geocean::ocean_render::oceanWorld(snap.mask, snap.elevation, snap.landSea.get());
+    if (!grids || landSea != snap.landSea || mask != snap.mask || elevation != snap.elevation) {
+      grids = geocean::ocean_render::oceanWorld(snap.mask, snap.elevation, snap.landSea.get(), snap.maskEncoding);
+      landSea = snap.landSea;
       mask = snap.mask;
       elevation = snap.elevation;
     }
@@ -330,7 +334,8 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
         ds.gl->context = ctx;
       }
       GlResources& gl = *ds.gl;
-      if (!gl.renderer || gl.builtFrom->mask != snap->mask || gl.builtFrom->elevation != snap->elevation ||
+      if (!gl.renderer || gl.builtFrom->landSea != snap->landSea || gl.builtFrom->mask != snap->mask ||
+          gl.builtFrom->elevation != snap->elevation ||
           gl.builtFrom->waves != snap->waves) {
         ds.world.of(*snap);
         geocean::ocean_render::OceanOptions o;
