@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <exception>
 #include <memory>
+#include <string>
 
 namespace geocean::app {
 std::vector<Command>& registry() {
@@ -22,6 +23,15 @@ int main(int argc, char** argv) {
     *run = c.setup(*sub);
     sub->callback([run, &action] { action = *run; });
   }
+#if !GEOCEAN_WITH_HUD
+  // Built without the window (GEOCEAN_BUILD_VIEWER=OFF): say so instead of
+  // CLI11's "A subcommand is required".
+  if (argc > 1 && std::string(argv[1]) == "view") {
+    std::fprintf(stderr, "geocean view: this geocean was built with GEOCEAN_BUILD_VIEWER=OFF (no window); "
+                         "use geocean render or geocean fly\n");
+    return kExitBadInput;
+  }
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
