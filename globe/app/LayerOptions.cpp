@@ -1,7 +1,10 @@
 #include "globe/app/LayerOptions.h"
 
+#include "globe/app/Command.h"
+
 #include "globe/raster/World.h"
 
+#include <cstdio>
 #include <stdexcept>
 
 namespace geocean::app {
@@ -50,6 +53,21 @@ std::vector<world::LayerSource> layerSources(const LayerOptions& o) {
   for (const std::string& m : o.masks) s.push_back({world::LayerKind::Mask, m, o.maskEncoding, 0});
   for (const std::string& e : o.elevations) s.push_back({world::LayerKind::Elevation, e, "", 0});
   return s;
+}
+
+int loadDrawnWorld(const char* command, const LayerOptions& o, std::vector<world::LayerSource>& sources,
+                   world::WorldData& data) {
+  try {
+    sources = layerSources(o);
+    data = world::loadLayeredWorld(sources, !o.noDefaultWorld);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "geocean %s: %s\n", command, e.what());
+    return kExitBadInput;
+  } catch (const raster::RasterError& e) {
+    std::fprintf(stderr, "geocean %s: %s\n", command, e.what());
+    return kExitDataError;
+  }
+  return kExitOk;
 }
 
 }  // namespace geocean::app

@@ -37,4 +37,10 @@ void applyLayers(ocean::Ocean& ocean, const LayerOptions& o, const raster::OpenO
 // Throws std::invalid_argument for --no-default-world without any raster.
 std::vector<world::LayerSource> layerSources(const LayerOptions& o);
 
+// The drawing commands' start: layerSources and the host's world built from
+// them. A failure is printed as "geocean <command>: ..."; returns the exit
+// code (kExitOk, kExitBadInput, kExitDataError).
+int loadDrawnWorld(const char* command, const LayerOptions& o, std::vector<world::LayerSource>& sources,
+                   world::WorldData& data);
+
 }  // namespace geocean::app

@@ -79,16 +79,7 @@ int runFly(const FlyArgs& a) {
   }
   std::vector<world::LayerSource> sources;
   world::WorldData data;
-  try {
-    sources = layerSources(a.layers);
-    data = world::loadLayeredWorld(sources, !a.layers.noDefaultWorld);
-  } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "geocean fly: %s\n", e.what());
-    return kExitBadInput;
-  } catch (const raster::RasterError& e) {
-    std::fprintf(stderr, "geocean fly: %s\n", e.what());
-    return kExitDataError;
-  }
+  if (const int rc = loadDrawnWorld("fly", a.layers, sources, data); rc != kExitOk) return rc;
   render::Session s;
   try {
     s = render::Session::headless(data, base.width, base.height);

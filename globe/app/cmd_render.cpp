@@ -48,16 +48,7 @@ int runRender(const RenderArgs& a) {
   }
   std::vector<world::LayerSource> sources;
   world::WorldData data;
-  try {
-    sources = layerSources(a.layers);
-    data = world::loadLayeredWorld(sources, !a.layers.noDefaultWorld);
-  } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "geocean render: %s\n", e.what());
-    return kExitBadInput;
-  } catch (const raster::RasterError& e) {
-    std::fprintf(stderr, "geocean render: %s\n", e.what());
-    return kExitDataError;
-  }
+  if (const int rc = loadDrawnWorld("render", a.layers, sources, data); rc != kExitOk) return rc;
   render::TerrainOptions terrain;
   terrain.exaggeration = a.exaggeration;
   render::Session s;

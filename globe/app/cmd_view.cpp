@@ -176,16 +176,7 @@ int runView(const ViewArgs& a) {
   }
   std::vector<world::LayerSource> sources;
   world::WorldData data;
-  try {
-    sources = layerSources(a.layers);
-    data = world::loadLayeredWorld(sources, !a.layers.noDefaultWorld);
-  } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "geocean view: %s\n", e.what());
-    return kExitBadInput;
-  } catch (const raster::RasterError& e) {
-    std::fprintf(stderr, "geocean view: %s\n", e.what());
-    return kExitDataError;
-  }
+  if (const int rc = loadDrawnWorld("view", a.layers, sources, data); rc != kExitOk) return rc;
   if (!glfwInit()) {
     std::fprintf(stderr, "geocean view: cannot open the display '%s'; use geocean render\n", display ? display : "");
     return kExitNoDisplay;
