@@ -17,27 +17,6 @@ bool globalInMemory(const raster::Raster& r) {
   return r.inMemory() && t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * r.height() + 180.0) < 1e-6;
 }
 
-// The drawing grid of OceanWorld: global, the raster's step but at most 5'.
-WorldLayer globalGrid(const raster::Raster& r) {
-  WorldLayer l;
-  const double step = std::max(std::abs(r.transform().lonStepDeg), 1.0 / 12.0);
-  l.width = std::max(1, int(std::lround(360.0 / step)));
-  l.height = std::max(1, int(std::lround(180.0 / step)));
-  l.lonStepDeg = 360.0 / l.width;
-  l.latStepDeg = -180.0 / l.height;
-  l.values.resize(std::size_t(l.width) * l.height);
-  return l;
-}
-
-void centres(const WorldLayer& l, std::vector<double>& lat, std::vector<double>& lon) {
-  lat.resize(l.values.size());
-  lon.resize(l.values.size());
-  for (int y = 0; y < l.height; ++y)
-    for (int x = 0; x < l.width; ++x) {
-      lat[std::size_t(y) * l.width + x] = l.originLatDeg + (y + 0.5) * l.latStepDeg;
-      lon[std::size_t(y) * l.width + x] = l.originLonDeg + (x + 0.5) * l.lonStepDeg;
-    }
-}
 
 }  // namespace
 
@@ -153,9 +132,9 @@ WorldLayer elevationLayerOf(const LayerStack& stack) {
   if (e && globalInMemory(*e)) {
     l = layerOf(*e, 0);
   } else if (e) {
-    l = globalGrid(*e);
+    l = globalGridFor(e.get());
     std::vector<double> lat, lon;
-    centres(l, lat, lon);
+    cellCentres(l, lat, lon);
     stack.elevationBatch(lat.data(), lon.data(), lat.size(), l.values.data());
   } else {
     l.width = 360, l.height = 180;
@@ -173,9 +152,9 @@ WorldLayer waterLayerOf(const LayerStack& stack) {
       if (layer.raster == m) return waterLayerOf(*m, layer.encoding);
   }
   const auto grid = m ? m : stack.drawingElevation();
-  WorldLayer l = globalGrid(*grid);
+  WorldLayer l = globalGridFor(grid.get());
   std::vector<double> lat, lon;
-  centres(l, lat, lon);
+  cellCentres(l, lat, lon);
   std::vector<Surface> cls(lat.size());
   stack.classifyBatch(lat.data(), lon.data(), lat.size(), cls.data());
   for (std::size_t i = 0; i < cls.size(); ++i) l.values[i] = cls[i] == Surface::Land ? 0.0f : 1.0f;

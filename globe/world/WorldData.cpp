@@ -4,6 +4,7 @@
 #include "globe/world/WorldData.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace geocean::world {
 
@@ -49,6 +50,27 @@ WorldLayer waterLayerOf(const raster::Raster& mask, const MaskEncoding& encoding
 void nodataToSeaLevel(WorldLayer& elevation) {
   for (float& v : elevation.values)
     if (v != v) v = 0.0f;
+}
+
+WorldLayer globalGridFor(const raster::Raster* r) {
+  WorldLayer l;
+  const double step = r ? std::max(std::abs(r->transform().lonStepDeg), 1.0 / 12.0) : 1.0;
+  l.width = std::max(1, int(std::lround(360.0 / step)));
+  l.height = std::max(1, int(std::lround(180.0 / step)));
+  l.lonStepDeg = 360.0 / l.width;
+  l.latStepDeg = -180.0 / l.height;
+  l.values.resize(std::size_t(l.width) * l.height);
+  return l;
+}
+
+void cellCentres(const WorldLayer& l, std::vector<double>& lat, std::vector<double>& lon) {
+  lat.resize(l.values.size());
+  lon.resize(l.values.size());
+  for (int y = 0; y < l.height; ++y)
+    for (int x = 0; x < l.width; ++x) {
+      lat[std::size_t(y) * l.width + x] = l.originLatDeg + (y + 0.5) * l.latStepDeg;
+      lon[std::size_t(y) * l.width + x] = l.originLonDeg + (x + 0.5) * l.lonStepDeg;
+    }
 }
 
 }  // namespace geocean::world

@@ -43,6 +43,12 @@ WorldLayer waterLayerOf(const raster::Raster& mask, const MaskEncoding& encoding
 // NaN (nodata) elevations would poison a vertex shader: sea level instead.
 void nodataToSeaLevel(WorldLayer& elevation);
 
+// A global lon/lat grid for drawing a raster: the raster's step, but at most
+// 5' (the default mask's) and 1 degree without a raster; values zeroed.
+WorldLayer globalGridFor(const raster::Raster* r);
+// The lat/lon of every cell centre of a layer, row-major.
+void cellCentres(const WorldLayer& l, std::vector<double>& latDeg, std::vector<double>& lonDeg);
+
 // Loads the default world (globe/raster/World.h): imagery, ETOPO relief and
 // the 5' land/sea mask. Throws raster::RasterError naming the file.
 WorldData loadDefaultWorld();

@@ -26,35 +26,15 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
     return r && r->inMemory() && r->transform().global && r->transform().latStepDeg < 0 &&
            std::abs(r->transform().latStepDeg * r->height() + 180.0) < 1e-6;
   };
-  // A global grid with the raster's steps, at most 5' (the default mask).
-  auto globalGrid = [](const std::shared_ptr<const Raster>& r) {
-    WorldLayer l;
-    const double step = r ? std::max(std::abs(r->transform().lonStepDeg), 1.0 / 12.0) : 1.0;
-    l.width = std::max(1, int(std::lround(360.0 / step)));
-    l.height = std::max(1, int(std::lround(180.0 / step)));
-    l.lonStepDeg = 360.0 / l.width;
-    l.latStepDeg = -180.0 / l.height;
-    l.values.resize(std::size_t(l.width) * l.height);
-    return l;
-  };
-  auto centres = [](const WorldLayer& l, std::vector<double>& lat, std::vector<double>& lon) {
-    lat.resize(l.values.size());
-    lon.resize(l.values.size());
-    for (int y = 0; y < l.height; ++y)
-      for (int x = 0; x < l.width; ++x) {
-        lat[std::size_t(y) * l.width + x] = l.originLatDeg + (y + 0.5) * l.latStepDeg;
-        lon[std::size_t(y) * l.width + x] = l.originLonDeg + (x + 0.5) * l.lonStepDeg;
-      }
-  };
   std::vector<double> lat, lon;
   if (elevation && directly(elevation)) {
     d.elevation = world::layerOf(*elevation, 0);
   } else if (elevation) {
-    d.elevation = globalGrid(elevation);
-    centres(d.elevation, lat, lon);
+    d.elevation = world::globalGridFor(elevation.get());
+    world::cellCentres(d.elevation, lat, lon);
     landSea->elevationBatch(lat.data(), lon.data(), lat.size(), d.elevation.values.data());
   } else {
-    d.elevation = globalGrid(nullptr);
+    d.elevation = world::globalGridFor(nullptr);
     // No relief: deep water everywhere, as the queries assume.
     std::fill(d.elevation.values.begin(), d.elevation.values.end(), -10000.0f);
   }
@@ -62,14 +42,14 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
   if (mask && directly(mask)) {
     d.water = world::waterLayerOf(*mask, encoding);
   } else if (landSea) {
-    d.water = globalGrid(mask ? mask : elevation);
-    centres(d.water, lat, lon);
+    d.water = world::globalGridFor((mask ? mask : elevation).get());
+    world::cellCentres(d.water, lat, lon);
     std::vector<ocean::Surface> cls(lat.size());
     landSea->classifyBatch(lat.data(), lon.data(), lat.size(), cls.data());
     for (std::size_t i = 0; i < cls.size(); ++i)
       d.water.values[i] = cls[i] == ocean::Surface::Land ? 0.0f : 1.0f;
   } else {
-    d.water = globalGrid(nullptr);
+    d.water = world::globalGridFor(nullptr);
     std::fill(d.water.values.begin(), d.water.values.end(), 1.0f);
   }
   return std::make_shared<const world::WorldGrids>(std::move(d.elevation), std::move(d.water));
