@@ -10,6 +10,7 @@
 #include "plugin/bodies/Hydro.h"
 #include "plugin/bodies/OceanSea.h"
 #include "plugin/bodies/Simulation.h"
+#include "plugin/bodies/Spawn.h"
 #include "plugin/ocean/Ocean.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -232,14 +233,7 @@ int runFloat(const FloatOptions& o) {
       const glm::dvec3 ext = b.hull.maxCorner() - b.hull.minCorner();
       auto hull = std::make_shared<bodies::HullForce>(std::make_shared<bodies::HullMesh>(b.hull), sea, hopt);
       // Upright at its still-water draft, bow along the heading.
-      const double rest = -b.hull.restingWaterlineZ(b.density / rhoW);
-      const geo::Geodetic p{b.lat, b.lon, rest};
-      const geo::EnuFrame f = geo::enuFrame(p);
-      const double h = b.headingDeg * kDeg;
-      const glm::dvec3 x(std::sin(h), std::cos(h), 0.0), y(-std::cos(h), std::sin(h), 0.0), z(0, 0, 1);
-      bodies::BodyState s;
-      s.positionEcef = f.originEcef;
-      s.orientation = glm::normalize(glm::quat_cast(glm::dmat3(f.toEcef(x), f.toEcef(y), f.toEcef(z))));
+      const bodies::BodyState s = bodies::restingUpright(b.hull, b.density / rhoW, b.lat, b.lon, b.headingDeg);
       bodies::BodyId id;
       if (o.model == "mesh") {
         id = sim.addBody(b.hull.massProperties(b.density), s);

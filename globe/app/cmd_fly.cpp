@@ -1,6 +1,7 @@
 // `geocean fly`: a scripted flight from orbit to 2 m above the sea, rendered
 // headless to PNG frames plus a CSV of per-frame timings.
 #include "globe/app/Command.h"
+#include "globe/app/BoatOptions.h"
 #include "globe/app/LayerOptions.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
@@ -37,6 +38,7 @@ struct FlyArgs {
   bool reference = false;
   bool hud = false;
   LayerOptions layers;
+  BoatOptions boats;
 };
 
 int runFly(const FlyArgs& a) {
@@ -98,6 +100,9 @@ int runFly(const FlyArgs& a) {
       return kExitBadInput;
     }
   }
+  std::shared_ptr<host::PluginBoats> boats;
+  if (const int rc = addBoats("fly", a.boats, *s.renderer, ocean, plan.toLatDeg, plan.toLonDeg, boats); rc != kExitOk)
+    return rc;
 #if GEOCEAN_WITH_HUD
   std::unique_ptr<gl::Hud> hud;  // declared after the session: destroyed while its context lives
   if (a.hud) {
@@ -121,9 +126,13 @@ int runFly(const FlyArgs& a) {
   const glm::dvec3 sun = render::sunFromLocal(plan.toLatDeg, plan.toLonDeg, sunAzEl[0], sunAzEl[1]);
   for (int f = 0; f < a.frames; ++f) {
     const double sProgress = double(f) / double(a.frames - 1);
-    const camera::ViewPose pose = render::flightPose(plan, sProgress, base);
+    camera::ViewPose pose = render::flightPose(plan, sProgress, base);
     render::FrameSettings fs;
     fs.timeS = f / a.fps;
+    if (boats && a.boats.follow > 0) {  // the chase camera instead of the flight
+      boats->update(fs.timeS);
+      pose = boats->chase(std::size_t(a.boats.follow - 1), pose);
+    }
     fs.sunEcef = sun;
     fs.timed = true;
     const auto t = s.render(pose, fs);
@@ -184,6 +193,7 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                       sub.add_option("--wind", a->windMps, "wind speed, m/s");
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
                       addLayerOptions(sub, a->layers);
+                      addBoatOptions(sub, a->boats);
                       return [a] { return runFly(*a); };
                     }}};
 

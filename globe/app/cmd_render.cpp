@@ -1,5 +1,6 @@
 // `geocean render`: one frame, headless (EGL), to a PNG.
 #include "globe/app/Command.h"
+#include "globe/app/BoatOptions.h"
 #include "globe/app/LayerOptions.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Session.h"
@@ -24,6 +25,7 @@ struct RenderArgs {
   double windMps = 10.0;
   double windFromDeg = 270.0;
   LayerOptions layers;
+  BoatOptions boats;
 };
 
 int runRender(const RenderArgs& a) {
@@ -60,14 +62,24 @@ int runRender(const RenderArgs& a) {
     std::fprintf(stderr, "geocean render: %s\n", e.what());
     return kExitNoDisplay;
   }
+  std::shared_ptr<host::PluginOceanLayer> ocean;
   if (!a.noOcean) {
     const std::string err =
-        host::addPluginOcean(*s.renderer, a.waves, a.windMps, a.windFromDeg, nullptr, sources,
+        host::addPluginOcean(*s.renderer, a.waves, a.windMps, a.windFromDeg, &ocean, sources,
                              !a.layers.noDefaultWorld);
     if (!err.empty()) {
       std::fprintf(stderr, "geocean render: %s\n", err.c_str());
       return kExitBadInput;
     }
+  }
+  std::shared_ptr<host::PluginBoats> boats;
+  double targetLat = 0, targetLon = 0;
+  host::viewTarget(pose, targetLat, targetLon);
+  if (const int rc = addBoats("render", a.boats, *s.renderer, ocean, targetLat, targetLon, boats); rc != kExitOk)
+    return rc;
+  if (boats && a.boats.follow > 0) {
+    boats->update(a.timeS);
+    pose = boats->chase(std::size_t(a.boats.follow - 1), pose);
   }
   render::FrameSettings fs;
   fs.timeS = a.timeS;
@@ -97,6 +109,7 @@ const Register reg{{"render", "Render one frame headless to a PNG",
                       sub.add_option("--wind", a->windMps, "wind speed, m/s");
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
                       addLayerOptions(sub, a->layers);
+                      addBoatOptions(sub, a->boats);
                       return [a] { return runRender(*a); };
                     }}};
 

@@ -3,6 +3,7 @@
 // says so and points to the headless commands (exit code 4). --frames N
 // runs a scripted number of frames and exits (tests under Xvfb, memory).
 #include "globe/app/Command.h"
+#include "globe/app/BoatOptions.h"
 #include "globe/app/LayerOptions.h"
 #include "globe/host/OceanLayer.h"
 #include "globe/render/CliParse.h"
@@ -40,6 +41,7 @@ struct ViewArgs {
   std::string statsCsv;    // per-frame CSV (position, sea, fps, resident memory)
   bool noHud = false;
   LayerOptions layers;
+  BoatOptions boats;
 };
 
 // Height of the drawn sea surface above the ellipsoid exactly under the
@@ -208,6 +210,19 @@ int runView(const ViewArgs& a) {
       rc = kExitBadInput;
       glfwSetWindowShouldClose(win, GLFW_TRUE);  // leave through the normal cleanup, context still current
     }
+    // Boats around the --fly-to point (else under the first view); F cycles
+    // the boat the camera chases (none, 1, .., N).
+    std::shared_ptr<host::PluginBoats> boats;
+    int follow = a.boats.follow;
+    bool fKeyWasDown = false;
+    if (rc == kExitOk) {
+      double tLat = plan.toLatDeg, tLon = plan.toLonDeg;
+      if (!flying) host::viewTarget(c.pose, tLat, tLon);
+      if (const int brc = addBoats("view", a.boats, renderer, ocean, tLat, tLon, boats); brc != kExitOk) {
+        rc = brc;
+        glfwSetWindowShouldClose(win, GLFW_TRUE);
+      }
+    }
     std::unique_ptr<gl::Hud> hud;
     if (!a.noHud) {
       std::string hudErr;
@@ -250,6 +265,9 @@ int runView(const ViewArgs& a) {
       const bool hKey = key(GLFW_KEY_H);
       if (hKey && !hKeyWasDown) showHud = !showHud;  // H toggles the HUD
       hKeyWasDown = hKey;
+      const bool fKey = key(GLFW_KEY_F);
+      if (fKey && !fKeyWasDown && boats) follow = (follow + 1) % (int(boats->count()) + 1);
+      fKeyWasDown = fKey;
       if (flying) {
         if (a.frames > 0)  // loops every flightFrames frames (--flight-frames)
           flightS = flightFrames > 1 ? double(frame % flightFrames) / double(flightFrames - 1) : 1.0;
@@ -261,6 +279,11 @@ int runView(const ViewArgs& a) {
       glfwGetFramebufferSize(win, &w, &h);
       if (w <= 0 || h <= 0) continue;
       c.pose.width = w, c.pose.height = h;
+      if (boats && follow > 0) {  // the chase camera; the controller takes over where it leaves off
+        boats->update(simT);
+        c.pose = boats->chase(std::size_t(follow - 1), c.pose);
+        flying = false;
+      }
       if (!fb || fb->width() != w || fb->height() != h) fb = std::make_unique<gl::Framebuffer>(w, h);
       fb->bind();
       render::FrameSettings fs;
@@ -334,6 +357,7 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                                      "from the system, kB; terrain tiles drawn, tiles made so far)");
                       sub.add_flag("--no-hud", a->noHud, "no HUD panel (H toggles it in the window)");
                       addLayerOptions(sub, a->layers);
+                      addBoatOptions(sub, a->boats);
                       return [a] { return runView(*a); };
                     }}};
 

@@ -115,6 +115,21 @@ std::unique_ptr<OceanPlugin> OceanPlugin::load(const std::string& path, std::str
                       resolve(handle, "geocean_layer_count", a.layerCount, file, error);
     if (!ok13) return nullptr;
   }
+  // ABI 1.4 floating bodies: present in every plugin of minor >= 4.
+  if ((p->pluginAbi_ & 0xffffu) >= 4) {
+    const bool ok14 = resolve(handle, "geocean_bodies_config_init", a.bodiesConfigInit, file, error) &&
+                      resolve(handle, "geocean_body_desc_init", a.bodyDescInit, file, error) &&
+                      resolve(handle, "geocean_bodies_create", a.bodiesCreate, file, error) &&
+                      resolve(handle, "geocean_bodies_destroy", a.bodiesDestroy, file, error) &&
+                      resolve(handle, "geocean_bodies_add", a.bodiesAdd, file, error) &&
+                      resolve(handle, "geocean_bodies_remove", a.bodiesRemove, file, error) &&
+                      resolve(handle, "geocean_bodies_count", a.bodiesCount, file, error) &&
+                      resolve(handle, "geocean_bodies_advance_to", a.bodiesAdvanceTo, file, error) &&
+                      resolve(handle, "geocean_bodies_time", a.bodiesTime, file, error) &&
+                      resolve(handle, "geocean_bodies_get_poses", a.bodiesGetPoses, file, error) &&
+                      resolve(handle, "geocean_bodies_get_hull", a.bodiesGetHull, file, error);
+    if (!ok14) return nullptr;
+  }
   return p;
 }
 

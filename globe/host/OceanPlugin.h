@@ -76,6 +76,19 @@ struct OceanApi {
   geocean_status (*removeLayer)(geocean_ocean*, const char*, size_t*) = nullptr;
   geocean_status (*clearLayers)(geocean_ocean*) = nullptr;
   geocean_status (*layerCount)(const geocean_ocean*, size_t*) = nullptr;
+  // ABI 1.4, floating bodies (NULL when the plugin's minor is below 4).
+  geocean_status (*bodiesConfigInit)(geocean_bodies_config*) = nullptr;
+  geocean_status (*bodyDescInit)(geocean_body_desc*) = nullptr;
+  geocean_status (*bodiesCreate)(geocean_ocean*, const geocean_bodies_config*, geocean_bodies**) = nullptr;
+  void (*bodiesDestroy)(geocean_bodies*) = nullptr;
+  geocean_status (*bodiesAdd)(geocean_bodies*, const geocean_body_desc*, geocean_body_id*) = nullptr;
+  geocean_status (*bodiesRemove)(geocean_bodies*, geocean_body_id) = nullptr;
+  geocean_status (*bodiesCount)(const geocean_bodies*, size_t*) = nullptr;
+  geocean_status (*bodiesAdvanceTo)(geocean_bodies*, double, int64_t*) = nullptr;
+  geocean_status (*bodiesTime)(const geocean_bodies*, double*) = nullptr;
+  geocean_status (*bodiesGetPoses)(const geocean_bodies*, int32_t, geocean_body_pose*, size_t, size_t*) = nullptr;
+  geocean_status (*bodiesGetHull)(const geocean_bodies*, geocean_body_id, double*, size_t, uint32_t*, size_t, size_t*,
+                                  size_t*) = nullptr;
 };
 
 class OceanPlugin {

@@ -91,6 +91,7 @@ void GlobeRenderer::drawScene(const camera::Camera& cam, const camera::Lighting&
   glDisable(GL_CULL_FACE);
   t.terrain = mirroredFrom ? terrain_.drawMirrored(cam, *mirroredFrom, light)
                            : terrain_.draw(cam, light, settings.bare, sea, waterLayer);
+  for (const auto& o : objects_) o->draw(cam, light, settings.bare, mirroredFrom);
   if (settings.timed) glFinish();
   t.terrainMs += msSince(ts);
   t.terrainCpuMs += cpuMs() - cs;
@@ -135,6 +136,7 @@ FrameTimes GlobeRenderer::render(const camera::ViewPose& pose, const FrameSettin
   const double c0 = cpuMs();
   const camera::Camera cam = camera(pose);
   const camera::Lighting light{glm::normalize(settings.sunEcef), settings.timeS};
+  for (const auto& o : objects_) o->update(settings.timeS);
 
   // The terrain shades water as distant sea where the wave grid does not
   // draw (cells it skips as land can hold lakes and coast); open water that

@@ -7,6 +7,7 @@
 #include "globe/gl/Framebuffer.h"
 #include "globe/gl/GlProgram.h"
 #include "globe/render/Layer.h"
+#include "globe/render/SceneObject.h"
 #include "globe/render/Terrain.h"
 #include "globe/camera/Camera.h"
 #include "globe/render/WorldTextures.h"
@@ -39,6 +40,8 @@ class GlobeRenderer {
   GlobeRenderer(const GlobeRenderer&) = delete;
   GlobeRenderer& operator=(const GlobeRenderer&) = delete;
   void addLayer(std::shared_ptr<Layer> layer) { layers_.push_back(std::move(layer)); }
+  // Drawn after the terrain in the main and the mirrored pass (SceneObject.h).
+  void addSceneObject(std::shared_ptr<SceneObject> object) { objects_.push_back(std::move(object)); }
 
   // Height of the eye above the terrain or sea under it (for the near plane).
   double altitudeAboveSurfaceM(const camera::ViewPose& pose) const;
@@ -69,6 +72,7 @@ class GlobeRenderer {
   // The layers' inputs (made on first need, per size).
   gl::TextureTarget sceneCopy_, reflection_;
   std::vector<std::shared_ptr<Layer>> layers_;
+  std::vector<std::shared_ptr<SceneObject>> objects_;
 };
 
 }  // namespace geocean::render

@@ -1,6 +1,7 @@
 #include "plugin/bodies/OceanSea.h"
 
 #include <cmath>
+#include <string>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
@@ -48,6 +49,36 @@ void OceanSea::sample(const double* latDeg, const double* lonDeg, const double* 
       out[i].horizontalVelocityEnMps = {0.0, 0.0};
     }
   }
+}
+
+}  // namespace geocean::bodies
+
+namespace geocean::bodies {
+
+std::shared_ptr<HeightField> terrainPatch(const ocean::Snapshot& snap, const geo::Geodetic& southWest, int n,
+                                          double spacingM) {
+  if (!snap.landSea && !snap.elevation)
+    throw std::invalid_argument("geocean::bodies: terrainPatch: the snapshot has no elevation");
+  if (n < 2 || !(spacingM > 0.0)) throw std::invalid_argument("geocean::bodies: terrainPatch: n < 2 or spacing <= 0");
+  const geo::EnuFrame f = geo::enuFrame(geo::Geodetic{southWest.latDeg, southWest.lonDeg, 0.0});
+  const std::size_t m = std::size_t(n) * std::size_t(n);
+  std::vector<double> lat(m), lon(m);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const geo::Geodetic g = geo::fromEcef(f.originEcef + f.toEcef(glm::dvec3(i * spacingM, j * spacingM, 0.0)));
+      lat[std::size_t(j) * n + i] = g.latDeg, lon[std::size_t(j) * n + i] = g.lonDeg;
+    }
+  std::vector<float> z(m);
+  snap.elevationAt(lat.data(), lon.data(), m, z.data());
+  std::vector<double> h(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    if (!std::isfinite(z[k]))
+      throw std::invalid_argument("geocean::bodies: terrainPatch: no elevation at " + std::to_string(lat[k]) + ", " +
+                                  std::to_string(lon[k]));
+    h[k] = f.toLocal(geo::toEcef(geo::Geodetic{lat[k], lon[k], double(z[k])}) - f.originEcef).z;
+  }
+  return std::make_shared<HeightField>(geo::Geodetic{southWest.latDeg, southWest.lonDeg, 0.0}, n, n, spacingM,
+                                       std::move(h));
 }
 
 }  // namespace geocean::bodies

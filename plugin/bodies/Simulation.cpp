@@ -6,7 +6,11 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <exception>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -107,11 +111,32 @@ std::int64_t Simulation::advanceTo(double tS) {
 }
 
 void Simulation::step() {
-  // Phase 1: every force from the states at the step's start.
+  const std::size_t n = bodies_.size();
   std::vector<StepContext>& ctx = contexts_;
-  ctx.resize(bodies_.size());
-  wrenches_.assign(bodies_.size(), Wrench{});
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+  ctx.resize(n);
+  wrenches_.assign(n, Wrench{});
+  // Runs f(i) for every body, on TBB's threads when config_.parallel; the
+  // failure of the lowest index is rethrown, so both ways fail alike.
+  auto forEachBody = [&](auto&& f) {
+    if (!config_.parallel || n < 2) {
+      for (std::size_t i = 0; i < n; ++i) f(i);
+      return;
+    }
+    std::vector<std::exception_ptr> errors(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        try {
+          f(i);
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+      }
+    });
+    for (const auto& e : errors)
+      if (e) std::rethrow_exception(e);
+  };
+  // Phase 1: every force from the states at the step's start.
+  forEachBody([&](std::size_t i) {
     const Body& b = bodies_[i];
     ctx[i] = context(b.state);
     for (const auto& m : globalForces_) m->accumulate(b, ctx[i], wrenches_[i]);
@@ -127,12 +152,12 @@ void Simulation::step() {
         fail("added inertia on body " + std::to_string(b.id) + " axis " + std::to_string(k), ai[k], "kg m^2",
              "must be finite and >= 0");
     }
-  }
-  // Phase 2: integrate.
-  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+  });
+  // Phase 2: integrate (each body its own state).
+  forEachBody([&](std::size_t i) {
     integrate(bodies_[i], ctx[i], wrenches_[i]);
     for (const auto& c : bodies_[i].constraints) c->afterStep(bodies_[i], bodies_[i].previous);
-  }
+  });
   ++steps_;
 }
 

@@ -78,10 +78,15 @@ struct SimulationConfig {
   // ECEF rotates with the Earth: the Coriolis acceleration -2 Omega x v.
   // Off by default (3 mm/s^2 at 20 m/s; heading drift a game would not expect).
   bool coriolis = false;
+  // Each step's force and integration phases run over the bodies on TBB's
+  // threads (force models are const and thread-safe, a body's phase touches
+  // only its own state and wrench); the results are the same bits as
+  // sequentially, and a failure reports the lowest-id failing body either way.
+  bool parallel = true;
 };
 
-// Not thread-safe: one thread steps a Simulation (issue 14 may run the
-// per-body phases on TBB; each phase only reads other bodies' states).
+// Not thread-safe: one thread calls a Simulation at a time; inside a step
+// the per-body phases run on TBB (SimulationConfig::parallel).
 class Simulation {
  public:
   explicit Simulation(SimulationConfig config = {});

@@ -116,10 +116,21 @@ double HeightField::heightAt(double x, double y) const {
   return fx >= fy ? h00 + fx * (h10 - h00) + fy * (h11 - h10) : h00 + fy * (h01 - h00) + fx * (h11 - h01);
 }
 
-TerrainContact::TerrainContact(std::shared_ptr<const HeightField> terrain, std::vector<glm::dvec3> points)
-    : terrain_(std::move(terrain)), points_(std::move(points)) {
+TerrainContact::TerrainContact(std::shared_ptr<const HeightField> terrain, std::vector<glm::dvec3> points,
+                               double frictionCoefficient)
+    : terrain_(std::move(terrain)), points_(std::move(points)), mu_(frictionCoefficient) {
   if (!terrain_) throw std::invalid_argument("geocean::bodies: TerrainContact terrain is null");
+  if (!(mu_ >= 0.0) || !std::isfinite(mu_)) fail("terrain contact friction coefficient", mu_, "", "must be finite and >= 0");
   if (points_.empty()) fail("terrain contact point count", 0.0, "", "must be > 0");
+}
+
+// Coulomb: the tangential velocity loses up to mu times the normal velocity removed.
+void TerrainContact::friction(glm::dvec3& v, const glm::dvec3& n, double removedNormal) const {
+  if (mu_ <= 0.0) return;
+  const glm::dvec3 vt = v - glm::dot(v, n) * n;
+  const double speed = glm::length(vt);
+  if (speed <= 0.0) return;
+  v -= vt * (std::min(speed, mu_ * removedNormal) / speed);
 }
 
 void TerrainContact::afterStep(Body& body, const BodyState& before) const {
@@ -136,7 +147,10 @@ void TerrainContact::afterStep(Body& body, const BodyState& before) const {
     s.positionEcef = before.positionEcef + first->t * (s.positionEcef - before.positionEcef);
     const glm::dvec3 n = T.frame().toEcef(first->normalEnu);
     const double vn = glm::dot(s.velocityEcef, n);
-    if (vn < 0.0) s.velocityEcef -= vn * n;
+    if (vn < 0.0) {
+      s.velocityEcef -= vn * n;
+      friction(s.velocityEcef, n, -vn);
+    }
   }
   // Static pass: lift by the deepest point (vertical lifts keep every point's
   // ground position, so after it none is below the surface).
@@ -149,7 +163,10 @@ void TerrainContact::afterStep(Body& body, const BodyState& before) const {
   if (deepest > 0.0) {
     s.positionEcef += (deepest + 1e-9) * T.frame().up;
     const double vu = glm::dot(s.velocityEcef, T.frame().up);
-    if (vu < 0.0) s.velocityEcef -= vu * T.frame().up;
+    if (vu < 0.0) {
+      s.velocityEcef -= vu * T.frame().up;
+      friction(s.velocityEcef, T.frame().up, -vu);
+    }
   }
 }
 

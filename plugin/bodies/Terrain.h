@@ -64,14 +64,24 @@ class HeightField {
 // Then every point still below the surface (a rotation can sink another one)
 // lifts the body by its depth. Nothing tunnels: a point that ends below the
 // surface crossed it along its sweep.
+//
+// frictionCoefficient mu > 0 adds Coulomb friction at the centre of mass:
+// the velocity along the ground loses up to mu times the velocity the
+// contact removed into it (the impulse bound |J_t| <= mu |J_n|), so a body
+// resting on a slope, or pushed along the ground with less than mu times
+// its weight on it, stops. Wet sand on a hull: about 0.5 (Engineering
+// ToolBox tables, wood or steel on wet sand 0.4-0.6). 0: none (the default).
 class TerrainContact final : public StepConstraint {
  public:
-  TerrainContact(std::shared_ptr<const HeightField> terrain, std::vector<glm::dvec3> contactPointsBody);
+  TerrainContact(std::shared_ptr<const HeightField> terrain, std::vector<glm::dvec3> contactPointsBody,
+                 double frictionCoefficient = 0.0);
   void afterStep(Body& body, const BodyState& before) const override;
 
  private:
   std::shared_ptr<const HeightField> terrain_;
+  void friction(glm::dvec3& velocityEcef, const glm::dvec3& normalEcef, double removedNormalMps) const;
   std::vector<glm::dvec3> points_;
+  double mu_ = 0.0;
 };
 
 }  // namespace geocean::bodies

@@ -8,8 +8,10 @@
 #include "plugin/bodies/Simulation.h"
 
 #include <glm/gtc/quaternion.hpp>
+#include <tbb/global_control.h>
 
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <memory>
 #include <thread>
@@ -19,6 +21,16 @@ using namespace geocean;
 using namespace geocean::bodies;
 
 namespace {
+
+double cpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+// Body-steps per second of process CPU time (all threads) of the last
+// bodyStepsPerSecond: unlike wall time it does not drop when other
+// processes share the cores.
+double gCpuRate = 0.0;
 
 std::shared_ptr<const SeaSurface> makeSea(const char* model) {
   if (std::string(model) == "none") return std::make_shared<FlatSea>();
@@ -32,9 +44,9 @@ std::shared_ptr<const SeaSurface> makeSea(const char* model) {
 
 // n bodies on a grid 60 m apart around (30, -40), stepped `steps` times at 60 Hz.
 double bodyStepsPerSecond(const HullMesh& hull, bool points, std::shared_ptr<const SeaSurface> sea, int n, int steps,
-                          int threads) {
+                          int threads, bool parallel = false) {
   auto work = [&](int part, double& seconds) {
-    Simulation sim({.stepS = 1.0 / 60});
+    Simulation sim({.stepS = 1.0 / 60, .parallel = parallel});
     auto hf = std::make_shared<HullForce>(std::make_shared<HullMesh>(hull), sea);
     const glm::dvec3 ext = hull.maxCorner() - hull.minCorner();
     auto cp = ContactPointForce::hollowCylinderProxy(ext.x, 0.5 * ext.y, 4, sea);
@@ -53,9 +65,11 @@ double bodyStepsPerSecond(const HullMesh& hull, bool points, std::shared_ptr<con
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   std::vector<double> secs(threads);
+  const double c0 = cpuSeconds();
   std::vector<std::thread> pool;
   for (int p = 0; p < threads; ++p) pool.emplace_back(work, p, std::ref(secs[p]));
   for (auto& t : pool) t.join();
+  gCpuRate = double(n) * steps / (cpuSeconds() - c0);  // includes the warm-up steps: a small bias, the same for all
   double worst = 0;
   for (double s : secs) worst = std::max(worst, s);
   return double(n) * steps / worst;
@@ -85,7 +99,29 @@ int main() {
   for (int threads : {1, 2}) {
     const double boats = bodyStepsPerSecond(boat, false, gerstner, 200, 120, threads);
     const double pts = bodyStepsPerSecond(boat, true, gerstner, 1000, 60, threads);
-    std::printf("threads %d: 200 boats on gerstner %.0f body-steps/s = %.1f Hz; 1000 contact-point bodies %.0f body-steps/s = %.1f Hz\n",
+    std::printf("threads %d (sequential Simulations side by side): 200 boats on gerstner %.0f body-steps/s = %.1f Hz; 1000 contact-point bodies %.0f body-steps/s = %.1f Hz\n",
                 threads, boats, boats / 200, pts, pts / 1000);
+  }
+  // One Simulation, its per-body phases sequential (the reference) or on
+  // TBB (SimulationConfig::parallel), with TBB limited to 1 and to 2
+  // threads; alternated twice in this run so load from other processes
+  // hits both alike.
+  std::printf("| 200 boats, gerstner, one Simulation | round | body-steps/s (wall) | Hz (wall) | wall ratio | body-steps per CPU-s | CPU ratio |\n|---|---|---|---|---|---|---|\n");
+  for (int round = 1; round <= 2; ++round) {
+    const double seq = bodyStepsPerSecond(boat, false, gerstner, 200, 120, 1, false), seqCpu = gCpuRate;
+    std::printf("| sequential | %d | %.0f | %.1f | 1.00 | %.0f | 1.00 |\n", round, seq, seq / 200, seqCpu);
+    for (int tt : {1, 2}) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, tt);
+      const double par = bodyStepsPerSecond(boat, false, gerstner, 200, 120, 1, true), parCpu = gCpuRate;
+      std::printf("| TBB, %d thread%s | %d | %.0f | %.1f | %.2f | %.0f | %.2f |\n", tt, tt > 1 ? "s" : "", round, par,
+                  par / 200, par / seq, parCpu, parCpu / seqCpu);
+    }
+  }
+  for (int tt : {1, 2}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, tt);
+    const double seq = bodyStepsPerSecond(boat, true, gerstner, 1000, 60, 1, false);
+    const double par = bodyStepsPerSecond(boat, true, gerstner, 1000, 60, 1, true);
+    std::printf("1000 contact-point bodies, TBB %d thread(s): sequential %.0f, TBB %.0f body-steps/s (%.1f Hz), ratio %.2f\n",
+                tt, seq, par, par / 1000, par / seq);
   }
 }

@@ -22,6 +22,11 @@
  *     or geocean_destroy; queries and setters may run on other threads
  *     meanwhile. GL resources belong to the context current at the first
  *     draw.
+ *   - Floating bodies (ABI 1.4): a geocean_bodies simulation belongs to one
+ *     ocean; its calls may run on any thread, concurrently with that
+ *     ocean's queries, setters and drawing (a step reads the sea state of
+ *     one snapshot). Calls on one geocean_bodies are serialised inside
+ *     (poses are read before or after a step, never within one).
  *
  * Full reference: docs/PLUGIN_ABI.md. */
 #ifndef GEOCEAN_OCEAN_H
@@ -44,7 +49,7 @@ extern "C" {
  * A host built against MAJOR.MINOR runs with a plugin of the same MAJOR and
  * a MINOR at least as high. */
 #define GEOCEAN_ABI_VERSION_MAJOR 1
-#define GEOCEAN_ABI_VERSION_MINOR 3
+#define GEOCEAN_ABI_VERSION_MINOR 4
 #define GEOCEAN_ABI_VERSION ((uint32_t)((GEOCEAN_ABI_VERSION_MAJOR << 16) | GEOCEAN_ABI_VERSION_MINOR))
 
 /* Enums that cross the boundary as values have int32_t as their C++
@@ -434,6 +439,110 @@ typedef struct geocean_layer_inputs {
  * NULL_ARGUMENT, INVALID_ARGUMENT (struct_size, a name that is not a
  * texture of the current context, a bad reflection_view), NO_GL_CONTEXT. */
 GEOCEAN_API geocean_status geocean_set_layer_inputs(geocean_ocean* ocean, const geocean_layer_inputs* inputs);
+
+/* ---- Floating bodies (ABI 1.4) -----------------------------------------
+ * Rigid bodies on WGS84 that float on this ocean's sea (plugin/bodies: the
+ * hull clipped against the surface geocean_query_sea_surface gives and
+ * geocean_draw draws), stepped at a fixed step: the state at time t is the
+ * same whatever times the host advanced through. Thread rules: every
+ * function may be called from any thread, also while the ocean's queries,
+ * setters, geocean_update or geocean_draw run on other threads; calls on
+ * one geocean_bodies are serialised by a lock inside (a pose read waits for
+ * a step to end). geocean_bodies_destroy must not overlap another call on
+ * the same bodies, and the bodies must be destroyed before their ocean. */
+typedef struct geocean_bodies geocean_bodies; /* opaque */
+typedef uint64_t geocean_body_id;             /* 1, 2, ...; never reused by one geocean_bodies */
+
+typedef enum geocean_hull GEOCEAN_ENUM_INT32 {
+  GEOCEAN_HULL_BOX = 0,      /* size_m: length (x, bow), beam (y), height (z) */
+  GEOCEAN_HULL_CYLINDER = 1, /* vertical axis; size_m: radius, height (third unused) */
+  GEOCEAN_HULL_BOAT = 2      /* 242-triangle displacement hull; size_m[0]: length (beam L/3.5, depth L/8) */
+} geocean_hull;
+
+/* A simulation's settings. Fill with geocean_bodies_config_init() first. */
+typedef struct geocean_bodies_config {
+  uint32_t struct_size;       /* sizeof(geocean_bodies_config), set by the init */
+  double step_s;              /* fixed step, s: > 0, <= 0.5 (default 1/60) */
+  double start_s;             /* simulation time of the initial states, s (default 0) */
+  double water_density_kg_m3; /* default 1025 */
+} geocean_bodies_config;
+
+/* A body to add. Fill with geocean_body_desc_init() first. The body starts
+ * upright at rest, floating at its still-water draft (centre of mass at
+ * -resting waterline above the ellipsoid), bow towards heading_deg. */
+typedef struct geocean_body_desc {
+  uint32_t struct_size;  /* sizeof(geocean_body_desc), set by the init */
+  int32_t hull;          /* a geocean_hull (default BOAT) */
+  double size_m[3];      /* see geocean_hull (default boat of 20 m) */
+  double density_kg_m3;  /* of the homogeneous solid hull: > 0, below the water density (default 500) */
+  double lat_deg, lon_deg;
+  double heading_deg;    /* bow, clockwise from north (default 0) */
+  double thrust_n;       /* engine force along the bow, N (default 0) */
+} geocean_body_desc;
+
+/* One body's state. Orientation rotates body vectors (x bow, y port, z up)
+ * into ECEF: v_ecef = q v_body q*, q = (w, x, y, z). */
+typedef struct geocean_body_pose {
+  geocean_body_id id;
+  double position_ecef_m[3];    /* centre of mass */
+  double orientation_wxyz[4];   /* unit quaternion, body -> ECEF */
+  double velocity_ecef_mps[3];
+  double angular_velocity_body_rps[3];
+  double lat_deg, lon_deg, height_m; /* centre of mass, geodetic on WGS84 */
+} geocean_body_pose;
+
+/* ABI 1.4: fills *config with the defaults. Errors: NULL_ARGUMENT. Thread-safe. */
+GEOCEAN_API geocean_status geocean_bodies_config_init(geocean_bodies_config* config);
+/* ABI 1.4: fills *desc with the defaults. Errors: NULL_ARGUMENT. Thread-safe. */
+GEOCEAN_API geocean_status geocean_body_desc_init(geocean_body_desc* desc);
+/* ABI 1.4: an empty simulation on `ocean`'s sea (config NULL: the
+ * defaults). Each step reads the ocean's current sea state and rasters;
+ * without a sea state the sea is flat at 0 m. Errors: NULL_ARGUMENT (ocean,
+ * out), INVALID_ARGUMENT (struct_size, a field: the message names it). */
+GEOCEAN_API geocean_status geocean_bodies_create(geocean_ocean* ocean, const geocean_bodies_config* config,
+                                                 geocean_bodies** out);
+/* ABI 1.4: NULL is allowed and ignored. */
+GEOCEAN_API void geocean_bodies_destroy(geocean_bodies* bodies);
+/* ABI 1.4: adds a body at the simulation's current time; *out_id (may be
+ * NULL) gets its id. Errors: NULL_ARGUMENT (bodies, desc), INVALID_ARGUMENT
+ * (struct_size, hull, a size not finite or not > 0, density not in
+ * (0, water density), latitude or longitude out of range, a value not
+ * finite, a point on land or a lake: no sea to float on; the message names
+ * the field and the value). */
+GEOCEAN_API geocean_status geocean_bodies_add(geocean_bodies* bodies, const geocean_body_desc* desc,
+                                              geocean_body_id* out_id);
+/* ABI 1.4: removes a body. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (no body
+ * of that id: "no such body"). */
+GEOCEAN_API geocean_status geocean_bodies_remove(geocean_bodies* bodies, geocean_body_id id);
+/* ABI 1.4: how many bodies there are. Errors: NULL_ARGUMENT. */
+GEOCEAN_API geocean_status geocean_bodies_count(const geocean_bodies* bodies, size_t* out_count);
+/* ABI 1.4: runs every whole step ending at or before time_s; *out_steps
+ * (may be NULL) gets how many. The remainder is kept for the interpolated
+ * poses. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (time_s not finite or
+ * before the simulation time; a force that is not finite: the bodies stay
+ * as they were before that step). */
+GEOCEAN_API geocean_status geocean_bodies_advance_to(geocean_bodies* bodies, double time_s, int64_t* out_steps);
+/* ABI 1.4: the time of the last whole step, s. Errors: NULL_ARGUMENT. */
+GEOCEAN_API geocean_status geocean_bodies_time(const geocean_bodies* bodies, double* out_time_s);
+/* ABI 1.4: the poses of every body in the order of their ids. capacity:
+ * entries of out; *out_count gets the number of bodies (call with capacity
+ * 0 and out NULL to ask). interpolate: 0 the state at geocean_bodies_time;
+ * non-zero, for drawing, the pose between the last two steps at the time
+ * last given to geocean_bodies_advance_to (velocities are the last step's).
+ * Errors: NULL_ARGUMENT (bodies, out_count; out with capacity > 0),
+ * INVALID_ARGUMENT (capacity below the count: nothing is written). */
+GEOCEAN_API geocean_status geocean_bodies_get_poses(const geocean_bodies* bodies, int32_t interpolate,
+                                                    geocean_body_pose* out, size_t capacity, size_t* out_count);
+/* ABI 1.4: the hull of body `id` as a closed triangle mesh in body axes
+ * about the centre of mass (metres, outward counter-clockwise winding), to
+ * draw it: vertex_capacity x 3 doubles and index_capacity uint32 indices.
+ * *out_vertex_count and *out_index_count get the sizes (pass capacities 0
+ * and NULL arrays to ask). Errors: NULL_ARGUMENT, INVALID_ARGUMENT (no
+ * such body, a capacity below the size: nothing is written). */
+GEOCEAN_API geocean_status geocean_bodies_get_hull(const geocean_bodies* bodies, geocean_body_id id,
+                                                   double* vertices_xyz_m, size_t vertex_capacity,
+                                                   uint32_t* indices, size_t index_capacity,
+                                                   size_t* out_vertex_count, size_t* out_index_count);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,300 @@
+// The C ABI of floating bodies (ABI 1.4) over plugin/bodies: a Simulation
+// whose hulls float on the ocean's current snapshot (bodies::OceanSea, the
+// surface the queries give and the draw draws). Each entry point checks its
+// C arguments and runs inside guard() (CapiSupport.h); one mutex per
+// geocean_bodies serialises its calls, so poses are read between steps.
+#include "geocean/geocean_ocean.h"
+#include "plugin/bodies/Hull.h"
+#include "plugin/bodies/Hydro.h"
+#include "plugin/bodies/OceanSea.h"
+#include "plugin/bodies/Simulation.h"
+#include "plugin/bodies/Spawn.h"
+#include "plugin/capi/CapiSupport.h"
+
+#include <algorithm>
+#include <cmath>
+#include <charconv>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+using namespace geocean::capi;
+namespace bodies = geocean::bodies;
+
+namespace {
+
+// The ocean's sea as it is at each step: advance_to swaps in the current
+// snapshot (a new sea state or new rasters) before it steps, so the hull
+// forces always read one consistent snapshot per step.
+class LiveSea final : public bodies::SeaSurface {
+ public:
+  void refresh(std::shared_ptr<const Snapshot> s) {
+    if (s == snap_) return;
+    snap_ = std::move(s);
+    sea_ = std::make_shared<bodies::OceanSea>(snap_);
+  }
+  void sample(const double* latDeg, const double* lonDeg, const double* tS, std::size_t n, bool velocities,
+              bodies::SeaSample* out) const override {
+    sea_->sample(latDeg, lonDeg, tS, n, velocities, out);
+  }
+  double decayWaveNumberPerM() const override { return sea_->decayWaveNumberPerM(); }
+  const Snapshot& snapshot() const { return *snap_; }
+
+ private:
+  std::shared_ptr<const Snapshot> snap_;
+  std::shared_ptr<const bodies::OceanSea> sea_;
+};
+
+// Shortest round-trip form: the value the host passed, as it wrote it.
+std::string num(double v) {
+  char b[40];
+  const auto r = std::to_chars(b, b + sizeof b, v);
+  return std::string(b, r.ptr);
+}
+
+void requireFiniteField(double v, const char* name, const char* unit) {
+  if (!std::isfinite(v)) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, std::string(name) + " " + num(v) + " " + unit + " is not finite");
+}
+
+bodies::HullMesh hullOf(const geocean_body_desc& d) {
+  const char* names[3] = {"desc->size_m[0]", "desc->size_m[1]", "desc->size_m[2]"};
+  auto need = [&](int n) {
+    for (int i = 0; i < n; ++i)
+      if (!(d.size_m[i] > 0.0) || !std::isfinite(d.size_m[i]))
+        fail(GEOCEAN_ERROR_INVALID_ARGUMENT, std::string(names[i]) + " " + num(d.size_m[i]) + " m is not finite and > 0");
+  };
+  switch (d.hull) {
+    case GEOCEAN_HULL_BOX: need(3); return bodies::HullMesh::box({d.size_m[0], d.size_m[1], d.size_m[2]});
+    case GEOCEAN_HULL_CYLINDER: need(2); return bodies::HullMesh::cylinder(d.size_m[0], d.size_m[1]);
+    case GEOCEAN_HULL_BOAT: need(1); return bodies::HullMesh::boat(d.size_m[0]);
+  }
+  fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "desc->hull " + std::to_string(d.hull) + " is not a geocean_hull");
+}
+
+}  // namespace
+
+struct geocean_bodies {
+  geocean_ocean* ocean = nullptr;
+  double waterDensity = 1025.0;
+  mutable std::mutex mutex;  // every call on this handle
+  std::shared_ptr<LiveSea> sea = std::make_shared<LiveSea>();
+  bodies::Simulation sim;
+  std::map<bodies::BodyId, std::shared_ptr<const bodies::HullMesh>> hulls;
+
+  geocean_bodies(geocean_ocean* o, const bodies::SimulationConfig& c, double rhoW)
+      : ocean(o), waterDensity(rhoW), sim(c) {
+    sea->refresh(o->current());
+  }
+};
+
+namespace {
+
+geocean_body_pose poseOf(bodies::BodyId id, const bodies::BodyState& s) {
+  geocean_body_pose p{};
+  p.id = id;
+  for (int k = 0; k < 3; ++k) {
+    p.position_ecef_m[k] = s.positionEcef[k];
+    p.velocity_ecef_mps[k] = s.velocityEcef[k];
+    p.angular_velocity_body_rps[k] = s.angularVelocityBody[k];
+  }
+  p.orientation_wxyz[0] = s.orientation.w;
+  p.orientation_wxyz[1] = s.orientation.x;
+  p.orientation_wxyz[2] = s.orientation.y;
+  p.orientation_wxyz[3] = s.orientation.z;
+  const geocean::geo::Geodetic g = geocean::geo::fromEcef(s.positionEcef);
+  p.lat_deg = g.latDeg;
+  p.lon_deg = g.lonDeg;
+  p.height_m = g.heightM;
+  return p;
+}
+
+}  // namespace
+
+extern "C" {
+
+GEOCEAN_API geocean_status geocean_bodies_config_init(geocean_bodies_config* config) {
+  return guard("geocean_bodies_config_init", [&] {
+    requireNonNull(config, "config");
+    *config = geocean_bodies_config{};
+    config->struct_size = sizeof(geocean_bodies_config);
+    config->step_s = 1.0 / 60.0;
+    config->start_s = 0.0;
+    config->water_density_kg_m3 = 1025.0;
+  });
+}
+
+GEOCEAN_API geocean_status geocean_body_desc_init(geocean_body_desc* desc) {
+  return guard("geocean_body_desc_init", [&] {
+    requireNonNull(desc, "desc");
+    *desc = geocean_body_desc{};
+    desc->struct_size = sizeof(geocean_body_desc);
+    desc->hull = GEOCEAN_HULL_BOAT;
+    desc->size_m[0] = 20.0;
+    desc->density_kg_m3 = 500.0;
+  });
+}
+
+GEOCEAN_API geocean_status geocean_bodies_create(geocean_ocean* ocean, const geocean_bodies_config* config,
+                                                 geocean_bodies** out) {
+  return guard("geocean_bodies_create", [&] {
+    requireNonNull(out, "out");
+    *out = nullptr;
+    requireNonNull(ocean, "ocean");
+    geocean_bodies_config c{};
+    geocean_bodies_config_init(&c);
+    if (config) {
+      requireStructSize(config, "config", "geocean_bodies_config_init");
+      c = *config;
+    }
+    if (!(c.step_s > 0.0 && c.step_s <= 0.5))
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "config->step_s " + num(c.step_s) + " s is not in (0, 0.5]");
+    requireFiniteField(c.start_s, "config->start_s", "s");
+    if (!(c.water_density_kg_m3 > 0.0) || !std::isfinite(c.water_density_kg_m3))
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
+           "config->water_density_kg_m3 " + num(c.water_density_kg_m3) + " kg/m^3 is not finite and > 0");
+    *out = new geocean_bodies(ocean, bodies::SimulationConfig{.stepS = c.step_s, .startS = c.start_s},
+                              c.water_density_kg_m3);
+  });
+}
+
+GEOCEAN_API void geocean_bodies_destroy(geocean_bodies* b) {
+  guard("geocean_bodies_destroy", [&] { delete b; });
+}
+
+GEOCEAN_API geocean_status geocean_bodies_add(geocean_bodies* b, const geocean_body_desc* desc,
+                                              geocean_body_id* out_id) {
+  return guard("geocean_bodies_add", [&] {
+    requireNonNull(b, "bodies");
+    requireNonNull(desc, "desc");
+    requireStructSize(desc, "desc", "geocean_body_desc_init");
+    const geocean_body_desc d = *desc;
+    requireFiniteField(d.lat_deg, "desc->lat_deg", "deg");
+    requireFiniteField(d.lon_deg, "desc->lon_deg", "deg");
+    if (std::abs(d.lat_deg) > 90.0) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "desc->lat_deg " + num(d.lat_deg) + " is not in [-90, 90]");
+    if (std::abs(d.lon_deg) > 360.0)
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "desc->lon_deg " + num(d.lon_deg) + " is not in [-360, 360]");
+    requireFiniteField(d.heading_deg, "desc->heading_deg", "deg");
+    requireFiniteField(d.thrust_n, "desc->thrust_n", "N");
+    auto hull = std::make_shared<const bodies::HullMesh>(hullOf(d));
+    std::lock_guard lock(b->mutex);
+    if (!(d.density_kg_m3 > 0.0 && d.density_kg_m3 < b->waterDensity))
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "desc->density_kg_m3 " + num(d.density_kg_m3) +
+                                               " kg/m^3 is not in (0, water density " + num(b->waterDensity) + ")");
+    b->sea->refresh(b->ocean->current());
+    const Snapshot& snap = b->sea->snapshot();
+    if (snap.landSea) {
+      geocean::ocean::Surface c;
+      snap.classify(&d.lat_deg, &d.lon_deg, 1, &c);
+      if (c != geocean::ocean::Surface::Ocean)
+        fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "desc->lat_deg, lon_deg " + num(d.lat_deg) + ", " + num(d.lon_deg) +
+                                                 " is " + geocean::ocean::toString(c) + ", not ocean");
+    }
+    bodies::HullForceOptions hopt;
+    hopt.water.densityKgM3 = b->waterDensity;
+    auto force = std::make_shared<bodies::HullForce>(hull, b->sea, hopt);
+    const bodies::BodyState s =
+        bodies::restingUpright(*hull, d.density_kg_m3 / b->waterDensity, d.lat_deg, d.lon_deg, d.heading_deg);
+    const bodies::BodyId id = b->sim.addBody(hull->massProperties(d.density_kg_m3), s);
+    b->sim.addBodyForce(id, force);
+    if (d.thrust_n != 0.0) b->sim.addBodyForce(id, std::make_shared<bodies::Thrust>(d.thrust_n));
+    b->hulls[id] = hull;
+    if (out_id) *out_id = id;
+  });
+}
+
+GEOCEAN_API geocean_status geocean_bodies_remove(geocean_bodies* b, geocean_body_id id) {
+  return guard("geocean_bodies_remove", [&] {
+    requireNonNull(b, "bodies");
+    std::lock_guard lock(b->mutex);
+    if (!b->hulls.count(id)) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "body id " + std::to_string(id) + ": no such body");
+    b->sim.removeBody(id);
+    b->hulls.erase(id);
+  });
+}
+
+GEOCEAN_API geocean_status geocean_bodies_count(const geocean_bodies* b, size_t* out_count) {
+  return guard("geocean_bodies_count", [&] {
+    requireNonNull(b, "bodies");
+    requireNonNull(out_count, "out_count");
+    std::lock_guard lock(b->mutex);
+    *out_count = b->sim.bodies().size();
+  });
+}
+
+GEOCEAN_API geocean_status geocean_bodies_advance_to(geocean_bodies* b, double time_s, int64_t* out_steps) {
+  return guard("geocean_bodies_advance_to", [&] {
+    requireNonNull(b, "bodies");
+    std::lock_guard lock(b->mutex);
+    if (!std::isfinite(time_s)) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "time_s " + num(time_s) + " is not finite");
+    if (time_s < b->sim.time())
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
+           "time_s " + num(time_s) + " is before the simulation time " + num(b->sim.time()));
+    b->sea->refresh(b->ocean->current());
+    const std::int64_t n = b->sim.advanceTo(time_s);
+    if (out_steps) *out_steps = n;
+  });
+}
+
+GEOCEAN_API geocean_status geocean_bodies_time(const geocean_bodies* b, double* out_time_s) {
+  return guard("geocean_bodies_time", [&] {
+    requireNonNull(b, "bodies");
+    requireNonNull(out_time_s, "out_time_s");
+    std::lock_guard lock(b->mutex);
+    *out_time_s = b->sim.time();
+  });
+}
+
+GEOCEAN_API geocean_status geocean_bodies_get_poses(const geocean_bodies* b, int32_t interpolate,
+                                                    geocean_body_pose* out, size_t capacity, size_t* out_count) {
+  return guard("geocean_bodies_get_poses", [&] {
+    requireNonNull(b, "bodies");
+    requireNonNull(out_count, "out_count");
+    if (capacity > 0) requireNonNull(out, "out");
+    std::lock_guard lock(b->mutex);
+    const auto& all = b->sim.bodies();
+    *out_count = all.size();
+    if (capacity == 0 && !out) return;
+    if (capacity < all.size())
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
+           "capacity " + std::to_string(capacity) + " is below the " + std::to_string(all.size()) + " bodies");
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      bodies::BodyState s = interpolate ? b->sim.drawState(all[i].id) : all[i].state;
+      if (interpolate) {
+        s.velocityEcef = all[i].state.velocityEcef;
+        s.angularVelocityBody = all[i].state.angularVelocityBody;
+      }
+      out[i] = poseOf(all[i].id, s);
+    }
+  });
+}
+
+GEOCEAN_API geocean_status geocean_bodies_get_hull(const geocean_bodies* b, geocean_body_id id,
+                                                   double* vertices_xyz_m, size_t vertex_capacity,
+                                                   uint32_t* indices, size_t index_capacity,
+                                                   size_t* out_vertex_count, size_t* out_index_count) {
+  return guard("geocean_bodies_get_hull", [&] {
+    requireNonNull(b, "bodies");
+    requireNonNull(out_vertex_count, "out_vertex_count");
+    requireNonNull(out_index_count, "out_index_count");
+    if (vertex_capacity > 0) requireNonNull(vertices_xyz_m, "vertices_xyz_m");
+    if (index_capacity > 0) requireNonNull(indices, "indices");
+    std::lock_guard lock(b->mutex);
+    const auto it = b->hulls.find(id);
+    if (it == b->hulls.end()) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "body id " + std::to_string(id) + ": no such body");
+    const bodies::HullMesh& h = *it->second;
+    *out_vertex_count = h.vertices().size();
+    *out_index_count = h.indices().size();
+    if (vertex_capacity == 0 && index_capacity == 0 && !vertices_xyz_m && !indices) return;
+    if (vertex_capacity < h.vertices().size() || index_capacity < h.indices().size())
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "capacities " + std::to_string(vertex_capacity) + " vertices, " +
+                                               std::to_string(index_capacity) + " indices are below the hull's " +
+                                               std::to_string(h.vertices().size()) + ", " +
+                                               std::to_string(h.indices().size()));
+    for (std::size_t i = 0; i < h.vertices().size(); ++i)
+      for (int k = 0; k < 3; ++k) vertices_xyz_m[3 * i + k] = h.vertices()[i][k];
+    std::copy(h.indices().begin(), h.indices().end(), indices);
+  });
+}
+
+}  // extern "C"

@@ -1,0 +1,97 @@
+// The per-body phases on TBB (SimulationConfig::parallel) give the same
+// bits as the sequential loop, for hull forces on a Gerstner sea with
+// repulsion between the bodies, and a failing force is reported alike.
+#include "plugin/bodies/Hull.h"
+#include "plugin/bodies/Hydro.h"
+#include "plugin/bodies/OceanSea.h"
+#include "plugin/bodies/Simulation.h"
+#include "plugin/bodies/Spawn.h"
+#include "plugin/ocean/Ocean.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace geocean::bodies {
+namespace {
+
+std::shared_ptr<const SeaSurface> gerstner() {
+  ocean::Ocean o;
+  waves::SeaState s;
+  s.windSpeedMps = 12.0;
+  s.anchorLatDeg = 30.0, s.anchorLonDeg = -40.0;
+  o.setSeaState(waves::Model::Gerstner, s);
+  return std::make_shared<OceanSea>(o.current());
+}
+
+Simulation fleet(bool parallel, const std::shared_ptr<const SeaSurface>& sea) {
+  Simulation sim({.stepS = 1.0 / 60, .parallel = parallel});
+  auto hull = std::make_shared<const HullMesh>(HullMesh::boat(15.0));
+  auto force = std::make_shared<HullForce>(hull, sea);
+  for (int i = 0; i < 24; ++i) {
+    // 12 m apart: close enough that repulsion (radius 8 m) pushes neighbours.
+    const auto id = sim.addBody(hull->massProperties(450.0),
+                                restingUpright(*hull, 450.0 / 1025.0, 30.0 + (i / 6) * 1.1e-4,
+                                               -40.0 + (i % 6) * 1.25e-4, 37.0 * i));
+    sim.addBodyForce(id, force);
+    if (i % 2) sim.addBodyForce(id, std::make_shared<Thrust>(2000.0));
+  }
+  return sim;
+}
+
+TEST(BodyParallel, TbbOverBodiesGivesTheSequentialBits) {
+  const auto sea = gerstner();
+  Simulation a = fleet(false, sea), b = fleet(true, sea);
+  a.addForceModel(std::make_shared<Repulsion>(a, 8.0, 1e5));
+  b.addForceModel(std::make_shared<Repulsion>(b, 8.0, 1e5));
+  a.advanceTo(10.0);
+  b.advanceTo(10.0);
+  ASSERT_EQ(a.bodies().size(), b.bodies().size());
+  for (std::size_t i = 0; i < a.bodies().size(); ++i) {
+    const BodyState &x = a.bodies()[i].state, &y = b.bodies()[i].state;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(x.positionEcef[k], y.positionEcef[k]) << i;
+      EXPECT_EQ(x.velocityEcef[k], y.velocityEcef[k]) << i;
+      EXPECT_EQ(x.angularVelocityBody[k], y.angularVelocityBody[k]) << i;
+    }
+    EXPECT_EQ(x.orientation.w, y.orientation.w) << i;
+    EXPECT_EQ(x.orientation.x, y.orientation.x) << i;
+  }
+  // They moved: the sea and the engines did something to compare.
+  EXPECT_GT(glm::length(a.bodies()[1].state.velocityEcef), 0.3);
+}
+
+// A force that is not finite on some bodies: both ways report the same
+// (lowest-id) body and leave every state at the step's start.
+class BadOn final : public ForceModel {
+ public:
+  void accumulate(const Body& body, const StepContext&, Wrench& w) const override {
+    if (body.id % 5 == 3) w.addForce(glm::dvec3(std::numeric_limits<double>::quiet_NaN()));
+  }
+};
+
+TEST(BodyParallel, AFailingForceIsReportedForTheSameBodyEitherWay) {
+  const auto sea = gerstner();
+  std::string msg[2];
+  for (int p = 0; p < 2; ++p) {
+    Simulation s = fleet(p == 1, sea);
+    s.advanceTo(0.5);
+    const BodyState before = s.bodies()[0].state;
+    s.addForceModel(std::make_shared<BadOn>());
+    try {
+      s.step();
+      ADD_FAILURE() << "no throw";
+    } catch (const std::invalid_argument& e) {
+      msg[p] = e.what();
+    }
+    EXPECT_EQ(s.bodies()[0].state.positionEcef, before.positionEcef);
+  }
+  EXPECT_EQ(msg[0], msg[1]);
+  EXPECT_NE(msg[0].find("force on body 3"), std::string::npos) << msg[0];
+}
+
+}  // namespace
+}  // namespace geocean::bodies

@@ -1,0 +1,314 @@
+// ABI 1.4, floating bodies, through the run-time loader as a host sees
+// them: the poses equal those of a façade-level bodies::Simulation built
+// the same way (same bits, so the ABI adds nothing to the physics), the
+// fixed step holds through the ABI, and bad input gets a status and a
+// message naming the field and the value.
+#include "globe/host/OceanPlugin.h"
+#include "plugin/bodies/Hull.h"
+#include "plugin/bodies/Hydro.h"
+#include "plugin/bodies/OceanSea.h"
+#include "plugin/bodies/Simulation.h"
+#include "plugin/bodies/Spawn.h"
+#include "plugin/ocean/Ocean.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using geocean::host::OceanPlugin;
+namespace bodies = geocean::bodies;
+
+const OceanPlugin& plugin() {
+  static std::unique_ptr<OceanPlugin> p = [] {
+    std::string error;
+    auto loaded = OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error);
+    if (!loaded) ADD_FAILURE() << error;
+    return loaded;
+  }();
+  return *p;
+}
+const geocean::host::OceanApi& api() { return plugin().api(); }
+std::string lastError() { return api().lastError(); }
+
+struct Ocean {
+  geocean_ocean* h = nullptr;
+  Ocean() { EXPECT_EQ(api().create(GEOCEAN_ABI_VERSION, &h), GEOCEAN_OK); }
+  ~Ocean() { api().destroy(h); }
+};
+struct Bodies {
+  geocean_bodies* h = nullptr;
+  explicit Bodies(geocean_ocean* o, const geocean_bodies_config* c = nullptr) {
+    EXPECT_EQ(api().bodiesCreate(o, c, &h), GEOCEAN_OK) << lastError();
+  }
+  ~Bodies() { api().bodiesDestroy(h); }
+};
+
+// The sea both sides float on: Gerstner, 12 m/s, anchored at the bodies.
+constexpr double kLat = 38.0, kLon = -30.0;
+geocean_sea_state capiSea() {
+  geocean_sea_state s;
+  api().seaStateInit(&s);
+  s.model = GEOCEAN_WAVES_GERSTNER;
+  s.wind_speed_mps = 12.0;
+  s.seed = 7;
+  s.anchor_lat_deg = kLat;
+  s.anchor_lon_deg = kLon;
+  return s;
+}
+
+struct Spec {
+  int32_t hull;
+  double size[3];
+  double density, lat, lon, heading, thrust;
+};
+const std::vector<Spec> kSpecs = {
+    {GEOCEAN_HULL_BOAT, {20.0, 0, 0}, 450.0, kLat, kLon, 30.0, 2e4},
+    {GEOCEAN_HULL_BOX, {6.0, 3.0, 2.0}, 600.0, kLat + 0.001, kLon, 90.0, 0.0},
+    {GEOCEAN_HULL_CYLINDER, {1.5, 4.0, 0}, 300.0, kLat, kLon + 0.001, 0.0, 0.0},
+};
+
+bodies::HullMesh hullOf(const Spec& s) {
+  switch (s.hull) {
+    case GEOCEAN_HULL_BOX: return bodies::HullMesh::box({s.size[0], s.size[1], s.size[2]});
+    case GEOCEAN_HULL_CYLINDER: return bodies::HullMesh::cylinder(s.size[0], s.size[1]);
+    default: return bodies::HullMesh::boat(s.size[0]);
+  }
+}
+
+TEST(CapiBodies, PosesAreTheFacadeSimulationsBits) {
+  ASSERT_NE(api().bodiesCreate, nullptr);  // a 1.4 plugin resolves them all
+  Ocean oc;
+  const geocean_sea_state sea = capiSea();
+  ASSERT_EQ(api().setSeaState(oc.h, &sea), GEOCEAN_OK) << lastError();
+  Bodies b(oc.h);
+  std::vector<geocean_body_id> ids;
+  for (const Spec& s : kSpecs) {
+    geocean_body_desc d;
+    ASSERT_EQ(api().bodyDescInit(&d), GEOCEAN_OK);
+    d.hull = s.hull;
+    std::memcpy(d.size_m, s.size, sizeof s.size);
+    d.density_kg_m3 = s.density;
+    d.lat_deg = s.lat, d.lon_deg = s.lon, d.heading_deg = s.heading, d.thrust_n = s.thrust;
+    geocean_body_id id = 0;
+    ASSERT_EQ(api().bodiesAdd(b.h, &d, &id), GEOCEAN_OK) << lastError();
+    ids.push_back(id);
+  }
+  EXPECT_EQ(ids, (std::vector<geocean_body_id>{1, 2, 3}));
+
+  // The façade side, built as the ABI documents it.
+  geocean::ocean::Ocean core;
+  geocean::waves::SeaState ws;
+  ws.windSpeedMps = 12.0;
+  ws.seed = 7;
+  ws.anchorLatDeg = kLat;
+  ws.anchorLonDeg = kLon;
+  core.setSeaState(geocean::waves::Model::Gerstner, ws);
+  auto oceanSea = std::make_shared<bodies::OceanSea>(core.current());
+  bodies::Simulation sim({.stepS = 1.0 / 60.0});
+  for (const Spec& s : kSpecs) {
+    auto hull = std::make_shared<const bodies::HullMesh>(hullOf(s));
+    const auto id = sim.addBody(hull->massProperties(s.density),
+                                bodies::restingUpright(*hull, s.density / 1025.0, s.lat, s.lon, s.heading));
+    sim.addBodyForce(id, std::make_shared<bodies::HullForce>(hull, oceanSea));
+    if (s.thrust != 0.0) sim.addBodyForce(id, std::make_shared<bodies::Thrust>(s.thrust));
+  }
+
+  // Irregular frames through the ABI, one call on the façade: the fixed step
+  // makes them the same steps.
+  double t = 0.0;
+  for (int f = 0; t < 20.0; ++f) {
+    t += 0.004 + 0.03 * ((f * 7919) % 13) / 13.0;
+    ASSERT_EQ(api().bodiesAdvanceTo(b.h, t, nullptr), GEOCEAN_OK) << lastError();
+  }
+  sim.advanceTo(t);
+  double simTime = 0;
+  ASSERT_EQ(api().bodiesTime(b.h, &simTime), GEOCEAN_OK);
+  EXPECT_EQ(simTime, sim.time());
+
+  size_t n = 0;
+  ASSERT_EQ(api().bodiesGetPoses(b.h, 0, nullptr, 0, &n), GEOCEAN_OK);
+  ASSERT_EQ(n, 3u);
+  for (int interp = 0; interp < 2; ++interp) {
+    std::vector<geocean_body_pose> poses(n);
+    ASSERT_EQ(api().bodiesGetPoses(b.h, interp, poses.data(), poses.size(), &n), GEOCEAN_OK) << lastError();
+    for (std::size_t i = 0; i < n; ++i) {
+      const bodies::Body& ref = sim.bodies()[i];
+      const bodies::BodyState s = interp ? sim.drawState(ref.id) : ref.state;
+      EXPECT_EQ(poses[i].id, ref.id);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(poses[i].position_ecef_m[k], s.positionEcef[k]) << i << " " << k;
+        EXPECT_EQ(poses[i].velocity_ecef_mps[k], ref.state.velocityEcef[k]);
+        EXPECT_EQ(poses[i].angular_velocity_body_rps[k], ref.state.angularVelocityBody[k]);
+      }
+      EXPECT_EQ(poses[i].orientation_wxyz[0], s.orientation.w);
+      EXPECT_EQ(poses[i].orientation_wxyz[1], s.orientation.x);
+      EXPECT_EQ(poses[i].orientation_wxyz[2], s.orientation.y);
+      EXPECT_EQ(poses[i].orientation_wxyz[3], s.orientation.z);
+    }
+  }
+  // The thrusting boat is under way, and all float: centres of mass within
+  // a few metres of still water (Hs of a 12 m/s sea is about 3 m).
+  std::vector<geocean_body_pose> poses(n);
+  ASSERT_EQ(api().bodiesGetPoses(b.h, 0, poses.data(), n, &n), GEOCEAN_OK);
+  EXPECT_GT(std::hypot(poses[0].velocity_ecef_mps[0], poses[0].velocity_ecef_mps[1], poses[0].velocity_ecef_mps[2]),
+            0.5);
+  for (const auto& p : poses) EXPECT_LT(std::abs(p.height_m), 5.0) << p.id;
+
+  // Remove the box: the others keep their ids, the hull of the removed is gone.
+  ASSERT_EQ(api().bodiesRemove(b.h, 2), GEOCEAN_OK);
+  ASSERT_EQ(api().bodiesCount(b.h, &n), GEOCEAN_OK);
+  EXPECT_EQ(n, 2u);
+  size_t nv = 0, ni = 0;
+  EXPECT_EQ(api().bodiesGetHull(b.h, 2, nullptr, 0, nullptr, 0, &nv, &ni), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("geocean_bodies_get_hull: body id 2: no such body"), std::string::npos) << lastError();
+  ASSERT_EQ(api().bodiesGetHull(b.h, 1, nullptr, 0, nullptr, 0, &nv, &ni), GEOCEAN_OK) << lastError();
+  const bodies::HullMesh boat = bodies::HullMesh::boat(20.0);
+  EXPECT_EQ(nv, boat.vertices().size());
+  EXPECT_EQ(ni, boat.indices().size());
+  std::vector<double> v(3 * nv);
+  std::vector<uint32_t> idx(ni);
+  ASSERT_EQ(api().bodiesGetHull(b.h, 1, v.data(), nv, idx.data(), ni, &nv, &ni), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(v[3], boat.vertices()[1].x);
+  EXPECT_EQ(idx, boat.indices());
+}
+
+TEST(CapiBodies, BadInputGetsAStatusAndAMessageNamingTheValue) {
+  Ocean oc;
+  geocean_bodies* none = reinterpret_cast<geocean_bodies*>(&none);
+  EXPECT_EQ(api().bodiesCreate(nullptr, nullptr, &none), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(none, nullptr);
+  EXPECT_NE(lastError().find("geocean_bodies_create: ocean is NULL"), std::string::npos) << lastError();
+  geocean_bodies_config c;
+  ASSERT_EQ(api().bodiesConfigInit(&c), GEOCEAN_OK);
+  c.step_s = -0.01;
+  EXPECT_EQ(api().bodiesCreate(oc.h, &c, &none), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("config->step_s -0.01 s is not in (0, 0.5]"), std::string::npos) << lastError();
+  c.step_s = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(api().bodiesCreate(oc.h, &c, &none), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("config->step_s nan"), std::string::npos) << lastError();
+  c = {};
+  EXPECT_EQ(api().bodiesCreate(oc.h, &c, &none), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("call geocean_bodies_config_init first"), std::string::npos) << lastError();
+
+  Bodies b(oc.h);
+  geocean_body_desc d;
+  api().bodyDescInit(&d);
+  d.lat_deg = 10.0, d.lon_deg = -30.0;
+  auto expectBad = [&](geocean_body_desc bad, const char* text) {
+    geocean_body_id id = 99;
+    EXPECT_EQ(api().bodiesAdd(b.h, &bad, &id), GEOCEAN_ERROR_INVALID_ARGUMENT) << text;
+    EXPECT_EQ(id, 99u);
+    EXPECT_NE(lastError().find(text), std::string::npos) << lastError();
+  };
+  geocean_body_desc x = d;
+  x.size_m[0] = -4.0;
+  expectBad(x, "desc->size_m[0] -4 m is not finite and > 0");
+  x = d, x.hull = GEOCEAN_HULL_BOX, x.size_m[1] = std::numeric_limits<double>::quiet_NaN();
+  expectBad(x, "desc->size_m[1] nan m is not finite and > 0");
+  x = d, x.hull = 7;
+  expectBad(x, "desc->hull 7 is not a geocean_hull");
+  x = d, x.density_kg_m3 = 1100.0;
+  expectBad(x, "desc->density_kg_m3 1100 kg/m^3 is not in (0, water density 1025)");
+  x = d, x.lat_deg = 91.0;
+  expectBad(x, "desc->lat_deg 91 is not in [-90, 90]");
+  x = d, x.lon_deg = std::numeric_limits<double>::infinity();
+  expectBad(x, "desc->lon_deg inf deg is not finite");
+  x = d, x.thrust_n = std::numeric_limits<double>::quiet_NaN();
+  expectBad(x, "desc->thrust_n nan N is not finite");
+  x = d, x.struct_size = 8;
+  expectBad(x, "desc->struct_size 8 is smaller than");
+  size_t n = 1;
+  ASSERT_EQ(api().bodiesCount(b.h, &n), GEOCEAN_OK);
+  EXPECT_EQ(n, 0u);  // nothing was added by the refused calls
+
+  EXPECT_EQ(api().bodiesAdd(nullptr, &d, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(api().bodiesAdd(b.h, nullptr, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(api().bodiesRemove(b.h, 42), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("geocean_bodies_remove: body id 42: no such body"), std::string::npos) << lastError();
+
+  ASSERT_EQ(api().bodiesAdd(b.h, &d, nullptr), GEOCEAN_OK) << lastError();
+  ASSERT_EQ(api().bodiesAdvanceTo(b.h, 1.0, nullptr), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(api().bodiesAdvanceTo(b.h, 0.5, nullptr), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("time_s 0.5 is before the simulation time 1"), std::string::npos) << lastError();
+  EXPECT_EQ(api().bodiesAdvanceTo(b.h, std::numeric_limits<double>::quiet_NaN(), nullptr),
+            GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("time_s nan is not finite"), std::string::npos) << lastError();
+  geocean_body_pose p;
+  EXPECT_EQ(api().bodiesGetPoses(b.h, 0, nullptr, 1, &n), GEOCEAN_ERROR_NULL_ARGUMENT);
+  ASSERT_EQ(api().bodiesAdd(b.h, &d, nullptr), GEOCEAN_OK);
+  EXPECT_EQ(api().bodiesGetPoses(b.h, 0, &p, 1, &n), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("capacity 1 is below the 2 bodies"), std::string::npos) << lastError();
+  EXPECT_EQ(n, 2u);
+}
+
+TEST(CapiBodies, RefusesABodyOnLandAndFloatsOnTheFlatSeaWithoutASeaState) {
+  Ocean oc;
+  ASSERT_EQ(api().setDefaultWorld(oc.h), GEOCEAN_OK) << lastError();
+  Bodies b(oc.h);
+  geocean_body_desc d;
+  api().bodyDescInit(&d);
+  d.hull = GEOCEAN_HULL_BOX;
+  d.size_m[0] = 4.0, d.size_m[1] = 2.0, d.size_m[2] = 1.0;
+  d.lat_deg = 48.85, d.lon_deg = 2.35;  // Paris
+  EXPECT_EQ(api().bodiesAdd(b.h, &d, nullptr), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("desc->lat_deg, lon_deg 48.85, 2.35 is land, not ocean"),
+            std::string::npos)
+      << lastError();
+  // Mid-Atlantic, no sea state: flat at 0 m; a box of density rho_w / 2
+  // floats with its centre of mass at the waterline (draft H/2 = 0.5 m)
+  // and stays there (Archimedes; the hydrostatic force is exact on a flat sea).
+  d.lat_deg = 30.0, d.lon_deg = -40.0, d.density_kg_m3 = 512.5;
+  ASSERT_EQ(api().bodiesAdd(b.h, &d, nullptr), GEOCEAN_OK) << lastError();
+  ASSERT_EQ(api().bodiesAdvanceTo(b.h, 30.0, nullptr), GEOCEAN_OK) << lastError();
+  geocean_body_pose p;
+  size_t n = 0;
+  ASSERT_EQ(api().bodiesGetPoses(b.h, 0, &p, 1, &n), GEOCEAN_OK);
+  EXPECT_NEAR(p.height_m, 0.0, 1e-6);
+  EXPECT_NEAR(p.lat_deg, 30.0, 1e-9);
+}
+
+TEST(CapiBodies, PosesMayBeReadWhileAnotherThreadSteps) {
+  Ocean oc;
+  const geocean_sea_state sea = capiSea();
+  ASSERT_EQ(api().setSeaState(oc.h, &sea), GEOCEAN_OK);
+  Bodies b(oc.h);
+  geocean_body_desc d;
+  api().bodyDescInit(&d);
+  d.lat_deg = kLat, d.lon_deg = kLon;
+  for (int i = 0; i < 4; ++i) {
+    d.lon_deg = kLon + 0.001 * i;
+    ASSERT_EQ(api().bodiesAdd(b.h, &d, nullptr), GEOCEAN_OK);
+  }
+  std::thread stepper([&] {
+    for (int f = 1; f <= 120; ++f) EXPECT_EQ(api().bodiesAdvanceTo(b.h, f / 30.0, nullptr), GEOCEAN_OK);
+  });
+  // Reads (and sea queries on the same ocean) meanwhile see whole steps:
+  // every pose is finite and its quaternion unit.
+  for (int r = 0; r < 200; ++r) {
+    geocean_body_pose p[4];
+    size_t n = 0;
+    ASSERT_EQ(api().bodiesGetPoses(b.h, 1, p, 4, &n), GEOCEAN_OK);
+    for (const auto& q : p) {
+      const double norm = q.orientation_wxyz[0] * q.orientation_wxyz[0] + q.orientation_wxyz[1] * q.orientation_wxyz[1] +
+                          q.orientation_wxyz[2] * q.orientation_wxyz[2] + q.orientation_wxyz[3] * q.orientation_wxyz[3];
+      EXPECT_NEAR(norm, 1.0, 1e-9);
+      EXPECT_TRUE(std::isfinite(q.height_m));
+    }
+    double h = 0;
+    EXPECT_EQ(api().querySeaSurface(oc.h, 1, &kLat, &kLon, 1.0, &h, nullptr, nullptr), GEOCEAN_OK);
+  }
+  stepper.join();
+  double t = 0;
+  ASSERT_EQ(api().bodiesTime(b.h, &t), GEOCEAN_OK);
+  EXPECT_EQ(t, 240.0 / 60.0);
+}
+
+}  // namespace
