@@ -68,8 +68,7 @@ class LandSea {
   Surface classOfValue(float maskValue) const;
   // The coverage rule at a point where the mask has data.
   world::CoverageClass coverageClass(double latDeg, double lonDeg) const;
-  // Flags kCoast on classes_ cells within two cells of the other of land
-  // and water.
+  // Flags kCoast on classes_ cells with another class within one cell.
   void markCoast(bool global);
   static constexpr std::uint8_t kCoast = 0x80, kClassBits = 0x7F;
   Surface fromElevation(float elevationM) const;
