@@ -211,6 +211,27 @@ TEST(MaskCli, BandsOfTileRowsGiveTheSameMask) {
   fs::remove_all(dir);
 }
 
+// The whole Earth (at 1 degree, seconds): a global raster (longitude wraps),
+// the Caspian Sea a lake (GSHHG level 2), the central Pacific ocean, the
+// Sahara and Antarctica land.
+TEST(MaskCli, GlobalMaskWrapsAndKeepsLakes) {
+  ASSERT_TRUE(haveTool("gmt"));
+  const fs::path dir = tempDir();
+  const fs::path out = dir / "world_1d.tif";
+  const auto r = run(kGeocean + " mask --global --resolution 1d --out " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto m = geocean::raster::Raster::open(out.string());
+  EXPECT_EQ(m->width(), 360);
+  EXPECT_EQ(m->height(), 180);
+  EXPECT_TRUE(m->transform().global);
+  const std::vector<LonLat> pts = {{-150, 0}, {10, 23}, {50.5, 42}, {0, -85}, {179.99, 70}, {-179.99, 70}, {359.99, 70}};
+  const std::vector<std::string> expected = {"ocean", "land", "lake", "land", "ocean", "ocean", "ocean"};
+  const auto ours = queryClasses(pts, out);
+  ASSERT_EQ(ours.size(), pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) EXPECT_EQ(ours[i], expected[i]) << pts[i].lat << "," << pts[i].lon;
+  fs::remove_all(dir);
+}
+
 TEST(MaskCli, BadArgumentsAndAMissingGmtAreClearErrors) {
   const fs::path dir = tempDir();
   const std::string out = " --out " + (dir / "m.tif").string();
