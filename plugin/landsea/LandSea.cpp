@@ -21,9 +21,10 @@ LandSea::LandSea(std::shared_ptr<const raster::Raster> mask, std::shared_ptr<con
       const bool integral = v >= 0.0f && v <= 255.0f && v == static_cast<float>(static_cast<int>(v));
       classes_[i] = static_cast<std::uint8_t>(integral ? encoding_.classOf[static_cast<std::size_t>(v)] : classOfValue(v));
     }
+    const auto& t = mask_->transform();
+    markCoast(t.global);
     // Three bytes past the last cell: the AVX-512 lookup gathers 4 bytes per cell.
     classes_.resize(classes_.size() + 3, std::uint8_t(Surface::Land));
-    const auto& t = mask_->transform();
     fast_.invLonStep = 1.0 / t.lonStepDeg;
     fast_.invLatStep = 1.0 / t.latStepDeg;
     fast_.originLon = t.originLonDeg;
@@ -36,6 +37,77 @@ LandSea::LandSea(std::shared_ptr<const raster::Raster> mask, std::shared_ptr<con
 
 Surface LandSea::classOfValue(float v) const { return encoding_.classify(v); }
 
+void LandSea::markCoast(bool global) {
+  // kCoast on cells with another class within one cell (3 x 3). Elsewhere
+  // the nearest cell's class is the coverage rule's: a point's B-spline
+  // support reaches at most two cells from its cell, and the cells two away
+  // weigh at most (1/2)^3/6 = 0.021 a side, 0.041 in all, so a uniform 3 x 3
+  // keeps the coverage below 0.05 or above 0.95 and its class the heaviest.
+  // Separable: rows, then columns; longitude wraps when global.
+  const int w = mask_->width(), h = mask_->height();
+  auto bit = [&](std::size_t i) -> std::uint8_t { return std::uint8_t(1u << (classes_[i] & 7u)); };
+  std::vector<std::uint8_t> rows(classes_.size());
+  for (int y = 0; y < h; ++y) {
+    const std::size_t row = std::size_t(y) * w;
+    for (int x = 0; x < w; ++x) {
+      const int l = global ? (x == 0 ? w - 1 : x - 1) : std::max(x - 1, 0);
+      const int r = global ? (x == w - 1 ? 0 : x + 1) : std::min(x + 1, w - 1);
+      rows[row + x] = bit(row + l) | bit(row + x) | bit(row + r);
+    }
+  }
+  for (int y = 0; y < h; ++y) {
+    std::uint8_t* dst = classes_.data() + std::size_t(y) * w;
+    const std::uint8_t* up = rows.data() + std::size_t(std::max(y - 1, 0)) * w;
+    const std::uint8_t* mid = rows.data() + std::size_t(y) * w;
+    const std::uint8_t* down = rows.data() + std::size_t(std::min(y + 1, h - 1)) * w;
+    for (int x = 0; x < w; ++x) {
+      const unsigned any = up[x] | mid[x] | down[x];
+      if (any & (any - 1)) dst[x] |= kCoast;  // more than one class
+    }
+  }
+}
+
+world::CoverageClass LandSea::coverageClass(double latDeg, double lonDeg) const {
+  const auto& t = mask_->transform();
+  const int w = mask_->width(), h = mask_->height();
+  // Cells beyond a regional raster's edge repeat the edge (a texture's
+  // clamp to edge); longitude wraps for a global one; latitude clamps.
+  auto wrap = [&](int cx, int cy) {
+    cx = t.global ? ((cx % w) + w) % w : std::clamp(cx, 0, w - 1);
+    return std::pair{cx, std::clamp(cy, 0, h - 1)};
+  };
+  if (!classes_.empty()) {
+    // The hot path (every point near a coast): the taps' columns are at
+    // most two cells outside [0, w) once x is wrapped, so no division.
+    double px = (lonDeg - fast_.originLon) * fast_.invLonStep;
+    if (fast_.global) px -= std::floor(px / w) * w;
+    const double py = (latDeg - fast_.originLat) * fast_.invLatStep;
+    const std::uint8_t* cls = classes_.data();
+    const bool global = fast_.global;
+    return world::coverageClassAt(px, py, [cls, w, h, global](int cx, int cy) {
+      cx = global ? (cx < 0 ? cx + w : cx >= w ? cx - w : cx) : std::clamp(cx, 0, w - 1);
+      cy = std::clamp(cy, 0, h - 1);
+      return static_cast<Surface>(cls[std::size_t(cy) * std::size_t(w) + std::size_t(cx)] & kClassBits);
+    });
+  }
+  double px = t.pixelX(lonDeg);
+  if (t.global) px -= std::floor(px / w) * w;
+  const double py = t.pixelY(latDeg);
+  // A cached mask: the 16 cells in one batch (sorted by tile by the reader).
+  double la[16], lo[16];
+  float v[16];
+  const world::BSplineTaps tx(px), ty(py);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const auto [x, y] = wrap(tx.first + i, ty.first + j);
+      la[j * 4 + i] = t.latOf(y + 0.5), lo[j * 4 + i] = t.lonOf(x + 0.5);
+    }
+  mask_->sampleNearestBatch(la, lo, 16, v);
+  return world::coverageClassAt(px, py, [&](int cx, int cy) {
+    return classOfValue(v[(cy - ty.first) * 4 + (cx - tx.first)]);
+  });
+}
+
 Surface LandSea::fromElevation(float elevationM) const {
   return (!std::isnan(elevationM) && elevationM < 0.0f) ? Surface::Ocean : Surface::Land;
 }
@@ -44,10 +116,15 @@ Surface LandSea::classify(double latDeg, double lonDeg) const {
   if (!std::isfinite(latDeg) || !std::isfinite(lonDeg)) return Surface::Land;
   if (!classes_.empty()) {
     const int idx = fast_.index(latDeg, lonDeg);
-    if (idx >= 0) return static_cast<Surface>(classes_[std::size_t(idx)]);
+    if (idx >= 0) {
+      const std::uint8_t c = classes_[std::size_t(idx)];
+      return (c & kCoast) ? coverageClass(latDeg, lonDeg).surface : static_cast<Surface>(c);
+    }
   } else if (mask_) {
+    // The nearest cell says whether the mask has data here; the coverage
+    // rule says what it is.
     const float v = mask_->sampleNearest(latDeg, lonDeg);
-    if (!std::isnan(v)) return classOfValue(v);
+    if (!std::isnan(v)) return coverageClass(latDeg, lonDeg).surface;
   }
   // No mask here: the elevation decides.
   return elevation_ ? fromElevation(elevation_->sampleBilinear(latDeg, lonDeg)) : Surface::Land;
@@ -138,6 +215,10 @@ void LandSea::classifyBatch(const double* lat, const double* lon, std::size_t n,
         out[b + i] = static_cast<Surface>(inside ? cls[inside ? idx[i] : 0] : std::uint8_t(Surface::Land));
       }
     }
+    // Cells near a coast: the coverage rule (about one point in ten on the
+    // default world's coasts; open sea and inland stay a lookup).
+    for (std::size_t i = 0; i < n; ++i)
+      if (std::uint8_t(out[i]) & kCoast) out[i] = coverageClass(lat[i], lon[i]).surface;
     if (allInside || !elevation_) return;
     for (std::size_t i = 0; i < n; ++i)
       if (fast_.index(lat[i], lon[i]) < 0 && std::isfinite(lat[i]) && std::isfinite(lon[i]))
@@ -147,7 +228,8 @@ void LandSea::classifyBatch(const double* lat, const double* lon, std::size_t n,
   std::vector<float> v(n);
   if (mask_) {
     mask_->sampleNearestBatch(lat, lon, n, v.data());
-    for (std::size_t i = 0; i < n; ++i) out[i] = classOfValue(v[i]);
+    for (std::size_t i = 0; i < n; ++i)
+      out[i] = std::isnan(v[i]) ? Surface::Land : coverageClass(lat[i], lon[i]).surface;
   } else {
     // Elevation only: points it cannot sample (non-finite) are land, as in
     // classify(); without this they kept whatever the caller's buffer held
@@ -189,7 +271,7 @@ void LandSea::classifyNearWaterBatch(const double* lat, const double* lon, std::
           int xx = x + d;
           if (fast_.global) xx = (xx % w + w) % w;
           else if (xx < 0 || xx >= w) continue;
-          any = c[xx] != std::uint8_t(Surface::Land);
+          any = (c[xx] & kClassBits) != std::uint8_t(Surface::Land);
         }
         r[x] = any;
       }
@@ -217,24 +299,10 @@ float LandSea::waterCoverage(double latDeg, double lonDeg) const {
     const float e = elevation_->sampleBilinear(latDeg, lonDeg);
     return std::isnan(e) ? 0.0f : std::clamp(0.5f - e / 100.0f, 0.0f, 1.0f);
   }
-  // Bilinear blend of the water indicator of the four nearest mask cells.
-  const auto& t = mask_->transform();
-  const double x = t.pixelX(lonDeg) - 0.5;
-  const double y = std::clamp(t.pixelY(latDeg) - 0.5, 0.0, double(mask_->height() - 1));
-  const double fx = std::floor(x), fy = std::floor(y);
-  const float wx = float(x - fx), wy = float(y - fy);
-  const int w = mask_->width(), h = mask_->height();
-  auto water = [&](int cx, int cy) -> float {
-    if (t.global) cx = ((cx % w) + w) % w;
-    else if (cx < 0 || cx >= w) return classify(latDeg, lonDeg) == Surface::Land ? 0.0f : 1.0f;
-    cy = std::clamp(cy, 0, h - 1);
-    const Surface s = classes_.empty() ? classOfValue(mask_->pixel(cx, cy))
-                                       : static_cast<Surface>(classes_[std::size_t(cy) * w + cx]);
-    return s == Surface::Land ? 0.0f : 1.0f;
-  };
-  const int x0 = int(fx), y0 = int(fy);
-  return (1 - wx) * (1 - wy) * water(x0, y0) + wx * (1 - wy) * water(x0 + 1, y0) +
-         (1 - wx) * wy * water(x0, y0 + 1) + wx * wy * water(x0 + 1, y0 + 1);
+  // Outside a regional mask (no data there): the point's own class.
+  if (!classes_.empty() ? fast_.index(latDeg, lonDeg) < 0 : std::isnan(mask_->sampleNearest(latDeg, lonDeg)))
+    return classify(latDeg, lonDeg) == Surface::Land ? 0.0f : 1.0f;
+  return coverageClass(latDeg, lonDeg).coverage;
 }
 
 float LandSea::elevationM(double latDeg, double lonDeg) const {

@@ -47,8 +47,10 @@ class LandSea {
   virtual void classifyNearWaterBatch(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out) const;
 
   // Fraction of water (ocean or lake) around the point, in [0, 1]: the
-  // bilinear blend of the four nearest mask cells. 0.5 is the coastline;
-  // the renderer anti-aliases the shore with it.
+  // cubic B-spline of the 4 x 4 nearest mask cells' water indicator, as
+  // the renderers filter it magnified (world::coverageClassAt). Where a
+  // mask answers, classify() is this coverage's class: water above 0.5
+  // (world::coverageIsWater), so the query follows the drawn shoreline.
   virtual float waterCoverage(double latDeg, double lonDeg) const;
   // Terrain elevation (ocean depth negative) in metres, bilinear; NaN when
   // there is no elevation raster or no data there.
@@ -64,6 +66,11 @@ class LandSea {
 
  private:
   Surface classOfValue(float maskValue) const;
+  // The coverage rule at a point where the mask has data.
+  world::CoverageClass coverageClass(double latDeg, double lonDeg) const;
+  // Flags kCoast on classes_ cells with another class within one cell.
+  void markCoast(bool global);
+  static constexpr std::uint8_t kCoast = 0x80, kClassBits = 0x7F;
   Surface fromElevation(float elevationM) const;
 
   // Nearest-cell index into classes_, or -1 outside the mask / for NaN.
@@ -86,7 +93,8 @@ class LandSea {
 
   std::shared_ptr<const raster::Raster> mask_, elevation_;
   MaskEncoding encoding_;
-  // In-memory mask as class bytes: the fast path (no float conversion).
+  // In-memory mask as class bytes (| kCoast near a coast, where the
+  // coverage decides): the fast path (no float conversion).
   std::vector<std::uint8_t> classes_;
   FastIndex fast_;
   mutable std::vector<std::uint8_t> nearWater_;  // 1 = water within two cells

@@ -13,15 +13,12 @@ LayeredLandSea::LayeredLandSea(std::vector<world::RasterLayer> layers) : stack_(
 
 Surface LayeredLandSea::classify(double latDeg, double lonDeg) const {
   Surface s;
-  stack_.classifyBatch(&latDeg, &lonDeg, 1, &s);
+  classifyBatch(&latDeg, &lonDeg, 1, &s);
   return s;
 }
 
-void LayeredLandSea::classifyBatch(const double* lat, const double* lon, std::size_t n, Surface* out) const {
-  stack_.classifyBatch(lat, lon, n, out);
-}
-
-void LayeredLandSea::classifyNearWaterBatch(const double* lat, const double* lon, std::size_t n, Surface* out) const {
+void LayeredLandSea::byLayer(const double* lat, const double* lon, std::size_t n, Surface* out, bool masksOnly,
+                             void (LandSea::*test)(const double*, const double*, std::size_t, Surface*) const) const {
   std::vector<std::int32_t> by(n);
   stack_.classifyBatch(lat, lon, n, out, by.data());
   // Points grouped by their answering layer, each group through its test.
@@ -29,14 +26,25 @@ void LayeredLandSea::classifyNearWaterBatch(const double* lat, const double* lon
   std::vector<std::size_t> where;
   std::vector<Surface> s;
   for (std::size_t li = 0; li < perLayer_.size(); ++li) {
+    if (masksOnly && stack_.layers()[li].kind != world::LayerKind::Mask) continue;
     la.clear(), lo.clear(), where.clear();
     for (std::size_t i = 0; i < n; ++i)
       if (by[i] == std::int32_t(li)) la.push_back(lat[i]), lo.push_back(lon[i]), where.push_back(i);
     if (where.empty()) continue;
     s.resize(where.size());
-    perLayer_[li]->classifyNearWaterBatch(la.data(), lo.data(), where.size(), s.data());
+    (perLayer_[li].get()->*test)(la.data(), lo.data(), where.size(), s.data());
     for (std::size_t j = 0; j < where.size(); ++j) out[where[j]] = s[j];
   }
+}
+
+void LayeredLandSea::classifyBatch(const double* lat, const double* lon, std::size_t n, Surface* out) const {
+  // The stack picks the layer by its nearest cell; a mask's class is then
+  // its coverage rule (LandSea::classify), an elevation's the sign.
+  byLayer(lat, lon, n, out, true, &LandSea::classifyBatch);
+}
+
+void LayeredLandSea::classifyNearWaterBatch(const double* lat, const double* lon, std::size_t n, Surface* out) const {
+  byLayer(lat, lon, n, out, false, &LandSea::classifyNearWaterBatch);
 }
 
 float LayeredLandSea::waterCoverage(double latDeg, double lonDeg) const {

@@ -16,6 +16,7 @@ class LayeredLandSea final : public LandSea {
   // Throws std::invalid_argument for an empty stack.
   explicit LayeredLandSea(std::vector<world::RasterLayer> layers);
 
+  // A mask layer's class by its coverage rule (LandSea::classify).
   Surface classify(double latDeg, double lonDeg) const override;
   void classifyBatch(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out) const override;
   // Each point by its answering layer's own test.
@@ -29,6 +30,10 @@ class LayeredLandSea final : public LandSea {
   const world::LayerStack& stack() const { return stack_; }
 
  private:
+  // The stack's answer, then each point again through its answering
+  // layer's `test` (masks only, or every layer).
+  void byLayer(const double* lat, const double* lon, std::size_t n, Surface* out, bool masksOnly,
+               void (LandSea::*test)(const double*, const double*, std::size_t, Surface*) const) const;
   world::LayerStack stack_;
   // One single-raster LandSea per layer, in stack order: coverage and
   // near-water per layer with the existing fast paths.

@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 #include <sstream>
@@ -122,7 +124,8 @@ TEST(LandSea, CoverageIsSmoothAcrossTheCoast) {
   EXPECT_EQ(ls.waterCoverage(0, -150), 1.0f);
   EXPECT_EQ(ls.waterCoverage(23, 10), 0.0f);
   // Walk west from Portugal into the Atlantic at 40 N: coverage rises from 0
-  // to 1 in steps no bigger than the step/cell ratio allows (bilinear).
+  // to 1 in steps no bigger than the step/cell ratio allows (twice it; the
+  // cubic B-spline's slope is at most 2/3 per cell along an axis).
   float prev = ls.waterCoverage(40.0, -7.0);
   EXPECT_EQ(prev, 0.0f);
   const double step = 0.001;  // degrees; one 5' cell is 0.0833 degrees
@@ -137,6 +140,79 @@ TEST(LandSea, CoverageIsSmoothAcrossTheCoast) {
   EXPECT_EQ(prev, 1.0f);
 }
 
+// The coverage rule (issue 12 item 4), brute force: the class at a point
+// is world::coverageClassAt over the mask's own cells read one by one
+// (no class table, no coast flags), at random points and on a fine walk
+// along the coasts of Gibraltar; classify, classifyBatch, waterCoverage and
+// a cached (not in-memory) mask all give it.
+TEST(LandSea, ClassIsTheCoverageRuleEverywhere) {
+  const auto mask = defaultMask();
+  const ocean::LandSea ls(mask, nullptr);
+  raster::OpenOptions cachedOpt;
+  cachedOpt.inMemoryLimitBytes = 0;
+  const auto cachedMask = raster::Raster::open(raster::defaultWorld().mask, cachedOpt);
+  ASSERT_FALSE(cachedMask->inMemory());
+  const ocean::LandSea cached(cachedMask, nullptr);
+  const ocean::MaskEncoding enc;
+  const auto& t = mask->transform();
+  auto brute = [&](double lat, double lon) {
+    double px = t.pixelX(lon);
+    px -= std::floor(px / mask->width()) * mask->width();
+    return world::coverageClassAt(px, t.pixelY(lat), [&](int cx, int cy) {
+      cx = ((cx % mask->width()) + mask->width()) % mask->width();
+      return enc.classify(mask->pixel(cx, std::clamp(cy, 0, mask->height() - 1)));
+    });
+  };
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> ulat(-89.0, 89.0), ulon(-180, 180), u01(0, 1);
+  std::vector<double> la, lo;
+  for (int i = 0; i < 100000; ++i) la.push_back(ulat(rng)), lo.push_back(ulon(rng));
+  for (int i = 0; i < 100000; ++i) la.push_back(35.8 + 0.5 * u01(rng)), lo.push_back(-6.0 + u01(rng));  // the strait
+  std::vector<Surface> batch(la.size());
+  ls.classifyBatch(la.data(), lo.data(), la.size(), batch.data());
+  int coastal = 0, differsFromNearest = 0;
+  for (std::size_t i = 0; i < la.size(); ++i) {
+    const world::CoverageClass b = brute(la[i], lo[i]);
+    coastal += b.coverage > 0.0f && b.coverage < 1.0f;
+    differsFromNearest += b.surface != enc.classify(mask->sampleNearest(la[i], lo[i]));
+    // The paths compute the pixel coordinate in other roundings (a step's
+    // inverse, a division): coverages differ by float rounding, and the
+    // class may differ only within that of 0.5.
+    ASSERT_NEAR(ls.waterCoverage(la[i], lo[i]), b.coverage, 1e-6f) << la[i] << "," << lo[i];
+    if (i % 20 == 0) {
+      ASSERT_NEAR(cached.waterCoverage(la[i], lo[i]), b.coverage, 1e-6f) << la[i] << "," << lo[i];
+    }
+    if (std::abs(b.coverage - 0.5f) < 1e-6f) continue;
+    ASSERT_EQ(ls.classify(la[i], lo[i]), b.surface) << la[i] << "," << lo[i] << " coverage " << b.coverage;
+    ASSERT_EQ(batch[i], b.surface) << la[i] << "," << lo[i];
+    if (i % 20 == 0) {
+      ASSERT_EQ(cached.classify(la[i], lo[i]), b.surface) << la[i] << "," << lo[i] << " (cached)";
+    }
+  }
+  std::printf("%d coastal points, %d where the nearest cell's class is not the drawn one\n", coastal,
+              differsFromNearest);
+  EXPECT_GT(coastal, 20000);
+  EXPECT_GT(differsFromNearest, 500);  // the rule is not the nearest cell
+}
+
+// A lone water cell in land is not drawn (its centre's coverage is
+// (2/3)^2 = 0.44, the B-spline's centre weight squared), so it is land; a
+// lone land cell in water likewise is water.
+TEST(LandSea, ALoneCellFollowsTheDrawnCoverage) {
+  for (const float inside : {0.0f, 1.0f}) {
+    std::vector<float> px(9 * 9, inside == 0.0f ? 1.0f : 0.0f);
+    px[4 * 9 + 4] = inside;
+    raster::GeoTransform gt;
+    gt.originLonDeg = 0.0, gt.originLatDeg = 9.0, gt.lonStepDeg = 1.0, gt.latStepDeg = -1.0;
+    const ocean::LandSea ls(raster::Raster::fromPixels(px, 9, 9, 1, gt), nullptr);
+    const float c = ls.waterCoverage(4.5, 4.5);
+    EXPECT_NEAR(c, inside == 0.0f ? 4.0f / 9.0f : 5.0f / 9.0f, 1e-6f);
+    EXPECT_EQ(ls.classify(4.5, 4.5), inside == 0.0f ? Surface::Land : Surface::Ocean);
+    // Two cells away the neighbour's weight is zero.
+    EXPECT_EQ(ls.waterCoverage(4.5, 6.5), inside == 0.0f ? 0.0f : 1.0f);
+  }
+}
+
 TEST(LandSea, MaskEncodingOption) {
   auto e = ocean::MaskEncoding::parse("5=ocean,7=lake");
   EXPECT_EQ(e.classOf[5], Surface::Ocean);
@@ -148,7 +224,9 @@ TEST(LandSea, MaskEncodingOption) {
 }
 
 TEST(LandSea, NearWaterCoversEveryWaterCellAndTwoCellsAround) {
-  const ocean::LandSea ls(defaultMask(), nullptr);
+  const auto mask = defaultMask();
+  const ocean::LandSea ls(mask, nullptr);
+  const ocean::MaskEncoding enc;
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> ulat(-90, 90), ulon(-180, 180);
   std::vector<double> la(20000), lo(20000);
@@ -160,14 +238,19 @@ TEST(LandSea, NearWaterCoversEveryWaterCellAndTwoCellsAround) {
   ls.classifyNearWaterBatch(la.data(), lo.data(), la.size(), near.data());
   const double cell = 1.0 / 12;  // the 5' mask
   for (std::size_t i = 0; i < la.size(); ++i) {
-    // Brute force over the 5 x 5 cell neighbourhood (clamped at the poles).
+    // Brute force over the 5 x 5 cell neighbourhood (clamped at the poles),
+    // by the cells' own classes (classify() answers by the coverage rule).
     bool water = false;
     for (int dy = -2; dy <= 2; ++dy)
       for (int dx = -2; dx <= 2; ++dx) {
         const double lat = std::clamp(la[i] + dy * cell, -89.99, 89.99);
-        water |= ls.classify(lat, lo[i] + dx * cell) != Surface::Land;
+        water |= enc.isWater(mask->sampleNearest(lat, lo[i] + dx * cell));
       }
     ASSERT_EQ(near[i] == Surface::Ocean, water) << la[i] << "," << lo[i];
+    // What the grid may skip is never water by the coverage rule.
+    if (near[i] == Surface::Land) {
+      ASSERT_EQ(ls.classify(la[i], lo[i]), Surface::Land) << la[i] << "," << lo[i];
+    }
   }
   // Tarifa (land at 5', one cell from the Strait) is near water; the central Sahara is not.
   const double tla[] = {36.04, 23.0}, tlo[] = {-5.6, 10.0};
