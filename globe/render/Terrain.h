@@ -118,6 +118,8 @@ class TerrainRenderer {
   bool underOpenWater(double lat0, double lat1, double lon0, double lon1, const Bounds& b, double dist,
                       const camera::Camera& cam, double pxPerM) const;
   void tileRange(const Key& k, double& lat0, double& lat1, double& lon0, double& lon1) const;
+  // Streamed water: the pool tiles this terrain tile samples, as uniforms.
+  void bindWaterBlock(const gl::GlProgram& prog, const Key& k);
 
   const WorldTextures& world_;
   TerrainOptions options_;
