@@ -29,7 +29,9 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
     : world_(world), options_(options) {
   if (options_.poolTiles < 64) throw std::invalid_argument("terrain pool must hold at least 64 tiles");
   maxLevel_ = options_.maxLevel;
-  const double texelDeg = world_.finestShapeTexelDeg();
+  double texelDeg = world_.finestShapeTexelDeg();
+  if (world_.waterTiles())  // the streamed mask's own texel
+    texelDeg = std::min(texelDeg, std::abs(world_.waterTiles()->pyramid().source().transform().lonStepDeg));
   while (maxLevel_ > 0 && texelDeg > 0.0 && 90.0 / double(1 << (maxLevel_ - 1)) / (kGrid - 1) <= texelDeg / 16.0)
     --maxLevel_;
   // Streamed water (WorldTextures::waterTiles): the same programs reading the tile pool.
@@ -37,9 +39,12 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
     if (world_.waterTiles()) d.push_back("GEOCEAN_WATER_TILES 1");
     return d;
   };
+  // Under an ocean layer the terrain's water keeps the single texture: the
+  // ocean draws its coast from its own grids, made from the same cells
+  // (plugin/render/OceanWorld), and the two must agree.
   program_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", with({}));
-  underOcean_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", with({"GEOCEAN_UNDER_OCEAN 1"}));
-  seaProxy_ = gl::GlProgram::graphics("terrain.vert", "sea_proxy.frag", with({}));
+  underOcean_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", {"GEOCEAN_UNDER_OCEAN 1"});
+  seaProxy_ = gl::GlProgram::graphics("terrain.vert", "sea_proxy.frag");
   bare_ = gl::GlProgram::graphics("terrain.vert", "bare.frag", {"GEOCEAN_BARE 1"});
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
@@ -275,7 +280,7 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
   glBindVertexArray(vao_);
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const Key& k = tiles[i];
-    if (streamed) bindWaterBlock(prog, k);
+    if (streamed) bindWaterBlock(&prog, k);
     const glm::vec3 off(slots[i]->centerEcef - cam.eyeEcef());  // double difference, then float
     glUniform3fv(locOffset, 1, &off[0]);
     // Skirts hang deeper than the largest height error between levels
@@ -286,7 +291,7 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
   }
 }
 
-void TerrainRenderer::bindWaterBlock(const gl::GlProgram& prog, const Key& k) {
+bool TerrainRenderer::bindWaterBlock(const gl::GlProgram* prog, const Key& k) {
   // The finest pyramid level whose 2 x 2 tiles hold this terrain tile and
   // the filter's reach (3 texels: the B-spline's 2 and a skirt's), and are
   // resident; the finest such level is asked for. The terrain tile's cells
@@ -334,20 +339,20 @@ void TerrainRenderer::bindWaterBlock(const gl::GlProgram& prog, const Key& k) {
     by = cy[0];
     break;
   }
+  if (!prog) return level == want;
   const double s = double(1 << level);
-  glUniform4i(prog.uniform("uWaterSlots"), slots[0], slots[1], slots[2], slots[3]);
-  glUniform4i(prog.uniform("uWaterBlock"), bx, by, pyr.tilesX(level), T);
-  glUniform3i(prog.uniform("uWaterLevel"), pyr.levelWidth(level), pyr.levelHeight(level), wrap ? 1 : 0);
-  glUniform4f(prog.uniform("uWaterLevelGeo"), float(t0.originLonDeg), float(t0.originLatDeg), float(t0.lonStepDeg * s),
+  glUniform4i(prog->uniform("uWaterSlots"), slots[0], slots[1], slots[2], slots[3]);
+  glUniform4i(prog->uniform("uWaterBlock"), bx, by, pyr.tilesX(level), T);
+  glUniform3i(prog->uniform("uWaterLevel"), pyr.levelWidth(level), pyr.levelHeight(level), wrap ? 1 : 0);
+  glUniform4f(prog->uniform("uWaterLevelGeo"), float(t0.originLonDeg), float(t0.originLatDeg), float(t0.lonStepDeg * s),
               float(t0.latStepDeg * s));
+  return level == want;
 }
 
 TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const camera::Camera& selectFrom,
                                            const camera::Lighting& light) {
   if (mirrored_.id() == 0)  // compiled on the first reflection a layer asks for
-    mirrored_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag",
-                                        world_.waterTiles() ? std::vector<std::string>{"GEOCEAN_CLIP_SEA 1", "GEOCEAN_WATER_TILES 1"}
-                                                            : std::vector<std::string>{"GEOCEAN_CLIP_SEA 1"});
+    mirrored_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", {"GEOCEAN_CLIP_SEA 1"});
   TerrainStats stats;
   std::vector<Key> tiles;
   std::vector<const Slot*> slots;
@@ -374,6 +379,18 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
   std::vector<const Slot*> slots;
   selectTiles(cam, tiles, slots, stats);
   const auto pass = [&](const gl::GlProgram& prog) { drawTiles(prog, cam, light, sea, oceanCellPx, tiles, slots); };
+  const gl::GlProgram& colour = bare ? bare_ : sea == SeaShading::UnderOcean && !options_.seaProxy ? underOcean_ : program_;
+  if (TilePool* pool = world_.waterTiles(); pool && options_.waitForTiles && &colour == &program_) {
+    // A picture, not an interactive view: wait for the tiles this view asks
+    // for (bounded: a view needing more than the pool holds draws what fits).
+    for (int round = 0; round < 64; ++round) {
+      bool complete = true;
+      for (const Key& k : tiles) complete = bindWaterBlock(nullptr, k) && complete;
+      if (complete) break;
+      pool->waitIdle();
+      pool->endFrame();
+    }
+  }
   if (!bare && sea == SeaShading::UnderOcean && options_.seaProxy) {
     // Depth only, where the ocean layer will cover the pixel: the same
     // surface pulled a few float-depth units towards the eye (reversed Z),
@@ -386,7 +403,7 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
     glDisable(GL_POLYGON_OFFSET_FILL);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   }
-  pass(bare ? bare_ : sea == SeaShading::UnderOcean && !options_.seaProxy ? underOcean_ : program_);
+  pass(colour);
   // Finished tile loads go up after the frame's draws (they never wait).
   if (TilePool* pool = world_.waterTiles()) pool->endFrame();
   stats.tilesDrawn = int(tiles.size());

@@ -40,6 +40,7 @@ TilePool::~TilePool() {
   }
   wake_.notify_all();
   space_.notify_all();
+  idle_.notify_all();
   for (auto& w : workers_) w.join();
   glDeleteTextures(1, &texture_);
 }
@@ -157,6 +158,13 @@ void TilePool::endFrame() {
   ++frame_;
 }
 
+void TilePool::waitIdle() {
+  std::unique_lock lock(mutex_);
+  idle_.wait(lock, [&] {
+    return stop_ || (queue_.empty() && loading_ == 0) || int(ready_.size()) >= options_.maxReady;
+  });
+}
+
 void TilePool::work() {
   const std::size_t floats = std::size_t(border_) * border_ * pyramid_->channels();
   for (;;) {
@@ -167,19 +175,25 @@ void TilePool::work() {
       if (stop_) return;
       id = queue_.back().id;  // the newest request first: what the view needs now
       queue_.pop_back();
+      ++loading_;
     }
     std::vector<float> t(floats);
+    bool ok = true;
     try {
       pyramid_->readTile(id, t.data());
     } catch (const std::exception&) {
       // A tile that cannot be read is drawn from its ancestor; it stays in
       // wanted_ so it is not asked for again.
-      continue;
+      ok = false;
     }
     std::unique_lock lock(mutex_);
-    space_.wait(lock, [&] { return stop_ || int(ready_.size()) < options_.maxReady; });
-    if (stop_) return;
-    ready_.emplace_back(id, std::move(t));
+    if (ok) {
+      space_.wait(lock, [&] { return stop_ || int(ready_.size()) < options_.maxReady; });
+      if (stop_) return;
+      ready_.emplace_back(id, std::move(t));
+    }
+    --loading_;
+    idle_.notify_all();
   }
 }
 

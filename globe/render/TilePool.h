@@ -62,6 +62,9 @@ class TilePool {
   void request(raster::TileId id);
   // Uploads finished loads, forgets requests older than two frames, starts the next frame.
   void endFrame();
+  // Blocks until every queued tile is loaded or the ready list is full
+  // (TerrainOptions::waitForTiles: single pictures, never views).
+  void waitIdle();
 
   GLuint texture() const { return texture_; }
   const raster::TilePyramid& pyramid() const { return *pyramid_; }
@@ -104,6 +107,8 @@ class TilePool {
   std::deque<Request> queue_;                             // newest at the back
   std::unordered_map<std::uint64_t, std::uint64_t> wanted_;  // queued or loading -> frame asked
   std::vector<std::pair<raster::TileId, std::vector<float>>> ready_;
+  int loading_ = 0;  // taken by a worker, not yet ready
+  std::condition_variable idle_;
   bool stop_ = false;
   std::vector<std::thread> workers_;
 };

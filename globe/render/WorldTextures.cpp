@@ -15,6 +15,7 @@ WorldTextures::WorldTextures(const world::WorldData& data)
   // Mipmapped so that far coasts average to partial coverage instead of aliasing.
   const auto& w = grids_->water();
   water_ = gl::redGeoTexture(w.values.data(), w.channels, w.width, w.height, GL_R8, true);
+  if (data.waterSource) waterTiles_ = std::make_unique<TilePool>(waterPyramid(data.waterSource, data.waterEncoding));
 }
 
 WorldTextures::WorldTextures(const world::WorldData& data, std::shared_ptr<const raster::TilePyramid> water,

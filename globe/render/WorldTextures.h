@@ -2,7 +2,9 @@
 // ocean negative) and water coverage (1 water, 0 land; the GPU's bilinear
 // filter turns it into the classifier's coverage, so the shoreline is the
 // 0.5 contour and never shows 5' pixel steps), from world::WorldData. The
-// CPU side (bilinear lookups, the water index) is world::WorldGrids.
+// CPU side (bilinear lookups, the water index) is world::WorldGrids. A
+// finer global mask (WorldData::waterSource) is also streamed as tiles
+// (waterTiles, TilePool.h).
 #pragma once
 
 #include "globe/raster/TilePyramid.h"

@@ -11,6 +11,7 @@
 #include "globe/render/GlobeRenderer.h"
 #include "globe/render/TilePool.h"
 #include "globe/render/WorldTextures.h"
+#include "globe/world/LayerStack.h"
 #include "globe/world/WorldData.h"
 
 #include <gtest/gtest.h>
@@ -150,7 +151,11 @@ TEST(TilePool, BoundsDoNotGrowWithTheRasterAndNothingWaits) {
     ASSERT_LE(st.ready, o.maxReady);
     a.endFrame();
   }
+  // Then the loads land (however slow the machine: waited for, not timed).
+  a.waitIdle();
+  a.endFrame();
   EXPECT_GT(a.stats().uploads, 0u);
+  EXPECT_LE(a.stats().resident, o.slots);
   EXPECT_GT(a.stats().dropped, 0u);  // beyond maxQueued
   TileId drawn;
   EXPECT_EQ(a.slotOf({pBig->levels() - 1, 0, 0}, &drawn), 0);
@@ -275,4 +280,40 @@ TEST(TerrainTiles, FineMaskWiderThanOneTextureIsDrawnStreamed) {
     darkest = std::min(darkest, first.rgba[i] + first.rgba[i + 1] + first.rgba[i + 2]);
   EXPECT_GT(darkest, 60);
   EXPECT_GT(compare(first, b).over16, 0.01);
+}
+
+// The drawing commands' layer stack: a global mask finer than the drawn
+// 5' grid is streamed (WorldData::waterSource), the default world is not
+// (its frames stay those of the single texture), and a frame that waits
+// for its tiles (geocean render) is the picture the streaming converges to.
+TEST(TerrainTiles, LayeredWorldStreamsAFinerGlobalMaskAndAWaitingFrameIsComplete) {
+  context();
+  TempDir t;
+  setenv("GEOCEAN_TILE_CACHE", (t.path / "cache").c_str(), 1);
+  EXPECT_FALSE(world::loadLayeredWorld({}, true).waterSource);
+  const std::string fine = raster::defaultWorld().maskFine;
+  const world::WorldData data = world::loadLayeredWorld({{world::LayerKind::Mask, fine, "", 0}}, true);
+  ASSERT_TRUE(data.waterSource);
+  EXPECT_EQ(data.waterSource->path(), fine);
+  auto tiled = std::make_shared<render::WorldTextures>(data);
+  ASSERT_TRUE(tiled->waterTiles());
+  EXPECT_TRUE(fs::exists(t.path / "cache"));  // the pyramid's cache went where it was told
+  const camera::ViewPose pose{36.0, -5.5, 60000.0, 0.0, -70.0, 0.0, 45.0, 480, 270};
+  const gl::Image converged = renderWorld(tiled, pose, 400, tiled->waterTiles());
+  gl::Image waited;
+  {
+    auto fresh = std::make_shared<render::WorldTextures>(data);
+    render::TerrainOptions o;
+    o.waitForTiles = true;
+    render::GlobeRenderer r(fresh, o);
+    gl::Framebuffer fb(pose.width, pose.height);
+    fb.bind();
+    render::FrameSettings s;
+    s.sunEcef = render::sunFromLocal(pose.latDeg, pose.lonDeg, 135.0, 35.0);
+    r.render(pose, s);
+    waited = fb.readColor();
+  }
+  const Diff d = compare(converged, waited);
+  EXPECT_EQ(d.mean, 0.0);  // the same tiles drawn: the same bits
+  unsetenv("GEOCEAN_TILE_CACHE");
 }
