@@ -60,3 +60,81 @@ float textureBSplineAuto(sampler2D tex, vec2 uv) {
   return texelsPerPixel < 1.0 ? b : texture(tex, uv).r;
 }
 #endif
+
+#ifdef GEOCEAN_WATER_TILES
+// Water coverage streamed as pyramid tiles (globe/render/TilePool): the
+// terrain tile being drawn lies inside a 2 x 2 block of tiles of one level,
+// resident in layers of a texture array; texels are fetched and filtered
+// here (the same B-spline weights as textureBSplineGather, in float).
+layout(binding = 5) uniform sampler2DArray uWaterPool;
+uniform ivec4 uWaterSlots;    // layers of the block: (x0 y0, x1 y0, x0 y1, x1 y1)
+uniform ivec4 uWaterBlock;    // first tile (x, y), tiles across the level, tile size
+uniform ivec3 uWaterLevel;    // level width and height in texels; 1 if longitude wraps
+uniform vec4 uWaterLevelGeo;  // origin lon, origin lat, lon step, lat step of a level texel
+
+float waterTexel(ivec2 g) {
+  int w = uWaterLevel.x;
+  g.x = uWaterLevel.z != 0 ? ((g.x % w) + w) % w : clamp(g.x, 0, w - 1);
+  g.y = clamp(g.y, 0, uWaterLevel.y - 1);
+  int T = uWaterBlock.w;
+  ivec2 t = g / T;
+  int dx = t.x - uWaterBlock.x;
+  if (dx < 0) dx += uWaterBlock.z;  // wrapped past the antimeridian
+  int dy = t.y - uWaterBlock.y;
+  // Outside the block (not reached: the level is chosen so the tile and the
+  // filter's reach fit in it): its nearest edge texel, from the border.
+  ivec2 local = clamp(g - t * T, ivec2(0), ivec2(T - 1));
+  if (dx < 0 || dx > 1) {
+    local.x = dx < 0 ? -1 : T;
+    dx = clamp(dx, 0, 1);
+  }
+  if (dy < 0 || dy > 1) {
+    local.y = dy < 0 ? -1 : T;
+    dy = clamp(dy, 0, 1);
+  }
+  int layer = dy == 0 ? (dx == 0 ? uWaterSlots.x : uWaterSlots.y) : (dx == 0 ? uWaterSlots.z : uWaterSlots.w);
+  return texelFetch(uWaterPool, ivec3(local + 1, layer), 0).r;  // + 1: the tile's border
+}
+
+// Continuous level texel coordinates with texel centres at integers.
+vec2 waterTexelPos(vec2 lonLatDeg) {
+  return vec2((lonLatDeg.x - uWaterLevelGeo.x) / uWaterLevelGeo.z, (lonLatDeg.y - uWaterLevelGeo.y) / uWaterLevelGeo.w) - 0.5;
+}
+
+float waterTilesBilinear(vec2 lonLatDeg) {
+  vec2 p = waterTexelPos(lonLatDeg);
+  vec2 i = floor(p);
+  vec2 f = p - i;
+  ivec2 g = ivec2(i);
+  return mix(mix(waterTexel(g), waterTexel(g + ivec2(1, 0)), f.x),
+             mix(waterTexel(g + ivec2(0, 1)), waterTexel(g + ivec2(1, 1)), f.x), f.y);
+}
+
+float waterTilesBSpline(vec2 lonLatDeg) {
+  vec2 p = waterTexelPos(lonLatDeg);
+  vec2 i = floor(p);
+  vec2 f = p - i;
+  vec2 f2 = f * f, f3 = f2 * f;
+  vec4 wx = vec4((1.0 - 3.0 * f.x + 3.0 * f2.x - f3.x) / 6.0, (4.0 - 6.0 * f2.x + 3.0 * f3.x) / 6.0,
+                 (1.0 + 3.0 * f.x + 3.0 * f2.x - 3.0 * f3.x) / 6.0, f3.x / 6.0);
+  vec4 wy = vec4((1.0 - 3.0 * f.y + 3.0 * f2.y - f3.y) / 6.0, (4.0 - 6.0 * f2.y + 3.0 * f3.y) / 6.0,
+                 (1.0 + 3.0 * f.y + 3.0 * f2.y - 3.0 * f3.y) / 6.0, f3.y / 6.0);
+  ivec2 g = ivec2(i) - 1;
+  float s = 0.0;
+  for (int y = 0; y < 4; ++y) {
+    vec4 row = vec4(waterTexel(g + ivec2(0, y)), waterTexel(g + ivec2(1, y)), waterTexel(g + ivec2(2, y)),
+                    waterTexel(g + ivec2(3, y)));
+    s += wy[y] * dot(row, wx);
+  }
+  return s;
+}
+
+#ifdef GEOCEAN_FRAGMENT_STAGE
+// Magnified: the B-spline; minified: bilinear at the level the terrain tile
+// chose (its texels are at most about a pixel: the tile's cells are).
+float waterTilesAuto(vec2 lonLatDeg) {
+  float texelsPerPixel = length(fwidth(waterTexelPos(lonLatDeg)));
+  return texelsPerPixel < 1.0 ? waterTilesBSpline(lonLatDeg) : waterTilesBilinear(lonLatDeg);
+}
+#endif
+#endif

@@ -43,7 +43,11 @@ void main() {
   if (uSeaShading != 0) {
     // Water coverage: 0.5 is the shoreline; smooth over a pixel (B-spline
     // magnified, the mipmapped average minified).
+#ifdef GEOCEAN_WATER_TILES
+    float w = waterTilesAuto(vLonLat);
+#else
     float w = textureBSplineAuto(uWater, geoUv(vLonLat, uWaterGeo));
+#endif
     float aa = clamp(fwidth(w) * 0.75, 1e-3, 0.5);
     float waterAmt = smoothstep(0.5 - aa, 0.5 + aa, w);
     // Distant sea (no wave geometry, slopes as roughness), shaded per vertex.

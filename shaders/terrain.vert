@@ -42,12 +42,17 @@ void main() {
 #else
   vec2 uvE = geoUv(aLonLat, uElevationGeo);
   float elev = textureLod(uElevation, uvE, 0.0).r;
-  vec2 uvW = geoUv(aLonLat, uWaterGeo);
   // The fragment shaders draw the shoreline at B-spline coverage 0.5; the
   // ground must already be under the sea wherever that can be water, or it
   // hides the wave grid (seen 2 m above the Strait of Gibraltar).
+#ifdef GEOCEAN_WATER_TILES
+  float waterBSpline = waterTilesBSpline(aLonLat);
+  float water = max(waterTilesBilinear(aLonLat), waterBSpline);
+#else
+  vec2 uvW = geoUv(aLonLat, uWaterGeo);
   float waterBSpline = textureBSpline(uWater, uvW);
   float water = max(textureLod(uWater, uvW, 0.0).r, waterBSpline);
+#endif
   // Land never dips below the sea, water areas sit under the wave grid.
   float land = max(elev, 0.0) * uExaggeration;
   float h = mix(land, -uSeaDropM, smoothstep(0.3, 0.45, water)) - uSkirtM * aSkirt;

@@ -53,6 +53,7 @@ int runRender(const RenderArgs& a) {
   if (const int rc = loadDrawnWorld("render", a.layers, sources, data); rc != kExitOk) return rc;
   render::TerrainOptions terrain;
   terrain.exaggeration = a.exaggeration;
+  terrain.waitForTiles = true;  // one picture: the streamed tiles it needs, not their ancestors
   render::Session s;
   try {
     s = render::Session::headless(data, pose.width, pose.height, terrain);

@@ -89,7 +89,16 @@ void write(const std::string& path, const void* data, const TileFill& fill, int 
     const int ts = o.tileSize;
     TIFFSetField(tif, TIFFTAG_TILEWIDTH, uint32_t(ts));
     TIFFSetField(tif, TIFFTAG_TILELENGTH, uint32_t(ts));
-    std::vector<unsigned char> tile(std::size_t(ts) * ts * pixelBytes);
+    std::vector<unsigned char> tile(std::size_t(ts) * ts * pixelBytes), empty;
+    if (o.sparse && o.nodata) {
+      // One tile of nodata in the file's sample type: tiles equal to it are not written.
+      empty.resize(tile.size());
+      for (std::size_t i = 0; i < empty.size(); i += bytesPerSample) {
+        if (type == SampleType::U8) empty[i] = static_cast<unsigned char>(*o.nodata);
+        else if (type == SampleType::I16) { const auto v = static_cast<std::int16_t>(*o.nodata); std::memcpy(&empty[i], &v, 2); }
+        else { const auto v = static_cast<float>(*o.nodata); std::memcpy(&empty[i], &v, 4); }
+      }
+    }
     for (int ty = 0; ty < height && ok; ty += ts)
       for (int tx = 0; tx < width && ok; tx += ts) {
         std::fill(tile.begin(), tile.end(), 0);
@@ -101,6 +110,7 @@ void write(const std::string& path, const void* data, const TileFill& fill, int 
             std::memcpy(&tile[std::size_t(y) * ts * pixelBytes], src + (std::size_t(ty + y) * width + tx) * pixelBytes,
                         std::size_t(w) * pixelBytes);
         }
+        if (!empty.empty() && tile == empty) continue;
         ok = TIFFWriteTile(tif, tile.data(), uint32_t(tx), uint32_t(ty), 0, 0) >= 0;
       }
   } else {

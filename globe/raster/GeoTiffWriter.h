@@ -23,6 +23,9 @@ struct GeoTiffWriteOptions {
   int jpegQuality = 90;
   int deflateLevel = 6;          // 1 (fast) .. 9 (small)
   std::optional<double> nodata;  // GDAL_NODATA
+  // Tiles whose every sample is nodata are not written (byte count 0,
+  // GDAL's SPARSE_OK convention). Tiled writes with a nodata value only.
+  bool sparse = false;
   // Test fixtures only: a projected CRS code (ProjectedCSTypeGeoKey) or a
   // rotation term in ModelTransformation.
   std::optional<int> projectedEpsg;

@@ -1,5 +1,6 @@
 #include "globe/raster/PixelSource.h"
 
+#include "globe/raster/GeoTiff.h"
 #include "globe/raster/OiioModuleApi.h"
 #include "globe/raster/Raster.h"
 
@@ -33,6 +34,7 @@ struct TiffFile {
   explicit TiffFile(const std::string& path) {
     TIFFSetWarningHandler(nullptr);
     TIFFSetErrorHandler(nullptr);
+    registerGeoTiffTags();  // so GDAL_NODATA reads as text (sparse blocks are filled with it)
     t = TIFFOpen(path.c_str(), "r");
   }
   ~TiffFile() {
@@ -45,6 +47,7 @@ struct TiffLayout {
   uint16_t compression = COMPRESSION_NONE;
   uint32_t w = 0, h = 0, tw = 0, th = 0, rowsPerStrip = 0;
   bool tiled = false;
+  double fill = 0.0;  // blocks of byte count 0 (sparse files): GDAL_NODATA, else 0, as GDAL reads them
 };
 
 TiffLayout layoutOf(TIFF* t) {
@@ -58,6 +61,8 @@ TiffLayout layoutOf(TIFF* t) {
   TIFFGetFieldDefaulted(t, TIFFTAG_PHOTOMETRIC, &l.photometric);
   TIFFGetFieldDefaulted(t, TIFFTAG_COMPRESSION, &l.compression);
   l.tiled = TIFFIsTiled(t);
+  char* nod = nullptr;
+  if (TIFFGetField(t, 42113, &nod) && nod) l.fill = std::strtod(nod, nullptr);
   if (l.tiled) {
     TIFFGetField(t, TIFFTAG_TILEWIDTH, &l.tw);
     TIFFGetField(t, TIFFTAG_TILELENGTH, &l.th);
@@ -92,25 +97,51 @@ bool supported(const TiffLayout& l) {
          l.compression != COMPRESSION_OJPEG && (l.tiled ? (l.tw > 0 && l.th > 0) : l.rowsPerStrip > 0);
 }
 
+template <class T>
+void fillAs(double v, std::vector<unsigned char>& buf) {
+  const T s = static_cast<T>(v);
+  for (std::size_t i = 0; i + sizeof(T) <= buf.size(); i += sizeof(T)) std::memcpy(&buf[i], &s, sizeof(T));
+}
+void fillBlock(SampleKind k, double v, std::vector<unsigned char>& buf) {
+  switch (k) {
+    case SampleKind::U8: fillAs<std::uint8_t>(v, buf); break;
+    case SampleKind::I8: fillAs<std::int8_t>(v, buf); break;
+    case SampleKind::U16: fillAs<std::uint16_t>(v, buf); break;
+    case SampleKind::I16: fillAs<std::int16_t>(v, buf); break;
+    case SampleKind::U32: fillAs<std::uint32_t>(v, buf); break;
+    case SampleKind::I32: fillAs<std::int32_t>(v, buf); break;
+    case SampleKind::F32: fillAs<float>(v, buf); break;
+    case SampleKind::F64: fillAs<double>(v, buf); break;
+  }
+}
+
 // Decodes the block (tile or strip) holding pixel row y / column x into
 // `buf` (native samples, blockW x blockH x spp). Returns false on error.
 bool readBlock(TIFF* t, const TiffLayout& l, uint32_t x, uint32_t y, std::vector<unsigned char>& buf,
                uint32_t& bx0, uint32_t& by0, uint32_t& bw, uint32_t& bh) {
   const std::size_t px = std::size_t(l.spp) * (l.bps / 8);
+  uint32_t strile;
   if (l.tiled) {
     bx0 = (x / l.tw) * l.tw;
     by0 = (y / l.th) * l.th;
     bw = l.tw;
     bh = l.th;
     buf.resize(std::size_t(l.tw) * l.th * px);
-    return TIFFReadEncodedTile(t, TIFFComputeTile(t, x, y, 0, 0), buf.data(), tmsize_t(buf.size())) >= 0;
+    strile = TIFFComputeTile(t, x, y, 0, 0);
+  } else {
+    bx0 = 0;
+    by0 = (y / l.rowsPerStrip) * l.rowsPerStrip;
+    bw = l.w;
+    bh = std::min(l.rowsPerStrip, l.h - by0);
+    buf.resize(std::size_t(l.w) * l.rowsPerStrip * px);
+    strile = TIFFComputeStrip(t, y, 0);
   }
-  bx0 = 0;
-  by0 = (y / l.rowsPerStrip) * l.rowsPerStrip;
-  bw = l.w;
-  bh = std::min(l.rowsPerStrip, l.h - by0);
-  buf.resize(std::size_t(l.w) * l.rowsPerStrip * px);
-  return TIFFReadEncodedStrip(t, TIFFComputeStrip(t, y, 0), buf.data(), tmsize_t(buf.size())) >= 0;
+  if (TIFFGetStrileByteCount(t, strile) == 0) {  // sparse: never written
+    fillBlock(*kindOf(l), l.fill, buf);
+    return true;
+  }
+  return (l.tiled ? TIFFReadEncodedTile(t, strile, buf.data(), tmsize_t(buf.size()))
+                  : TIFFReadEncodedStrip(t, strile, buf.data(), tmsize_t(buf.size()))) >= 0;
 }
 }  // namespace
 

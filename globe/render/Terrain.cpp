@@ -29,10 +29,20 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
     : world_(world), options_(options) {
   if (options_.poolTiles < 64) throw std::invalid_argument("terrain pool must hold at least 64 tiles");
   maxLevel_ = options_.maxLevel;
-  const double texelDeg = world_.finestShapeTexelDeg();
+  double texelDeg = world_.finestShapeTexelDeg();
+  if (world_.waterTiles())  // the streamed mask's own texel
+    texelDeg = std::min(texelDeg, std::abs(world_.waterTiles()->pyramid().source().transform().lonStepDeg));
   while (maxLevel_ > 0 && texelDeg > 0.0 && 90.0 / double(1 << (maxLevel_ - 1)) / (kGrid - 1) <= texelDeg / 16.0)
     --maxLevel_;
-  program_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag");
+  // Streamed water (WorldTextures::waterTiles): the same programs reading the tile pool.
+  const auto with = [&](std::vector<std::string> d) {
+    if (world_.waterTiles()) d.push_back("GEOCEAN_WATER_TILES 1");
+    return d;
+  };
+  // Under an ocean layer the terrain's water keeps the single texture: the
+  // ocean draws its coast from its own grids, made from the same cells
+  // (plugin/render/OceanWorld), and the two must agree.
+  program_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", with({}));
   underOcean_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", {"GEOCEAN_UNDER_OCEAN 1"});
   seaProxy_ = gl::GlProgram::graphics("terrain.vert", "sea_proxy.frag");
   bare_ = gl::GlProgram::graphics("terrain.vert", "bare.frag", {"GEOCEAN_BARE 1"});
@@ -264,9 +274,13 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
   glUniform1f(prog.uniform("uOceanCellRadians"),
               float(2.0 * std::tan(0.5 * cam.vfovDeg() * kDeg) / cam.heightPx() * oceanCellPx));
   const GLint locOffset = prog.uniform("uTileOffset"), locSkirt = prog.uniform("uSkirtM");
+  TilePool* pool = world_.waterTiles();
+  const bool streamed = pool && prog.uniform("uWaterSlots") >= 0;
+  if (streamed) glBindTextureUnit(5, pool->texture());
   glBindVertexArray(vao_);
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const Key& k = tiles[i];
+    if (streamed) bindWaterBlock(&prog, k);
     const glm::vec3 off(slots[i]->centerEcef - cam.eyeEcef());  // double difference, then float
     glUniform3fv(locOffset, 1, &off[0]);
     // Skirts hang deeper than the largest height error between levels
@@ -275,6 +289,64 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
     glUniform1f(locSkirt, float(std::max(5.0, 0.35 * cellM * std::max(1.0, options_.exaggeration))));
     glDrawElementsBaseVertex(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr, slots[i]->index * kVertsPerTile);
   }
+}
+
+bool TerrainRenderer::bindWaterBlock(const gl::GlProgram* prog, const Key& k) {
+  // The finest pyramid level whose 2 x 2 tiles hold this terrain tile and
+  // the filter's reach (3 texels: the B-spline's 2 and a skirt's), and are
+  // resident; the finest such level is asked for. The terrain tile's cells
+  // are at most pixelErrorPx pixels (its screen-space error), and 252
+  // texels over its 32 cells make a texel about a pixel: the texture's level
+  // follows the view.
+  TilePool& pool = *world_.waterTiles();
+  const raster::TilePyramid& pyr = pool.pyramid();
+  const raster::GeoTransform& t0 = pyr.source().transform();
+  const bool wrap = t0.global;
+  const int T = pyr.tileSize(), top = pyr.levels() - 1;
+  double lat0, lat1, lon0, lon1;
+  tileRange(k, lat0, lat1, lon0, lon1);
+  const double x0 = (lon0 - t0.originLonDeg) / t0.lonStepDeg, x1 = (lon1 - t0.originLonDeg) / t0.lonStepDeg;
+  const double ya = (lat0 - t0.originLatDeg) / t0.latStepDeg, yb = (lat1 - t0.originLatDeg) / t0.latStepDeg;
+  const double y0 = std::min(ya, yb), y1 = std::max(ya, yb);
+  constexpr double kReach = 3.0;
+  int want = 0;
+  while (want < top && std::max(x1 - x0, y1 - y0) / double(1 << want) + 2.0 * kReach + 1.0 > T) ++want;
+  int slots[4] = {0, 0, 0, 0};
+  int level = top, bx = 0, by = 0;
+  for (int l = want; l <= top; ++l) {
+    const double s = double(1 << l);
+    const int W = pyr.levelWidth(l), H = pyr.levelHeight(l), nx = pyr.tilesX(l), ny = pyr.tilesY(l);
+    double ax = x0 / s - kReach, bxx = x1 / s + kReach;
+    if (!wrap) ax = std::clamp(ax, 0.0, W - 1.0), bxx = std::clamp(bxx, 0.0, W - 1.0);
+    const double ay = std::clamp(y0 / s - kReach, 0.0, H - 1.0), byy = std::clamp(y1 / s + kReach, 0.0, H - 1.0);
+    const int tx0 = int(std::floor(ax / T)), tx1 = int(std::floor(bxx / T));
+    const int ty0 = int(std::floor(ay / T)), ty1 = int(std::floor(byy / T));
+    if (l < top && (tx1 - tx0 > 1 || ty1 - ty0 > 1)) continue;
+    const auto wrapX = [&](int x) { return wrap ? ((x % nx) + nx) % nx : std::clamp(x, 0, nx - 1); };
+    const int cx[2] = {wrapX(tx0), wrapX(tx1)}, cy[2] = {std::clamp(ty0, 0, ny - 1), std::clamp(ty1, 0, ny - 1)};
+    bool all = true;
+    for (int q = 0; q < 4; ++q) {
+      const raster::TileId id{l, cx[q & 1], cy[q >> 1]};
+      slots[q] = pool.residentSlot(id);
+      if (slots[q] < 0) {
+        all = false;
+        if (l == want) pool.request(id);
+      }
+    }
+    if (!all && l < top) continue;
+    level = l;
+    bx = cx[0];
+    by = cy[0];
+    break;
+  }
+  if (!prog) return level == want;
+  const double s = double(1 << level);
+  glUniform4i(prog->uniform("uWaterSlots"), slots[0], slots[1], slots[2], slots[3]);
+  glUniform4i(prog->uniform("uWaterBlock"), bx, by, pyr.tilesX(level), T);
+  glUniform3i(prog->uniform("uWaterLevel"), pyr.levelWidth(level), pyr.levelHeight(level), wrap ? 1 : 0);
+  glUniform4f(prog->uniform("uWaterLevelGeo"), float(t0.originLonDeg), float(t0.originLatDeg), float(t0.lonStepDeg * s),
+              float(t0.latStepDeg * s));
+  return level == want;
 }
 
 TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const camera::Camera& selectFrom,
@@ -307,6 +379,18 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
   std::vector<const Slot*> slots;
   selectTiles(cam, tiles, slots, stats);
   const auto pass = [&](const gl::GlProgram& prog) { drawTiles(prog, cam, light, sea, oceanCellPx, tiles, slots); };
+  const gl::GlProgram& colour = bare ? bare_ : sea == SeaShading::UnderOcean && !options_.seaProxy ? underOcean_ : program_;
+  if (TilePool* pool = world_.waterTiles(); pool && options_.waitForTiles && &colour == &program_) {
+    // A picture, not an interactive view: wait for the tiles this view asks
+    // for (bounded: a view needing more than the pool holds draws what fits).
+    for (int round = 0; round < 64; ++round) {
+      bool complete = true;
+      for (const Key& k : tiles) complete = bindWaterBlock(nullptr, k) && complete;
+      if (complete) break;
+      pool->waitIdle();
+      pool->endFrame();
+    }
+  }
   if (!bare && sea == SeaShading::UnderOcean && options_.seaProxy) {
     // Depth only, where the ocean layer will cover the pixel: the same
     // surface pulled a few float-depth units towards the eye (reversed Z),
@@ -319,7 +403,9 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
     glDisable(GL_POLYGON_OFFSET_FILL);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   }
-  pass(bare ? bare_ : sea == SeaShading::UnderOcean && !options_.seaProxy ? underOcean_ : program_);
+  pass(colour);
+  // Finished tile loads go up after the frame's draws (they never wait).
+  if (TilePool* pool = world_.waterTiles()) pool->endFrame();
   stats.tilesDrawn = int(tiles.size());
   glBindVertexArray(0);
   return stats;

@@ -44,6 +44,10 @@ struct TerrainOptions {
   // With an ocean layer, tiles that the ocean covers opaquely (open water
   // with a margin, world::WaterIndex) are not drawn at all.
   bool skipOpenWater = true;
+  // Streamed water (WorldTextures::waterTiles): a frame waits for the tiles
+  // it asks for, for single pictures (geocean render). Off: the coarser
+  // resident tile is drawn until a finer one arrives (views, flights).
+  bool waitForTiles = false;
 };
 
 // How the terrain shades its water areas.
@@ -118,6 +122,10 @@ class TerrainRenderer {
   bool underOpenWater(double lat0, double lat1, double lon0, double lon1, const Bounds& b, double dist,
                       const camera::Camera& cam, double pxPerM) const;
   void tileRange(const Key& k, double& lat0, double& lat1, double& lon0, double& lon1) const;
+  // Streamed water: the pool tiles this terrain tile samples, as uniforms
+  // (none with a null prog: only the requests). True when they are of the
+  // level the tile wants.
+  bool bindWaterBlock(const gl::GlProgram* prog, const Key& k);
 
   const WorldTextures& world_;
   TerrainOptions options_;

@@ -2,9 +2,13 @@
 // ocean negative) and water coverage (1 water, 0 land; the GPU's bilinear
 // filter turns it into the classifier's coverage, so the shoreline is the
 // 0.5 contour and never shows 5' pixel steps), from world::WorldData. The
-// CPU side (bilinear lookups, the water index) is world::WorldGrids.
+// CPU side (bilinear lookups, the water index) is world::WorldGrids. A
+// finer global mask (WorldData::waterSource) is also streamed as tiles
+// (waterTiles, TilePool.h).
 #pragma once
 
+#include "globe/raster/TilePyramid.h"
+#include "globe/render/TilePool.h"
 #include "globe/world/WorldGrids.h"
 
 #include <epoxy/gl.h>
@@ -17,6 +21,12 @@ namespace geocean::render {
 class WorldTextures {
  public:
   explicit WorldTextures(const world::WorldData& data);
+  // As above, and the water coverage drawn from a tile pyramid (waterPyramid)
+  // through a GPU tile pool: rasters of any size (issue 12 item 2). The
+  // single water texture stays for the passes that do not stream (the sea
+  // proxy) and the CPU grids for picking and LOD bounds.
+  WorldTextures(const world::WorldData& data, std::shared_ptr<const raster::TilePyramid> water,
+                TilePoolOptions pool = {});
   ~WorldTextures();
   WorldTextures(const WorldTextures&) = delete;
   WorldTextures& operator=(const WorldTextures&) = delete;
@@ -33,11 +43,20 @@ class WorldTextures {
   float waterAt(double latDeg, double lonDeg) const { return grids_->waterAt(latDeg, lonDeg); }
   double finestShapeTexelDeg() const { return grids_->finestShapeTexelDeg(); }
   const world::WaterIndex& waterIndex() const { return grids_->waterIndex(); }
+  // The streamed water coverage, or null (the single texture only).
+  TilePool* waterTiles() const { return waterTiles_.get(); }
 
  private:
   std::shared_ptr<const world::WorldGrids> grids_;
   GLuint imagery_ = 0, elevation_ = 0, water_ = 0;
   glm::vec4 imageryGeo_{0.0f};
+  std::unique_ptr<TilePool> waterTiles_;
 };
+
+// A mask raster's water coverage (1 water, 0 land by the encoding; nodata
+// land, as MaskEncoding::classify) as a tile pyramid with its disk cache.
+std::shared_ptr<const raster::TilePyramid> waterPyramid(std::shared_ptr<const raster::Raster> mask,
+                                                        const world::MaskEncoding& encoding = {},
+                                                        raster::PyramidOptions options = {});
 
 }  // namespace geocean::render

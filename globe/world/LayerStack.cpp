@@ -182,6 +182,19 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
   d.imagery = layerOf(*raster::Raster::open(raster::defaultWorld().imagery));
   d.elevation = elevationLayerOf(stack);
   d.water = waterLayerOf(stack);
+  // The first mask to answer, when it covers the Earth and is finer than the
+  // drawn grid (at most 5'), is drawn from its tiles (issue 12 item 2); a
+  // finer elevation layer (drawingMask null) decides the coast instead.
+  for (const RasterLayer& l : stack.layers()) {
+    if (l.kind != LayerKind::Mask) continue;
+    const raster::GeoTransform& t = l.raster->transform();
+    if (stack.drawingMask() && t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * l.raster->height() + 180.0) < 1e-6 &&
+        t.lonStepDeg < 0.999 * d.water.lonStepDeg) {
+      d.waterSource = l.raster;
+      d.waterEncoding = l.encoding;
+    }
+    break;
+  }
   return d;
 }
 

@@ -8,6 +8,7 @@
 
 #include <glm/vec4.hpp>
 
+#include <memory>
 #include <vector>
 
 namespace geocean::raster {
@@ -33,6 +34,11 @@ struct WorldData {
   WorldLayer imagery;    // RGB 0..255, sRGB
   WorldLayer elevation;  // metres, ocean negative
   WorldLayer water;      // 1 water (ocean or lake), 0 land
+  // A global mask finer than `water` that answers first (loadLayeredWorld):
+  // the host draws it streamed as tiles (globe/render/WorldTextures), the
+  // grids above stay for the CPU. Null: `water` is what is drawn.
+  std::shared_ptr<const raster::Raster> waterSource;
+  MaskEncoding waterEncoding;
 };
 
 // An in-memory raster as a layer: all channels, or only `channel` (>= 0).

@@ -1,0 +1,107 @@
+// Tile pyramid (globe/raster/TilePyramid): building the coarse levels of a
+// 10800 x 5400 uint8 GeoTIFF (a 2' world, 58 M pixels) against the reference
+// of decoding every source tile once (libtiff through Raster, the least a
+// build must do); opening with a warm cache; reading bordered tiles.
+// Run by hand: build/tests/bench/bench_tiles; ratios go to docs/PERFORMANCE.md.
+#include "globe/raster/GeoTiffWriter.h"
+#include "globe/raster/Raster.h"
+#include "globe/raster/TilePyramid.h"
+
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <vector>
+
+using namespace geocean::raster;
+namespace fs = std::filesystem;
+
+namespace {
+constexpr int kW = 10800, kH = 5400;
+
+const std::string& source() {
+  static const std::string path = [] {
+    const fs::path dir = fs::temp_directory_path() / "geocean-bench-tiles";
+    fs::create_directories(dir);
+    const std::string p = (dir / "world2m.tif").string();
+    GeoTiffWriteOptions o;
+    o.transform.lonStepDeg = 360.0 / kW;
+    o.transform.latStepDeg = -180.0 / kH;
+    o.deflateLevel = 1;
+    writeGeoTiffTiles(p, kW, kH, 1, SampleType::U8, o, [](int x0, int y0, void* tile) {
+      auto* v = static_cast<std::uint8_t*>(tile);
+      for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x) v[y * 256 + x] = std::uint8_t((((x0 + x) >> 3) ^ ((y0 + y) >> 3)) & 1);
+    });
+    return p;
+  }();
+  return path;
+}
+
+PyramidOptions options(const std::string& cache) {
+  PyramidOptions o;
+  o.cacheDir = cache;
+  o.progress = BuildProgress::Off;
+  return o;
+}
+
+const std::string kCache = (fs::temp_directory_path() / "geocean-bench-tiles" / "cache").string();
+
+// Reference: every pixel decoded once, in tile order (what any build reads).
+void BM_DecodeAllTiles(benchmark::State& state) {
+  OpenOptions ro;
+  ro.fewLookups = true;
+  for (auto _ : state) {
+    auto r = Raster::open(source(), ro);
+    double sum = 0;
+    for (int ty = 0; ty < kH; ty += 256)
+      for (int tx = 0; tx < kW; tx += 256)
+        for (int y = ty; y < std::min(ty + 256, kH); ++y)
+          for (int x = tx; x < std::min(tx + 256, kW); ++x) sum += r->pixel(x, y);
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(kW) * kH);
+}
+BENCHMARK(BM_DecodeAllTiles)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+void BM_PyramidBuildCold(benchmark::State& state) {
+  auto r = Raster::open(source());
+  for (auto _ : state) {
+    fs::remove_all(kCache);
+    auto p = TilePyramid::open(r, options(kCache));
+    benchmark::DoNotOptimize(p->stats().storedBytes);
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(kW) * kH);
+}
+BENCHMARK(BM_PyramidBuildCold)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+void BM_PyramidOpenWarm(benchmark::State& state) {
+  auto r = Raster::open(source());
+  TilePyramid::open(r, options(kCache));
+  for (auto _ : state) {
+    auto p = TilePyramid::open(r, options(kCache));
+    if (p->stats().builtNow) state.SkipWithError("rebuilt");
+  }
+}
+BENCHMARK(BM_PyramidOpenWarm)->Unit(benchmark::kMillisecond);
+
+// Bordered 258^2 tiles: level 0 (from the source) and level 2 (cache).
+void BM_ReadTile(benchmark::State& state) {
+  auto r = Raster::open(source());
+  auto p = TilePyramid::open(r, options(kCache));
+  const int level = int(state.range(0));
+  std::vector<float> t(258 * 258);
+  int i = 0;
+  for (auto _ : state) {
+    // Distinct tiles round-robin (more than the 64 decoded ones kept).
+    const int n = p->tilesX(level) * p->tilesY(level);
+    const int k = (i++ * 7) % n;
+    p->readTile({level, k % p->tilesX(level), k / p->tilesX(level)}, t.data());
+    benchmark::DoNotOptimize(t.data());
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_ReadTile)->Arg(0)->Arg(2)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
