@@ -118,6 +118,7 @@ struct Results {
   std::vector<ocean::Surface> surface;
   std::vector<float> elevationM;
   std::vector<double> seaHeightM, normalEnu, verticalVelocityMps;
+  std::vector<double> hsM, peakPeriodS, peakWavelengthM, waveFromDeg;  // the local sea state
 };
 
 class Querier {
@@ -141,6 +142,7 @@ class Querier {
     r.seaHeightM.resize(n);
     r.normalEnu.resize(3 * n);
     r.verticalVelocityMps.resize(n);
+    for (auto* v : {&r.hsM, &r.peakPeriodS, &r.peakWavelengthM, &r.waveFromDeg}) v->resize(n);
     std::vector<double> lat(n), lon(n), t(n);
     for (std::size_t i = 0; i < n; ++i) {
       lat[i] = pts[i].latDeg;
@@ -154,15 +156,22 @@ class Querier {
       out.heightM = r.seaHeightM.data();
       out.normalEnu = r.normalEnu.data();
       out.verticalVelocityMps = r.verticalVelocityMps.data();
+      out.hsM = r.hsM.data();
+      out.peakPeriodS = r.peakPeriodS.data();
+      out.peakWavelengthM = r.peakWavelengthM.data();
+      out.waveFromDeg = r.waveFromDeg.data();
     } else {
-      std::fill(r.seaHeightM.begin(), r.seaHeightM.end(), std::numeric_limits<double>::quiet_NaN());
+      for (auto* v : {&r.seaHeightM, &r.hsM, &r.peakPeriodS, &r.peakWavelengthM, &r.waveFromDeg})
+        std::fill(v->begin(), v->end(), std::numeric_limits<double>::quiet_NaN());
     }
     snap_->querySurface({lat.data(), lon.data(), n, t.data(), true}, out);
   }
 
   void header(std::string& out) const {
     if (format_ == "text")
-      out += "lat,lon,surface,elevation_m,time_s,sea_height_m,normal_e,normal_n,normal_u,vertical_velocity_mps\n";
+      out +=
+          "lat,lon,surface,elevation_m,time_s,sea_height_m,normal_e,normal_n,normal_u,vertical_velocity_mps,"
+          "hs_m,peak_period_s,peak_wavelength_m,wave_from_deg\n";
   }
 
   // Row i of r. Sea fields are null where there is no sea surface (land, lakes).
@@ -200,6 +209,14 @@ class Querier {
       }
       out += ",\"vertical_velocity_mps\":";
       appendSea(out, r.verticalVelocityMps[i], sea);
+      out += ",\"hs_m\":";
+      appendSea(out, r.hsM[i], sea);
+      out += ",\"peak_period_s\":";
+      appendSea(out, r.peakPeriodS[i], sea);
+      out += ",\"peak_wavelength_m\":";
+      appendSea(out, r.peakWavelengthM[i], sea);
+      out += ",\"wave_from_deg\":";
+      appendSea(out, r.waveFromDeg[i], sea);
       out += "}\n";
     } else {
       appendDouble(out, p.latDeg);
@@ -211,7 +228,8 @@ class Querier {
       appendFloat(out, elev);
       out += ',';
       appendDouble(out, t);
-      for (double v : {height, nrm[0], nrm[1], nrm[2], r.verticalVelocityMps[i]}) {
+      for (double v : {height, nrm[0], nrm[1], nrm[2], r.verticalVelocityMps[i], r.hsM[i], r.peakPeriodS[i],
+                       r.peakWavelengthM[i], r.waveFromDeg[i]}) {
         out += ',';
         appendSea(out, v, sea);
       }

@@ -142,6 +142,15 @@ void Snapshot::queryRange(const Points& p, std::size_t begin, std::size_t end, c
         out.normalEnu[3 * i + 2] = water ? r.normalEnu.z : kNaN;
       }
       if (out.verticalVelocityMps) out.verticalVelocityMps[i] = water ? r.verticalVelocityMps : kNaN;
+      if (out.wantsSeaState()) {
+        waves::LocalSeaState st;
+        st.hsM = st.peakPeriodS = st.peakWavelengthM = st.waveFromDeg = kNaN;
+        if (water) st = sea->field().seaStateAt(lat[k], lon[k], r.depthM);
+        if (out.hsM) out.hsM[i] = st.hsM;
+        if (out.peakPeriodS) out.peakPeriodS[i] = st.peakPeriodS;
+        if (out.peakWavelengthM) out.peakWavelengthM[i] = st.peakWavelengthM;
+        if (out.waveFromDeg) out.waveFromDeg[i] = st.waveFromDeg;
+      }
       if (out.horizontalVelocityEnMps) {
         out.horizontalVelocityEnMps[2 * i] = out.horizontalVelocityEnMps[2 * i + 1] = kNaN;
         if (water) {

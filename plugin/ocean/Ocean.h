@@ -65,7 +65,18 @@ struct SurfaceOutputs {
   double* verticalVelocityMps = nullptr;      // count; d(height)/dt at the fixed point
   double* horizontalVelocityEnMps = nullptr;  // 2 x count (east, north): velocity of the water particle now
                                               // at the surface above the point
-  bool wantsSea() const { return heightM || normalEnu || verticalVelocityMps || horizontalVelocityEnMps; }
+  // The sea state at the point (waves::WaveField::seaStateAt at the query's
+  // water depth): significant wave height (m), peak period (s), peak
+  // wavelength (m) and the direction waves come FROM (degrees clockwise
+  // from north). count each.
+  double* hsM = nullptr;
+  double* peakPeriodS = nullptr;
+  double* peakWavelengthM = nullptr;
+  double* waveFromDeg = nullptr;
+  bool wantsSeaState() const { return hsM || peakPeriodS || peakWavelengthM || waveFromDeg; }
+  bool wantsSea() const {
+    return heightM || normalEnu || verticalVelocityMps || horizontalVelocityEnMps || wantsSeaState();
+  }
 };
 
 // Classes for a batch of points, as the picker and the screen grid take them.

@@ -586,6 +586,48 @@ SurfacePoint WaveField::surfaceAt(double latDeg, double lonDeg, double tS, doubl
   return sp;
 }
 
+LocalSeaState WaveField::seaStateAt(double latDeg, double lonDeg, double depthM) const {
+  LocalSeaState out;
+  const Located loc = locate(latDeg, lonDeg);
+  out.peakPeriodS = kTwoPi / omegaPeak_;
+  // The depth that sets each model's phase: Gerstner and FFT take their wave
+  // numbers from the reference depth, noise draws deep-water cells.
+  const double phaseDepth = model_ == Model::Gerstner || model_ == Model::Fft ? sea_.referenceDepthM : kDeepWaterM;
+  out.peakWavelengthM = kTwoPi / waveNumberExact(omegaPeak_, phaseDepth);
+  glm::dvec3 travel = travelEcef_;
+  if (model_ == Model::Gerstner) {
+    const double depth = std::max(depthM, 0.05);  // as wv_gerstner
+    const glm::dvec3 radial = glm::normalize(loc.p);
+    kd::Kernel k;
+    double m0 = 0.0, sumAz = 0.0;
+    travel = glm::dvec3(0.0);
+    for (const Component& c : components_) {
+      const kd::WvWave w = waveAt(c, radial, 0.0);
+      // wv_gerstner's shoaling coefficient and great-circle taper at d = 0.
+      double ks = 1.0;
+      if (c.omega * c.omega / kG * depth < WV_DEEP_KH) {
+        const double kl = k.wv_waveNumber(c.omega, depth);
+        const double th = std::tanh(kl * depth);
+        const double n = 0.5 * (1.0 + kl * depth * (1.0 - th * th) / th);
+        ks = std::sqrt(kG * kl / (2.0 * c.omega * c.omega * n));
+      }
+      const double az = c.amplitudeM * ks * glm::smoothstep(WV_TAPER_RAD, 2.0 * WV_TAPER_RAD, w.dirO.w);
+      m0 += 0.5 * az * az;
+      sumAz += az;
+      travel += (0.5 * az * az) * glm::dvec3(w.dirO);
+    }
+    const double sB = std::min(1.0, 0.39 * depth / std::max(sumAz, 1e-30));  // wv_gerstner's breaking cap
+    out.hsM = 4.0 * std::sqrt(m0) * sB;
+  } else {
+    out.hsM = hsM_;
+  }
+  const double te = glm::dot(travel, loc.f.e), tn = glm::dot(travel, loc.f.n);
+  double from = std::atan2(te, tn) * (180.0 / kPi) + 180.0;
+  from = std::fmod(from, 360.0);
+  out.waveFromDeg = from < 0.0 ? from + 360.0 : from;
+  return out;
+}
+
 void WaveField::surfaceBatch(const double* latDeg, const double* lonDeg, const double* tS, bool timesPerPoint,
                              const double* depthM, std::size_t n, SurfacePoint* out) const {
   const batch::Points pts{latDeg, lonDeg, tS, timesPerPoint, depthM, n};

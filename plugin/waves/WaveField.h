@@ -98,6 +98,15 @@ struct SurfacePoint {
   glm::dvec3 restOffsetEnuM{0.0};       // rest point of the particle now above, from the point
 };
 
+// The sea state at a point, as wave models and buoys report it (linear
+// theory statistics of the field the model draws; no time dependence).
+struct LocalSeaState {
+  double hsM = 0.0;              // significant wave height, 4 sqrt(m0) of the local amplitudes
+  double peakPeriodS = 0.0;      // 2 pi / omega_p of the spectrum (frequency is conserved)
+  double peakWavelengthM = 0.0;  // of the peak frequency at the depth that sets the model's phase
+  double waveFromDeg = 0.0;      // mean direction the waves come FROM, clockwise from north, [0, 360)
+};
+
 // Float data for one GPU patch (see the contract above).
 struct GpuPatch {
   kf::WvFrame frame{};
@@ -138,6 +147,13 @@ class WaveField {
   // loops over surfaceAt. Runs on the calling thread.
   void surfaceBatch(const double* latDeg, const double* lonDeg, const double* tS, bool timesPerPoint,
                     const double* depthM, std::size_t n, SurfacePoint* out) const;
+
+  // The sea state at (latDeg, lonDeg) with local water depth depthM.
+  // Gerstner: Hs from the components' local amplitudes (shoaling, great-
+  // circle taper, breaking cap as wv_gerstner applies them), direction the
+  // energy-weighted mean of the components' local directions. Noise and FFT
+  // have no depth terms: the spectrum's Hs and the drift direction.
+  LocalSeaState seaStateAt(double latDeg, double lonDeg, double depthM = kDeepWaterM) const;
 
   // Significant wave height (m) of the sea state's spectrum, 4 sqrt(m0).
   double spectrumHsM() const { return hsM_; }
