@@ -90,16 +90,24 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
     const double s0x = glm::dot(g, cf.east_), s0y = glm::dot(g, cf.north_);
     const double k0 = w.kRef;
     for (std::size_t p = 0; p < depth.size(); ++p) kLoc[p] = waveNumberExact(w.omega, depth[p]);
-    // Inflow edges: the plane wave of the reference depth.
+    // Inflow edges: the plane wave of the reference depth (outside the
+    // region the kernel has no offset, so none here either). Only the
+    // deepest inflow nodes carry it (deep water, or for long waves the
+    // deepest the edge has): a shallower one would inject an early arrival;
+    // there the sweeps continue the interior.
     std::fill(s.begin(), s.end(), inf);
     std::fill(fixedNode.begin(), fixedNode.end(), 0);
+    auto inflow = [&](int i, int j) {
+      return (i == 0 && s0x > 0) || (i == n - 1 && s0x < 0) || (j == 0 && s0y > 0) || (j == n - 1 && s0y < 0);
+    };
+    double kIn = inf;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if (inflow(i, j)) kIn = std::min(kIn, kLoc[at(i, j)]);
+    const double kFix = std::max(kIn, k0) * (1.0 + 1e-3);
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const bool in = (i == 0 && s0x > 0) || (i == n - 1 && s0x < 0) || (j == 0 && s0y > 0) ||
-                        (j == n - 1 && s0y < 0);
-        // Only deep inflow nodes carry the plane wave: a shallow one would
-        // inject an early arrival; there the sweeps continue the interior.
-        if (!in || kLoc[at(i, j)] > k0 * (1.0 + 1e-3)) continue;
+        if (!inflow(i, j) || kLoc[at(i, j)] > kFix) continue;
         s[at(i, j)] = k0 * (s0x * x(i) + s0y * x(j));
         fixedNode[at(i, j)] = 1;
       }
@@ -153,8 +161,8 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
         const double gx = (s[at(i1, j)] - s[at(i0, j)]) / ((i1 - i0) * r.cellM);
         const double gy = (s[at(i, j1)] - s[at(i, j0)]) / ((j1 - j0) * r.cellM);
         const double len = std::hypot(gx, gy);
-        sx[at(i, j)] = len > 0 ? gx / len : s0x;
-        sy[at(i, j)] = len > 0 ? gy / len : s0y;
+        sx[at(i, j)] = len > 0 && std::isfinite(len) ? gx / len : s0x;
+        sy[at(i, j)] = len > 0 && std::isfinite(len) ? gy / len : s0y;
       }
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
@@ -184,6 +192,7 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
         const std::size_t p = at(i, j);
+        if (!std::isfinite(s[p]) || !std::isfinite(q[p])) continue;  // not reached from the inflow edges
         const double delta = s[p] - k0 * (s0x * x(i) + s0y * x(j));
         const double beta = std::atan2(s0x * sy[p] - s0y * sx[p], s0x * sx[p] + s0y * sy[p]);
         const double kr = std::clamp(std::exp(-0.5 * q[p]), kKrMin, kKrMax);
