@@ -81,6 +81,7 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
       div(depth.size());
   std::vector<char> fixedNode(depth.size());
   auto at = [n](int i, int j) { return std::size_t(j) * n + i; };
+  kd::Kernel kernel{};
   for (std::size_t c = 0; c < comps.size(); ++c) {
     const WaveField::Component& w = comps[c];
     // Travel direction at the centre (as the kernel's great circle there).
@@ -89,7 +90,11 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
     g = glm::normalize(g);
     const double s0x = glm::dot(g, cf.east_), s0y = glm::dot(g, cf.north_);
     const double k0 = w.kRef;
-    for (std::size_t p = 0; p < depth.size(); ++p) kLoc[p] = waveNumberExact(w.omega, depth[p]);
+    // The kernel's own dispersion solve (Guo + 2 Newton steps, ~1e-9) and
+    // its deep-water cut-off: deep nodes get exactly k_deep, as the kernel.
+    const double kDeep = w.omega * w.omega / WV_G;
+    for (std::size_t p = 0; p < depth.size(); ++p)
+      kLoc[p] = kDeep * depth[p] < WV_DEEP_KH ? kernel.wv_waveNumber(w.omega, depth[p]) : kDeep;
     // Inflow edges: the plane wave of the reference depth (outside the
     // region the kernel has no offset, so none here either). Only the
     // deepest inflow nodes carry it (deep water, or for long waves the
