@@ -354,3 +354,35 @@ TEST(QueryCli, SeaStateColumnsMatchPiersonMoskowitz) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("\"hs_m\":2."), std::string::npos) << r.out;  // 0.209 U^2 / g at 10 m/s: 2.13 m
 }
+
+// Issue 15: --coast-region makes the waves feel the coast: inside it the
+// peak wavelength is the dispersion relation's at the local depth
+// (-elevation_m), w^2 = g k tanh(k h); bad values exit 2 naming them.
+TEST(QueryCli, CoastRegionGivesTheLocalWavelength) {
+  const std::string q = kGeocean + " query 36.0 -5.6 --waves gerstner --anchor 36,-5.6 --wind-dir 250";
+  auto r = run(q + " --coast-region 36.0,-5.6");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::vector<std::string> f;
+  std::stringstream row(r.out.substr(r.out.find('\n') + 1));
+  for (std::string c; std::getline(row, c, ',');) f.push_back(c);
+  ASSERT_EQ(f.size(), 14u) << r.out;
+  const double h = -std::stod(f[3]), lp = std::stod(f[12]), tp = std::stod(f[11]);
+  ASSERT_GT(h, 1.0);
+  const double g = 9.80665, w = 2.0 * M_PI / tp;
+  double lo = w * w / g, hi = 10.0 * w / std::sqrt(g * h);
+  for (int i = 0; i < 200; ++i) {
+    const double k = 0.5 * (lo + hi);
+    (g * k * std::tanh(k * h) < w * w ? lo : hi) = k;
+  }
+  EXPECT_NEAR(lp, 2.0 * M_PI / (0.5 * (lo + hi)), 1e-6 * lp) << r.out;
+  EXPECT_LT(lp, g * tp * tp / (2.0 * M_PI));  // shorter than in deep water
+  for (const auto& [arg, msg] : std::vector<std::pair<std::string, std::string>>{
+           {" --coast-region 1,x", "'x'"}, {" --coast-region 1,2,100", "size 100 m"}, {" --coast-region 95,0", "95"}}) {
+    r = run(q + arg);
+    EXPECT_EQ(r.exitCode, 2) << arg;
+    EXPECT_NE(r.err.find(msg), std::string::npos) << r.err;
+  }
+  r = run(kGeocean + " query 0 0 --coast-region 1,2");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("needs --waves gerstner"), std::string::npos) << r.err;
+}
