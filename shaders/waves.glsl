@@ -158,13 +158,37 @@ WR wv_atan2Small(WR y, WR x) {
   return t * (WR(1) + t2 * (WR(-1.0 / 3.0) + t2 * (WR(0.2) + t2 * (WR(-1.0 / 7.0) + t2 * (WR(1.0 / 9.0) + t2 * WR(-1.0 / 11.0))))));
 }
 
+// The coast field of component `comp` at offset d: (phase offset, sin beta,
+// 1 - cos beta, Kr - 1), bilinear between nodes; 0 outside the grid (its
+// outer ring of nodes is 0, so the field is continuous there). Only where
+// the includer declares `WR4 wvCoastTexels[]` and defines WV_COAST.
+WR4 wv_coastSample(WvCoast co, int comp, WR3 d) {
+#ifdef WV_COAST
+  int n = co.cell.z;
+  WR tx = co.eAxis.w + dot(WR3(co.eAxis), d), ty = co.nAxis.w + dot(WR3(co.nAxis), d);
+  WR fx = floor(tx), fy = floor(ty);
+  int ix = co.cell.x + int(fx), iy = co.cell.y + int(fy);
+  if (ix < 0 || iy < 0 || ix >= n - 1 || iy >= n - 1) return WR4(0);
+  WR ax = tx - fx, ay = ty - fy;
+  int b = co.cell.w + (comp * n + iy) * n + ix;
+  WR4 v00 = wvCoastTexels[b], v10 = wvCoastTexels[b + 1];
+  WR4 v01 = wvCoastTexels[b + n], v11 = wvCoastTexels[b + n + 1];
+  return (v00 * (WR(1) - ax) + v10 * ax) * (WR(1) - ay) + (v01 * (WR(1) - ax) + v11 * ax) * ay;
+#else
+  return WR4(0);
+#endif
+}
+
 // Sum of `count` components wvWaves[first ..] at depth `depthM` (m, > 0; use
 // 1e30 for deep water). Each component travels along great circles away from
 // its source; its local wave number follows the dispersion relation at the
 // sea state's reference depth (phase) and its amplitude and orbit shape
 // follow the local depth (shoaling by energy-flux conservation, elliptical
 // orbits, breaking limit H/h <= 0.78).
-WvResult wv_gerstner(int first, int count, WR3 d, WvFrame fr, WR depthM) {
+// With a coast field (co.cell.z > 0) the phase, direction and amplitude
+// take the field's corrections (depth-dependent dispersion and refraction,
+// plugin/waves/CoastField.h) and the orbit's wave number is the local one.
+WvResult wv_gerstnerCoast(int first, int count, WR3 d, WvFrame fr, WR depthM, WvCoast co) {
   WR depth = max(depthM, WR(0.05));
   WR invR = fr.radial.w;
   WR3 n0 = WR3(fr.radial);
@@ -191,25 +215,33 @@ WvResult wv_gerstner(int first, int count, WR3 d, WvFrame fr, WR depthM) {
     WR e = eb * eb / max(s + p, WR(1e-30));
     WR dTheta = wv_atan2Small(eg + cO * e, WR(1) + en + sO * e);
     WR psi = w.phase.x + w.phase.y * dTheta;
+    WR4 cf = WR4(0);
+    if (co.cell.z > 0) cf = wv_coastSample(co, i, d);
+    psi += cf.x;
     // Reduce before sin/cos: GPU sin/cos (llvmpipe) lose accuracy for large
     // arguments (measured: 9 mm errors at |psi| ~ 2000 rad without this).
     psi -= WR(2.0 * WV_PI) * floor(psi * WR(0.5 / WV_PI) + WR(0.5));
     WR3 c = n0 * cO - g0 * sO;  // source direction
     WR3 dir = ph * dot(c, ph) - c;
     dir = normalize(dir - dot(dir, up) * up);
+    // Snell turning by beta about the up axis (exact no-op where cf = 0).
+    dir = dir * (WR(1) - cf.z) + cross(up, dir) * cf.y;
     WR taper = smoothstep(WR(WV_TAPER_RAD), WR(2.0 * WV_TAPER_RAD), s / lenV);
     WR omega = w.phase.z;
     WR kDeep = omega * omega / WR(WV_G);
     WR th = WR(1), ks = WR(1);
+    WR kP = w.extra.x;
     if (kDeep * depth < WR(WV_DEEP_KH)) {
       WR kLoc = wv_waveNumber(omega, depth);
       th = tanh(kLoc * depth);
       WR n = WR(0.5) * (WR(1) + kLoc * depth * (WR(1) - th * th) / th);
       ks = sqrt(WR(WV_G) * kLoc / (WR(2) * omega * omega * n));
+      if (co.cell.z > 0) kP = kLoc;  // the phase field's |grad psi|
     }
-    WR az = w.phase.w * ks * taper;
+    WR az = w.phase.w * ks * (WR(1) + cf.w) * taper;
+    // Miche's steepness limit, H <= 0.142 L tanh(k h), with the coast field.
+    if (co.cell.z > 0) az = min(az, WR(0.071 * 2.0 * WV_PI) / kP * th);
     WR ax = w.extra.y * az / th;
-    WR kP = w.extra.x;
     WR cs = cos(psi), sn = sin(psi);
     sumAz += az;
     sumKAx += ax * kP;
@@ -238,6 +270,12 @@ WvResult wv_gerstner(int first, int count, WR3 d, WvFrame fr, WR depthM) {
   WR sx = (a22 * gzx - a12 * gzy) / det, sy = (a11 * gzy - a12 * gzx) / det;
   WR3 nrm = normalize(up - t1 * sx - t2 * sy);
   return WvResult(WR4(hor + up * z, z), WR4(nrm, dzdt), WR4(hvel, WR(0)), WR4(a11, a12, a22, det));
+}
+
+// Without a coast field: each component's wave number is the reference
+// depth's (the renderer's call; the query's too where no field is set).
+WvResult wv_gerstner(int first, int count, WR3 d, WvFrame fr, WR depthM) {
+  return wv_gerstnerCoast(first, count, d, fr, depthM, WvCoast(WR4(0), WR4(0), ivec4(0)));
 }
 
 // ---- model: FFT ocean (Tessendorf) laid on the ellipsoid triplanarly -------

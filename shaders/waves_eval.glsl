@@ -1,7 +1,7 @@
 // Compute stage that evaluates the wave kernel at a batch of points: the GPU
 // side of tests/waves/test_gpu_parity.cpp, and a GPU batch evaluator.
 // Assemble with shaders::assemble("waves_eval.glsl", {"WV_MODEL 0"}) (0 solid
-// noise, 1 Gerstner, 2 FFT: index.z = cascades). Buffers: see the bindings below; uniform uCount.
+// noise, 1 Gerstner, 2 FFT: index.z = cascades, 3 Gerstner with a coast field). Buffers: see the bindings below; uniform uCount.
 layout(local_size_x = 64) in;
 
 #include "waves_types.glsl"
@@ -20,6 +20,13 @@ layout(std430, binding = 5) readonly buffer WvFftPlaneBuffer { WvFftPlane wvFftP
 layout(std430, binding = 6) readonly buffer WvFftTexelBuffer { vec4 wvFftTexels[]; };
 uniform uint uCount;
 
+#if WV_MODEL == 3
+// Gerstner with a coast field (plugin/waves/CoastField.h): one WvCoast per patch.
+#define WV_COAST 1
+layout(std430, binding = 7) readonly buffer WvCoastTexelBuffer { vec4 wvCoastTexels[]; };
+layout(std430, binding = 8) readonly buffer WvCoastBuffer { WvCoast wvCoasts[]; };
+#endif
+
 #define WV_FFT 1
 #include "waves.glsl"
 
@@ -28,7 +35,9 @@ void main() {
   if (i >= uCount) return;
   WvPoint p = wvPoints[i];
   WvFrame fr = wvFrames[p.index.x];
-#if WV_MODEL == 2
+#if WV_MODEL == 3
+  wvResults[i] = wv_gerstnerCoast(p.index.y, p.index.z, p.d.xyz, fr, p.d.w, wvCoasts[p.index.x]);
+#elif WV_MODEL == 2
   wvResults[i] = wv_fft(p.index.y, 3, p.index.z, p.d.xyz, fr);
 #elif WV_MODEL == 1
   wvResults[i] = wv_gerstner(p.index.y, p.index.z, p.d.xyz, fr, p.d.w);

@@ -69,6 +69,26 @@ struct WvFftPlane {
   ivec4 cell;    // x, y: floor of O's texel coordinates mod N, z: first texel of the table, w: N (power of 2)
 };
 
+// The near-shore phase field (plugin/waves/CoastField.h) seen from a patch
+// origin: an N x N grid of nodes on the tangent plane at the region's centre,
+// per Gerstner component and node one WR4 (phase offset from the reference
+// phase (rad), sin and 1 - cos of the turning angle, Kr - 1), all exactly 0
+// where the waves do not feel the coast, so deep water is unchanged bit for
+// bit. cell.z == 0: no field (wv_gerstner).
+struct WvCoast {
+  WR4 eAxis;     // xyz: grid's x axis (unit ECEF) / cell size (nodes per m), w: fract of O's x node coordinate
+  WR4 nAxis;     // xyz: grid's y axis / cell size, w: fract of O's y node coordinate
+  ivec4 cell;    // x, y: floor of O's node coordinates, z: N (0: no field), w: first texel
+#ifdef __cplusplus
+#ifdef __clang__
+#if __clang_major__ < 16
+  WvCoast() = default;
+  WvCoast(WR4 e, WR4 n, ivec4 c) : eAxis(e), nAxis(n), cell(c) {}
+#endif
+#endif
+#endif
+};
+
 // Result of evaluating a model at a rest point (Lagrangian).
 struct WvResult {
   WR4 disp;      // xyz: displacement (ECEF, m), w: vertical part (m, along the geodetic up)

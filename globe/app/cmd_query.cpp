@@ -19,6 +19,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -35,6 +36,7 @@ struct QueryOptions {
   // Sea state (strings: parsed here so that bad values get our messages).
   std::string waves = "noise", time = "0", wind, beaufort, windDir = "270", fetch = "0", seed = "1",
               anchor = "0,0";
+  std::string coastRegion;  // LAT,LON[,SIZE_M]: the near-shore phase field (gerstner)
 };
 
 // The sea state and model from the options, or an error message.
@@ -43,6 +45,7 @@ struct WaveSetup {
   bool noSea = false;  // --waves none: class and elevation only
   waves::SeaState sea;
   double timeS = 0.0;
+  std::optional<waves::CoastField::Region> coast;
 };
 std::string parseWaveOptions(const QueryOptions& o, WaveSetup& w) {
   auto number = [](const std::string& opt, const std::string& v, double& out) -> std::string {
@@ -88,6 +91,24 @@ std::string parseWaveOptions(const QueryOptions& o, WaveSetup& w) {
     w.sea.anchorLatDeg = *lat;
     w.sea.anchorLonDeg = *lon;
   }
+  if (!o.coastRegion.empty()) {
+    if (w.model != waves::Model::Gerstner || w.noSea) return "--coast-region needs --waves gerstner";
+    std::vector<double> v;
+    const std::size_t parts = std::size_t(std::count(o.coastRegion.begin(), o.coastRegion.end(), ',')) + 1;
+    if (parts != 2 && parts != 3) return "--coast-region '" + o.coastRegion + "' is not LAT,LON[,SIZE_M]";
+    if (auto e = parseNumberList(o.coastRegion, parts, "--coast-region", v); !e.empty()) return e;
+    if (auto e = checkLatLon(v[0], v[1], "--coast-region"); !e.empty()) return e;
+    const double size = parts == 3 ? v[2] : 10000.0;
+    if (!(size >= 500.0 && size <= 40000.0))
+      return "--coast-region size " + o.coastRegion.substr(o.coastRegion.rfind(',') + 1) +
+             " m is outside 500 .. 40000 m";
+    waves::CoastField::Region r;
+    r.latDeg = v[0];
+    r.lonDeg = v[1];
+    r.nodes = 201;
+    r.cellM = size / (r.nodes - 1);
+    w.coast = r;
+  }
   return {};
 }
 
@@ -118,6 +139,7 @@ struct Results {
   std::vector<ocean::Surface> surface;
   std::vector<float> elevationM;
   std::vector<double> seaHeightM, normalEnu, verticalVelocityMps;
+  std::vector<double> hsM, peakPeriodS, peakWavelengthM, waveFromDeg;  // the local sea state
 };
 
 class Querier {
@@ -130,6 +152,7 @@ class Querier {
     if (!batch) ro.fewLookups = true;
     applyLayers(ocean_, o.layers, ro);
     if (!w.noSea) ocean_.setSeaState(w.model, w.sea);  // parseWaveOptions checked the ranges first
+    if (w.coast) ocean_.setCoastRegion(*w.coast);
     snap_ = ocean_.current();
     withSea_ = !w.noSea;
   }
@@ -141,6 +164,7 @@ class Querier {
     r.seaHeightM.resize(n);
     r.normalEnu.resize(3 * n);
     r.verticalVelocityMps.resize(n);
+    for (auto* v : {&r.hsM, &r.peakPeriodS, &r.peakWavelengthM, &r.waveFromDeg}) v->resize(n);
     std::vector<double> lat(n), lon(n), t(n);
     for (std::size_t i = 0; i < n; ++i) {
       lat[i] = pts[i].latDeg;
@@ -154,15 +178,22 @@ class Querier {
       out.heightM = r.seaHeightM.data();
       out.normalEnu = r.normalEnu.data();
       out.verticalVelocityMps = r.verticalVelocityMps.data();
+      out.hsM = r.hsM.data();
+      out.peakPeriodS = r.peakPeriodS.data();
+      out.peakWavelengthM = r.peakWavelengthM.data();
+      out.waveFromDeg = r.waveFromDeg.data();
     } else {
-      std::fill(r.seaHeightM.begin(), r.seaHeightM.end(), std::numeric_limits<double>::quiet_NaN());
+      for (auto* v : {&r.seaHeightM, &r.hsM, &r.peakPeriodS, &r.peakWavelengthM, &r.waveFromDeg})
+        std::fill(v->begin(), v->end(), std::numeric_limits<double>::quiet_NaN());
     }
     snap_->querySurface({lat.data(), lon.data(), n, t.data(), true}, out);
   }
 
   void header(std::string& out) const {
     if (format_ == "text")
-      out += "lat,lon,surface,elevation_m,time_s,sea_height_m,normal_e,normal_n,normal_u,vertical_velocity_mps\n";
+      out +=
+          "lat,lon,surface,elevation_m,time_s,sea_height_m,normal_e,normal_n,normal_u,vertical_velocity_mps,"
+          "hs_m,peak_period_s,peak_wavelength_m,wave_from_deg\n";
   }
 
   // Row i of r. Sea fields are null where there is no sea surface (land, lakes).
@@ -200,6 +231,14 @@ class Querier {
       }
       out += ",\"vertical_velocity_mps\":";
       appendSea(out, r.verticalVelocityMps[i], sea);
+      out += ",\"hs_m\":";
+      appendSea(out, r.hsM[i], sea);
+      out += ",\"peak_period_s\":";
+      appendSea(out, r.peakPeriodS[i], sea);
+      out += ",\"peak_wavelength_m\":";
+      appendSea(out, r.peakWavelengthM[i], sea);
+      out += ",\"wave_from_deg\":";
+      appendSea(out, r.waveFromDeg[i], sea);
       out += "}\n";
     } else {
       appendDouble(out, p.latDeg);
@@ -211,7 +250,8 @@ class Querier {
       appendFloat(out, elev);
       out += ',';
       appendDouble(out, t);
-      for (double v : {height, nrm[0], nrm[1], nrm[2], r.verticalVelocityMps[i]}) {
+      for (double v : {height, nrm[0], nrm[1], nrm[2], r.verticalVelocityMps[i], r.hsM[i], r.peakPeriodS[i],
+                       r.peakWavelengthM[i], r.waveFromDeg[i]}) {
         out += ',';
         appendSea(out, v, sea);
       }
@@ -448,6 +488,9 @@ const Register kRegister{{"query", "Surface class (ocean/land/lake), terrain ele
                             sub.add_option("--fetch", o->fetch, "fetch in m: 0 = fully developed (Pierson-Moskowitz, default), > 0 = JONSWAP");
                             sub.add_option("--seed", o->seed, "random seed of the sea (default 1)");
                             sub.add_option("--anchor", o->anchor, "LAT,LON where --wind-dir holds exactly (default 0,0)");
+                            sub.add_option("--coast-region", o->coastRegion,
+                                           "LAT,LON[,SIZE_M]: waves feel the coast in this square (gerstner; "
+                                           "default 10000 m, 201^2 nodes): local wavelength, refraction");
                             sub.positionals_at_end(false);
                             return [o] { return runQuery(*o); };
                           }}};

@@ -474,4 +474,26 @@ GEOCEAN_API geocean_status geocean_significant_wave_height(const geocean_ocean* 
   });
 }
 
+GEOCEAN_API geocean_status geocean_query_sea_state(const geocean_ocean* ocean, size_t count, const double* lat_deg,
+                                                   const double* lon_deg, double* out_hs_m,
+                                                   double* out_peak_period_s, double* out_peak_wavelength_m,
+                                                   double* out_wave_from_deg) {
+  return guard("geocean_query_sea_state", [&] {
+    requireNonNull(ocean, "ocean");
+    const auto snap = ocean->core.current();
+    if (!snap->sea) throw NotReady(NotReady::Missing::SeaState);
+    if (count == 0) return;
+    requireNonNull(lat_deg, "lat_deg");
+    requireNonNull(lon_deg, "lon_deg");
+    geocean::ocean::SurfaceOutputs out;
+    out.hsM = out_hs_m;
+    out.peakPeriodS = out_peak_period_s;
+    out.peakWavelengthM = out_peak_wavelength_m;
+    out.waveFromDeg = out_wave_from_deg;
+    if (!out.wantsSeaState()) return;
+    const double t = 0.0;  // the sea state does not depend on time
+    snap->querySurface({lat_deg, lon_deg, count, &t, false}, out);
+  });
+}
+
 }  // extern "C"

@@ -142,6 +142,15 @@ void Snapshot::queryRange(const Points& p, std::size_t begin, std::size_t end, c
         out.normalEnu[3 * i + 2] = water ? r.normalEnu.z : kNaN;
       }
       if (out.verticalVelocityMps) out.verticalVelocityMps[i] = water ? r.verticalVelocityMps : kNaN;
+      if (out.wantsSeaState()) {
+        waves::LocalSeaState st;
+        st.hsM = st.peakPeriodS = st.peakWavelengthM = st.waveFromDeg = kNaN;
+        if (water) st = sea->field().seaStateAt(lat[k], lon[k], r.depthM);
+        if (out.hsM) out.hsM[i] = st.hsM;
+        if (out.peakPeriodS) out.peakPeriodS[i] = st.peakPeriodS;
+        if (out.peakWavelengthM) out.peakWavelengthM[i] = st.peakWavelengthM;
+        if (out.waveFromDeg) out.waveFromDeg[i] = st.waveFromDeg;
+      }
       if (out.horizontalVelocityEnMps) {
         out.horizontalVelocityEnMps[2 * i] = out.horizontalVelocityEnMps[2 * i + 1] = kNaN;
         if (water) {
@@ -268,6 +277,21 @@ void Ocean::setSeaState(waves::Model model, const waves::SeaState& sea) {
   });
 }
 
+void Ocean::setCoastRegion(const waves::CoastField::Region& region) {
+  // Validate now (a 1-component deep sea), so a bad region throws here.
+  std::string error;
+  waves::SeaState probe;
+  probe.gerstnerComponents = 1;
+  const auto w = waves::WaveField::create(waves::Model::Gerstner, probe, error);
+  if (waves::CoastField::build(*w, region, [](double, double) { return 1e4; }, error).empty())
+    throw std::invalid_argument(error);
+  update([&](Snapshot& s) { s.coastRegion = region; });
+}
+
+void Ocean::clearCoastRegion() {
+  update([](Snapshot& s) { s.coastRegion.reset(); });
+}
+
 void Ocean::clearSeaState() {
   update([](Snapshot& s) { s.waves.reset(); });
 }
@@ -307,6 +331,40 @@ void Ocean::update(const std::function<void(Snapshot&)>& edit) {
     next->mask = layered->stack().drawingMask();
     next->elevation = layered->stack().drawingElevation();
     next->landSea = std::move(layered);
+  }
+  const bool coastChanged = !(next->coastRegion.has_value() == prev->coastRegion.has_value() &&
+                              (!next->coastRegion || (next->coastRegion->latDeg == prev->coastRegion->latDeg &&
+                                                      next->coastRegion->lonDeg == prev->coastRegion->lonDeg &&
+                                                      next->coastRegion->cellM == prev->coastRegion->cellM &&
+                                                      next->coastRegion->nodes == prev->coastRegion->nodes &&
+                                                      next->coastRegion->margin == prev->coastRegion->margin)));
+  if (next->waves && next->model == waves::Model::Gerstner &&
+      (rastersChanged || coastChanged || next->waves != prev->waves)) {
+    // The coast field from this snapshot's water depth (as the query's:
+    // -elevation where the mask says ocean, 0 on land).
+    std::shared_ptr<const waves::CoastField> coast;
+    if (next->coastRegion && next->landSea) {
+      const auto ls = next->landSea;
+      const waves::CoastField::Region r = *next->coastRegion;
+      const geo::EnuFrame f = geo::enuFrame({r.latDeg, r.lonDeg, 0.0});
+      auto depthAt = [&](double e, double n) {
+        const geo::Geodetic g = geo::fromEcef(f.originEcef + f.east * e + f.north * n);
+        Surface c;
+        ls->classifyBatch(&g.latDeg, &g.lonDeg, 1, &c);
+        if (c != Surface::Ocean) return 0.0;
+        float el = std::numeric_limits<float>::quiet_NaN();
+        ls->elevationBatch(&g.latDeg, &g.lonDeg, 1, &el);
+        return std::isnan(el) ? waves::kDeepWaterM : std::max(-double(el), 1.0);
+      };
+      std::string error;
+      coast = std::make_shared<const waves::CoastField>(waves::CoastField::build(*next->waves, r, depthAt, error));
+      if (coast->empty()) throw std::invalid_argument(error);
+    }
+    if (coast || next->waves->coastField()) {
+      auto copy = std::make_shared<waves::WaveField>(*next->waves);
+      copy->setCoast(coast);
+      next->waves = std::move(copy);
+    }
   }
   if (rastersChanged || next->waves != prev->waves)
     next->sea = next->waves ? std::make_shared<const waves::SeaQuery>(*next->waves, next->landSea) : nullptr;

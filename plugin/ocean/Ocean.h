@@ -18,6 +18,7 @@
 #include "globe/raster/Raster.h"
 #include "globe/world/LayerStack.h"
 #include "plugin/landsea/LandSea.h"
+#include "plugin/waves/CoastField.h"
 #include "plugin/waves/SeaQuery.h"
 #include "plugin/waves/WaveField.h"
 
@@ -25,6 +26,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -65,7 +67,18 @@ struct SurfaceOutputs {
   double* verticalVelocityMps = nullptr;      // count; d(height)/dt at the fixed point
   double* horizontalVelocityEnMps = nullptr;  // 2 x count (east, north): velocity of the water particle now
                                               // at the surface above the point
-  bool wantsSea() const { return heightM || normalEnu || verticalVelocityMps || horizontalVelocityEnMps; }
+  // The sea state at the point (waves::WaveField::seaStateAt at the query's
+  // water depth): significant wave height (m), peak period (s), peak
+  // wavelength (m) and the direction waves come FROM (degrees clockwise
+  // from north). count each.
+  double* hsM = nullptr;
+  double* peakPeriodS = nullptr;
+  double* peakWavelengthM = nullptr;
+  double* waveFromDeg = nullptr;
+  bool wantsSeaState() const { return hsM || peakPeriodS || peakWavelengthM || waveFromDeg; }
+  bool wantsSea() const {
+    return heightM || normalEnu || verticalVelocityMps || horizontalVelocityEnMps || wantsSeaState();
+  }
 };
 
 // Classes for a batch of points, as the picker and the screen grid take them.
@@ -91,6 +104,11 @@ struct Snapshot {
   std::shared_ptr<const waves::SeaQuery> sea;     // the query path over landSea and waves
   waves::Model model = waves::Model::Noise;       // what `waves` was made from
   waves::SeaState seaState;
+  // The near-shore region (Ocean::setCoastRegion): with a Gerstner sea
+  // state and rasters, `waves` carries a coast field built from this
+  // snapshot's water depth there (waves::CoastField), so queries take
+  // depth-dependent phase and refraction inside it.
+  std::optional<waves::CoastField::Region> coastRegion;
 
   // Nearest-cell class. Calling thread only. Throws NotReady without rasters.
   void classify(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out) const;
@@ -164,6 +182,11 @@ class Ocean {
   // value of a bad sea state.
   void setSeaState(waves::Model model, const waves::SeaState& sea);
   void clearSeaState();
+  // The region of interest of the near-shore phase field (Gerstner only;
+  // rebuilt from the current rasters' depth whenever they or the sea state
+  // change). Throws std::invalid_argument naming a bad field and value.
+  void setCoastRegion(const waves::CoastField::Region& region);
+  void clearCoastRegion();
 
   std::shared_ptr<const Snapshot> current() const;
 

@@ -205,6 +205,39 @@ class Core {
     return d;
   }
 
+  // The local sea state (the query's hs_m, peak_period_s, peak_wavelength_m,
+  // wave_from_deg); NaN where the point is not ocean.
+  py::dict seaState(const InArray& lat, const InArray& lon) const {
+    const auto shape = pointShape(lat, lon);
+    const std::size_t n = std::size_t(lat.size());
+    const auto snap = ocean_.current();
+    auto hs = newArray<double>(shape), tp = newArray<double>(shape), lp = newArray<double>(shape),
+         from = newArray<double>(shape);
+    oc::SurfaceOutputs out;
+    out.hsM = hs.mutable_data();
+    out.peakPeriodS = tp.mutable_data();
+    out.peakWavelengthM = lp.mutable_data();
+    out.waveFromDeg = from.mutable_data();
+    const double* la = lat.data();
+    const double* lo = lon.data();
+    {
+      py::gil_scoped_release release;
+      checkLatLon(la, lo, n, shape);
+      const double t = 0.0;  // the sea state does not depend on time
+      try {
+        snap->querySurface({la, lo, n, &t, false}, out);
+      } catch (const oc::NotReady& e) {
+        throw NotReadyError(std::string("Ocean.sea_state: ") + e.what());
+      }
+    }
+    py::dict d;
+    d["hs_m"] = hs;
+    d["peak_period_s"] = tp;
+    d["peak_wavelength_m"] = lp;
+    d["wave_from_deg"] = from;
+    return d;
+  }
+
   py::array_t<std::uint8_t> classify(const InArray& lat, const InArray& lon) const {
     const auto shape = pointShape(lat, lon);
     const std::size_t n = std::size_t(lat.size());
@@ -403,6 +436,7 @@ PYBIND11_MODULE(_geocean, m) {
            py::arg("gerstner_components"), py::arg("noise_octaves"), py::arg("anchor_lat_deg"),
            py::arg("anchor_lon_deg"), py::arg("reference_depth_m"))
       .def("query", &Core::query, py::arg("lat"), py::arg("lon"), py::arg("t"), py::arg("horizontal_velocity"))
+      .def("sea_state", &Core::seaState, py::arg("lat"), py::arg("lon"))
       .def("classify", &Core::classify, py::arg("lat"), py::arg("lon"))
       .def("elevation", &Core::elevation, py::arg("lat"), py::arg("lon"))
       .def("pick", &Core::pick, py::arg("origins"), py::arg("directions"))

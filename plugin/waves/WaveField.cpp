@@ -1,5 +1,6 @@
 #include "plugin/waves/WaveField.h"
 
+#include "plugin/waves/CoastField.h"
 #include "plugin/waves/FftOcean.h"
 #include "plugin/waves/WaveBatch.h"
 
@@ -391,6 +392,16 @@ void WaveField::cpuPatch(const glm::dvec3& o, double tS, CpuPatch& out) const {
     for (const auto& oc : octaves_) out.octaves.push_back(octaveAt(oc, o, tS));
   else if (model_ == Model::Gerstner)
     for (const auto& c : components_) out.waves.push_back(waveAt(c, glm::dvec3(out.frame.radial), tS));
+  out.coast = kd::WvCoast{};
+  out.coastTexels = nullptr;
+  if (model_ == Model::Gerstner && coast_) {
+    out.coast = coast_->at(o);
+    out.coastTexels = coast_->texels().data();
+  }
+}
+
+void WaveField::setCoast(std::shared_ptr<const CoastField> coast) {
+  coast_ = coast && !coast->empty() && model_ == Model::Gerstner ? std::move(coast) : nullptr;
 }
 
 void WaveField::gpuPatch(const glm::dvec3& o, double tS, GpuPatch& out) const {
@@ -402,6 +413,7 @@ void WaveField::gpuPatch(const glm::dvec3& o, double tS, GpuPatch& out) const {
   for (const auto& w : p.octaves)
     out.octaves.push_back({toF(w.row0), toF(w.row1), toF(w.row2), toF(w.fracO), w.cellO, toF(w.vel)});
   for (const auto& w : p.waves) out.waves.push_back({toF(w.dirO), toF(w.binO), toF(w.phase), toF(w.extra)});
+  out.coast = {toF(p.coast.eAxis), toF(p.coast.nAxis), p.coast.cell};
   out.fftPlanes.clear();
   out.fftTexels.clear();
   out.fftCascades = 0;
@@ -435,9 +447,10 @@ void WaveField::fftPlanesAt(const glm::dvec3& o, std::vector<kd::WvFftPlane>& ou
 }
 
 kd::WvResult WaveField::evaluate(const CpuPatch& p, const glm::dvec3& d, double depthM) const {
-  kd::Kernel k{p.octaves.data(), p.waves.data(), p.fftPlanes.data(), p.fftTexels ? p.fftTexels->data() : nullptr};
+  kd::Kernel k{p.octaves.data(), p.waves.data(), p.fftPlanes.data(), p.fftTexels ? p.fftTexels->data() : nullptr,
+               p.coastTexels};
   if (model_ == Model::Fft) return k.wv_fft(0, FftOcean::kPlanes, FftOcean::kCascades, d, p.frame);
-  if (model_ == Model::Gerstner) return k.wv_gerstner(0, int(p.waves.size()), d, p.frame, depthM);
+  if (model_ == Model::Gerstner) return k.wv_gerstnerCoast(0, int(p.waves.size()), d, p.frame, depthM, p.coast);
   return k.wv_solidNoise(0, int(p.octaves.size()), d, p.frame);
 }
 
@@ -509,8 +522,9 @@ WaveSample WaveField::sample(double latDeg, double lonDeg, double tS, double dep
   std::array<kd::WvWave, kMaxComponents> wv;
   const glm::dvec3 radial(frame.radial);
   for (std::size_t i = 0; i < components_.size(); ++i) wv[i] = waveAt(components_[i], radial, tS);
-  kd::Kernel k{nullptr, wv.data()};
-  return toEnu(k.wv_gerstner(0, int(components_.size()), glm::dvec3(0.0), frame, depthM), f);
+  kd::Kernel k{nullptr, wv.data(), nullptr, nullptr, coast_ ? coast_->texels().data() : nullptr};
+  const kd::WvCoast co = coast_ ? coast_->at(p) : kd::WvCoast{};
+  return toEnu(k.wv_gerstnerCoast(0, int(components_.size()), glm::dvec3(0.0), frame, depthM, co), f);
 }
 
 SurfacePoint WaveField::surfaceAt(double latDeg, double lonDeg, double tS, double depthM) const {
@@ -538,11 +552,13 @@ SurfacePoint WaveField::surfaceAt(double latDeg, double lonDeg, double tS, doubl
     for (std::size_t i = 0; i < components_.size(); ++i) wv[i] = waveAt(components_[i], radial, tS);
     dir0 = glm::dvec3(wv[0].dirO);
   }
-  kd::Kernel k{nullptr, wv.data(), planes.data(), tables ? tables->data() : nullptr};
+  kd::Kernel k{nullptr, wv.data(), planes.data(), tables ? tables->data() : nullptr,
+               coast_ ? coast_->texels().data() : nullptr};
   const int n = int(components_.size());
+  const kd::WvCoast co = coast_ && model_ == Model::Gerstner ? coast_->at(p) : kd::WvCoast{};
   auto eval = [&](const glm::dvec3& dd) {
     return model_ == Model::Fft ? k.wv_fft(0, FftOcean::kPlanes, FftOcean::kCascades, dd, frame)
-                                : k.wv_gerstner(0, n, dd, frame, depthM);
+                                : k.wv_gerstnerCoast(0, n, dd, frame, depthM, co);
   };
   // Find the rest point x (offset d in P's tangent plane) whose particle sits
   // above P: F(d) = d + H(d) = 0. Newton steps with the kernel's Jacobian of
@@ -586,6 +602,59 @@ SurfacePoint WaveField::surfaceAt(double latDeg, double lonDeg, double tS, doubl
   return sp;
 }
 
+LocalSeaState WaveField::seaStateAt(double latDeg, double lonDeg, double depthM) const {
+  LocalSeaState out;
+  const Located loc = locate(latDeg, lonDeg);
+  out.peakPeriodS = kTwoPi / omegaPeak_;
+  // The depth that sets each model's phase: Gerstner and FFT take their wave
+  // numbers from the reference depth, noise draws deep-water cells.
+  const double phaseDepth = model_ == Model::Gerstner || model_ == Model::Fft ? sea_.referenceDepthM : kDeepWaterM;
+  out.peakWavelengthM = kTwoPi / waveNumberExact(omegaPeak_, phaseDepth);
+  glm::dvec3 travel = travelEcef_;
+  if (model_ == Model::Gerstner) {
+    const double depth = std::max(depthM, 0.05);  // as wv_gerstner
+    const glm::dvec3 radial = glm::normalize(loc.p);
+    kd::Kernel k{nullptr, nullptr, nullptr, nullptr, coast_ ? coast_->texels().data() : nullptr};
+    const kd::WvCoast co = coast_ ? coast_->at(loc.p) : kd::WvCoast{};
+    // Inside a coast field's grid the phase follows the local depth.
+    const bool local = coast_ && co.cell.x >= 0 && co.cell.y >= 0 && co.cell.x < co.cell.z - 1 &&
+                       co.cell.y < co.cell.z - 1;
+    if (local) out.peakWavelengthM = kTwoPi / waveNumberExact(omegaPeak_, depth);
+    double m0 = 0.0, sumAz = 0.0;
+    travel = glm::dvec3(0.0);
+    for (std::size_t i = 0; i < components_.size(); ++i) {
+      const Component& c = components_[i];
+      const kd::WvWave w = waveAt(c, radial, 0.0);
+      const glm::dvec4 cf = co.cell.z > 0 ? k.wv_coastSample(co, int(i), glm::dvec3(0.0)) : glm::dvec4(0.0);
+      // wv_gerstnerCoast's shoaling, refraction, taper and Miche cap at d = 0.
+      double ks = 1.0, th = 1.0, kP = c.kRef;
+      if (c.omega * c.omega / kG * depth < WV_DEEP_KH) {
+        const double kl = k.wv_waveNumber(c.omega, depth);
+        th = std::tanh(kl * depth);
+        const double n = 0.5 * (1.0 + kl * depth * (1.0 - th * th) / th);
+        ks = std::sqrt(kG * kl / (2.0 * c.omega * c.omega * n));
+        if (co.cell.z > 0) kP = kl;
+      }
+      double az = c.amplitudeM * ks * (1.0 + cf.w) * glm::smoothstep(WV_TAPER_RAD, 2.0 * WV_TAPER_RAD, w.dirO.w);
+      if (co.cell.z > 0) az = std::min(az, 0.071 * kTwoPi / kP * th);
+      m0 += 0.5 * az * az;
+      sumAz += az;
+      glm::dvec3 dir = glm::dvec3(w.dirO);
+      dir = dir * (1.0 - cf.z) + glm::cross(loc.f.u, dir) * cf.y;
+      travel += (0.5 * az * az) * dir;
+    }
+    const double sB = std::min(1.0, 0.39 * depth / std::max(sumAz, 1e-30));  // wv_gerstner's breaking cap
+    out.hsM = 4.0 * std::sqrt(m0) * sB;
+  } else {
+    out.hsM = hsM_;
+  }
+  const double te = glm::dot(travel, loc.f.e), tn = glm::dot(travel, loc.f.n);
+  double from = std::atan2(te, tn) * (180.0 / kPi) + 180.0;
+  from = std::fmod(from, 360.0);
+  out.waveFromDeg = from < 0.0 ? from + 360.0 : from;
+  return out;
+}
+
 void WaveField::surfaceBatch(const double* latDeg, const double* lonDeg, const double* tS, bool timesPerPoint,
                              const double* depthM, std::size_t n, SurfacePoint* out) const {
   const batch::Points pts{latDeg, lonDeg, tS, timesPerPoint, depthM, n};
@@ -603,7 +672,7 @@ void WaveField::surfaceBatch(const double* latDeg, const double* lonDeg, const d
     batch::noise(oc.data(), int(octaves_.size()), pts, out);
     return;
   }
-  if (model_ == Model::Gerstner) {
+  if (model_ == Model::Gerstner && !coast_) {  // the SIMD batch has no coast field: scalar below
     std::array<batch::GerstnerComponent, kMaxComponents> gc{};
     for (std::size_t i = 0; i < components_.size(); ++i) {
       const Component& c = components_[i];

@@ -45,6 +45,7 @@
 namespace geocean::waves {
 
 class FftOcean;
+class CoastField;
 
 enum class Model : std::uint8_t {
   Noise,       // "noise": solid fractal noise on the 3D surface point (the default)
@@ -98,6 +99,15 @@ struct SurfacePoint {
   glm::dvec3 restOffsetEnuM{0.0};       // rest point of the particle now above, from the point
 };
 
+// The sea state at a point, as wave models and buoys report it (linear
+// theory statistics of the field the model draws; no time dependence).
+struct LocalSeaState {
+  double hsM = 0.0;              // significant wave height, 4 sqrt(m0) of the local amplitudes
+  double peakPeriodS = 0.0;      // 2 pi / omega_p of the spectrum (frequency is conserved)
+  double peakWavelengthM = 0.0;  // of the peak frequency at the depth that sets the model's phase
+  double waveFromDeg = 0.0;      // mean direction the waves come FROM, clockwise from north, [0, 360)
+};
+
 // Float data for one GPU patch (see the contract above).
 struct GpuPatch {
   kf::WvFrame frame{};
@@ -110,6 +120,12 @@ struct GpuPatch {
   std::vector<kf::WvFftPlane> fftPlanes;
   std::vector<glm::vec4> fftTexels;
   int fftCascades = 0;
+  // Model Gerstner with a coast field (WaveField::setCoast): call
+  // wv_gerstnerCoast(0, waveCount, d, frame, depthM, coast) after `#define
+  // WV_COAST 1` with `buffer { vec4 wvCoastTexels[]; }` holding
+  // coastField()->gpuTexels() (uploaded once per field, not per patch).
+  // coast.cell.z == 0 without a field.
+  kf::WvCoast coast{};
 };
 
 class WaveField {
@@ -139,6 +155,13 @@ class WaveField {
   void surfaceBatch(const double* latDeg, const double* lonDeg, const double* tS, bool timesPerPoint,
                     const double* depthM, std::size_t n, SurfacePoint* out) const;
 
+  // The sea state at (latDeg, lonDeg) with local water depth depthM.
+  // Gerstner: Hs from the components' local amplitudes (shoaling, great-
+  // circle taper, breaking cap as wv_gerstner applies them), direction the
+  // energy-weighted mean of the components' local directions. Noise and FFT
+  // have no depth terms: the spectrum's Hs and the drift direction.
+  LocalSeaState seaStateAt(double latDeg, double lonDeg, double depthM = kDeepWaterM) const;
+
   // Significant wave height (m) of the sea state's spectrum, 4 sqrt(m0).
   double spectrumHsM() const { return hsM_; }
   // Peak wavelength (m) in deep water.
@@ -160,12 +183,22 @@ class WaveField {
     std::vector<kd::WvWave> waves;
     std::vector<kd::WvFftPlane> fftPlanes;
     std::shared_ptr<const std::vector<glm::dvec4>> fftTexels;
+    kd::WvCoast coast{};
+    const glm::dvec4* coastTexels = nullptr;
   };
   void cpuPatch(const glm::dvec3& originEcef, double tS, CpuPatch& out) const;
 
   // Evaluate a patch at offset d (ECEF, m) from its origin: the double twin
   // of the shader call.
   kd::WvResult evaluate(const CpuPatch& patch, const glm::dvec3& d, double depthM) const;
+
+  // The near-shore phase field (model Gerstner; see CoastField.h): every
+  // query, sample and patch of this field then takes depth-dependent phase,
+  // refraction and Kr inside the field's region (deep water unchanged bit
+  // for bit). Null clears it. Not thread-safe against concurrent queries:
+  // set it before sharing the field.
+  void setCoast(std::shared_ptr<const CoastField> coast);
+  const CoastField* coastField() const { return coast_.get(); }
 
   // The FFT ocean's synthesis (model Fft; null otherwise).
   const FftOcean* fftOcean() const { return fft_.get(); }
@@ -204,6 +237,7 @@ class WaveField {
   std::vector<Octave> octaves_;
   std::vector<Component> components_;
   std::shared_ptr<const FftOcean> fft_;
+  std::shared_ptr<const CoastField> coast_;
   glm::dvec3 travelEcef_{0.0};   // wave travel direction at the anchor (unit ECEF)
   glm::dvec2 travelEn_{0.0};     // same, east/north components
 };

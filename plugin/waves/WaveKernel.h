@@ -40,6 +40,7 @@ using glm::tanh;
 
 #define WV_CPU 1
 #define WV_FFT 1
+#define WV_COAST 1
 #define WR double
 #define WR2 glm::dvec2
 #define WR3 glm::dvec3
@@ -53,6 +54,7 @@ struct Kernel {
   const WvWave* wvWaves = nullptr;
   const WvFftPlane* wvFftPlanes = nullptr;
   const WR4* wvFftTexels = nullptr;
+  const WR4* wvCoastTexels = nullptr;
 #include "shaders/waves.glsl"
 };
 #undef WR
@@ -77,12 +79,14 @@ using glm::ivec4;
 #undef WAVES_TYPES_GLSL
 #undef WV_CPU
 #undef WV_FFT
+#undef WV_COAST
 
 // std430 layout of the GPU structs: every member is a 16-byte vec4/ivec4.
 static_assert(sizeof(WvFrame) == 48 && alignof(WvFrame) <= 16);
 static_assert(sizeof(WvOctave) == 96 && offsetof(WvOctave, cellO) == 64);
 static_assert(sizeof(WvWave) == 64 && offsetof(WvWave, phase) == 32);
 static_assert(sizeof(WvResult) == 64);
+static_assert(sizeof(WvCoast) == 48 && offsetof(WvCoast, cell) == 32);
 static_assert(sizeof(WvFftPlane) == 64 && offsetof(WvFftPlane, cell) == 48);
 }  // namespace kf
 

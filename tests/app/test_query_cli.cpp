@@ -32,8 +32,8 @@ std::vector<Row> parseCsv(const std::string& out) {
     std::vector<std::string> f;
     std::stringstream ls(line);
     for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
-    EXPECT_EQ(f.size(), 10u) << line;
-    if (f.size() != 10) continue;
+    EXPECT_EQ(f.size(), 14u) << line;  // ... vertical_velocity_mps, then the 4 sea-state columns
+    if (f.size() != 14) continue;
     rows.push_back({field(f[0]), field(f[1]), field(f[4]), field(f[5]), field(f[6]), field(f[7]), field(f[8]),
                     field(f[9]), f[2]});
   }
@@ -81,7 +81,8 @@ TEST(QueryCli, NegativeCoordinatesAsPlainArguments) {
   auto r = run(kGeocean + " query -33.9 151.5");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   ASSERT_EQ(r.out.rfind("lat,lon,surface,elevation_m,time_s,sea_height_m,normal_e,normal_n,normal_u,"
-                        "vertical_velocity_mps\n-33.9,151.5,ocean,-62.600002,0,",
+                        "vertical_velocity_mps,hs_m,peak_period_s,peak_wavelength_m,wave_from_deg\n"
+                        "-33.9,151.5,ocean,-62.600002,0,",
                         0),
             0u)
       << r.out;
@@ -313,9 +314,75 @@ TEST(QueryCli, BadSeaStateValuesExitTwoNamingTheValue) {
 TEST(QueryCli, WavesNoneGivesClassAndElevationOnly) {
   auto r = run(kGeocean + " query --points - --waves none", "0,-150\n23,10\n");
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_NE(r.out.find("0,-150,ocean,-4125.25,0,null,null,null,null,null\n"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("23,10,land,788,0,null,null,null,null,null\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0,-150,ocean,-4125.25,0,null,null,null,null,null,null,null,null,null\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("23,10,land,788,0,null,null,null,null,null,null,null,null,null\n"), std::string::npos) << r.out;
   r = run(kGeocean + " query 0 0 --waves bogus");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("'bogus'"), std::string::npos) << r.err;
+}
+
+// Issue 15 item 6: the sea state at the point, against Pierson-Moskowitz's
+// closed forms (Hs = 4 sqrt(0.0081 / 5) g / wp^2, wp = 0.877 g / U, deep
+// water L = g T^2 / 2 pi), in CSV and JSON; null on land.
+TEST(QueryCli, SeaStateColumnsMatchPiersonMoskowitz) {
+  const double g = 9.80665, u = 15.0, wp = 0.877 * g / u;
+  const double hs = 4.0 * std::sqrt(0.0081 / 5.0) * g / (wp * wp), tp = 2.0 * M_PI / wp;
+  for (const char* model : {"noise", "gerstner", "fft"}) {
+    // (0 N, -150 E): 4.5 km deep Pacific, deep water for a 10 s sea.
+    auto r = run(kGeocean + " query 0 -150 --waves " + model + " --wind 15 --wind-dir 300 --anchor 0,-150");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto nl = r.out.find('\n');
+    ASSERT_NE(nl, std::string::npos) << r.out;
+    std::vector<double> v;
+    std::stringstream row(r.out.substr(nl + 1));
+    std::string cell;
+    for (int c = 0; std::getline(row, cell, ','); ++c)
+      if (c >= 5) v.push_back(std::stod(cell));
+    ASSERT_EQ(v.size(), 9u) << r.out;
+    EXPECT_NEAR(v[5], hs, 2e-3 * hs) << model;           // Simpson over 0.2 .. 20 wp
+    EXPECT_NEAR(v[6], tp, 1e-6 * tp) << model;            // printed to 17 digits
+    EXPECT_NEAR(v[7], g * tp * tp / (2.0 * M_PI), 1e-3) << model;
+    // Gerstner: the components' mean direction (cos^2 spreading, 16 draws).
+    EXPECT_NEAR(v[8], 300.0, std::string(model) == "gerstner" ? 25.0 : 1e-6) << model;
+  }
+  auto r = run(kGeocean + " query 23 10 --waves gerstner --format json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("\"hs_m\":null,\"peak_period_s\":null,\"peak_wavelength_m\":null,\"wave_from_deg\":null"),
+            std::string::npos)
+      << r.out;
+  r = run(kGeocean + " query 0 -150 --waves gerstner --format json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("\"hs_m\":2."), std::string::npos) << r.out;  // 0.209 U^2 / g at 10 m/s: 2.13 m
+}
+
+// Issue 15: --coast-region makes the waves feel the coast: inside it the
+// peak wavelength is the dispersion relation's at the local depth
+// (-elevation_m), w^2 = g k tanh(k h); bad values exit 2 naming them.
+TEST(QueryCli, CoastRegionGivesTheLocalWavelength) {
+  const std::string q = kGeocean + " query 36.0 -5.6 --waves gerstner --anchor 36,-5.6 --wind-dir 250";
+  auto r = run(q + " --coast-region 36.0,-5.6");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::vector<std::string> f;
+  std::stringstream row(r.out.substr(r.out.find('\n') + 1));
+  for (std::string c; std::getline(row, c, ',');) f.push_back(c);
+  ASSERT_EQ(f.size(), 14u) << r.out;
+  const double h = -std::stod(f[3]), lp = std::stod(f[12]), tp = std::stod(f[11]);
+  ASSERT_GT(h, 1.0);
+  const double g = 9.80665, w = 2.0 * M_PI / tp;
+  double lo = w * w / g, hi = 10.0 * w / std::sqrt(g * h);
+  for (int i = 0; i < 200; ++i) {
+    const double k = 0.5 * (lo + hi);
+    (g * k * std::tanh(k * h) < w * w ? lo : hi) = k;
+  }
+  EXPECT_NEAR(lp, 2.0 * M_PI / (0.5 * (lo + hi)), 1e-6 * lp) << r.out;
+  EXPECT_LT(lp, g * tp * tp / (2.0 * M_PI));  // shorter than in deep water
+  for (const auto& [arg, msg] : std::vector<std::pair<std::string, std::string>>{
+           {" --coast-region 1,x", "'x'"}, {" --coast-region 1,2,100", "size 100 m"}, {" --coast-region 95,0", "95"}}) {
+    r = run(q + arg);
+    EXPECT_EQ(r.exitCode, 2) << arg;
+    EXPECT_NE(r.err.find(msg), std::string::npos) << r.err;
+  }
+  r = run(kGeocean + " query 0 0 --coast-region 1,2");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("needs --waves gerstner"), std::string::npos) << r.err;
 }

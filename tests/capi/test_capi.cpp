@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -53,10 +55,10 @@ TEST(CapiLoader, LoadsTheBuiltPluginAndChecksItsVersion) {
 TEST(CapiLoader, RefusesAHostOfAnotherMajorOrANewerMinor) {
   std::string error;
   EXPECT_EQ(OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error, 2u << 16), nullptr);
-  EXPECT_NE(error.find("plugin ABI 1.4 cannot serve a host built for ABI 2.0"), std::string::npos) << error;
+  EXPECT_NE(error.find("plugin ABI 1.5 cannot serve a host built for ABI 2.0"), std::string::npos) << error;
   error.clear();
   EXPECT_EQ(OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error, GEOCEAN_ABI_VERSION + 1), nullptr);
-  EXPECT_NE(error.find("ABI 1.5"), std::string::npos) << error;
+  EXPECT_NE(error.find("ABI 1.6"), std::string::npos) << error;
   // An older minor of the same major is served.
   EXPECT_TRUE(OceanPlugin::compatible(1u << 16, (1u << 16) | 3u));
   EXPECT_FALSE(OceanPlugin::compatible((1u << 16) | 3u, 1u << 16));
@@ -72,7 +74,7 @@ TEST(CapiMisuse, CreateRefusesAWrongAbiVersion) {
   geocean_ocean* h = reinterpret_cast<geocean_ocean*>(&h);  // garbage that must be overwritten
   EXPECT_EQ(plugin().api().create(0, &h), GEOCEAN_ERROR_ABI_VERSION);
   EXPECT_EQ(h, nullptr);
-  EXPECT_NE(lastError().find("host ABI 0.0 is not served by this plugin (ABI 1.4)"), std::string::npos);
+  EXPECT_NE(lastError().find("host ABI 0.0 is not served by this plugin (ABI 1.5)"), std::string::npos);
   EXPECT_EQ(plugin().api().create(GEOCEAN_ABI_VERSION, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
   EXPECT_NE(lastError().find("geocean_create: out is NULL"), std::string::npos) << lastError();
 }
@@ -922,4 +924,42 @@ TEST(CapiV13, AnIslandLayerIsLandOverTheDefaultWorldUntilRemoved) {
   EXPECT_EQ(classAt(o.h, 0.25, 0.25), GEOCEAN_SURFACE_OCEAN);
   ASSERT_EQ(a.layerCount(o.h, &n), GEOCEAN_OK);
   EXPECT_EQ(n, 0u);
+}
+
+// ---- ABI 1.5: the sea state at points (issue 15) ----
+// Resolved by dlsym here: the host's loader (globe/host) gains it separately.
+
+TEST(CapiV15, SeaStateAtPointsMatchesPiersonMoskowitzAndIsNaNOnLand) {
+  using Fn = geocean_status (*)(const geocean_ocean*, size_t, const double*, const double*, double*, double*,
+                                double*, double*);
+  const auto& a = plugin().api();  // loads the plugin
+  void* lib = dlopen(GEOCEAN_PLUGIN_BUILD_PATH, RTLD_NOW | RTLD_NOLOAD);
+  ASSERT_NE(lib, nullptr) << GEOCEAN_PLUGIN_BUILD_PATH;
+  const auto fn = reinterpret_cast<Fn>(dlsym(lib, "geocean_query_sea_state"));
+  ASSERT_NE(fn, nullptr);
+  Ocean o;
+  const double lat[2] = {0.0, 23.0}, lon[2] = {-150.0, 10.0};  // deep Pacific; Sahara
+  double hs[2], tp[2], lp[2], from[2];
+  EXPECT_EQ(fn(nullptr, 2, lat, lon, hs, tp, lp, from), GEOCEAN_ERROR_NULL_ARGUMENT);
+  EXPECT_EQ(fn(o.h, 2, lat, lon, hs, tp, lp, from), GEOCEAN_ERROR_NOT_READY);
+  ASSERT_EQ(a.setDefaultWorld(o.h), GEOCEAN_OK) << lastError();
+  geocean_sea_state s = seaState(12.0, GEOCEAN_WAVES_GERSTNER);
+  s.wind_from_deg = 120.0;
+  ASSERT_EQ(a.setSeaState(o.h, &s), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(fn(o.h, 2, nullptr, lon, hs, tp, lp, from), GEOCEAN_ERROR_NULL_ARGUMENT);
+  ASSERT_EQ(fn(o.h, 2, lat, lon, hs, tp, lp, from), GEOCEAN_OK) << lastError();
+  // Pierson-Moskowitz: Hs = 4 sqrt(0.0081 / 5) g / wp^2, wp = 0.877 g / U.
+  const double g = 9.80665, wp = 0.877 * g / 12.0;
+  double hsRef = 0.0;
+  ASSERT_EQ(a.significantWaveHeight(o.h, &hsRef), GEOCEAN_OK);
+  EXPECT_NEAR(hsRef, 4.0 * std::sqrt(0.0081 / 5.0) * g / (wp * wp), 2e-3 * hsRef);
+  // Far from the anchor (0, 0): the great-circle taper is 1 and the sea deep.
+  EXPECT_NEAR(hs[0], hsRef, 1e-9 * hsRef);
+  EXPECT_NEAR(tp[0], 2.0 * M_PI / wp, 1e-12);
+  EXPECT_NEAR(lp[0], g * tp[0] * tp[0] / (2.0 * M_PI), 1e-9);
+  EXPECT_GE(from[0], 0.0);
+  EXPECT_LT(from[0], 360.0);
+  EXPECT_TRUE(std::isnan(hs[1]) && std::isnan(tp[1]) && std::isnan(lp[1]) && std::isnan(from[1]));
+  EXPECT_EQ(fn(o.h, 1, lat, lon, nullptr, nullptr, nullptr, nullptr), GEOCEAN_OK);  // nothing asked
+  dlclose(lib);
 }

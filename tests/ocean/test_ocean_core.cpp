@@ -297,3 +297,69 @@ TEST(OceanCore, ClassifierForThePicker) {
 }
 
 }  // namespace
+
+// Issue 15: the coast region makes the façade's sea-state outputs depth-aware:
+// over a planar beach (straight north-south contours, elevation raster made
+// here) the peak wavelength follows the dispersion relation at the local
+// depth and the direction waves come from turns toward the shore normal.
+TEST(OceanCore, CoastRegionRefractsTheSeaStateOutputs) {
+  Ocean o;
+  // 0.001-degree cells over lon -0.2 .. 0.2, lat 0.1 .. 0.5; the shoreline at
+  // lon 0.04, bottom slope 1:50 (bilinear keeps it exactly planar).
+  const int w = 400, h = 400;
+  std::vector<float> px(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double lon = -0.2 + (x + 0.5) * 0.001;
+      px[std::size_t(y) * w + x] = float(-0.02 * (0.04 - lon) * 111320.0);
+    }
+  o.setElevation(geocean::raster::Raster::fromPixels(px, w, h, 1, {-0.2, 0.5, 0.001, -0.001, false}, std::nullopt,
+                                                     "beach"));
+  SeaState s;
+  s.windFromDeg = 240.0;
+  s.anchorLatDeg = 0.3;
+  o.setSeaState(Model::Gerstner, s);
+  const std::vector<double> lat = {0.3, 0.3}, lon = {-0.03, 0.033};  // 156 m and 16 m deep
+  auto seaState = [&](std::vector<double>& lp, std::vector<double>& from) {
+    lp.assign(2, 0.0);
+    from.assign(2, 0.0);
+    std::vector<float> elev(2);
+    SurfaceOutputs out;
+    out.peakWavelengthM = lp.data();
+    out.waveFromDeg = from.data();
+    out.elevationM = elev.data();
+    const double t = 0.0;
+    o.current()->querySurface({lat.data(), lon.data(), 2, &t, false}, out);
+    return elev;
+  };
+  std::vector<double> lp0, from0, lp1, from1;
+  seaState(lp0, from0);
+  geocean::waves::CoastField::Region r;
+  r.latDeg = 0.3;
+  r.lonDeg = 0.0;
+  r.cellM = 50.0;
+  r.nodes = 201;
+  o.setCoastRegion(r);
+  const std::vector<float> elev = seaState(lp1, from1);
+  ASSERT_NE(o.current()->waves->coastField(), nullptr);
+  const double wp = 0.877 * kG / s.windSpeedMps;
+  // Without the field: the reference (deep) depth's wavelength everywhere.
+  EXPECT_NEAR(lp0[1], 2.0 * M_PI * kG / (wp * wp), 1e-9 * lp0[1]);
+  // With it: the dispersion relation at the local depth (-elevation).
+  EXPECT_NEAR(lp1[1], 2.0 * M_PI / dispersionK(wp, -double(elev[1])), 1e-6 * lp1[1]);
+  EXPECT_LT(lp1[1], 0.9 * lp0[1]);  // 16 m: L / L0 = tanh(k h) = 0.87
+  // Refraction: the shallow point's waves come more nearly from the west (270).
+  EXPECT_GT(from1[1], from1[0] + 3.0);
+  EXPECT_LT(from1[1], 275.0);
+  // Bad region: named field and value; the state stays.
+  r.nodes = 3;
+  try {
+    o.setCoastRegion(r);
+    ADD_FAILURE() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("nodes = 3"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(o.current()->coastRegion->nodes, 201);
+  o.clearCoastRegion();
+  EXPECT_EQ(o.current()->waves->coastField(), nullptr);
+}

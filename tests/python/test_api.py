@@ -155,3 +155,20 @@ def test_pick_down_onto_the_sea_and_land(world):
     # A ray pointing away from the Earth misses.
     miss = world.pick(o[:1], -d[:1])
     assert not miss["hit"][0] and miss["surface"][0] == 255 and np.isnan(miss["distance_m"][0])
+
+
+def test_sea_state_is_pierson_moskowitz_in_deep_water_and_nan_on_land(world):
+    # Pierson-Moskowitz: Hs = 4 sqrt(0.0081 / 5) g / wp^2, wp = 0.877 g / U
+    # (the spectrum is integrated from 0.2 to 20 wp: 0.2 %).
+    lat, lon = mixed_points(400)
+    r = world.sea_state(lat, lon)
+    assert sorted(r) == ["hs_m", "peak_period_s", "peak_wavelength_m", "wave_from_deg"]
+    ocean = world.classify(lat, lon) == geocean.SURFACE_OCEAN
+    g, u = 9.80665, 10.0
+    wp = 0.877 * g / u
+    hs = 4.0 * np.sqrt(0.0081 / 5.0) * g / wp**2
+    assert np.allclose(r["hs_m"][ocean], hs, rtol=2e-3, atol=0)
+    assert np.allclose(r["peak_period_s"][ocean], 2 * np.pi / wp, rtol=1e-12, atol=0)
+    for v in r.values():
+        assert np.all(np.isnan(v[~ocean]))
+    assert np.all((r["wave_from_deg"][ocean] >= 0) & (r["wave_from_deg"][ocean] < 360))

@@ -51,6 +51,9 @@ def test_query_matches_cli_bit_for_bit(geocean_exe, tmp_path, waves, args, kw):
     assert bits_equal(r["vertical_velocity_mps"], as_array(rows, "vertical_velocity_mps"))
     normal = np.array([[np.nan] * 3 if row["normal"] is None else row["normal"] for row in rows])
     assert bits_equal(r["normal_enu"], normal)
+    st = geocean.Ocean(waves=waves, **kw).sea_state(lat, lon)
+    for key in ("hs_m", "peak_period_s", "peak_wavelength_m", "wave_from_deg"):
+        assert bits_equal(st[key], as_array(rows, key)), key
     # The comparison covers all classes and real waves.
     assert {"ocean", "land", "lake"} <= set(names)
     assert np.nanstd(r["sea_height_m"]) > 0.1

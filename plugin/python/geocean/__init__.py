@@ -183,6 +183,25 @@ class Ocean:
         """
         return self._core.query(lat, lon, t, horizontal_velocity)
 
+    def sea_state(self, lat, lon):
+        """The sea state at points, as wave models and buoys report it.
+
+        Returns a dict of float64 arrays of lat's shape, named as ``geocean
+        query``'s columns: ``hs_m`` (significant wave height, m),
+        ``peak_period_s``, ``peak_wavelength_m`` (of the peak frequency at
+        the depth that sets the waves' phase, m) and ``wave_from_deg``
+        (direction the waves come FROM, degrees clockwise from north); NaN on
+        land and lakes. Independent of time.
+
+        Raises
+        ------
+        ValueError
+            lat/lon out of range or not finite, shapes that differ.
+        geocean.NotReadyError
+            waves='none'.
+        """
+        return self._core.sea_state(lat, lon)
+
     def classify(self, lat, lon):
         """Surface class (uint8 codes, see ``SURFACE_NAMES``) at points,
         nearest mask cell. lat, lon in degrees as in :meth:`query`.

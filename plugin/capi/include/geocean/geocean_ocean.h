@@ -49,7 +49,7 @@ extern "C" {
  * A host built against MAJOR.MINOR runs with a plugin of the same MAJOR and
  * a MINOR at least as high. */
 #define GEOCEAN_ABI_VERSION_MAJOR 1
-#define GEOCEAN_ABI_VERSION_MINOR 4
+#define GEOCEAN_ABI_VERSION_MINOR 5
 #define GEOCEAN_ABI_VERSION ((uint32_t)((GEOCEAN_ABI_VERSION_MAJOR << 16) | GEOCEAN_ABI_VERSION_MINOR))
 
 /* Enums that cross the boundary as values have int32_t as their C++
@@ -330,6 +330,18 @@ GEOCEAN_API geocean_status geocean_query_surface(const geocean_ocean* ocean, siz
 /* Significant wave height (m) of the current sea state's spectrum, 4 sqrt(m0).
  * Errors: NULL_ARGUMENT, NOT_READY (no sea state). */
 GEOCEAN_API geocean_status geocean_significant_wave_height(const geocean_ocean* ocean, double* out_hs_m);
+
+/* ABI 1.5: the sea state at count points, at each point's water depth (the
+ * columns hs_m, peak_period_s, peak_wavelength_m, wave_from_deg of
+ * `geocean query`): significant wave height (m), peak period (s), peak
+ * wavelength (m), direction the waves come FROM (degrees clockwise from
+ * north, [0, 360)). NaN where the point is not ocean (land, lakes). Every
+ * output may be NULL (not written). Runs on all cores. Errors:
+ * NULL_ARGUMENT (lat_deg, lon_deg when count > 0), NOT_READY (no sea state). */
+GEOCEAN_API geocean_status geocean_query_sea_state(const geocean_ocean* ocean, size_t count, const double* lat_deg,
+                                                   const double* lon_deg, double* out_hs_m,
+                                                   double* out_peak_period_s, double* out_peak_wavelength_m,
+                                                   double* out_wave_from_deg);
 
 /* ---- Rendering (ABI 1.1) ------------------------------------------------ */
 

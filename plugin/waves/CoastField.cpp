@@ -1,0 +1,242 @@
+#include "plugin/waves/CoastField.h"
+
+#include "plugin/waves/WaveField.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace geocean::waves {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kA = 6378137.0;
+constexpr double kF = 1.0 / 298.257223563;
+constexpr double kE2 = kF * (2.0 - kF);
+// Kernel's minimum depth (wv_gerstner): land and the swash zone are this shallow.
+constexpr double kMinDepthM = 0.05;
+// Below these a node does not feel the bottom: stored as exact 0 so the
+// kernel reproduces deep water bit for bit. The eikonal's rounding reaches
+// ~5e-7 rad over 400 nodes; 1e-5 rad is 0.01 mm on a 1 m wave.
+constexpr double kPhaseEps = 1e-5, kAngleEps = 1e-9, kKrEps = 1e-7;
+// Kr bounds: where rays cross (caustics) or diverge at the shoreline the
+// ray-tube width has no meaning; the breaking cap limits heights anyway.
+constexpr double kKrMin = 0.25, kKrMax = 4.0;
+
+double smooth01(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x * x * (3.0 - 2.0 * x);
+}
+}  // namespace
+
+CoastField CoastField::build(const WaveField& field, const Region& r,
+                             const std::function<double(double, double)>& depthAt, std::string& error) {
+  CoastField cf;
+  auto bad = [&](const char* name, double v, const char* want) {
+    std::ostringstream os;
+    os << "coast field: " << name << " = " << v << " is invalid (" << want << ")";
+    error = os.str();
+    return CoastField{};
+  };
+  if (field.model() != Model::Gerstner) {
+    error = std::string("coast field: model ") + toString(field.model()) + " has no phase field (gerstner only)";
+    return cf;
+  }
+  if (!(r.latDeg >= -90.0 && r.latDeg <= 90.0)) return bad("latDeg", r.latDeg, "expected -90 .. 90");
+  if (!std::isfinite(r.lonDeg)) return bad("lonDeg", r.lonDeg, "expected finite");
+  if (!(r.cellM > 0.0 && r.cellM <= 1e4)) return bad("cellM", r.cellM, "expected 0 < cellM <= 10 km");
+  if (r.nodes < 5 || r.nodes > 2049) return bad("nodes", r.nodes, "expected 5 .. 2049");
+  if (r.margin < 1 || 2 * r.margin >= r.nodes) return bad("margin", r.margin, "expected 1 .. nodes / 2");
+  if (r.cellM * (r.nodes - 1) > 40e3) return bad("cellM * (nodes - 1)", r.cellM * (r.nodes - 1), "expected <= 40 km");
+
+  const int n = r.nodes;
+  cf.region_ = r;
+  cf.n_ = n;
+  const double phi = r.latDeg * kPi / 180.0, lam = r.lonDeg * kPi / 180.0;
+  const double sp = std::sin(phi), cp = std::cos(phi), sl = std::sin(lam), cl = std::cos(lam);
+  const double nr = kA / std::sqrt(1.0 - kE2 * sp * sp);
+  cf.centre_ = {nr * cp * cl, nr * cp * sl, nr * (1.0 - kE2) * sp};
+  cf.east_ = {-sl, cl, 0.0};
+  cf.north_ = {-sp * cl, -sp * sl, cp};
+  // Axes rounded to float: CPU and GPU locate points with the same numbers.
+  cf.eAxis_ = glm::dvec3(glm::vec3(cf.east_ / r.cellM));
+  cf.nAxis_ = glm::dvec3(glm::vec3(cf.north_ / r.cellM));
+  const glm::dvec3 radial = glm::normalize(cf.centre_);
+
+  const double half = 0.5 * (n - 1);
+  auto x = [&](int i) { return (i - half) * r.cellM; };
+  std::vector<double> depth(std::size_t(n) * n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double h = depthAt(x(i), x(j));
+      depth[std::size_t(j) * n + i] = std::isfinite(h) ? std::max(h, kMinDepthM) : kMinDepthM;
+    }
+
+  const auto& comps = field.components();
+  cf.components_ = int(comps.size());
+  cf.texels_.assign(comps.size() * std::size_t(n) * n, glm::dvec4(0.0));
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> kLoc(depth.size()), s(depth.size()), q(depth.size()), sx(depth.size()), sy(depth.size()),
+      div(depth.size());
+  std::vector<char> fixedNode(depth.size());
+  auto at = [n](int i, int j) { return std::size_t(j) * n + i; };
+  kd::Kernel kernel{};
+  for (std::size_t c = 0; c < comps.size(); ++c) {
+    const WaveField::Component& w = comps[c];
+    // Travel direction at the centre (as the kernel's great circle there).
+    glm::dvec3 g = radial * glm::dot(w.source, radial) - w.source;
+    if (glm::length(g) < 1e-12) continue;  // at its source: the taper is 0 here
+    g = glm::normalize(g);
+    const double s0x = glm::dot(g, cf.east_), s0y = glm::dot(g, cf.north_);
+    const double k0 = w.kRef;
+    // The kernel's own dispersion solve (Guo + 2 Newton steps, ~1e-9) and
+    // its deep-water cut-off: deep nodes get exactly k_deep, as the kernel.
+    const double kDeep = w.omega * w.omega / WV_G;
+    for (std::size_t p = 0; p < depth.size(); ++p)
+      kLoc[p] = kDeep * depth[p] < WV_DEEP_KH ? kernel.wv_waveNumber(w.omega, depth[p]) : kDeep;
+    // Inflow edges: the plane wave of the reference depth (outside the
+    // region the kernel has no offset, so none here either). Only the
+    // deepest inflow nodes carry it (deep water, or for long waves the
+    // deepest the edge has): a shallower one would inject an early arrival;
+    // there the sweeps continue the interior.
+    std::fill(s.begin(), s.end(), inf);
+    std::fill(fixedNode.begin(), fixedNode.end(), 0);
+    auto inflow = [&](int i, int j) {
+      return (i == 0 && s0x > 0) || (i == n - 1 && s0x < 0) || (j == 0 && s0y > 0) || (j == n - 1 && s0y < 0);
+    };
+    double kIn = inf;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if (inflow(i, j)) kIn = std::min(kIn, kLoc[at(i, j)]);
+    const double kFix = std::max(kIn, k0) * (1.0 + 1e-3);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (!inflow(i, j) || kLoc[at(i, j)] > kFix) continue;
+        s[at(i, j)] = k0 * (s0x * x(i) + s0y * x(j));
+        fixedNode[at(i, j)] = 1;
+      }
+    // Fast sweeping, four orderings, until nothing changes.
+    for (int iter = 0; iter < 12; ++iter) {
+      double change = 0.0;
+      for (int sweep = 0; sweep < 4; ++sweep) {
+        const bool fx = sweep & 1, fy = sweep & 2;
+        for (int jj = 0; jj < n; ++jj)
+          for (int ii = 0; ii < n; ++ii) {
+            const int i = fx ? n - 1 - ii : ii, j = fy ? n - 1 - jj : jj;
+            const std::size_t p = at(i, j);
+            if (fixedNode[p]) continue;
+            const double a = std::min(i > 0 ? s[at(i - 1, j)] : inf, i < n - 1 ? s[at(i + 1, j)] : inf);
+            const double b = std::min(j > 0 ? s[at(i, j - 1)] : inf, j < n - 1 ? s[at(i, j + 1)] : inf);
+            if (a == inf && b == inf) continue;
+            // Godunov update, then once more with k at the middle of the step
+            // (weights: the step's share along each axis, cos^2 / sin^2), so
+            // the phase gradient between nodes is second order where depth
+            // changes along the ray (first order otherwise).
+            const int ia = i > 0 && (i == n - 1 || s[at(i - 1, j)] <= s[at(i + 1, j)]) ? i - 1 : i + 1;
+            const int jb = j > 0 && (j == n - 1 || s[at(i, j - 1)] <= s[at(i, j + 1)]) ? j - 1 : j + 1;
+            auto update = [&](double k) {
+              const double f = k * r.cellM;
+              if (std::abs(a - b) >= f) return std::min(a, b) + f;
+              return 0.5 * (a + b + std::sqrt(2.0 * f * f - (a - b) * (a - b)));
+            };
+            double v = update(kLoc[p]);
+            {
+              const double da = a < inf ? std::max(v - a, 0.0) : 0.0, db = b < inf ? std::max(v - b, 0.0) : 0.0;
+              const double wsum = da * da + db * db;
+              if (wsum > 0.0) {
+                const double wa = da * da / wsum, wb = db * db / wsum;
+                const double km = kLoc[p] + 0.5 * (wa * (kLoc[at(ia, j)] - kLoc[p]) + wb * (kLoc[at(i, jb)] - kLoc[p]));
+                v = update(km);
+              }
+            }
+            if (v < s[p]) {
+              if (s[p] < inf) change = std::max(change, s[p] - v);
+              s[p] = v;
+            }
+          }
+      }
+      if (iter > 0 && change < 1e-12) break;
+    }
+    // Direction (central differences, one-sided at edges) and its divergence.
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, n - 1);
+        const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, n - 1);
+        const double gx = (s[at(i1, j)] - s[at(i0, j)]) / ((i1 - i0) * r.cellM);
+        const double gy = (s[at(i, j1)] - s[at(i, j0)]) / ((j1 - j0) * r.cellM);
+        const double len = std::hypot(gx, gy);
+        sx[at(i, j)] = len > 0 && std::isfinite(len) ? gx / len : s0x;
+        sy[at(i, j)] = len > 0 && std::isfinite(len) ? gy / len : s0y;
+      }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, n - 1);
+        const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, n - 1);
+        div[at(i, j)] = (sx[at(i1, j)] - sx[at(i0, j)]) / ((i1 - i0) * r.cellM) +
+                        (sy[at(i, j1)] - sy[at(i, j0)]) / ((j1 - j0) * r.cellM);
+      }
+    // Ray-tube spreading: s . grad q = div s, q = 0 on the inflow edges
+    // (upwind Gauss-Seidel in the same four orderings).
+    std::fill(q.begin(), q.end(), 0.0);
+    for (int iter = 0; iter < 4; ++iter)
+      for (int sweep = 0; sweep < 4; ++sweep) {
+        const bool fx = sweep & 1, fy = sweep & 2;
+        for (int jj = 0; jj < n; ++jj)
+          for (int ii = 0; ii < n; ++ii) {
+            const int i = fx ? n - 1 - ii : ii, j = fy ? n - 1 - jj : jj;
+            const std::size_t p = at(i, j);
+            if (fixedNode[p]) continue;
+            const double ax = std::abs(sx[p]), ay = std::abs(sy[p]);
+            const int iu = i - (sx[p] > 0 ? 1 : -1), ju = j - (sy[p] > 0 ? 1 : -1);
+            const double qx = iu >= 0 && iu < n ? q[at(iu, j)] : 0.0;
+            const double qy = ju >= 0 && ju < n ? q[at(i, ju)] : 0.0;
+            q[p] = (div[p] * r.cellM + ax * qx + ay * qy) / std::max(ax + ay, 1e-30);
+          }
+      }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const std::size_t p = at(i, j);
+        if (!std::isfinite(s[p]) || !std::isfinite(q[p])) continue;  // not reached from the inflow edges
+        const double delta = s[p] - k0 * (s0x * x(i) + s0y * x(j));
+        const double beta = std::atan2(s0x * sy[p] - s0y * sx[p], s0x * sx[p] + s0y * sy[p]);
+        const double kr = std::clamp(std::exp(-0.5 * q[p]), kKrMin, kKrMax);
+        if (std::abs(delta) < kPhaseEps && std::abs(beta) < kAngleEps && std::abs(kr - 1.0) < kKrEps) continue;
+        const int edge = std::min(std::min(i, j), std::min(n - 1 - i, n - 1 - j));
+        const double wgt = smooth01(double(edge) / r.margin);
+        if (wgt == 0.0) continue;
+        const double b = wgt * beta;
+        cf.texels_[c * std::size_t(n) * n + p] =
+            glm::dvec4(wgt * delta, std::sin(b), 1.0 - std::cos(b), wgt * (kr - 1.0));
+      }
+  }
+  return cf;
+}
+
+kd::WvCoast CoastField::at(const glm::dvec3& o) const {
+  kd::WvCoast c{};
+  if (n_ == 0) return c;
+  const double half = 0.5 * (n_ - 1);
+  const double tx = glm::dot(eAxis_, o - centre_) + half, ty = glm::dot(nAxis_, o - centre_) + half;
+  const double fx = std::floor(tx), fy = std::floor(ty);
+  // Far outside the grid: any cell outside (the kernel returns 0 there).
+  const double lim = 1e9;
+  c.eAxis = glm::dvec4(eAxis_, tx - fx);
+  c.nAxis = glm::dvec4(nAxis_, ty - fy);
+  c.cell = glm::ivec4(int(std::clamp(fx, -lim, lim)), int(std::clamp(fy, -lim, lim)), n_, 0);
+  return c;
+}
+
+kf::WvCoast CoastField::gpuAt(const glm::dvec3& o) const {
+  const kd::WvCoast c = at(o);
+  return {glm::vec4(c.eAxis), glm::vec4(c.nAxis), c.cell};
+}
+
+std::vector<glm::vec4> CoastField::gpuTexels() const {
+  std::vector<glm::vec4> v;
+  v.reserve(texels_.size());
+  for (const auto& t : texels_) v.push_back(glm::vec4(t));
+  return v;
+}
+
+}  // namespace geocean::waves

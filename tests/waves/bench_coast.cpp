@@ -1,0 +1,108 @@
+// Cost of the near-shore terms (issue 15 item 8), in one run: the Gerstner
+// sea-height query (WaveField::surfaceAt, scalar double) at the same 4096
+// points over a planar shelf without a coast field (the deep-water phase with
+// local shoaling: the reference) and with one (depth-dependent phase,
+// refraction, Kr, Miche), and the coast field's CPU build time for 16
+// components. Not run by ctest; results in docs/PERFORMANCE.md.
+#include "globe/geo/Ellipsoid.h"
+#include "plugin/waves/CoastField.h"
+#include "plugin/waves/WaveField.h"
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <memory>
+#include <random>
+#include <vector>
+
+using namespace geocean::waves;
+namespace geo = geocean::geo;
+
+namespace {
+double shelfDepth(double e, double) { return std::clamp(0.02 * (3000.0 - e), 0.5, 200.0); }
+
+SeaState sea() {
+  SeaState s;
+  s.windSpeedMps = 15.0;
+  s.windFromDeg = 250.0;
+  s.anchorLatDeg = 0.3;
+  s.anchorLonDeg = 0.3;
+  return s;
+}
+
+CoastField::Region region(int nodes) {
+  CoastField::Region r;
+  r.latDeg = 0.3;
+  r.lonDeg = 0.3;
+  r.nodes = nodes;
+  r.cellM = 10000.0 / (nodes - 1);  // a 10 km square
+  return r;
+}
+
+struct Points {
+  std::vector<double> lat, lon, depth;
+};
+// 4096 points over the shelf (east -4.9 .. 2.9 km, depth 156 .. 2 m).
+Points points(const CoastField& c, bool deep) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> e(-4900.0, 2900.0), n(-4900.0, 4900.0);
+  Points p;
+  for (int i = 0; i < 4096; ++i) {
+    const double x = deep ? e(rng) - 6000.0 : e(rng), y = n(rng);
+    const geo::Geodetic g = geo::fromEcef(c.centreEcef() + c.east() * x + c.north() * y);
+    p.lat.push_back(g.latDeg);
+    p.lon.push_back(g.lonDeg);
+    p.depth.push_back(deep ? 4000.0 : shelfDepth(x, y));
+  }
+  return p;
+}
+}  // namespace
+
+// Arg 0: no coast field, 1: with a coast field (201^2 nodes), over the shelf.
+void BM_ShelfQuery(benchmark::State& state) {
+  std::string err;
+  WaveField w = *WaveField::create(Model::Gerstner, sea(), err);
+  auto coast = std::make_shared<const CoastField>(CoastField::build(w, region(201), shelfDepth, err));
+  const Points p = points(*coast, false);
+  if (state.range(0) == 1) w.setCoast(coast);
+  std::size_t i = 0;
+  double sum = 0.0;
+  for (auto _ : state) {
+    sum += w.surfaceAt(p.lat[i], p.lon[i], 3.5, p.depth[i]).heightM;
+    i = (i + 1) & 4095;
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_ShelfQuery)->Arg(0)->Arg(1);
+
+// The same points with a field built over 4 km of water everywhere (all its
+// nodes 0): what the field costs where it changes nothing. Arg as above.
+void BM_DeepQuery(benchmark::State& state) {
+  std::string err;
+  WaveField w = *WaveField::create(Model::Gerstner, sea(), err);
+  auto deepEverywhere = [](double, double) { return 4000.0; };
+  auto coast = std::make_shared<const CoastField>(CoastField::build(w, region(201), deepEverywhere, err));
+  Points p = points(*coast, false);
+  for (auto& d : p.depth) d = 4000.0;
+  if (state.range(0) == 1) w.setCoast(coast);
+  std::size_t i = 0;
+  double sum = 0.0;
+  for (auto _ : state) {
+    sum += w.surfaceAt(p.lat[i], p.lon[i], 3.5, p.depth[i]).heightM;
+    i = (i + 1) & 4095;
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_DeepQuery)->Arg(0)->Arg(1);
+
+// Building the field on the CPU: 16 components, N^2 nodes over 10 km.
+void BM_CoastBuild(benchmark::State& state) {
+  std::string err;
+  const WaveField w = *WaveField::create(Model::Gerstner, sea(), err);
+  for (auto _ : state) benchmark::DoNotOptimize(CoastField::build(w, region(int(state.range(0))), shelfDepth, err));
+}
+BENCHMARK(BM_CoastBuild)->Arg(201)->Arg(401)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,236 @@
+// Waves that feel the coast (issue 15 items 1, 7): the Gerstner kernel with a
+// coast field, over synthetic bathymetry made here, against linear wave
+// theory: the dispersion relation w^2 = g k tanh(k h), Snell's law over
+// straight parallel contours (k sin(theta) conserved), shoaling and
+// refraction H/H0 = Ks Kr with Ks = sqrt(cg0 / cg), Kr = sqrt(cos theta0 /
+// cos theta), and the breaking limits H <= 0.78 h, H <= 0.142 L tanh(k h).
+// Everything is measured from the drawn surface: the phase from (eta,
+// deta/dt) of a single component, its gradient by finite differences.
+#include "globe/geo/Ellipsoid.h"
+#include "plugin/waves/CoastField.h"
+#include "plugin/waves/WaveField.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <memory>
+
+using namespace geocean::waves;
+namespace geo = geocean::geo;
+
+namespace {
+constexpr double kG = 9.80665;
+constexpr double kPi = 3.14159265358979323846;
+
+// One component travelling roughly east, `obliqueDeg` (+-15) off the grid's
+// x axis at the region's centre.
+WaveField oneComponent(double windMps, double travelDeg) {
+  SeaState sea;
+  sea.windSpeedMps = windMps;
+  sea.gerstnerComponents = 1;
+  sea.anchorLatDeg = 0.3;
+  sea.anchorLonDeg = 0.3;
+  std::string err;
+  // The component's direction is drawn about the wind: search seeds for
+  // one within 3 degrees of the wanted travel bearing (deterministic).
+  for (std::uint32_t seed = 1; seed < 4000; ++seed) {
+    sea.seed = seed;
+    sea.windFromDeg = travelDeg + 180.0;
+    auto w = WaveField::create(Model::Gerstner, sea, err);
+    EXPECT_TRUE(w) << err;
+    const double b = w->seaStateAt(0.3, 0.3).waveFromDeg - 180.0;
+    if (std::abs(std::remainder(b - travelDeg, 360.0)) < 3.0) return *w;
+  }
+  ADD_FAILURE() << "no seed gives a travel bearing near " << travelDeg;
+  return *WaveField::create(Model::Gerstner, sea, err);
+}
+
+struct Probe {
+  const WaveField& field;
+  std::function<double(double, double)> depth;  // of (east, north) in the grid's plane
+  double omega;
+  // Geodetic point at (east, north) of the grid's tangent plane.
+  geo::Geodetic at(double e, double n) const {
+    const CoastField* c = field.coastField();
+    return geo::fromEcef(c->centreEcef() + c->east() * e + c->north() * n);
+  }
+  // Phase and amplitude of the single component at rest point (e, n).
+  std::pair<double, double> phaseAmp(double e, double n, double t) const {
+    const geo::Geodetic g = at(e, n);
+    const WaveSample s = field.sample(g.latDeg, g.lonDeg, t, depth(e, n));
+    const double x = s.displacementEnuM.z, y = s.verticalVelocityMps / omega;
+    return {std::atan2(y, x), std::hypot(x, y)};
+  }
+  // grad(psi) (rad/m) in (east, north) of the grid, central differences.
+  glm::dvec2 gradPhase(double e, double n) const {
+    const double h = 0.5, t = 12.25;
+    auto d = [&](double e0, double n0, double e1, double n1) {
+      return std::remainder(phaseAmp(e1, n1, t).first - phaseAmp(e0, n0, t).first, 2.0 * kPi) / (2.0 * h);
+    };
+    // psi = k.x - w t: the gradient of the measured atan2 phase.
+    return {d(e - h, n, e + h, n), d(e, n - h, e, n + h)};
+  }
+};
+
+std::shared_ptr<const CoastField> buildField(const WaveField& w, double cellM, int nodes,
+                                             const std::function<double(double, double)>& depth) {
+  CoastField::Region r;
+  r.latDeg = 0.3;
+  r.lonDeg = 0.3;
+  r.cellM = cellM;
+  r.nodes = nodes;
+  r.margin = 8;
+  std::string err;
+  auto c = std::make_shared<const CoastField>(CoastField::build(w, r, depth, err));
+  EXPECT_FALSE(c->empty()) << err;
+  return c;
+}
+
+// Depth h for k h = kh at frequency omega: k = w^2 / (g tanh(kh)).
+double depthForKh(double omega, double kh) { return kh * kG * std::tanh(kh) / (omega * omega); }
+
+double groupSpeed(double omega, double k, double h) {
+  const double kh = k * h;
+  return 0.5 * (1.0 + (kh < 20 ? 2.0 * kh / std::sinh(2.0 * kh) : 0.0)) * omega / k;
+}
+}  // namespace
+
+// Item 7: the wavelength over a flat shelf follows the dispersion relation
+// within 2% for k h in [0.1, 3]; the shelf is reached from deep water over
+// a smooth ramp (straight contours), so the phase has no jump anywhere.
+TEST(Coast, WavelengthFollowsTheDispersionRelation) {
+  WaveField w = oneComponent(20.0, 80.0);  // 10 degrees off the shelf's normal; a swell of ~10 s
+  const double omega = w.components()[0].omega, k0 = w.components()[0].kRef;
+  for (double kh : {0.1, 0.3, 1.0, 3.0}) {
+    const double ht = depthForKh(omega, kh), kt = waveNumberExact(omega, ht);
+    ASSERT_GT(ht, 0.1) << "near the kernel's 0.05 m floor's reach: omega " << omega;
+    const double cell = std::min(2.0 * kPi / k0, 2.0 * kPi / kt) / 20.0;
+    const double hDeep = 5.0 / k0;
+    auto depth = [&](double e, double) {
+      const double u = std::clamp((e + 60 * cell) / (40 * cell), 0.0, 1.0);  // ramp over e in [-60, -20] cells
+      return hDeep + (ht - hDeep) * (0.5 - 0.5 * std::cos(kPi * u));
+    };
+    w.setCoast(buildField(w, cell, 401, depth));
+    Probe p{w, depth, omega};
+    for (double e : {20.0, 40.0, 60.0})
+      for (double n : {-30.0, 0.0, 30.0}) {
+        const double kMeasured = glm::length(p.gradPhase(e * cell, n * cell));
+        EXPECT_NEAR(kMeasured, kt, 0.02 * kt) << "kh " << kh << " at (" << e << ", " << n << ") cells";
+      }
+  }
+}
+
+// Item 7: over a planar beach with straight contours and oblique incidence,
+// sin(theta) / c is constant within 3% from deep water to the break point;
+// H/H0 is within 5% of Ks Kr until breaking, then H <= 0.78 h and Miche.
+TEST(Coast, PlanarBeachSnellShoalingAndBreaking) {
+  WaveField w = oneComponent(10.0, 60.0);  // 30 degrees off the beach's normal (east)
+  const double omega = w.components()[0].omega, k0 = w.components()[0].kRef;
+  const double a0 = w.components()[0].amplitudeM;
+  const double l0 = 2.0 * kPi / k0;
+  const double hDeep = 4.0 / k0;  // k h = 4: deep water
+  const double cell = l0 / 40.0;
+  // Shoreline at e = +150 cells, hDeep at e = -150 cells and beyond.
+  auto depth = [&](double e, double) { return std::min(hDeep, hDeep * (150.0 * cell - e) / (300.0 * cell)); };
+  w.setCoast(buildField(w, cell, 601, depth));
+  Probe p{w, depth, omega};
+  // The deep-water reference: incidence angle and the height there.
+  const glm::dvec2 g0 = p.gradPhase(-200 * cell, 0.0);
+  const double sin0 = g0.y / glm::length(g0), cos0 = g0.x / glm::length(g0);
+  ASSERT_GT(std::abs(sin0), 0.4) << "not oblique";
+  const double snell0 = sin0 / (omega / glm::length(g0));
+  double lastH = 0.0;
+  bool broken = false;
+  int checkedBefore = 0, checkedAfter = 0;
+  for (double e = -150.0; e < 149.0; e += 3.0) {
+    const double x = e * cell, h = depth(x, 0.0);
+    const double k = waveNumberExact(omega, h);
+    const glm::dvec2 g = p.gradPhase(x, 0.0);
+    const double sinT = g.y / glm::length(g), cosT = g.x / glm::length(g);
+    // Peak amplitude over a wave period at this rest point.
+    double amp = 0.0;
+    for (int i = 0; i < 4; ++i) amp = std::max(amp, p.phaseAmp(x, 0.0, 3.0 + i * 0.7).second);
+    const double hWave = 2.0 * amp;
+    // Linear theory, from the formulas (not from the field): Snell's angle
+    // from k0 sin(theta0) = k sin(theta), Ks and Kr.
+    const double sinTheory = sin0 * k0 / k, cosTheory = std::sqrt(1.0 - sinTheory * sinTheory);
+    const double ks = std::sqrt(groupSpeed(omega, k0, 1e9) / groupSpeed(omega, k, h));
+    const double kr = std::sqrt(cos0 / cosTheory);
+    const double hLinear = 2.0 * a0 * ks * kr;
+    const double miche = 0.142 * (2.0 * kPi / k) * std::tanh(k * h);
+    if (!broken && hLinear < 0.78 * h && hLinear < miche) {
+      EXPECT_NEAR(sinT / (omega / glm::length(g)), snell0, 0.03 * std::abs(snell0)) << "e " << e << " h " << h;
+      EXPECT_NEAR(sinT, sinTheory, 0.03 * std::abs(sinTheory)) << "e " << e << " h " << h;
+      EXPECT_NEAR(hWave, hLinear, 0.05 * hLinear) << "e " << e << " h " << h << " cos " << cosT;
+      ++checkedBefore;
+    } else {
+      broken = true;
+      EXPECT_LE(hWave, 0.78 * h * (1.0 + 1e-9)) << "e " << e << " h " << h;
+      EXPECT_LE(hWave, miche * (1.0 + 1e-9)) << "e " << e << " h " << h;
+      ++checkedAfter;
+    }
+    lastH = hWave;
+  }
+  EXPECT_GT(checkedBefore, 50);
+  EXPECT_GT(checkedAfter, 3);
+  EXPECT_GT(lastH, 0.0);
+}
+
+// Deep water stays bit for bit what it was: inside the coast field's region
+// where the waves do not feel the bottom, and outside the region.
+TEST(Coast, DeepWaterIsBitIdenticalWithAField) {
+  SeaState sea;
+  sea.windSpeedMps = 12.0;
+  sea.anchorLatDeg = 0.3;
+  sea.anchorLonDeg = 0.3;
+  std::string err;
+  const auto plain = WaveField::create(Model::Gerstner, sea, err);
+  ASSERT_TRUE(plain) << err;
+  WaveField w = *plain;
+  // A shoal in the north-east corner of a 10 km region, 3 km deep elsewhere.
+  auto depth = [](double e, double n) {
+    const double r = std::hypot(e - 3500.0, n - 3500.0);
+    return r < 1000.0 ? 5.0 + r * 0.05 : 3000.0;
+  };
+  w.setCoast(buildField(w, 25.0, 401, depth));
+  ASSERT_NE(w.coastField(), nullptr);
+  Probe p{w, depth, 1.0};
+  int same = 0, changed = 0;
+  for (double e = -4500.0; e <= 4500.0; e += 1500.0)
+    for (double n = -4500.0; n <= 9000.0; n += 1500.0) {
+      const geo::Geodetic g = p.at(e, n);
+      const double h = depth(e, n);
+      const SurfacePoint a = plain->surfaceAt(g.latDeg, g.lonDeg, 7.5, h), b = w.surfaceAt(g.latDeg, g.lonDeg, 7.5, h);
+      // Up-wave of the shoal (every component travels with an eastward
+      // part: cos^2 spreading about east) and outside the grid: exact.
+      if (e < 2000.0 || n > 5100.0) {
+        EXPECT_EQ(a.heightM, b.heightM) << e << ", " << n;
+        EXPECT_EQ(a.normalEnu, b.normalEnu) << e << ", " << n;
+        ++same;
+      } else if (a.heightM != b.heightM) {
+        ++changed;
+      }
+    }
+  EXPECT_GT(same, 30);
+  EXPECT_GT(changed, 0);  // and the shoal does change the sea over it
+}
+
+// The sea state output sees the coast: shorter peak wavelength (dispersion
+// at the local depth), direction turned toward the shore normal.
+TEST(Coast, SeaStateOutputsSeeRefraction) {
+  WaveField w = oneComponent(10.0, 60.0);
+  const double k0 = w.components()[0].kRef, l0 = 2.0 * kPi / k0, hDeep = 4.0 / k0, cell = l0 / 40.0;
+  auto depth = [&](double e, double) { return std::min(hDeep, hDeep * (150.0 * cell - e) / (300.0 * cell)); };
+  w.setCoast(buildField(w, cell, 601, depth));
+  Probe p{w, depth, 1.0};
+  const geo::Geodetic deep = p.at(-200 * cell, 0.0), shelf = p.at(100 * cell, 0.0);
+  const LocalSeaState s0 = w.seaStateAt(deep.latDeg, deep.lonDeg, depth(-200 * cell, 0.0));
+  const LocalSeaState s1 = w.seaStateAt(shelf.latDeg, shelf.lonDeg, depth(100 * cell, 0.0));
+  const double wp = 2.0 * kPi / s1.peakPeriodS;
+  EXPECT_NEAR(s1.peakWavelengthM, 2.0 * kPi / waveNumberExact(wp, depth(100 * cell, 0.0)), 1e-9 * s1.peakWavelengthM);
+  EXPECT_LT(s1.peakWavelengthM, 0.8 * s0.peakWavelengthM);
+  // From 240 (travel 60) turning toward the shore normal's from-direction, 270.
+  EXPECT_GT(s1.waveFromDeg, s0.waveFromDeg + 5.0);
+  EXPECT_LT(s1.waveFromDeg, 270.0);
+}
