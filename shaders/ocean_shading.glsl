@@ -90,6 +90,10 @@ vec3 oceanColor(vec3 eyeRel, vec3 normal, vec3 upIn, float heightM, vec3 sun, ve
   float shore = depthCurve(depth, 4.0, 0.3) * 0.55 * surf + depthCurve(depth, 1.2, 0.0) * 0.4;
   float foam = clamp(crest + shore, 0.0, 1.0);
   vec4 refl = planarReflection(eyeRel, n, up, uSunDir);
-  vec3 c = seaColorOptics(n, v, up, uSunDir, sun, depth, mss, foam, refl, uRefraction != 0);
+  // Seen through the water: the relief's depth where it has one (the
+  // coverage's 60 m floor above would hide every shelf); the coverage's only
+  // where the relief puts the water on land.
+  float seen = uRefraction != 0 && reliefDepthM > 0.0 ? reliefDepthM : depth;
+  vec3 c = seaColorOptics(n, v, up, uSunDir, sun, seen, mss, foam, refl, uRefraction != 0);
   return toDisplay(c * hazeTr + hazeIn);
 }

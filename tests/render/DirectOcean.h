@@ -16,8 +16,10 @@ namespace geocean::render::test {
 
 class DirectOceanLayer : public Layer {
  public:
-  // wants: LayerInput bits (0: the ocean without the host's reflection).
-  explicit DirectOceanLayer(std::shared_ptr<ocean_render::OceanRenderer> ocean, unsigned wants = 0u)
+  // wants: LayerInput bits; by default what the plugin's layer info asks
+  // for (geocean_get_layer_info), so both draw the same picture.
+  explicit DirectOceanLayer(std::shared_ptr<ocean_render::OceanRenderer> ocean,
+                            unsigned wants = kLayerWantsReflection)
       : ocean_(std::move(ocean)), wants_(wants) {}
   const char* name() const override { return "ocean"; }
   LayerInfo info() const override { return {true, ocean_->cellPx(), wants_}; }
