@@ -14,6 +14,59 @@ uniform float uTimeS;
 uniform float uFoamSoftM;
 uniform float uWhitecapCover;
 
+// Optics (OceanRenderer): the refracted bottom on or off, and the host's
+// planar reflection (issue 13 item 4): sky and terrain seen by the eye
+// mirrored in the tangent plane of the ellipsoid at its nadir (normal
+// uNadirUp, uEyeHeightM under the eye), drawn with uReflViewProj (relative
+// to the mirrored eye, uReflEyeOffset = eye - mirrored eye from the eye).
+uniform int uRefraction;
+uniform int uReflection;
+uniform mat4 uReflViewProj;
+uniform vec3 uReflEyeOffset;
+uniform vec3 uNadirUp;
+uniform float uEyeHeightM;
+layout(binding = 3) uniform sampler2D uReflectionMap;
+// The single plane lies d^2/2R above the sea at distance d (31 m at 20 km):
+// the map is used out to kReflectionNearM and fades to the sky BRDF by
+// kReflectionFarM.
+const float kReflectionNearM = 20000.0;
+const float kReflectionFarM = 40000.0;
+
+// The map holds display colours (toDisplay): back to linear radiance,
+// saturated texels at the shoulder's 0.995.
+vec3 fromDisplay(vec3 x) {
+  x = min(x, vec3(0.995));
+  return -log(1.0 - pow(x, vec3(2.2))) / 1.6;
+}
+
+// Paper 001's secondary reflection map (eq. 11, P = P_plane + h N): the
+// point of the mirror plane under the fragment, moved along the ray its
+// wave normal reflects (slopes taken relative to the local vertical, so a
+// calm sea is the plane's exact mirror), projected by the mirrored camera.
+// h = 3x the eye's distance: a distant object's deflection is 3/4 drawn,
+// one at 3x the eye's distance behind the point exactly. rgb: linear
+// radiance; a: its weight against the sky BRDF (0 outside the map, past its
+// reach, towards the sun's disc, which the glitter draws, and where the
+// perturbed ray dips below the horizon).
+vec4 planarReflection(vec3 eyeRel, vec3 n, vec3 up, vec3 sunDir) {
+  if (uReflection == 0) return vec4(0.0);
+  float above = dot(eyeRel, uNadirUp) + uEyeHeightM;
+  vec3 pPlane = eyeRel - above * uNadirUp;
+  float dist = length(pPlane);
+  vec3 nPert = normalize(uNadirUp + (normalize(n) - normalize(up)));
+  vec3 r = reflect(pPlane / max(dist, 1e-3), nPert);
+  vec4 clip = uReflViewProj * vec4(pPlane + 3.0 * dist * r + uReflEyeOffset, 1.0);
+  if (clip.w <= 0.0) return vec4(0.0);
+  vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+  float edge = smoothstep(0.0, 0.03, min(min(uv.x, 1.0 - uv.x), min(uv.y, 1.0 - uv.y)));
+  float reach = 1.0 - smoothstep(kReflectionNearM, kReflectionFarM, dist);
+  float disc = 1.0 - smoothstep(0.9993, 0.9996, dot(r, sunDir));
+  float rising = smoothstep(-0.01, 0.0, dot(r, uNadirUp));
+  float a = edge * reach * disc * rising;
+  if (a <= 0.0) return vec4(0.0);
+  return vec4(fromDisplay(textureLod(uReflectionMap, uv, 0.0).rgb), a);
+}
+
 // Paper 000 eq. 10: blend factor of one depth curve.
 float depthCurve(float depthM, float tauMin, float tauMax) {
   return clamp((tauMin - depthM) / (tauMin - tauMax), 0.0, 1.0);
@@ -36,6 +89,11 @@ vec3 oceanColor(vec3 eyeRel, vec3 normal, vec3 upIn, float heightM, vec3 sun, ve
   float surf = 0.5 + 0.5 * sin(uTimeS * 0.9 - depth * 1.7);
   float shore = depthCurve(depth, 4.0, 0.3) * 0.55 * surf + depthCurve(depth, 1.2, 0.0) * 0.4;
   float foam = clamp(crest + shore, 0.0, 1.0);
-  vec3 c = seaColorMss(n, v, up, uSunDir, sun, depth, mss, foam);
+  vec4 refl = planarReflection(eyeRel, n, up, uSunDir);
+  // Seen through the water: the relief's depth where it has one (the
+  // coverage's 60 m floor above would hide every shelf); the coverage's only
+  // where the relief puts the water on land.
+  float seen = uRefraction != 0 && reliefDepthM > 0.0 ? reliefDepthM : depth;
+  vec3 c = seaColorOptics(n, v, up, uSunDir, sun, seen, mss, foam, refl, uRefraction != 0);
   return toDisplay(c * hazeTr + hazeIn);
 }

@@ -37,24 +37,55 @@ float smithLambda(float cosT, float mss) {
   return a >= 1.6 ? 0.0 : (1.0 - 1.259 * a + 0.396 * a * a) / (3.535 * a + 2.181 * a * a);
 }
 
-// depthM: water depth below the sea (positive). n: surface normal of the
-// waves drawn, v: unit vector from the surface towards the eye, up: local
-// vertical; sun = sunLight(dot(sunDir, up)), computed once per vertex by the
-// callers. mss: mean square slope of the waves not drawn (their microfacets,
-// about n). The reflected sky is the one seen from near the sea (the view
-// from orbit reflects the same dome).
-vec3 seaColorMss(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM, float mss, float foam) {
+// Water seen through the surface (issue 13 item 5): light from the sun
+// down to a bottom depthM below and back up along the view ray refracted
+// by Snell's law (n = 1.34), attenuated per channel by Beer-Lambert over
+// that optical path: c = a + b of pure sea water at 650, 550 and 450 nm,
+// absorption a from Pope & Fry (1997; 0.340, 0.0565, 0.0092 /m) and
+// scattering b from Morel (1974; 0.0009, 0.0019, 0.0045 /m). What the bottom
+// does not send back the column does: the water's own (deep) colour.
+const vec3 kWaterAttenuation = vec3(0.3409, 0.0584, 0.0137);
+const vec3 kBottomAlbedo = vec3(0.50, 0.47, 0.40);  // bright carbonate sand
+const float kWaterIndex = 1.34;
+
+// The per-channel transmittance of the path down to depthM and back to the
+// surface along the view (n, v: surface normal and the direction to the eye).
+vec3 waterPathTransmittance(vec3 n, vec3 v, vec3 up, vec3 sunDir, float depthM) {
+  float muV = max(-dot(refract(-v, n, 1.0 / kWaterIndex), up), 0.05);
+  float sunUp = clamp(dot(sunDir, up), 0.0, 1.0);
+  float sinS = sqrt(1.0 - sunUp * sunUp) / kWaterIndex;
+  float muS = sqrt(1.0 - sinS * sinS);
+  return exp(-kWaterAttenuation * max(depthM, 0.0) * (1.0 / muS + 1.0 / muV));
+}
+
+// sky: the reflected radiance (skyLow along the reflected ray, or the
+// planar reflection where the ocean has one); refraction: the bottom through
+// the water (else the old depth tint, the terrain's distant sea keeps it).
+vec3 seaColorOptics(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM, float mss, float foam,
+                    vec4 reflected, bool refraction) {
   float ndv = max(dot(n, v), 1e-3);
   vec3 r = reflect(-v, n);
   // Reflections from below the horizon see the sea, not the sky.
   r = normalize(r + up * max(0.0, -dot(r, up)) * 1.05);
   float F = fresnelSchlick(ndv);
   vec3 sky = skyLow(r, up, sunDir, sun);
+  if (reflected.a > 0.0) sky = mix(sky, reflected.rgb, reflected.a);
   vec3 light = sun + vec3(0.03);
-  // Beer-Lambert tint: shallow water shows the bright sea floor.
-  float shallow = exp(-max(depthM, 0.0) / 12.0);
   vec3 deep = vec3(0.004, 0.025, 0.06);
-  vec3 body = mix(deep, vec3(0.05, 0.28, 0.30), shallow) * (0.35 + 0.65 * max(dot(sunDir, up), 0.0)) * light;
+  float lit = 0.35 + 0.65 * max(dot(sunDir, up), 0.0);
+  vec3 body;
+  if (refraction) {
+    // The bottom lit by the sun through the surface (Fresnel) and the sky,
+    // its radiance divided by n^2 leaving the water.
+    float sunUp = max(dot(sunDir, up), 0.0);
+    vec3 e = sun * sunUp * (1.0 - fresnelWater(sunUp)) + vec3(0.03);
+    vec3 bottom = kBottomAlbedo / 3.14159265 * e / (kWaterIndex * kWaterIndex);
+    body = mix(deep * lit * light, bottom, waterPathTransmittance(n, v, up, sunDir, depthM));
+  } else {
+    // Beer-Lambert tint: shallow water shows the bright sea floor.
+    float shallow = exp(-max(depthM, 0.0) / 12.0);
+    body = mix(deep, vec3(0.05, 0.28, 0.30), shallow) * lit * light;
+  }
   vec3 c = mix(body, sky, F);
   // Sun glitter (Cox & Munk 1954; Bruneton et al. 2010, eq. 13): facets of
   // Gaussian slopes that mirror the sun into the eye, L = E F(v.h) p(slope)
@@ -68,6 +99,16 @@ vec3 seaColorMss(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM, f
   c += kSunIrradiance * sun * (fresnelWater(dot(v, h)) * D * G / (4.0 * ndv)) * step(0.0, ndl);
   vec3 foamColor = vec3(0.85, 0.9, 0.92) * (light * 0.9 + 0.1);
   return mix(c, foamColor, clamp(foam, 0.0, 1.0));
+}
+
+// depthM: water depth below the sea (positive). n: surface normal of the
+// waves drawn, v: unit vector from the surface towards the eye, up: local
+// vertical; sun = sunLight(dot(sunDir, up)), computed once per vertex by the
+// callers. mss: mean square slope of the waves not drawn (their microfacets,
+// about n). The reflected sky is the one seen from near the sea (the view
+// from orbit reflects the same dome).
+vec3 seaColorMss(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM, float mss, float foam) {
+  return seaColorOptics(n, v, up, sunDir, sun, depthM, mss, foam, vec4(0.0), false);
 }
 
 // The terrain's distant sea gives a roughness; its mean square slope is

@@ -32,6 +32,7 @@ struct FlyArgs {
   double heading = 90.0;
   bool noImages = false;
   bool noOcean = false;
+  bool noReflections = false, noRefraction = false;
   std::string waves = "noise";
   double windMps = 10.0;
   double windFromDeg = 270.0;
@@ -135,6 +136,8 @@ int runFly(const FlyArgs& a) {
     }
     fs.sunEcef = sun;
     fs.timed = true;
+    fs.reflections = !a.noReflections;
+    fs.refraction = !a.noRefraction;
     const auto t = s.render(pose, fs);
 #if GEOCEAN_WITH_HUD
     if (hud) {  // drawn after the timed passes, so timings.csv is the same with or without it
@@ -189,6 +192,10 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                       sub.add_flag("--hud", a->hud,
                                    "draw the viewer's HUD (lat, lon, altitude, render fps, sea height) in the frames");
                       sub.add_flag("--no-ocean", a->noOcean, "terrain and distant-sea shading only");
+                      sub.add_flag("--no-reflections", a->noReflections,
+                                   "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
+                      sub.add_flag("--no-refraction", a->noRefraction,
+                                   "no bottom seen through the water (the depth tint alone)");
                       sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
                       sub.add_option("--wind", a->windMps, "wind speed, m/s");
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");

@@ -21,6 +21,7 @@ struct RenderArgs {
   double fovDeg = 45.0;
   double exaggeration = 1.0;
   bool noOcean = false;
+  bool noReflections = false, noRefraction = false;
   std::string waves = "noise";
   double windMps = 10.0;
   double windFromDeg = 270.0;
@@ -85,6 +86,8 @@ int runRender(const RenderArgs& a) {
   render::FrameSettings fs;
   fs.timeS = a.timeS;
   fs.sunEcef = sun;
+  fs.reflections = !a.noReflections;
+  fs.refraction = !a.noRefraction;
   const auto t = s.render(pose, fs);
   gl::writePng(a.out, s.image());
   std::fprintf(stderr, "geocean render: wrote %s (%dx%d, %d terrain tiles, %.1f ms)\n", a.out.c_str(), pose.width,
@@ -106,6 +109,10 @@ const Register reg{{"render", "Render one frame headless to a PNG",
                       sub.add_option("--sun", a->sun, "AZ,EL of the sun at the camera's nadir, degrees");
                       sub.add_option("--exaggeration", a->exaggeration, "vertical exaggeration of the terrain");
                       sub.add_flag("--no-ocean", a->noOcean, "terrain and distant-sea shading only");
+                      sub.add_flag("--no-reflections", a->noReflections,
+                                   "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
+                      sub.add_flag("--no-refraction", a->noRefraction,
+                                   "no bottom seen through the water (the depth tint alone)");
                       sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
                       sub.add_option("--wind", a->windMps, "wind speed, m/s");
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");

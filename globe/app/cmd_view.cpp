@@ -40,6 +40,7 @@ struct ViewArgs {
   std::string screenshot;  // PNG of the last of --frames
   std::string statsCsv;    // per-frame CSV (position, sea, fps, resident memory)
   bool noHud = false;
+  bool noReflections = false, noRefraction = false;
   LayerOptions layers;
   BoatOptions boats;
 };
@@ -289,6 +290,8 @@ int runView(const ViewArgs& a) {
       render::FrameSettings fs;
       fs.timeS = simT;
       fs.sunEcef = render::sunFromLocal(c.pose.latDeg, c.pose.lonDeg, 135.0, 40.0);
+      fs.reflections = !a.noReflections;
+      fs.refraction = !a.noRefraction;
       const render::FrameTimes times = renderer.render(c.pose, fs);
       tilesBuilt += times.terrain.tilesBuilt;
       // The float-depth target is blitted to the window (its own depth is fixed point).
@@ -356,6 +359,10 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                                      "heap_held_kb,tiles,tiles_built (resident set; malloc'd bytes in use and held "
                                      "from the system, kB; terrain tiles drawn, tiles made so far)");
                       sub.add_flag("--no-hud", a->noHud, "no HUD panel (H toggles it in the window)");
+                      sub.add_flag("--no-reflections", a->noReflections,
+                                   "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
+                      sub.add_flag("--no-refraction", a->noRefraction,
+                                   "no bottom seen through the water (the depth tint alone)");
                       addLayerOptions(sub, a->layers);
                       addBoatOptions(sub, a->boats);
                       return [a] { return runView(*a); };

@@ -153,6 +153,8 @@ FrameTimes GlobeRenderer::render(const camera::ViewPose& pose, const FrameSettin
   auto ts = Clock::now();
   double cs = cpuMs();
   LayerInputs inputs;
+  inputs.refraction = settings.refraction;
+  if (!settings.reflections) wants &= ~kLayerWantsReflection;
   if (wants && !settings.bare) makeLayerInputs(cam, light, settings, wants, inputs);
   for (auto& l : layers_) l->draw(cam, light, settings.bare, inputs);
   if (settings.timed) glFinish();

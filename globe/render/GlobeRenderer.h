@@ -31,6 +31,10 @@ struct FrameSettings {
   glm::dvec3 sunEcef{1.0, 0.0, 0.0};
   bool bare = false;   // trivial shaders: the reference draw for frame-time ratios
   bool timed = false;  // glFinish between passes so each pass is timed alone
+  // Optics (issue 13): the mirrored pass for layers that want a reflection
+  // (--no-reflections: none made), and the view through the water.
+  bool reflections = true;
+  bool refraction = true;
 };
 
 class GlobeRenderer {

@@ -31,6 +31,10 @@ struct LayerInputs {
   // The mirrored camera the reflection was drawn with (valid with
   // reflectionColor): project a mirrored point with its gpu() matrices.
   camera::Camera reflectionCamera = camera::Camera::fromView({});
+  // The frame's optics switch (--no-refraction): whether the layer draws
+  // what is seen through its water. (--no-reflections: the host makes no
+  // reflection, reflectionColor is 0.)
+  bool refraction = true;
 };
 
 class Layer {

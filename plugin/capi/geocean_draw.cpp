@@ -136,7 +136,7 @@ class GlStateGuard {
   GlStateGuard& operator=(const GlStateGuard&) = delete;
 
  private:
-  static constexpr int kUnits = 3, kSsbos = 5, kDrawBuffers = 2;  // SSBOs 3-4: the FFT tables
+  static constexpr int kUnits = 4, kSsbos = 5, kDrawBuffers = 2;  // SSBOs 3-4: the FFT tables
   GLint program_ = 0, vao_ = 0, activeTexture_ = GL_TEXTURE0, texture_[kUnits] = {}, ssboGeneric_ = 0;
   GLint ssbo_[kSsbos] = {};
   GLint64 ssboStart_[kSsbos] = {}, ssboSize_[kSsbos] = {};
@@ -157,6 +157,7 @@ struct FrameView {
   geocean::camera::Camera cam;
   geocean::camera::Lighting light{};
   bool reference = false;
+  bool refraction = true;
 };
 
 FrameView frameViewOf(const geocean_view* v) {
@@ -203,9 +204,10 @@ FrameView frameViewOf(const geocean_view* v) {
                                                  up, proj, w, h)};
   f.light.sunEcef = glm::normalize(sun);
   f.light.timeS = v->time_s;
-  if (v->draw_flags & ~GEOCEAN_DRAW_REFERENCE)
+  if (v->draw_flags & ~(GEOCEAN_DRAW_REFERENCE | GEOCEAN_DRAW_NO_REFRACTION))
     bad("draw_flags " + std::to_string(v->draw_flags) + " has bits that are not GEOCEAN_DRAW_*");
   f.reference = (v->draw_flags & GEOCEAN_DRAW_REFERENCE) != 0;
+  f.refraction = (v->draw_flags & GEOCEAN_DRAW_NO_REFRACTION) == 0;
   return f;
 }
 
@@ -235,6 +237,7 @@ struct DrawState {
   std::optional<FrameView> view;
   // The host's extra inputs for the next draws (geocean_set_layer_inputs).
   std::optional<geocean_layer_inputs> inputs;
+  std::optional<geocean::camera::Camera> reflectionCamera;  // of inputs->reflection_view
   std::unique_ptr<GlResources> gl;
   WorldCache world;
 };
@@ -345,6 +348,13 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
         gl.renderer = std::make_unique<geocean::ocean_render::OceanRenderer>(ds.world.grids, snap->landSea, o);
       }
       gl.builtFrom = snap;
+      geocean::ocean_render::OceanInputs oi;
+      if (ds.inputs && ds.inputs->reflection_color_texture && ds.reflectionCamera) {
+        oi.reflectionColor = ds.inputs->reflection_color_texture;
+        oi.reflectionCamera = ds.reflectionCamera;
+      }
+      oi.refraction = ds.view->refraction;
+      gl.renderer->setInputs(oi);
       gl.renderer->draw(ds.view->cam, ds.view->light, ds.view->reference);
     } catch (const geocean::gl::ShaderError& e) {
       fail(GEOCEAN_ERROR_GL, e.what());
@@ -373,7 +383,9 @@ GEOCEAN_API geocean_status geocean_get_layer_info(const geocean_ocean* ocean, ge
     if (out->struct_size < sizeof(geocean_layer_info))
       fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "out->struct_size " + std::to_string(out->struct_size) +
                                                " is smaller than " + std::to_string(sizeof(geocean_layer_info)));
-    out->flags = GEOCEAN_LAYER_OPAQUE_WATER;  // the ocean's optics (reflection, refraction) come later
+    // The reflection of sky and terrain (item 4 of issue 13); refraction reads
+    // the ocean's own relief, not the scene copy.
+    out->flags = GEOCEAN_LAYER_OPAQUE_WATER | GEOCEAN_LAYER_WANTS_REFLECTION;
     out->cell_px = geocean::ocean_render::OceanOptions{}.cellPx;
   });
 }
@@ -406,6 +418,7 @@ GEOCEAN_API geocean_status geocean_set_layer_inputs(geocean_ocean* ocean, const 
     DrawState& ds = drawState(ocean);
     if (!inputs) {
       ds.inputs.reset();
+      ds.reflectionCamera.reset();
       return;
     }
     if (inputs->struct_size < sizeof(geocean_layer_inputs))
@@ -422,8 +435,10 @@ GEOCEAN_API geocean_status geocean_set_layer_inputs(geocean_ocean* ocean, const 
         fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
              std::string("inputs->") + field + " " + std::to_string(name) + " is not a texture of the current context");
     }
-    if (inputs->reflection_color_texture) (void)frameViewOf(&inputs->reflection_view);  // validates it
+    std::optional<geocean::camera::Camera> mirrored;
+    if (inputs->reflection_color_texture) mirrored = frameViewOf(&inputs->reflection_view).cam;  // validates it
     ds.inputs = *inputs;
+    ds.reflectionCamera = mirrored;
   });
 }
 

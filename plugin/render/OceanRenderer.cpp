@@ -340,6 +340,11 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   cull.waves = &*waves_;
   if (options_.farVertexShading && !octaveWavelengthM_.empty())
     cull.farFootprintM = 0.5 * double(octaveWavelengthM_[0]);
+  // The planar reflection is sampled per pixel out to its reach
+  // (ocean_shading.glsl's kReflectionFarM): vertex-shaded cells there drew
+  // it in 8 px steps.
+  const bool reflect = !bare && inputs_.reflectionColor != 0 && inputs_.reflectionCamera;
+  if (reflect && cull.farFootprintM > 0.0) cull.farFootprintM = std::max(cull.farFootprintM, 40000.0 * cull.cellRadians);
   cull.timeS = light.timeS;
   const CellGroups groups =
       partitionCells(frame_, world_->waterIndex(), options_.cellPx, cull, options_.cullOffscreen,
@@ -409,6 +414,20 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glUniform1f(p.uniform("uRefLonDeg"), float(g.lonDeg));
     glUniform1f(p.uniform("uTimeS"), float(std::fmod(light.timeS, 3600.0)));
     glUniform1i(p.uniform("uWriteData"), writeData_ ? 1 : 0);
+    glUniform1i(p.uniform("uRefraction"), inputs_.refraction ? 1 : 0);
+    glUniform1i(p.uniform("uReflection"), reflect ? 1 : 0);
+    if (reflect) {
+      const camera::Camera& m = *inputs_.reflectionCamera;
+      glUniformMatrix4fv(p.uniform("uReflViewProj"), 1, GL_FALSE, &m.gpu().viewProj[0][0]);
+      // The mirror plane from the two eyes: normal along their offset (the
+      // host mirrors in the tangent plane at the nadir), half of it under the eye.
+      const glm::dvec3 offset = cam.eyeEcef() - m.eyeEcef();
+      const glm::dvec3 n0 = geo::surfaceNormal(cam.latDeg(), cam.lonDeg());
+      const glm::vec3 offsetF(offset), n0F(n0);
+      glUniform3fv(p.uniform("uReflEyeOffset"), 1, &offsetF[0]);
+      glUniform3fv(p.uniform("uNadirUp"), 1, &n0F[0]);
+      glUniform1f(p.uniform("uEyeHeightM"), float(0.5 * glm::dot(offset, n0)));
+    }
     if (fft) {
       // The coarse cascade's texel: its waves carry the height; the fine one
       // fades with it (fading by the fine texel flattened the sea 40 m away).
@@ -429,6 +448,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   glBindVertexArray(vao_);
   glBindTextureUnit(1, elevationTex_);
   glBindTextureUnit(2, waterTex_);
+  if (reflect) glBindTextureUnit(3, inputs_.reflectionColor);
   const std::pair<const gl::GlProgram*, std::size_t> passes[4] = {{bare ? &bare_ : &program_, groups.sharp},
                                                                        {&smoothCoast_, groups.smooth},
                                                                        {&openWater_, groups.open},

@@ -14,6 +14,7 @@
 #include "plugin/waves/WaveField.h"
 
 #include <memory>
+#include <optional>
 
 namespace geocean::ocean_render {
 
@@ -60,6 +61,16 @@ std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenC
 CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi, double cellPx, const ScreenCull& view,
                           bool cull, bool group, std::vector<std::uint32_t>& idx);
 
+// What the host gives a draw beyond the camera (the host/layer contract's
+// inputs) and the optics switches.
+struct OceanInputs {
+  // The sky and terrain seen by the eye mirrored in the tangent plane at
+  // its nadir (0: none, the sky BRDF alone), drawn with reflectionCamera.
+  GLuint reflectionColor = 0;
+  std::optional<camera::Camera> reflectionCamera;
+  bool refraction = true;  // the bottom through the water (Snell, Beer-Lambert)
+};
+
 // Draws into the current context's bound framebuffer; the host decides
 // when (plugin/capi's geocean_draw, or a test's layer).
 class OceanRenderer {
@@ -77,6 +88,9 @@ class OceanRenderer {
   OceanRenderer& operator=(const OceanRenderer&) = delete;
 
   void draw(const camera::Camera& cam, const camera::Lighting& light, bool bare);
+  // For the next draws (kept until changed).
+  void setInputs(OceanInputs inputs) { inputs_ = std::move(inputs); }
+  const OceanInputs& inputs() const { return inputs_; }
   // The host/layer contract: whether every pixel over the rectangle is
   // drawn opaque for pixels of this footprint (metres), and the cell size.
   bool coversOpaquely(double lat0Deg, double lat1Deg, double lon0Deg, double lon1Deg, double pixelFootprintM) const;
@@ -115,6 +129,7 @@ class OceanRenderer {
   std::vector<float> mssAbove_;
   std::vector<float> foamHeightM_;
   double foamSoftM_ = 0.0, whitecap_ = 0.0;
+  OceanInputs inputs_;
   bool writeData_ = false;
   bool glAbandoned_ = false;
   double gridMs_ = 0.0;

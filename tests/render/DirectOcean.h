@@ -16,13 +16,22 @@ namespace geocean::render::test {
 
 class DirectOceanLayer : public Layer {
  public:
-  explicit DirectOceanLayer(std::shared_ptr<ocean_render::OceanRenderer> ocean) : ocean_(std::move(ocean)) {}
+  // wants: LayerInput bits; by default what the plugin's layer info asks
+  // for (geocean_get_layer_info), so both draw the same picture.
+  explicit DirectOceanLayer(std::shared_ptr<ocean_render::OceanRenderer> ocean,
+                            unsigned wants = kLayerWantsReflection)
+      : ocean_(std::move(ocean)), wants_(wants) {}
   const char* name() const override { return "ocean"; }
-  LayerInfo info() const override { return {true, ocean_->cellPx(), 0u}; }
+  LayerInfo info() const override { return {true, ocean_->cellPx(), wants_}; }
   bool coversOpaquely(double lat0, double lat1, double lon0, double lon1, double footprintM) const override {
     return ocean_->coversOpaquely(lat0, lat1, lon0, lon1, footprintM);
   }
-  void draw(const camera::Camera& cam, const camera::Lighting& light, bool bare, const LayerInputs&) override {
+  void draw(const camera::Camera& cam, const camera::Lighting& light, bool bare, const LayerInputs& in) override {
+    ocean_render::OceanInputs oi;
+    oi.reflectionColor = in.reflectionColor;
+    if (in.reflectionColor) oi.reflectionCamera = in.reflectionCamera;
+    oi.refraction = in.refraction;
+    ocean_->setInputs(oi);
     ocean_->draw(cam, light, bare);
   }
   // Tests draw other sea states in the same session (one GL context).
@@ -31,6 +40,7 @@ class DirectOceanLayer : public Layer {
 
  private:
   std::shared_ptr<ocean_render::OceanRenderer> ocean_;
+  unsigned wants_ = 0u;
 };
 
 // The default world's ocean (model by CLI name) on `grids`, added to the

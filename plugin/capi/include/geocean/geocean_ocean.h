@@ -370,6 +370,11 @@ typedef struct geocean_view {
 /* geocean_view.draw_flags: the same geometry with a flat colour, the
  * reference a host times the full shading against. */
 #define GEOCEAN_DRAW_REFERENCE 1u
+/* Draw the water without what is seen through it (the bottom,
+ * refracted and absorbed): the depth-tinted colour alone (--no-refraction).
+ * Since ABI 1.5: a plugin built before it rejects the bit
+ * (INVALID_ARGUMENT naming draw_flags). */
+#define GEOCEAN_DRAW_NO_REFRACTION 2u
 
 /* Fills *view with defaults: struct_size, a 1280x720 view 10,000 km above
  * (0 N, 0 E) looking down, 45 deg field of view, reversed-Z projection,

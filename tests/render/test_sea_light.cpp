@@ -1,0 +1,183 @@
+// The sea's reflection and refraction (issue 13 items 4 and 5), drawn by
+// `geocean render` through the plugin as a user sees them: a synthetic
+// island mirrored in calm water at the row the law of reflection puts it,
+// and the bottom of a synthetic shelf seen through 5, 10 and 20 m of water
+// dimmed per channel as Beer-Lambert says. Set GEOCEAN_DUMP_DIR to keep the
+// PNGs (they were looked at).
+#include "globe/gl/Framebuffer.h"
+#include "globe/raster/GeoTiffWriter.h"
+#include "tests/support/Subprocess.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace {
+
+const std::string kExe = GEOCEAN_EXE;
+
+// A float GeoTIFF over [lon0, lon0 + n step] x [lat1 - n step, lat1].
+std::string writeTif(const std::string& name, int n, double lon0, double lat1, double step,
+                     const std::function<double(double, double)>& elevation) {
+  std::vector<float> px(std::size_t(n) * n);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+      px[std::size_t(y) * n + x] = float(elevation(lat1 - (y + 0.5) * step, lon0 + (x + 0.5) * step));
+  geocean::raster::GeoTiffWriteOptions wo;
+  wo.transform = {lon0, lat1, step, -step, false};
+  const std::string p = ::testing::TempDir() + "/" + name + ".tif";
+  geocean::raster::writeGeoTiff(p, px.data(), n, n, 1, geocean::raster::SampleType::F32, wo);
+  return p;
+}
+
+geocean::gl::Image render(const std::string& args, const std::string& name) {
+  std::string out = ::testing::TempDir() + "/" + name + ".png";
+  if (const char* dir = std::getenv("GEOCEAN_DUMP_DIR")) out = std::string(dir) + "/" + name + ".png";
+  std::filesystem::remove(out);
+  const auto r = geocean::test::run(kExe + " render " + args + " --out " + out);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  return geocean::gl::readImage(out);
+}
+
+int px(const geocean::gl::Image& im, int x, int y, int c) {
+  return im.rgba[(std::size_t(y) * im.width + x) * 4 + c];
+}
+int maxDiff(const geocean::gl::Image& a, const geocean::gl::Image& b, int x, int y) {
+  int d = 0;
+  for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(px(a, x, y, c) - px(b, x, y, c)));
+  return d;
+}
+
+// A 1500 m Gaussian peak at (0.25, 0.25) in a 200 m deep sea (15" cells;
+// the picture resamples it to 5'): its coast is 0.22 degrees from the peak.
+std::string islandTif() {
+  static const std::string p = writeTif("sea_light_island", 480, -0.75, 1.25, 1.0 / 240.0, [](double lat, double lon) {
+    const double r2 = ((lat - 0.25) * (lat - 0.25) + (lon - 0.25) * (lon - 0.25)) / (0.15 * 0.15);
+    return -200.0 + 1700.0 * std::exp(-r2);
+  });
+  return p;
+}
+
+}  // namespace
+
+// Flat calm water (1 m/s) is a mirror: from 10 m above it, 83 km west of
+// the peak and looking level towards it, each column's reflected island ends
+// (lowest row) at the mirror image of its top row about the centre row (the
+// level camera's horizontal). The relief is exaggerated 3 times (a 4.5 km
+// peak 83 km away, 36 px high). The law of reflection puts it 2 f h / D
+// lower (0.2 px here, f = 761 px, h = 10 m, D > 59 km); the tolerance, 2 px, is
+// the silhouette's threshold on both sides (one pixel each: the terrain's
+// haze-blended edge, the map's bilinear tap) and the calm sea's ripples.
+// Elsewhere the sea is the sky BRDF's within 2/255 (no seam at the map's edge).
+TEST(SeaLight, CalmWaterMirrorsTheIslandAtTheMirroredRow) {
+  const std::string view =
+      " --camera 0.25,-0.5,10,90,0 --size 480x160 --fov 12 --sun 200,35 --wind 1 --exaggeration 3";
+  const auto with = render(view + " --elevation " + islandTif(), "reflection_island_calm");
+  const auto without = render(view + " --elevation " + islandTif() + " --no-reflections", "reflection_island_off");
+  const auto sea = render(view, "reflection_open_sea");  // the same sky, no island
+  const int W = 480, H = 160;
+  ASSERT_EQ(with.width, W);
+  ASSERT_EQ(without.width, W);
+  ASSERT_EQ(sea.width, W);
+  int columns = 0, worst = 0, tallest = 0;
+  double seamSum = 0.0;
+  int seamN = 0;
+  for (int x = 0; x < W; ++x) {
+    // The island's top in this column: the first row (from the top) whose
+    // colour leaves the open sea's sky by more than 6/255.
+    int top = -1;
+    for (int y = 0; y < H / 2 && top < 0; ++y)
+      if (maxDiff(without, sea, x, y) > 6) top = y;
+    // The reflection's lowest row: the last row below the centre where the
+    // reflection changes the picture by more than 6/255.
+    int bottom = -1;
+    for (int y = H - 1; y >= H / 2 && bottom < 0; --y)
+      if (maxDiff(with, without, x, y) > 6) bottom = y;
+    if (top < 0) {
+      // No island above: the mirrored sky equals the sky BRDF.
+      for (int y = H / 2 + 2; y < H; ++y) seamSum += maxDiff(with, without, x, y), ++seamN;
+      continue;
+    }
+    if (H / 2 - top < 4) continue;  // too low to locate
+    ASSERT_GE(bottom, 0) << "column " << x << ": the island (top row " << top << ") is not reflected";
+    const int mirrored = H - 1 - top;
+    worst = std::max(worst, std::abs(bottom - mirrored));
+    tallest = std::max(tallest, H / 2 - top);
+    ++columns;
+  }
+  EXPECT_GT(columns, 40);  // the island spans a good part of the view
+  EXPECT_GT(tallest, 10);
+  EXPECT_LE(worst, 2);
+  ASSERT_GT(seamN, 1000);
+  EXPECT_LE(seamSum / seamN, 2.0);
+}
+
+namespace {
+// toDisplay (shaders/atmosphere.glsl) undone: linear radiance of an 8-bit value.
+double linear(double v8) {
+  const double x = std::min(v8 / 255.0, 0.995);
+  return -std::log(1.0 - std::pow(x, 2.2)) / 1.6;
+}
+double display(double lin) { return 255.0 * std::pow(1.0 - std::exp(-1.6 * lin), 1.0 / 2.2); }
+}  // namespace
+
+// A shelf of four bands 1 degree wide, 5, 10, 20 and 1000 m deep, each seen
+// straight down from 300 m over its middle, the sun 60 degrees high (its
+// glitter 30 degrees off the nadir, outside the 20 degree view) over a calm
+// sea (2 m/s). The picture, undone to linear radiance, is the 1000 m
+// band's (the water's own colour) plus a bottom term that Beer-Lambert dims
+// as T = exp(-c d (1/mu_s + 1/mu_v)): the path down along the sun refracted
+// by Snell's law (n = 1.34: mu_s = 0.928) and up to the eye (mu_v = 1),
+// c = 0.3409, 0.0584, 0.0137 /m (Pope & Fry 1997 absorption + Morel 1974
+// scattering, R, G, B). The 5 m band fixes the bottom term's size; the 10
+// and 20 m bands must then match exp(-c path) within 1/255 per channel
+// (measured: 0.14 at most; a c 30 % off misses green by 1.5-2.7). Without refraction the 5 m band looks like deep water.
+TEST(SeaLight, TheBottomFadesThroughTheWaterAsBeerLambertSays) {
+  const std::string shelf = writeTif("sea_light_shelf", 240, 0.0, 2.0, 1.0 / 60.0, [](double, double lon) {
+    return lon < 1.0 ? -5.0 : lon < 2.0 ? -10.0 : lon < 3.0 ? -20.0 : -1000.0;
+  });
+  const double depth[4] = {5.0, 10.0, 20.0, 1000.0};
+  const double c[3] = {0.3409, 0.0584, 0.0137};
+  const double muS = std::sqrt(1.0 - std::pow(std::cos(60.0 * M_PI / 180.0) / 1.34, 2.0));
+  const double pathPerM = 1.0 / muS + 1.0;
+  double lin[4][3] = {}, mean8[4][3] = {}, off8[3] = {};
+  const auto mean = [](const geocean::gl::Image& im, int k, bool linearised) {
+    double sum = 0.0;
+    for (int y = 16; y < 48; ++y)
+      for (int x = 16; x < 48; ++x) sum += linearised ? linear(px(im, x, y, k)) : px(im, x, y, k);
+    return sum / 1024.0;
+  };
+  for (int b = 0; b < 4; ++b) {
+    const std::string camera = "0," + std::to_string(0.5 + b) + ",300,0,-90";
+    const std::string args = " --camera " + camera + " --size 64x64 --fov 20 --sun 200,60 --wind 2 --elevation " + shelf;
+    const auto im = render(args, "shelf_" + std::to_string(int(depth[b])) + "m");
+    ASSERT_EQ(im.width, 64);
+    for (int k = 0; k < 3; ++k) lin[b][k] = mean(im, k, true), mean8[b][k] = mean(im, k, false);
+    std::printf("%6.0f m: RGB %.1f %.1f %.1f\n", depth[b], mean8[b][0], mean8[b][1], mean8[b][2]);
+    if (b == 0) {
+      const auto off = render(args + " --no-refraction", "shelf_5m_norefraction");
+      for (int k = 0; k < 3; ++k) off8[k] = mean(off, k, false);
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    const auto T = [&](double d) { return std::exp(-c[k] * d * pathPerM); };
+    const double bottom = (lin[0][k] - lin[3][k]) / T(depth[0]);
+    for (int b = 1; b < 3; ++b) {
+      const double predicted = display(lin[3][k] + bottom * T(depth[b]));
+      EXPECT_NEAR(mean8[b][k], predicted, 1.0) << "channel " << k << " at " << depth[b] << " m";
+    }
+  }
+  // The bottom shows: 5 m is brighter green and blue than deep water...
+  EXPECT_GT(mean8[0][1], mean8[3][1] + 15.0);
+  EXPECT_GT(mean8[0][2], mean8[3][2]);
+  // ...and without refraction 5 m of water looks like deep water (the old
+  // tint's depth floor of 60 m leaves exp(-60/12) of its shallow colour).
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(off8[k], mean8[3][k], 2.0) << "channel " << k;
+}
