@@ -40,6 +40,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 namespace geocean::render::test {
 namespace {
 
@@ -52,7 +54,8 @@ constexpr double kCellDeg = 3.0 / 3600.0;  // the 3" mask
 // The 3" mask of the strait, built once by `geocean mask` (GMT, seconds).
 const std::string& gibraltarMask() {
   static const std::string path = [] {
-    const std::string p = ::testing::TempDir() + "/coast_gibraltar_3s.tif";
+    // Per process: ctest runs each Coast test as its own process, in parallel.
+    const std::string p = ::testing::TempDir() + "/coast_gibraltar_3s." + std::to_string(::getpid()) + ".tif";
     fs::remove(p);
     const auto r = geocean::test::run(kExe + " mask --quiet --region -6/-5/35.75/36.25 --resolution 3s --out " + p);
     EXPECT_EQ(r.exitCode, 0) << r.err;

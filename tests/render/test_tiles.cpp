@@ -152,6 +152,10 @@ TEST(TilePool, BoundsDoNotGrowWithTheRasterAndNothingWaits) {
     a.endFrame();
   }
   // Then the loads land (however slow the machine: waited for, not timed).
+  // Ask again first: each endFrame drops asks older than two frames, so on
+  // a loaded machine every ask of the loop can be stale before a worker
+  // reaches it (seen: 1 run in 6 with 6 copies on 2 cores).
+  for (int i = 0; i < 8; ++i) a.slotOf({0, i, 0});
   a.waitIdle();
   a.endFrame();
   EXPECT_GT(a.stats().uploads, 0u);
