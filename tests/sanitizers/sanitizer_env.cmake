@@ -9,7 +9,7 @@ set(GEOCEAN_SANITIZER_OPTIONS
   "ASAN_OPTIONS=detect_leaks=1:check_initialization_order=1:strict_init_order=1:detect_stack_use_after_return=1:verify_asan_link_order=0:suppressions=${_s}/asan.supp"
   "LSAN_OPTIONS=suppressions=${_s}/lsan.supp:print_suppressions=0"
   "UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:suppressions=${_s}/ubsan.supp"
-  "TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=${_s}/tsan.supp")
+  "TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:history_size=7:suppressions=${_s}/tsan.supp")
 if(GEOCEAN_SANITIZE MATCHES "address")
   # Keeps Mesa's driver mapped after eglTerminate so LSan can see what it
   # still references (keep_dri_loaded.c says why). Built without the
