@@ -290,7 +290,9 @@ TEST(SimdBatch, NoiseAtTimesBeyondTheLatticeIsFinite) {
         ASSERT_TRUE(std::isfinite(s.displacementEnuM.z) && std::isfinite(s.verticalVelocityMps) &&
                     std::isfinite(s.normalEnu.z)) << toString(m) << " t " << t;
         ASSERT_TRUE(std::isfinite(batch[i].heightM)) << toString(m) << " t " << t << " " << i;
-        if (m == Model::Noise) EXPECT_NEAR(batch[i].heightM, p.heightM, 1e-6) << i;  // as NoiseAtUnixEpochTimes
+        if (m == Model::Noise) {
+          EXPECT_NEAR(batch[i].heightM, p.heightM, 1e-6) << i;  // as NoiseAtUnixEpochTimes
+        }
       }
     }
   }
