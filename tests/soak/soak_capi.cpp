@@ -134,6 +134,19 @@ int soakThreads(double seconds, int readers) {
   return pass ? 0 : 1;
 }
 
+// Whether the plugin is still mapped: glibc keeps a library loaded after
+// dlclose when it has STB_GNU_UNIQUE symbols (C++ inline statics) or was
+// opened RTLD_NODELETE, and then "unload" frees nothing.
+bool pluginMapped() {
+  std::FILE* f = std::fopen("/proc/self/maps", "r");
+  if (!f) return false;
+  char line[4096];
+  bool found = false;
+  while (!found && std::fgets(line, sizeof line, f)) found = std::strstr(line, "libgeocean_ocean.so") != nullptr;
+  std::fclose(f);
+  return found;
+}
+
 int soakReload(int times) {
   long heap10 = -1, heapEnd = 0;
   for (int i = 1; i <= times; ++i) {
@@ -156,6 +169,8 @@ int soakReload(int times) {
       return 1;
     }
     p.reset();  // dlclose
+    if (i == times) std::printf("soak_capi reload: after the last dlclose the plugin is %s\n",
+                                pluginMapped() ? "still mapped (not unloaded)" : "unmapped");
     if (i == 10) heap10 = heapInUse();
     heapEnd = heapInUse();
   }
