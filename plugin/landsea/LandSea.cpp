@@ -136,7 +136,13 @@ namespace {
 // the grid's classifier cost); the byte lookups stay scalar. Same
 // operations as FastIndex::index, so the same cells. GCC if-converts the
 // range tests only without trapping math (this code uses no FP exceptions).
+#ifdef __SANITIZE_THREAD__
+// No clones under ThreadSanitizer: the ifunc resolver runs during relocation,
+// before TSan's runtime is up, and its instrumentation crashes the process.
+__attribute__((optimize("no-trapping-math")))
+#else
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4"), optimize("no-trapping-math")))
+#endif
 void cellIndices(double originLon, double originLat, double invLonStep, double invLatStep, int width, int height,
                  bool global, const double* __restrict lat, const double* __restrict lon, std::size_t n,
                  std::int32_t* __restrict out) {

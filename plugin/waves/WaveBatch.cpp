@@ -286,7 +286,7 @@ void Noise(const NoiseOctave* oc, int count, const Points& pts, SurfacePoint* ou
       for (int k = 0; k < 3; ++k) {
         q[k] = hn::MulAdd(S(o.vel[k]), b.t, Dot(S(o.row[k][0]), S(o.row[k][1]), S(o.row[k][2]), l.p[0], l.p[1], l.p[2]));
         const V fl = hn::Floor(q[k]);
-        fr[k] = hn::Sub(q[k], fl);
+        fr[k] = hn::IfThenZeroElse(hn::IsInf(q[k]), hn::Sub(q[k], fl));  // as WaveField's finiteFrac
         cell[k] = hn::DemoteTo(di, WrapCell32(fl));
       }
       V nv, nx, ny, nz;

@@ -116,6 +116,12 @@ double wrapCell32(double cell) {
   const double m = cell - 4294967296.0 * std::floor(cell * (1.0 / 4294967296.0));
   return m >= 2147483648.0 ? m - 4294967296.0 : m;
 }
+// The fraction q - floor(q), 0 where q is infinite (v t overflowed, at
+// |t| ~ 1e306 s and beyond): the cell is then 0 (wrapCell32), so the noise
+// is that of cell 0, not NaN (the kernel's floor -> int of the NaN fraction
+// was UB; fuzz_capi_sea_state found t ~ 1e307 s). A NaN q (NaN position)
+// stays NaN, as the batch's NonFiniteInputStaysInItsLane asks.
+double finiteFrac(double q, double fl) { return std::isinf(q) ? 0.0 : q - fl; }
 glm::ivec3 wrapCells(const glm::dvec3& fl) {
   return {int(wrapCell32(fl.x)), int(wrapCell32(fl.y)), int(wrapCell32(fl.z))};
 }
@@ -128,7 +134,7 @@ kd::WvOctave octaveAt(const WaveField::Octave& oc, const glm::dvec3& o, double t
   w.row0 = glm::dvec4(oc.row[0], oc.amplitudeM);
   w.row1 = glm::dvec4(oc.row[1], double(oc.seed));
   w.row2 = glm::dvec4(oc.row[2], 0.0);
-  w.fracO = glm::dvec4(q - fl, 0.0);
+  w.fracO = glm::dvec4(finiteFrac(q.x, fl.x), finiteFrac(q.y, fl.y), finiteFrac(q.z, fl.z), 0.0);
   w.cellO = glm::ivec4(wrapCells(fl), 0);
   w.vel = glm::dvec4(oc.velocity, 0.0);
   return w;
@@ -483,7 +489,8 @@ WaveSample WaveField::samplePaper(double latDeg, double lonDeg, double tS) const
     const double f = o.frequencyPerM;
     const glm::dvec2 q(x * f + o.velocity.x * tS, y * f + o.velocity.y * tS);
     const glm::dvec2 fl = glm::floor(q);
-    const glm::dvec3 nz = k.wv_perlin2(glm::ivec2(int(wrapCell32(fl.x)), int(wrapCell32(fl.y))), q - fl, o.seed);
+    const glm::dvec3 nz = k.wv_perlin2(glm::ivec2(int(wrapCell32(fl.x)), int(wrapCell32(fl.y))),
+                                      glm::dvec2(finiteFrac(q.x, fl.x), finiteFrac(q.y, fl.y)), o.seed);
     h += o.amplitudeM * nz.x;
     hx += o.amplitudeM * nz.y * f;
     hy += o.amplitudeM * nz.z * f;

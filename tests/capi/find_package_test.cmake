@@ -10,6 +10,16 @@ function(run)
   message(STATUS "${out}")
 endfunction()
 
+# A sanitizer build (GEOCEAN_SANITIZE) installs instrumented libraries: the
+# consumer is compiled and linked with the same -fsanitize flags, as a
+# consumer of such a build must be.
+load_cache("${BUILD_DIR}" READ_WITH_PREFIX "" GEOCEAN_SANITIZE_FLAGS_CACHED)
+set(san_flags "${GEOCEAN_SANITIZE_FLAGS_CACHED}")
+list(JOIN san_flags " " san_string)
+if(san_flags)
+  message(STATUS "consumer built with ${san_string}")
+endif()
+
 file(REMOVE_RECURSE "${WORK_DIR}")
 set(prefix "${WORK_DIR}/prefix")
 run(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}" --component plugin)
@@ -23,7 +33,8 @@ endforeach()
 # The consumer must find the data beside the library, not through the environment.
 unset(ENV{GEOCEAN_DATA})
 run(${CMAKE_COMMAND} -S "${CONSUMER_DIR}" -B "${WORK_DIR}/consumer" -DCMAKE_PREFIX_PATH=${prefix}
-    -DCMAKE_C_COMPILER=${C_COMPILER} -DCMAKE_BUILD_TYPE=Release)
+    -DCMAKE_C_COMPILER=${C_COMPILER} -DCMAKE_BUILD_TYPE=Release
+    "-DCMAKE_C_FLAGS=${san_string}" "-DCMAKE_EXE_LINKER_FLAGS=${san_string}")
 run(${CMAKE_COMMAND} --build "${WORK_DIR}/consumer")
 run("${WORK_DIR}/consumer/consumer")
 
@@ -35,6 +46,6 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "pkg-config --cflags --libs geocean failed")
 endif()
 separate_arguments(flags UNIX_COMMAND "${flags}")
-run(${C_COMPILER} -std=c99 -pedantic -Werror "${CONSUMER_DIR}/consumer.c" ${flags} -o "${WORK_DIR}/consumer_pc")
+run(${C_COMPILER} -std=c99 -pedantic -Werror ${san_flags} "${CONSUMER_DIR}/consumer.c" ${flags} -o "${WORK_DIR}/consumer_pc")
 set(ENV{LD_LIBRARY_PATH} "${prefix}/lib")
 run("${WORK_DIR}/consumer_pc")

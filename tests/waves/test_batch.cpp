@@ -12,6 +12,7 @@
 #include <hwy/targets.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -266,5 +267,33 @@ TEST(SimdBatch, NoiseAtUnixEpochTimes) {
     const double ratio = std::sqrt(sumNow / sumThen);
     EXPECT_GT(ratio, 0.8) << toString(m);
     EXPECT_LT(ratio, 1.25) << toString(m);
+  }
+}
+
+// Times so large that v t overflows the lattice coordinate to infinity
+// (fuzz_capi_sea_state: 1e307 s through geocean_query_surface): the noise
+// is that of cell 0 (finiteFrac, wrapCell32), finite, scalar = batch; before
+// the fix the scalar path converted a NaN fraction's floor to int (UB) and
+// the batch returned NaN heights.
+TEST(SimdBatch, NoiseAtTimesBeyondTheLatticeIsFinite) {
+  const double big = std::numeric_limits<double>::max();
+  for (Model m : {Model::Noise, Model::NoisePaper}) {
+    const WaveField f = test::make(m, 12.0);
+    for (double t : {1e307, -1e307, big, -big}) {
+      const double la[] = {0.0, 36.0, -60.0, 89.9}, lo[] = {0.0, -5.6, 170.0, -179.9};
+      SurfacePoint batch[4];
+      f.surfaceBatch(la, lo, &t, false, nullptr, 4, batch);
+      for (int i = 0; i < 4; ++i) {
+        const SurfacePoint p = f.surfaceAt(la[i], lo[i], t);
+        ASSERT_TRUE(std::isfinite(p.heightM) && std::isfinite(p.verticalVelocityMps)) << toString(m) << " t " << t;
+        const WaveSample s = f.sample(la[i], lo[i], t, kDeepWaterM);
+        ASSERT_TRUE(std::isfinite(s.displacementEnuM.z) && std::isfinite(s.verticalVelocityMps) &&
+                    std::isfinite(s.normalEnu.z)) << toString(m) << " t " << t;
+        ASSERT_TRUE(std::isfinite(batch[i].heightM)) << toString(m) << " t " << t << " " << i;
+        if (m == Model::Noise) {
+          EXPECT_NEAR(batch[i].heightM, p.heightM, 1e-6) << i;  // as NoiseAtUnixEpochTimes
+        }
+      }
+    }
   }
 }
