@@ -129,7 +129,12 @@ std::vector<glm::dvec4> FftOcean::build(double tS) const {
   for (int c = 0; c < kCascades; ++c) {
     for (auto& a : z) a.assign(nn, Cpx(0.0));
     for (const Mode& m : cascades_[c].modes) {
-      double psi = std::fmod(m.phase0 - m.omega * tS, kTwoPi);  // reduced in double: t may be ~1e9 s
+      // Reduced in double: t may be ~1e9 s. Beyond |w t| ~ 1.8e308 (t ~ 1e307 s)
+      // the product overflows and the phase has no precision left (t's
+      // spacing there is ~1e291 s): w t counts as 0 mod 2 pi, as the noise
+      // lattice takes cell 0 (fuzz_capi_sea_state finding 5: NaN heights).
+      const double wt = m.omega * tS;
+      double psi = std::fmod(m.phase0 - (std::isfinite(wt) ? wt : 0.0), kTwoPi);
       const Cpx h = 0.5 * m.amp * Cpx(std::cos(psi), std::sin(psi));
       const double k = std::hypot(m.kx, m.ky), ux = m.kx / k, uy = m.ky / k, lam = lambda_;
       // Spectral factors of each field (see FftOcean.h and waves_types.glsl):

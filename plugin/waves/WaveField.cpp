@@ -240,7 +240,10 @@ std::optional<WaveField> WaveField::create(Model model, const SeaState& sea, std
   if (!std::isfinite(sea.fetchM) || sea.fetchM < 0.0) return bad("fetchM", sea.fetchM, "expected >= 0 m");
   if (!(sea.anchorLatDeg >= -90.0 && sea.anchorLatDeg <= 90.0))
     return bad("anchorLatDeg", sea.anchorLatDeg, "expected -90 .. 90");
-  if (!std::isfinite(sea.anchorLonDeg)) return bad("anchorLonDeg", sea.anchorLonDeg, "expected finite");
+  // Bounded, not just finite: lon * pi overflowed to NaN at -1.8e308
+  // (fuzz_capi_sea_state finding 4: NaN FFT plane cells, UB).
+  if (!(sea.anchorLonDeg >= -360.0 && sea.anchorLonDeg <= 360.0))
+    return bad("anchorLonDeg", sea.anchorLonDeg, "expected -360 .. 360");
   if (!(sea.referenceDepthM > 0.0)) return bad("referenceDepthM", sea.referenceDepthM, "expected > 0 m");
   if (sea.gerstnerComponents < 1 || sea.gerstnerComponents > kMaxComponents)
     return bad("gerstnerComponents", sea.gerstnerComponents, "expected 1 .. 64");

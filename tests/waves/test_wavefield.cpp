@@ -226,6 +226,12 @@ TEST(SeaState, BadInputNamesTheField) {
   s.fetchM = std::nan("");
   EXPECT_FALSE(WaveField::create(Model::Gerstner, s, err));
   EXPECT_NE(err.find("fetchM"), std::string::npos) << err;
+  // fuzz_capi_sea_state finding 4: a finite but huge anchor longitude gave
+  // NaN plane cells (lon * pi overflowed); now refused, naming the field.
+  s = {};
+  s.anchorLonDeg = -1.7976931348623157e308;
+  EXPECT_FALSE(WaveField::create(Model::Fft, s, err));
+  EXPECT_NE(err.find("anchorLonDeg"), std::string::npos) << err;
   EXPECT_FALSE(SeaState::fromBeaufort(13));
   EXPECT_NEAR(SeaState::fromBeaufort(5)->windSpeedMps, 9.35 * 1.026, 1e-9);
   EXPECT_FALSE(parseModel("tessendorf"));
@@ -239,4 +245,23 @@ TEST(SeaState, DeterministicForASeedAndDifferentAcrossSeeds) {
   EXPECT_NE(a.surfaceAt(10, 20, 5).heightM, c.surfaceAt(10, 20, 5).heightM);
   const WaveField n1 = make(Model::Noise, 10, 7), n2 = make(Model::Noise, 10, 8);
   EXPECT_NE(n1.surfaceAt(10, 20, 5).heightM, n2.surfaceAt(10, 20, 5).heightM);
+}
+
+// fuzz_capi_sea_state finding 5: at t ~ 7e307 s the FFT tables' phase w t
+// overflowed to infinity and every ocean height was NaN. Now w t counts as
+// 0 there (no precision is left at such times): finite heights, unit normals.
+TEST(SeaState, FftAtTimesBeyondThePhaseRangeIsFinite) {
+  std::string err;
+  SeaState s;
+  const auto field = WaveField::create(Model::Fft, s, err);
+  ASSERT_TRUE(field) << err;
+  for (double t : {7.1233136299299067e307, -1e308, 1.7e308}) {
+    const SurfacePoint p = field->surfaceAt(-17.29, 38.12, t, kDeepWaterM);
+    EXPECT_TRUE(std::isfinite(p.heightM)) << t;
+    EXPECT_NEAR(glm::length(p.normalEnu), 1.0, 1e-9) << t;
+    double la = -17.29, lo = 38.12;
+    SurfacePoint b;
+    field->surfaceBatch(&la, &lo, &t, false, nullptr, 1, &b);
+    EXPECT_TRUE(std::isfinite(b.heightM)) << t;
+  }
 }
