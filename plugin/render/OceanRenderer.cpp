@@ -39,7 +39,10 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     throw std::invalid_argument("--waves noise-paper has no GPU form; render with noise, gerstner or fft");
   grid::GridOptions go;
   go.cellPx = options_.cellPx;
-  go.maxDisplacementM = waves_->maxDisplacementM();
+  // WaveField's bound is the deep-water scan's; the coast field's Kr scales
+  // amplitudes by up to kMaxKr (the caps only lower them).
+  maxDisplacementM_ = waves_->maxDisplacementM() * (coast ? waves::CoastField::kMaxKr : 1.0);
+  go.maxDisplacementM = maxDisplacementM_;
   // Cells are skipped only where the drawn shoreline cannot reach (the
   // fragment shader cuts the exact coastline); nearest-cell classes would
   // drop sea that the smooth shoreline shows as water.
@@ -346,7 +349,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   cull.tanY = std::tan(0.5 * cam.vfovDeg() * 3.14159265358979 / 180.0);
   cull.tanX = cull.tanY * cam.widthPx() / cam.heightPx();
   cull.cellRadians = 2.0 * cull.tanY / cam.heightPx() * options_.cellPx;
-  cull.maxDisplacementM = waves_->maxDisplacementM();
+  cull.maxDisplacementM = maxDisplacementM_;
   cull.waves = &*waves_;
   if (options_.farVertexShading && !octaveWavelengthM_.empty())
     cull.farFootprintM = 0.5 * double(octaveWavelengthM_[0]);

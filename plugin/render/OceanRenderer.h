@@ -122,6 +122,7 @@ class OceanRenderer {
   std::shared_ptr<const world::WorldGrids> world_;
   GLuint elevationTex_ = 0, waterTex_ = 0;
   OceanOptions options_;
+  double maxDisplacementM_ = 0.0;  // the grid's and the cull's bound on wave displacement
   std::optional<waves::WaveField> waves_;
   std::unique_ptr<grid::ScreenGrid> grid_;
   grid::GridFrame frame_;
