@@ -14,6 +14,12 @@ layout(std430, binding = 4) readonly buffer WvFftTexelBuffer { vec4 wvFftTexels[
 uniform int uFftCascades;
 uniform float uFftTexelM;  // the coarse cascade's texel, metres
 #endif
+#if WV_MODEL == 1 && defined(WV_COAST)
+// Gerstner with the near-shore phase field (OceanOptions::coast, as in
+// shaders/waves_eval.glsl's WV_MODEL 3): the patch's WvCoast and the field's texels.
+layout(std430, binding = 3) readonly buffer WvCoastBuffer { WvCoast wvCoasts[]; };
+layout(std430, binding = 4) readonly buffer WvCoastTexelBuffer { vec4 wvCoastTexels[]; };
+#endif
 #include "waves.glsl"
 #include "geo_uv.glsl"
 #include "atmosphere.glsl"
@@ -91,7 +97,11 @@ void main() {
 #if WV_MODEL == 1
   float elev = textureLod(uElevation, geoUv(lonLat, uElevationGeo), 0.0).r;
   float depth = elev < -500.0 ? 1e30 : max(-elev, 1.0);
+#ifdef WV_COAST
+  WvResult r = wv_gerstnerCoast(0, uWaveCount, d, fr, depth, wvCoasts[0]);
+#else
   WvResult r = wv_gerstner(0, uWaveCount, d, fr, depth);
+#endif
   float mssDrawn = uMssAbove[0] - uMssAbove[1], mssRest = uMssAbove[1];
   vFoamM = uFoamHeightM[0];
 #elif WV_MODEL == 2

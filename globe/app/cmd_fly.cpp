@@ -2,6 +2,7 @@
 // headless to PNG frames plus a CSV of per-frame timings.
 #include "globe/app/Command.h"
 #include "globe/app/BoatOptions.h"
+#include "globe/app/CoastOption.h"
 #include "globe/app/LayerOptions.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
@@ -36,6 +37,7 @@ struct FlyArgs {
   std::string waves = "noise";
   double windMps = 10.0;
   double windFromDeg = 270.0;
+  std::string coastRegion;
   bool reference = false;
   bool hud = false;
   LayerOptions layers;
@@ -101,6 +103,7 @@ int runFly(const FlyArgs& a) {
       return kExitBadInput;
     }
   }
+  if (const int rc = applyCoastRegion("fly", a.coastRegion, ocean.get()); rc != kExitOk) return rc;
   std::shared_ptr<host::PluginBoats> boats;
   if (const int rc = addBoats("fly", a.boats, *s.renderer, ocean, plan.toLatDeg, plan.toLonDeg, boats); rc != kExitOk)
     return rc;
@@ -199,6 +202,7 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                       sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
                       sub.add_option("--wind", a->windMps, "wind speed, m/s");
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
+                      addCoastOption(sub, a->coastRegion);
                       addLayerOptions(sub, a->layers);
                       addBoatOptions(sub, a->boats);
                       return [a] { return runFly(*a); };

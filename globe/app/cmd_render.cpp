@@ -1,6 +1,7 @@
 // `geocean render`: one frame, headless (EGL), to a PNG.
 #include "globe/app/Command.h"
 #include "globe/app/BoatOptions.h"
+#include "globe/app/CoastOption.h"
 #include "globe/app/LayerOptions.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Session.h"
@@ -25,6 +26,7 @@ struct RenderArgs {
   std::string waves = "noise";
   double windMps = 10.0;
   double windFromDeg = 270.0;
+  std::string coastRegion;
   LayerOptions layers;
   BoatOptions boats;
 };
@@ -74,6 +76,7 @@ int runRender(const RenderArgs& a) {
       return kExitBadInput;
     }
   }
+  if (const int rc = applyCoastRegion("render", a.coastRegion, ocean.get()); rc != kExitOk) return rc;
   std::shared_ptr<host::PluginBoats> boats;
   double targetLat = 0, targetLon = 0;
   host::viewTarget(pose, targetLat, targetLon);
@@ -116,6 +119,7 @@ const Register reg{{"render", "Render one frame headless to a PNG",
                       sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
                       sub.add_option("--wind", a->windMps, "wind speed, m/s");
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
+                      addCoastOption(sub, a->coastRegion);
                       addLayerOptions(sub, a->layers);
                       addBoatOptions(sub, a->boats);
                       return [a] { return runRender(*a); };

@@ -89,6 +89,9 @@ struct OceanApi {
   geocean_status (*bodiesGetPoses)(const geocean_bodies*, int32_t, geocean_body_pose*, size_t, size_t*) = nullptr;
   geocean_status (*bodiesGetHull)(const geocean_bodies*, geocean_body_id, double*, size_t, uint32_t*, size_t, size_t*,
                                   size_t*) = nullptr;
+  // ABI 1.5, the near-shore region (NULL when the plugin's minor is below 5).
+  geocean_status (*setCoastRegion)(geocean_ocean*, double, double, double) = nullptr;
+  geocean_status (*clearCoastRegion)(geocean_ocean*) = nullptr;
 };
 
 class OceanPlugin {

@@ -344,6 +344,7 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
         geocean::ocean_render::OceanOptions o;
         o.model = snap->model;
         o.sea = snap->seaState;
+        o.coast = snap->waves->coastFieldShared();  // Ocean::setCoastRegion: the query's near-shore field
         gl.renderer.reset();
         gl.renderer = std::make_unique<geocean::ocean_render::OceanRenderer>(ds.world.grids, snap->landSea, o);
       }

@@ -402,6 +402,39 @@ GEOCEAN_API geocean_status geocean_set_sea_state(geocean_ocean* ocean, const geo
   });
 }
 
+// Since ABI 1.5: the near-shore region of interest (Ocean::setCoastRegion).
+// The same rule as `geocean query --coast-region`: 201 nodes over size_m.
+GEOCEAN_API geocean_status geocean_set_coast_region(geocean_ocean* ocean, double lat_deg, double lon_deg,
+                                                    double size_m) {
+  return guard("geocean_set_coast_region", [&] {
+    requireNonNull(ocean, "ocean");
+    if (!(lat_deg >= -90.0 && lat_deg <= 90.0))
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "lat_deg " + std::to_string(lat_deg) + " is not in -90 .. 90");
+    if (!(lon_deg >= -360.0 && lon_deg <= 360.0))
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "lon_deg " + std::to_string(lon_deg) + " is not in -360 .. 360");
+    if (!(size_m >= 500.0 && size_m <= 40000.0))
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "size_m " + std::to_string(size_m) + " is not in 500 .. 40000");
+    const auto snap = ocean->core.current();
+    if (snap->waves && snap->model != geocean::waves::Model::Gerstner)
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, std::string("the sea state's model is ") +
+                                               geocean::waves::toString(snap->model) +
+                                               ": a coast region needs GEOCEAN_WAVES_GERSTNER");
+    geocean::waves::CoastField::Region r;
+    r.latDeg = lat_deg;
+    r.lonDeg = lon_deg;
+    r.nodes = 201;
+    r.cellM = size_m / (r.nodes - 1);
+    ocean->core.setCoastRegion(r);  // guard() maps its invalid_argument to INVALID_ARGUMENT
+  });
+}
+
+GEOCEAN_API geocean_status geocean_clear_coast_region(geocean_ocean* ocean) {
+  return guard("geocean_clear_coast_region", [&] {
+    requireNonNull(ocean, "ocean");
+    ocean->core.clearCoastRegion();
+  });
+}
+
 GEOCEAN_API geocean_status geocean_query_sea_surface(const geocean_ocean* ocean, size_t count,
                                                      const double* lat_deg, const double* lon_deg, double time_s,
                                                      double* out_height_m, double* out_normal_enu,

@@ -1,4 +1,6 @@
 #include "plugin/render/OceanRenderer.h"
+
+#include "plugin/waves/CoastField.h"
 #include "plugin/render/OceanWorld.h"
 
 #include "globe/gl/Texture.h"
@@ -31,11 +33,16 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   std::string err;
   waves_ = waves::WaveField::create(options_.model, options_.sea, err);
   if (!waves_) throw std::invalid_argument("sea state: " + err);
+  waves_->setCoast(options_.coast);  // kept only for Gerstner
+  const bool coast = waves_->coastField() != nullptr;
   if (options_.model == waves::Model::NoisePaper)
     throw std::invalid_argument("--waves noise-paper has no GPU form; render with noise, gerstner or fft");
   grid::GridOptions go;
   go.cellPx = options_.cellPx;
-  go.maxDisplacementM = waves_->maxDisplacementM();
+  // WaveField's bound is the deep-water scan's; the coast field's Kr scales
+  // amplitudes by up to kMaxKr (the caps only lower them).
+  maxDisplacementM_ = waves_->maxDisplacementM() * (coast ? waves::CoastField::kMaxKr : 1.0);
+  go.maxDisplacementM = maxDisplacementM_;
   // Cells are skipped only where the drawn shoreline cannot reach (the
   // fragment shader cuts the exact coastline); nearest-cell classes would
   // drop sea that the smooth shoreline shows as water.
@@ -49,6 +56,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
                                     : options_.model == waves::Model::Fft    ? "WV_MODEL 2"
                                                                              : "WV_MODEL 0"};
   if (options_.model == waves::Model::Fft) model.push_back("WV_FFT 1");
+  if (coast) model.push_back("WV_COAST 1");
   program_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", model);
   {
     auto open = model;
@@ -65,6 +73,11 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   glCreateBuffers(1, &vbo_);
   glCreateBuffers(1, &ibo_);
   glCreateBuffers(5, ssbo_);
+  // The coast field's texels are the field's, not the frame's: uploaded once.
+  if (coast) {
+    const std::vector<glm::vec4> texels = waves_->coastField()->gpuTexels();
+    glNamedBufferData(ssbo_[4], GLsizeiptr(texels.size() * sizeof(glm::vec4)), texels.data(), GL_STATIC_DRAW);
+  }
   // GridVertex: vec3 eyeRel, uint class|flags << 8, dvec2 lat/lon (32 bytes).
   glEnableVertexArrayAttrib(vao_, 0);
   glVertexArrayAttribFormat(vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
@@ -336,7 +349,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   cull.tanY = std::tan(0.5 * cam.vfovDeg() * 3.14159265358979 / 180.0);
   cull.tanX = cull.tanY * cam.widthPx() / cam.heightPx();
   cull.cellRadians = 2.0 * cull.tanY / cam.heightPx() * options_.cellPx;
-  cull.maxDisplacementM = waves_->maxDisplacementM();
+  cull.maxDisplacementM = maxDisplacementM_;
   cull.waves = &*waves_;
   if (options_.farVertexShading && !octaveWavelengthM_.empty())
     cull.farFootprintM = 0.5 * double(octaveWavelengthM_[0]);
@@ -375,13 +388,18 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   upload(ssbo_[1], patch_.waves);
   upload(ssbo_[2], std::vector<waves::kf::WvFrame>{patch_.frame});
   for (int i = 0; i < 3; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, ssbo_[i]);
-  // Bindings 3 and 4 (FFT) are restored after the draw: hosts may use them.
+  // Bindings 3 and 4 (FFT, or the coast field) are restored after the draw: hosts may use them.
   GLint hostSsbo[2] = {0, 0};
   GLint64 hostStart[2] = {0, 0}, hostSize[2] = {0, 0};
   const bool fft = options_.model == waves::Model::Fft;
-  if (fft) {
-    upload(ssbo_[3], patch_.fftPlanes);
-    upload(ssbo_[4], patch_.fftTexels);
+  const bool coast = waves_->coastField() != nullptr;
+  if (fft || coast) {
+    if (fft) {
+      upload(ssbo_[3], patch_.fftPlanes);
+      upload(ssbo_[4], patch_.fftTexels);
+    } else {
+      upload(ssbo_[3], std::vector<waves::kf::WvCoast>{patch_.coast});
+    }
     for (int i = 0; i < 2; ++i) {
       glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, GLuint(3 + i), &hostSsbo[i]);
       glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, GLuint(3 + i), &hostStart[i]);
@@ -465,7 +483,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   glBindVertexArray(0);
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_BLEND);
-  if (fft)
+  if (fft || coast)
     for (int i = 0; i < 2; ++i) {
       if (hostSsbo[i] != 0 && hostSize[i] > 0)
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, GLuint(3 + i), GLuint(hostSsbo[i]), GLintptr(hostStart[i]),

@@ -22,6 +22,10 @@ struct OceanOptions {
   double cellPx = 8.0;  // grid vertex spacing on screen
   waves::Model model = waves::Model::Noise;
   waves::SeaState sea;
+  // The near-shore phase field (Gerstner; ocean::Snapshot's waves carry it
+  // after Ocean::setCoastRegion): drawn with wv_gerstnerCoast, so the
+  // picture is the query's surface there. Null: the shaders as without it.
+  std::shared_ptr<const waves::CoastField> coast;
   // Open water (WaterIndex) and cells far smaller than a water texel with
   // shader variants that skip the per-pixel coverage (partitionCells).
   bool cheapCoverage = true;
@@ -118,12 +122,13 @@ class OceanRenderer {
   std::shared_ptr<const world::WorldGrids> world_;
   GLuint elevationTex_ = 0, waterTex_ = 0;
   OceanOptions options_;
+  double maxDisplacementM_ = 0.0;  // the grid's and the cull's bound on wave displacement
   std::optional<waves::WaveField> waves_;
   std::unique_ptr<grid::ScreenGrid> grid_;
   grid::GridFrame frame_;
   waves::GpuPatch patch_;
   gl::GlProgram program_, smoothCoast_, openWater_, farShaded_, bare_;
-  GLuint vao_ = 0, vbo_ = 0, ibo_ = 0, ssbo_[5] = {0, 0, 0, 0, 0};  // octaves, waves, frame, FFT planes, texels
+  GLuint vao_ = 0, vbo_ = 0, ibo_ = 0, ssbo_[5] = {0, 0, 0, 0, 0};  // octaves, waves, frame, FFT planes | coast, FFT | coast texels
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;
   std::vector<float> mssAbove_;

@@ -22,7 +22,7 @@ constexpr double kMinDepthM = 0.05;
 constexpr double kPhaseEps = 1e-5, kAngleEps = 1e-9, kKrEps = 1e-7;
 // Kr bounds: where rays cross (caustics) or diverge at the shoreline the
 // ray-tube width has no meaning; the breaking cap limits heights anyway.
-constexpr double kKrMin = 0.25, kKrMax = 4.0;
+constexpr double kKrMin = CoastField::kMinKr, kKrMax = CoastField::kMaxKr;
 
 double smooth01(double x) {
   x = std::clamp(x, 0.0, 1.0);

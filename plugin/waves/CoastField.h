@@ -48,6 +48,9 @@ class CoastField {
   // depthAt(eastM, northM): water depth (m; <= 0 on land) at the offset from
   // the centre in its tangent plane. The field needs model Gerstner. On bad
   // input returns an empty field and sets `error` naming the field and value.
+  // The refraction coefficient's clamp: amplitudes scale by at most this
+  // over the deep-water ones before the breaking and Miche caps, which only lower them.
+  static constexpr double kMaxKr = 4.0, kMinKr = 0.25;
   static CoastField build(const WaveField& field, const Region& region,
                           const std::function<double(double eastM, double northM)>& depthAt, std::string& error);
 

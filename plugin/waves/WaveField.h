@@ -199,6 +199,7 @@ class WaveField {
   // set it before sharing the field.
   void setCoast(std::shared_ptr<const CoastField> coast);
   const CoastField* coastField() const { return coast_.get(); }
+  const std::shared_ptr<const CoastField>& coastFieldShared() const { return coast_; }
 
   // The FFT ocean's synthesis (model Fft; null otherwise).
   const FftOcean* fftOcean() const { return fft_.get(); }

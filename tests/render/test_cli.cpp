@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace geocean::render::test {
 namespace {
@@ -22,6 +25,30 @@ TEST(RenderCli, BadCameraIsNamedAndExits2) {
   const auto r3 = geocean::test::run(kExe + " render --size 0x10 --out /tmp/x.png");
   EXPECT_EQ(r3.exitCode, 2);
   EXPECT_NE(r3.err.find("--size"), std::string::npos) << r3.err;
+}
+
+// Issue 15: --coast-region reaches the plugin (geocean_set_coast_region):
+// bad values are named and exit 2, and off the Dutch coast (20 to 30 m
+// deep in the default relief) the waves drawn with it are another surface.
+TEST(RenderCli, CoastRegionIsCheckedAndChangesTheWaves) {
+  const std::string base = kExe + " render --camera 52.6,4.45,40,90,-25 --size 96x54 --wind 12 --time 20";
+  for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
+           {" --coast-region 52.6,4.45", "needs GEOCEAN_WAVES_GERSTNER"},
+           {" --waves gerstner --coast-region 52.6", "'52.6' is not LAT,LON[,SIZE_M]"},
+           {" --waves gerstner --coast-region 52.6,4.45,90000", "size_m 90000"},
+           {" --waves gerstner --coast-region nan,4", "'nan' in 'nan,4' is not a finite number"},
+           {" --waves gerstner --no-ocean --coast-region 52.6,4.45", "needs the ocean"}}) {
+    const auto r = geocean::test::run(base + args + " --out /tmp/x.png");
+    EXPECT_EQ(r.exitCode, 2) << args;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << ": " << r.err;
+  }
+  const std::string plain = ::testing::TempDir() + "/cli_coast_plain.png", coast = ::testing::TempDir() + "/cli_coast.png";
+  const auto a = geocean::test::run(base + " --waves gerstner --out " + plain);
+  const auto b = geocean::test::run(base + " --waves gerstner --coast-region 52.6,4.45,20000 --out " + coast);
+  ASSERT_EQ(a.exitCode, 0) << a.err;
+  ASSERT_EQ(b.exitCode, 0) << b.err;
+  const ImageDiff d = compare(readImage(plain), readImage(coast));
+  EXPECT_GT(d.fractionOver16, 0.05) << "mean " << d.mean;
 }
 
 TEST(RenderCli, RendersAFrameWithNegativeCoordinates) {

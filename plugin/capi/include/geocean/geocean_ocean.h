@@ -343,6 +343,22 @@ GEOCEAN_API geocean_status geocean_query_sea_state(const geocean_ocean* ocean, s
                                                    double* out_peak_period_s, double* out_peak_wavelength_m,
                                                    double* out_wave_from_deg);
 
+/* Since ABI 1.5: the near-shore region of interest (issue 15; `geocean query
+ * --coast-region LAT,LON,SIZE_M`): a square of size_m (500 .. 40000 m) on
+ * the tangent plane at (lat_deg, lon_deg) where a Gerstner sea's waves take
+ * the local depth's wavelength and turn by refraction (from the rasters'
+ * water depth, rebuilt when rasters or sea state change). Queries and the
+ * draw both use it. Replaces a previous region; a later sea state of
+ * another model leaves it without effect until a Gerstner one is set.
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (a value not finite or out of
+ * range, or the current sea state is not GEOCEAN_WAVES_GERSTNER: the
+ * message names it); the previous region stays. */
+GEOCEAN_API geocean_status geocean_set_coast_region(geocean_ocean* ocean, double lat_deg, double lon_deg,
+                                                    double size_m);
+/* Since ABI 1.5: removes the region (deep-water phase everywhere again).
+ * No region is not an error. Errors: NULL_ARGUMENT. */
+GEOCEAN_API geocean_status geocean_clear_coast_region(geocean_ocean* ocean);
+
 /* ---- Rendering (ABI 1.1) ------------------------------------------------ */
 
 /* The host's camera for one frame. Fill with geocean_view_init() (or

@@ -1,0 +1,164 @@
+// Issue 15 item 5, the picture: with a coast region over a synthetic shelf
+// (mask and elevation rasters made here: straight north-south contours,
+// 1:50 slope, shoreline at lon 0.04) the renderer draws the near-shore
+// phase field through wv_gerstnerCoast, so the drawn surface (the data
+// attachment's eye-relative position per pixel) is the façade's CPU query
+// there within the 1 cm bound of Ocean.RenderedSurfaceMatchesSeaHeightWithin1cm;
+// the same view without the field is the deep-water phase, which the query
+// with the field does not match (so the comparison can fail). The frames
+// are written next to the test's temp files for looking at.
+#include "RenderFixture.h"
+
+#include "globe/geo/Ellipsoid.h"
+#include "globe/gl/Framebuffer.h"
+#include "globe/raster/Raster.h"
+#include "globe/world/WorldData.h"
+#include "plugin/ocean/Ocean.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace geocean::render::test {
+namespace {
+
+// 0.001-degree cells over lon -0.2 .. 0.2, lat 0.1 .. 0.5.
+constexpr int kW = 400, kH = 400;
+const raster::GeoTransform kPlace{-0.2, 0.5, 0.001, -0.001, false};
+double lonOf(int x) { return -0.2 + (x + 0.5) * 0.001; }
+
+std::shared_ptr<const raster::Raster> shelfElevation() {
+  std::vector<float> px(std::size_t(kW) * kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) px[std::size_t(y) * kW + x] = float(-0.02 * (0.04 - lonOf(x)) * 111320.0);
+  return raster::Raster::fromPixels(px, kW, kH, 1, kPlace, std::nullopt, "shelf");
+}
+std::shared_ptr<const raster::Raster> shelfMask() {  // 0 ocean, 1 land (the default encoding)
+  std::vector<float> px(std::size_t(kW) * kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) px[std::size_t(y) * kW + x] = lonOf(x) > 0.04 ? 1.0f : 0.0f;
+  return raster::Raster::fromPixels(px, kW, kH, 1, kPlace, std::nullopt, "shelf_mask");
+}
+
+struct Drawn {
+  camera::Camera cam = camera::Camera::fromView(ViewPose{});
+  std::vector<float> data;
+  gl::Image image;
+};
+
+Drawn draw(const std::shared_ptr<ocean_render::OceanRenderer>& ocean, const ViewPose& p, double timeS,
+           const std::string& name) {
+  Session& s = session();
+  GlobeRenderer renderer(s.world);
+  renderer.addLayer(std::make_shared<DirectOceanLayer>(ocean));
+  ocean->setWriteData(true);
+  Framebuffer fb(p.width, p.height, true);
+  fb.bind();
+  FrameSettings fs;
+  fs.timeS = timeS;
+  fs.sunEcef = sunForView(p, 150.0, 40.0);
+  renderer.render(p, fs);
+  Drawn d;
+  d.cam = renderer.camera(p);
+  d.data = fb.readData();
+  d.image = fb.readColor();
+  const std::string out = ::testing::TempDir() + "/coast_waves_" + name + ".png";
+  gl::writePng(out, d.image);
+  std::printf("%s: %s\n", name.c_str(), out.c_str());
+  return d;
+}
+
+TEST(OceanCoast, DrawnSurfaceIsTheQueryOverAShelf) {
+  session();  // the GL context the renderers are made in
+  ocean::Ocean o;
+  const auto mask = shelfMask(), elevation = shelfElevation();
+  o.setRasters(mask, elevation);
+  waves::SeaState sea;
+  sea.windSpeedMps = 10.0;
+  sea.windFromDeg = 240.0;
+  sea.anchorLatDeg = 0.3;
+  o.setSeaState(waves::Model::Gerstner, sea);
+  waves::CoastField::Region r;  // 10 km square, as `--coast-region 0.3,0,10000`
+  r.latDeg = 0.3;
+  r.lonDeg = 0.0;
+  r.nodes = 201;
+  r.cellM = 50.0;
+  o.setCoastRegion(r);
+  const auto snap = o.current();
+  ASSERT_NE(snap->waves->coastField(), nullptr);
+
+  // The ocean's grids at the rasters' own cells (regional layers, as test_coast's 3" mask).
+  auto grids = std::make_shared<const world::WorldGrids>(world::layerOf(*elevation, 0), world::waterLayerOf(*mask));
+  ocean_render::OceanOptions oo;
+  oo.cellPx = 2.0;  // every wave drawn, triangles far below 1 cm off the surface (test_ocean)
+  oo.model = waves::Model::Gerstner;
+  oo.sea = snap->seaState;
+  oo.coast = snap->waves->coastFieldShared();
+  auto withCoast = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  oo.coast = nullptr;
+  auto deepOnly = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+
+  // 10 m above 11 m of water, 560 m off the shoreline, looking down-wave
+  // and steeply down (as test_ocean's 1 cm view: grazing cells far away
+  // would add the triangles' interpolation error).
+  ViewPose p;
+  p.latDeg = 0.3, p.lonDeg = 0.035, p.altM = 10.0, p.headingDeg = 70.0, p.pitchDeg = -60.0;
+  p.width = p.height = 128;
+  const double t = 41.5;
+  const Drawn a = draw(withCoast, p, t, "with_field");
+  const Drawn b = draw(deepOnly, p, t, "deep_phase");
+
+  int checked = 0, differ = 0;
+  double worst = 0.0, worstDeep = 0.0, minDepth = 1e9;
+  for (int y = 4; y < p.height; y += 6)
+    for (int x = 4; x < p.width; x += 6) {
+      const std::size_t i = (std::size_t(y) * p.width + x) * 4;
+      const float* q = &a.data[i];
+      if (q[3] != 1.0f) continue;
+      const glm::dvec3 rel(q[0], q[1], q[2]);
+      // Only the ocean's own surface points (the sky writes a colour there).
+      const auto ndc = a.cam.projectEyeRelative(rel);
+      if (!ndc || std::abs((ndc->x * 0.5 + 0.5) * p.width - (x + 0.5)) > 1.0 ||
+          std::abs((0.5 - ndc->y * 0.5) * p.height - (y + 0.5)) > 1.0)
+        continue;
+      const geo::Geodetic g = geo::fromEcef(a.cam.eyeEcef() + rel);
+      double h = 0.0;
+      float elev = 0.0f;
+      ocean::SurfaceOutputs out;
+      out.heightM = &h;
+      out.elevationM = &elev;
+      snap->querySurface({&g.latDeg, &g.lonDeg, 1, &t, false}, out);
+      if (std::isnan(h)) continue;  // the shoreline's anti-aliased fringe
+      worst = std::max(worst, std::abs(g.heightM - h));
+      minDepth = std::min(minDepth, -double(elev));
+      ++checked;
+      // The deep-water phase at the same pixel is another surface.
+      const float* qb = &b.data[i];
+      if (qb[3] == 1.0f) {
+        const geo::Geodetic gb = geo::fromEcef(b.cam.eyeEcef() + glm::dvec3(qb[0], qb[1], qb[2]));
+        double hb = 0.0;
+        ocean::SurfaceOutputs ob;
+        ob.heightM = &hb;
+        snap->querySurface({&gb.latDeg, &gb.lonDeg, 1, &t, false}, ob);
+        if (!std::isnan(hb)) {
+          const double e = std::abs(gb.heightM - hb);
+          worstDeep = std::max(worstDeep, e);
+          differ += e > 0.05;
+        }
+      }
+    }
+  std::printf("coast parity: worst |rendered - query| = %.5f m over %d pixels (depth >= %.1f m); deep phase: worst "
+              "%.3f m, %d pixels > 5 cm\n",
+              worst, checked, minDepth, worstDeep, differ);
+  EXPECT_GT(checked, 150);
+  EXPECT_LT(minDepth, 15.0);  // the view is over water the field changes
+  EXPECT_LT(worst, 0.01) << "over " << checked << " pixels";
+  EXPECT_GT(differ, checked / 4) << "the view without the field is not another surface";
+}
+
+}  // namespace
+}  // namespace geocean::render::test
