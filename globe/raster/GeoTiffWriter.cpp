@@ -20,6 +20,14 @@ void write(const std::string& path, const void* data, const TileFill& fill, int 
   TIFFSetWarningHandler(nullptr);
   TIFF* tif = TIFFOpen(path.c_str(), (std::size_t(width) * height * channels > (std::size_t(1) << 31)) ? "w8" : "w");
   if (!tif) throw RasterError(path + ": cannot create file");
+  // Closed on every path: a tile callback may throw (geocean mask: GMT
+  // failing mid-band), and the handle leaked (LeakSanitizer, MaskCli).
+  struct Closer {
+    TIFF*& t;
+    ~Closer() {
+      if (t) TIFFClose(t);
+    }
+  } closer{tif};
   const int bytesPerSample = type == SampleType::U8 ? 1 : type == SampleType::I16 ? 2 : 4;
   TIFFSetField(tif, TIFFTAG_IMAGEWIDTH, uint32_t(width));
   TIFFSetField(tif, TIFFTAG_IMAGELENGTH, uint32_t(height));
@@ -122,6 +130,7 @@ void write(const std::string& path, const void* data, const TileFill& fill, int 
     }
   }
   TIFFClose(tif);
+  tif = nullptr;
   if (!ok) throw RasterError(path + ": writing pixel data failed (disk full?)");
 }
 }  // namespace
