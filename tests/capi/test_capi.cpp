@@ -1,7 +1,7 @@
 // The C ABI through the run-time loader (globe/host), as a host engine sees
 // it: version checks, misuse (NULL handles, wrong order, bad rasters, bad
 // arguments), results at known places, thread-local errors.
-#include "globe/host/OceanPlugin.h"
+#include "tests/capi/LoadedPlugin.h"
 #include "tests/support/Subprocess.h"
 
 #include <gtest/gtest.h>
@@ -24,24 +24,8 @@ namespace {
 
 using geocean::host::OceanPlugin;
 
-const OceanPlugin& plugin() {
-  static std::unique_ptr<OceanPlugin> p = [] {
-    std::string error;
-    auto loaded = OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error);
-    if (!loaded) ADD_FAILURE() << error;
-    return loaded;
-  }();
-  return *p;
-}
-
-// An ocean that is destroyed at scope exit.
-struct Ocean {
-  geocean_ocean* h = nullptr;
-  Ocean() { EXPECT_EQ(plugin().api().create(GEOCEAN_ABI_VERSION, &h), GEOCEAN_OK); }
-  ~Ocean() { plugin().api().destroy(h); }
-};
-
-std::string lastError() { return plugin().api().lastError(); }
+using namespace geocean::capitest;
+using Ocean = OceanHandle;
 
 geocean_grid_placement globalPlacement(int width, int height) {
   return {-180.0, 90.0, 360.0 / width, -180.0 / height, 1, 0, 0.0};

@@ -3,7 +3,7 @@
 // the same way (same bits, so the ABI adds nothing to the physics), the
 // fixed step holds through the ABI, and bad input gets a status and a
 // message naming the field and the value.
-#include "globe/host/OceanPlugin.h"
+#include "tests/capi/LoadedPlugin.h"
 #include "plugin/bodies/Hull.h"
 #include "plugin/bodies/Hydro.h"
 #include "plugin/bodies/OceanSea.h"
@@ -26,23 +26,8 @@ namespace {
 using geocean::host::OceanPlugin;
 namespace bodies = geocean::bodies;
 
-const OceanPlugin& plugin() {
-  static std::unique_ptr<OceanPlugin> p = [] {
-    std::string error;
-    auto loaded = OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error);
-    if (!loaded) ADD_FAILURE() << error;
-    return loaded;
-  }();
-  return *p;
-}
-const geocean::host::OceanApi& api() { return plugin().api(); }
-std::string lastError() { return api().lastError(); }
-
-struct Ocean {
-  geocean_ocean* h = nullptr;
-  Ocean() { EXPECT_EQ(api().create(GEOCEAN_ABI_VERSION, &h), GEOCEAN_OK); }
-  ~Ocean() { api().destroy(h); }
-};
+using namespace geocean::capitest;
+using Ocean = OceanHandle;
 struct Bodies {
   geocean_bodies* h = nullptr;
   explicit Bodies(geocean_ocean* o, const geocean_bodies_config* c = nullptr) {

@@ -3,7 +3,7 @@
 // the façade's query bit for bit (the ABI adds nothing to the waves), the
 // region changes the surface there, and bad input gets a status and a
 // message naming the argument and value.
-#include "globe/host/OceanPlugin.h"
+#include "tests/capi/LoadedPlugin.h"
 #include "plugin/ocean/Ocean.h"
 #include "globe/raster/Raster.h"
 
@@ -20,23 +20,8 @@ namespace {
 
 using geocean::host::OceanPlugin;
 
-const OceanPlugin& plugin() {
-  static std::unique_ptr<OceanPlugin> p = [] {
-    std::string error;
-    auto loaded = OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error);
-    if (!loaded) ADD_FAILURE() << error;
-    return loaded;
-  }();
-  return *p;
-}
-const geocean::host::OceanApi& api() { return plugin().api(); }
-std::string lastError() { return api().lastError(); }
-
-struct Ocean {
-  geocean_ocean* h = nullptr;
-  Ocean() { EXPECT_EQ(api().create(GEOCEAN_ABI_VERSION, &h), GEOCEAN_OK); }
-  ~Ocean() { api().destroy(h); }
-};
+using namespace geocean::capitest;
+using Ocean = OceanHandle;
 
 // The beach of OceanCore.CoastRegionRefractsTheSeaStateOutputs: 0.001-degree
 // cells over lon -0.2 .. 0.2, lat 0.1 .. 0.5, shoreline at lon 0.04, slope 1:50.

@@ -3,7 +3,7 @@
 // resources tied to their context, queries from other threads while the
 // host draws.
 #include "globe/gl/HeadlessContext.h"
-#include "globe/host/OceanPlugin.h"
+#include "tests/capi/LoadedPlugin.h"
 
 #include <malloc.h>
 #if defined(__SANITIZE_ADDRESS__)
@@ -32,17 +32,7 @@ namespace {
 
 using geocean::host::OceanPlugin;
 
-const OceanPlugin& plugin() {
-  static std::unique_ptr<OceanPlugin> p = [] {
-    std::string error;
-    auto loaded = OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error);
-    if (!loaded) ADD_FAILURE() << error;
-    return loaded;
-  }();
-  return *p;
-}
-const geocean::host::OceanApi& api() { return plugin().api(); }
-std::string lastError() { return api().lastError(); }
+using namespace geocean::capitest;
 
 constexpr int kSize = 128;
 
