@@ -4,6 +4,7 @@
 #include "globe/raster/GeoTiffWriter.h"
 #include "globe/raster/ImageIo.h"
 #include "globe/raster/Raster.h"
+#include "tests/support/TempDir.h"
 #include "tests/support/Subprocess.h"
 
 #include <OpenImageIO/imageio.h>
@@ -20,14 +21,8 @@ using namespace geocean::raster;
 namespace fs = std::filesystem;
 
 namespace {
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char t[] = "/tmp/geocean-raster-XXXXXX";
-    path = mkdtemp(t);
-  }
-  ~TempDir() { fs::remove_all(path); }
-  std::string operator/(const std::string& f) const { return (path / f).string(); }
+struct TempDir : geocean::test::TempDir {
+  TempDir() : geocean::test::TempDir("geocean-raster") {}
 };
 
 // A 36 x 18 global float raster whose value encodes its cell: 100*row + col.

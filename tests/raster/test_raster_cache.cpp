@@ -2,6 +2,7 @@
 // the ImageCache with bounded memory, sampled correctly in tile batches.
 #include "globe/raster/GeoTiffWriter.h"
 #include "globe/raster/Raster.h"
+#include "tests/support/ProcStatus.h"
 
 #include <gtest/gtest.h>
 
@@ -19,13 +20,7 @@ namespace {
 constexpr int kW = 43200, kH = 21600;
 std::uint8_t valueAt(int x, int y) { return std::uint8_t((x + 3 * y) & 255); }
 
-long statusKb(const char* field) {
-  std::ifstream f("/proc/self/status");
-  std::string line;
-  while (std::getline(f, line))
-    if (line.rfind(field, 0) == 0) return std::stol(line.substr(std::strlen(field)));
-  return -1;
-}
+using geocean::test::statusKb;
 }  // namespace
 
 TEST(RasterCache, Global30ArcSecondRasterStaysWithinTheCacheBound) {

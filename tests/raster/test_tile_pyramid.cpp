@@ -7,6 +7,8 @@
 #include "globe/raster/Raster.h"
 #include "globe/raster/TileIndex.h"
 #include "globe/raster/TilePyramid.h"
+#include "tests/support/ProcStatus.h"
+#include "tests/support/TempDir.h"
 
 #include <gtest/gtest.h>
 
@@ -26,25 +28,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char tmpl[] = "/tmp/geocean-tiles-XXXXXX";
-    path = mkdtemp(tmpl);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
+struct TempDir : geocean::test::TempDir {
+  TempDir() : geocean::test::TempDir("geocean-tiles") {}
 };
-
-long statusKb(const char* field) {
-  std::ifstream f("/proc/self/status");
-  std::string line;
-  while (std::getline(f, line))
-    if (line.rfind(field, 0) == 0) return std::stol(line.substr(std::strlen(field)));
-  return -1;
-}
+using geocean::test::statusKb;
 
 // A small float raster with a nodata hole, as a tiled GeoTIFF (tiles of 48,
 // not a divisor of the pyramid's 64, so blocks straddle tiles).

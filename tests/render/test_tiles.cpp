@@ -13,6 +13,7 @@
 #include "globe/render/WorldTextures.h"
 #include "globe/world/LayerStack.h"
 #include "globe/world/WorldData.h"
+#include "tests/support/TempDir.h"
 
 #include <gtest/gtest.h>
 
@@ -30,16 +31,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    char tmpl[] = "/tmp/geocean-pool-XXXXXX";
-    path = mkdtemp(tmpl);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
+struct TempDir : geocean::test::TempDir {
+  TempDir() : geocean::test::TempDir("geocean-pool") {}
 };
 
 gl::HeadlessContext& context() {
