@@ -4,10 +4,10 @@
 // 10,000 points and times - both sides of the antimeridian, near and at the
 // poles, 1 m apart - and require agreement within 1 mm.
 #include "globe/geo/Ellipsoid.h"
+#include "globe/gl/GlProgram.h"
 #include "globe/gl/HeadlessContext.h"
 #include "plugin/waves/CoastField.h"
 #include "plugin/waves/WaveField.h"
-#include "shaders/Shaders.h"
 
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
@@ -27,26 +27,6 @@ struct GpuPoint {
   glm::ivec4 index;
 };
 static_assert(sizeof(GpuPoint) == 32);
-
-GLuint compile(const std::string& src) {
-  GLuint s = glCreateShader(GL_COMPUTE_SHADER);
-  const char* p = src.c_str();
-  glShaderSource(s, 1, &p, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  char log[4096] = {};
-  glGetShaderInfoLog(s, sizeof log, nullptr, log);
-  EXPECT_TRUE(ok) << log;
-  GLuint prog = glCreateProgram();
-  glAttachShader(prog, s);
-  glLinkProgram(prog);
-  glGetProgramiv(prog, GL_LINK_STATUS, &ok);
-  glGetProgramInfoLog(prog, sizeof log, nullptr, log);
-  EXPECT_TRUE(ok) << log;
-  glDeleteShader(s);
-  return prog;
-}
 
 template <class T>
 GLuint ssbo(GLuint binding, const std::vector<T>& data) {
@@ -132,10 +112,10 @@ void runParity(Model model) {
     }
   }
 
-  const std::string src = geocean::shaders::assemble(
+  const geocean::gl::GlProgram program = geocean::gl::GlProgram::compute(
       "waves_eval.glsl",
       {model == Model::Fft ? "WV_MODEL 2" : model == Model::Gerstner ? "WV_MODEL 1" : "WV_MODEL 0"});
-  const GLuint prog = compile(src);
+  const GLuint prog = program.id();
   std::vector<kf::WvResult> results(points.size());
   const GLuint b0 = ssbo(0, octaves), b1 = ssbo(1, waves), b2 = ssbo(2, frames), b3 = ssbo(3, points),
                b4 = ssbo(4, results), b5 = ssbo(5, fftPlanes), b6 = ssbo(6, fftTexels);
@@ -177,7 +157,6 @@ void runParity(Model model) {
               toString(model), cases.size(), worstDisp, meanDisp, worstNormal, facetFlips);
   GLuint bufs[] = {b0, b1, b2, b3, b4, b5, b6};
   glDeleteBuffers(7, bufs);
-  glDeleteProgram(prog);
 }
 
 // Issue 15 item 5: the coast field's phase, turning and Kr in the shared
@@ -237,7 +216,8 @@ void runCoastParity() {
       points.push_back({glm::vec4(glm::vec3(d), float(depth)), glm::ivec4(p, first, count, 0)});
     }
   }
-  const GLuint prog = compile(geocean::shaders::assemble("waves_eval.glsl", {"WV_MODEL 3"}));
+  const geocean::gl::GlProgram program = geocean::gl::GlProgram::compute("waves_eval.glsl", {"WV_MODEL 3"});
+  const GLuint prog = program.id();
   std::vector<kf::WvResult> results(points.size());
   const std::vector<kf::WvOctave> noOctaves;
   const std::vector<kf::WvFftPlane> noPlanes;
@@ -279,7 +259,6 @@ void runCoastParity() {
               cases.size(), feltTheCoast, worstDisp, worstShallow, worstNormal);
   GLuint bufs[] = {b0, b1, b2, b3, b4, b5, b6, b7, b8};
   glDeleteBuffers(9, bufs);
-  glDeleteProgram(prog);
 }
 
 }  // namespace
