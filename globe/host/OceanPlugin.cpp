@@ -130,9 +130,10 @@ std::unique_ptr<OceanPlugin> OceanPlugin::load(const std::string& path, std::str
                       resolve(handle, "geocean_bodies_get_hull", a.bodiesGetHull, file, error);
     if (!ok14) return nullptr;
   }
-  // ABI 1.5 near-shore region: present in every plugin of minor >= 5.
+  // ABI 1.5 sea state at points and near-shore region: in every plugin of minor >= 5.
   if ((p->pluginAbi_ & 0xffffu) >= 5) {
-    const bool ok15 = resolve(handle, "geocean_set_coast_region", a.setCoastRegion, file, error) &&
+    const bool ok15 = resolve(handle, "geocean_query_sea_state", a.querySeaState, file, error) &&
+                      resolve(handle, "geocean_set_coast_region", a.setCoastRegion, file, error) &&
                       resolve(handle, "geocean_clear_coast_region", a.clearCoastRegion, file, error);
     if (!ok15) return nullptr;
   }

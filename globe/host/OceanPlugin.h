@@ -89,7 +89,10 @@ struct OceanApi {
   geocean_status (*bodiesGetPoses)(const geocean_bodies*, int32_t, geocean_body_pose*, size_t, size_t*) = nullptr;
   geocean_status (*bodiesGetHull)(const geocean_bodies*, geocean_body_id, double*, size_t, uint32_t*, size_t, size_t*,
                                   size_t*) = nullptr;
-  // ABI 1.5, the near-shore region (NULL when the plugin's minor is below 5).
+  // ABI 1.5, the sea state at points and the near-shore region (NULL when
+  // the plugin's minor is below 5).
+  geocean_status (*querySeaState)(const geocean_ocean*, size_t, const double*, const double*, double*, double*,
+                                  double*, double*) = nullptr;
   geocean_status (*setCoastRegion)(geocean_ocean*, double, double, double) = nullptr;
   geocean_status (*clearCoastRegion)(geocean_ocean*) = nullptr;
 };

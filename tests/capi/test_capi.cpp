@@ -6,8 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -911,15 +909,10 @@ TEST(CapiV13, AnIslandLayerIsLandOverTheDefaultWorldUntilRemoved) {
 }
 
 // ---- ABI 1.5: the sea state at points (issue 15) ----
-// Resolved by dlsym here: the host's loader (globe/host) gains it separately.
 
 TEST(CapiV15, SeaStateAtPointsMatchesPiersonMoskowitzAndIsNaNOnLand) {
-  using Fn = geocean_status (*)(const geocean_ocean*, size_t, const double*, const double*, double*, double*,
-                                double*, double*);
-  const auto& a = plugin().api();  // loads the plugin
-  void* lib = dlopen(GEOCEAN_PLUGIN_BUILD_PATH, RTLD_NOW | RTLD_NOLOAD);
-  ASSERT_NE(lib, nullptr) << GEOCEAN_PLUGIN_BUILD_PATH;
-  const auto fn = reinterpret_cast<Fn>(dlsym(lib, "geocean_query_sea_state"));
+  const auto& a = plugin().api();
+  const auto fn = a.querySeaState;
   ASSERT_NE(fn, nullptr);
   Ocean o;
   const double lat[2] = {0.0, 23.0}, lon[2] = {-150.0, 10.0};  // deep Pacific; Sahara
@@ -945,5 +938,4 @@ TEST(CapiV15, SeaStateAtPointsMatchesPiersonMoskowitzAndIsNaNOnLand) {
   EXPECT_LT(from[0], 360.0);
   EXPECT_TRUE(std::isnan(hs[1]) && std::isnan(tp[1]) && std::isnan(lp[1]) && std::isnan(from[1]));
   EXPECT_EQ(fn(o.h, 1, lat, lon, nullptr, nullptr, nullptr, nullptr), GEOCEAN_OK);  // nothing asked
-  dlclose(lib);
 }
