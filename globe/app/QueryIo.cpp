@@ -1,5 +1,7 @@
 #include "globe/app/QueryIo.h"
 
+#include "plugin/waves/TimeRange.h"
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -12,10 +14,11 @@ std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
   return s;
 }
+// Shortest round trip: the value as the user wrote it (1e+33, not 9.99...e+32).
 std::string fmtValue(double v) {
   char b[40];
-  std::snprintf(b, sizeof b, "%.17g", v);
-  return b;
+  const auto r = std::to_chars(b, b + sizeof b, v);
+  return std::string(b, r.ptr);
 }
 }  // namespace
 
@@ -27,6 +30,12 @@ std::optional<double> parseNumber(std::string_view token) {
   const auto [p, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
   if (ec != std::errc() || p != token.data() + token.size() || !std::isfinite(v)) return std::nullopt;
   return v;
+}
+
+std::string checkTime(double tS, std::string_view what) {
+  if (waves::timeInRange(tS)) return {};
+  return std::string(what) + " " + fmtValue(tS) + " s is outside " + waves::kTimeRangeText +
+         " (beyond, the waves' phase w t keeps no precision)";
 }
 
 std::string checkLatLon(double lat, double lon, std::string_view what) {
@@ -63,6 +72,8 @@ std::string parsePointRow(std::string_view line, long row, PointRow& out) {
     v[i] = *p;
   }
   if (auto e = checkLatLon(v[0], v[1], where); !e.empty()) return e;
+  if (n == 3)
+    if (auto e = checkTime(v[2], where + ": time"); !e.empty()) return e;
   out.latDeg = v[0];
   out.lonDeg = v[1];
   out.timeS = n == 3 ? std::optional<double>(v[2]) : std::nullopt;

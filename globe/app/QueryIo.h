@@ -21,6 +21,11 @@ std::optional<double> parseNumber(std::string_view token);
 // error message naming `what` and the value, or empty.
 std::string checkLatLon(double latDeg, double lonDeg, std::string_view what);
 
+// Validates a finite simulation time against waves::kMaxTimeS
+// (plugin/waves/TimeRange.h); returns an error starting with `what` and
+// naming the value, or empty.
+std::string checkTime(double tS, std::string_view what);
+
 // Parses "lat,lon[,time]". Returns the error (naming the row number and the
 // value) or empty on success.
 std::string parsePointRow(std::string_view line, long rowNumber, PointRow& out);

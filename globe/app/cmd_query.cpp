@@ -60,6 +60,7 @@ std::string parseWaveOptions(const QueryOptions& o, WaveSetup& w) {
     return "--waves '" + o.waves + "' is not a wave model (noise, noise-paper, gerstner, fft, none)";
   if (model) w.model = *model;
   if (auto e = number("--time", o.time, w.timeS); !e.empty()) return e;
+  if (auto e = checkTime(w.timeS, "--time"); !e.empty()) return e;
   if (!o.wind.empty() && !o.beaufort.empty()) return "give either --wind or --beaufort, not both";
   if (!o.beaufort.empty()) {
     double b = 0.0;

@@ -3,10 +3,12 @@
 #include "globe/app/BoatOptions.h"
 #include "globe/app/CoastOption.h"
 #include "globe/app/LayerOptions.h"
+#include "globe/app/QueryIo.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Session.h"
 #include "globe/host/OceanLayer.h"
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -41,6 +43,8 @@ int runRender(const RenderArgs& a) {
       throw render::ArgError("--fov: " + std::to_string(a.fovDeg) + " must be in (1, 170) degrees");
     if (!(a.exaggeration >= 0.0 && a.exaggeration <= 100.0))
       throw render::ArgError("--exaggeration: " + std::to_string(a.exaggeration) + " must be in [0, 100]");
+    if (!std::isfinite(a.timeS)) throw render::ArgError("--time " + std::to_string(a.timeS) + " is not a finite number");
+    if (auto e = checkTime(a.timeS, "--time"); !e.empty()) throw render::ArgError(e);
     pose.fovYDeg = a.fovDeg;
     sun = render::sunForView(pose);
     if (!a.sun.empty()) {

@@ -6,7 +6,9 @@
 #include "geocean/geocean_ocean.h"
 
 #include "plugin/ocean/Ocean.h"
+#include "plugin/waves/TimeRange.h"
 
+#include <charconv>
 #include <memory>
 #include <new>
 #include <stdexcept>
@@ -28,6 +30,17 @@ struct Failure {
 };
 
 [[noreturn]] inline void fail(geocean_status status, std::string message) { throw Failure{status, std::move(message)}; }
+
+// A finite simulation time beyond the bound the sea is defined at
+// (plugin/waves/TimeRange.h): the message names the field and the value.
+inline void requireTimeInRange(double t, const std::string& field) {
+  if (geocean::waves::timeInRange(t)) return;
+  char b[40];
+  const auto r = std::to_chars(b, b + sizeof b, t);
+  fail(GEOCEAN_ERROR_INVALID_ARGUMENT, field + " " + std::string(b, r.ptr) + " s is outside " +
+                                           geocean::waves::kTimeRangeText +
+                                           " (beyond, the waves' phase w t keeps no precision)");
+}
 
 // The façade's missing prerequisite, with the C functions that provide it.
 inline const char* notReadyMessage(geocean::ocean::NotReady::Missing m) {

@@ -150,6 +150,7 @@ GEOCEAN_API geocean_status geocean_bodies_create(geocean_ocean* ocean, const geo
     if (!(c.step_s > 0.0 && c.step_s <= 0.5))
       fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "config->step_s " + num(c.step_s) + " s is not in (0, 0.5]");
     requireFiniteField(c.start_s, "config->start_s", "s");
+    requireTimeInRange(c.start_s, "config->start_s");
     if (!(c.water_density_kg_m3 > 0.0) || !std::isfinite(c.water_density_kg_m3))
       fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
            "config->water_density_kg_m3 " + num(c.water_density_kg_m3) + " kg/m^3 is not finite and > 0");
@@ -227,6 +228,7 @@ GEOCEAN_API geocean_status geocean_bodies_advance_to(geocean_bodies* b, double t
     requireNonNull(b, "bodies");
     std::lock_guard lock(b->mutex);
     if (!std::isfinite(time_s)) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "time_s " + num(time_s) + " is not finite");
+    requireTimeInRange(time_s, "time_s");
     if (time_s < b->sim.time())
       fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
            "time_s " + num(time_s) + " is before the simulation time " + num(b->sim.time()));

@@ -170,6 +170,7 @@ FrameView frameViewOf(const geocean_view* v) {
   if (!allFinite(v->view_matrix, 16)) bad("view_matrix is not finite");
   if (!allFinite(v->projection_matrix, 16)) bad("projection_matrix is not finite");
   if (!std::isfinite(v->time_s)) bad("time_s " + std::to_string(v->time_s) + " is not finite");
+  requireTimeInRange(v->time_s, "view->time_s");
   if (!allFinite(v->sun_dir_ecef, 3)) bad("sun_dir_ecef is not finite");
   const int32_t w = v->viewport_width_px, h = v->viewport_height_px;
   if (w < 1 || w > 16384 || h < 1 || h > 16384)

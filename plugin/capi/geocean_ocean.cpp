@@ -443,6 +443,7 @@ GEOCEAN_API geocean_status geocean_query_sea_surface(const geocean_ocean* ocean,
     requireNonNull(ocean, "ocean");
     if (!std::isfinite(time_s))
       fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "time_s " + std::to_string(time_s) + " is not finite");
+    requireTimeInRange(time_s, "time_s");
     const auto snap = ocean->core.current();
     if (!snap->sea) throw NotReady(NotReady::Missing::SeaState);
     if (count == 0) return;
@@ -494,6 +495,8 @@ GEOCEAN_API geocean_status geocean_query_surface(const geocean_ocean* ocean, siz
         if (!std::isfinite(time_s[i]))
           fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
                "time_s[" + std::to_string(i) + "] " + std::to_string(time_s[i]) + " is not finite");
+        else
+          requireTimeInRange(time_s[i], "time_s[" + std::to_string(i) + "]");
     }
     snap->querySurface({lat_deg, lon_deg, count, time_s, time_count == count && count > 1}, out);
   });

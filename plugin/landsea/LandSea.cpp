@@ -77,15 +77,18 @@ world::CoverageClass LandSea::coverageClass(double latDeg, double lonDeg) const 
     return std::pair{cx, std::clamp(cy, 0, h - 1)};
   };
   if (!classes_.empty()) {
-    // The hot path (every point near a coast): the taps' columns are at
-    // most two cells outside [0, w) once x is wrapped, so no division.
+    // The hot path (every point near a coast). Once x is wrapped into
+    // [0, w] the taps' columns lie in [-2, w + 2], so one add or subtract
+    // wraps them when w >= 3; a mask 1 or 2 cells wide needs the modulo (a
+    // texture's GL_REPEAT, as the slow path below), taken only off [0, w).
     double px = (lonDeg - fast_.originLon) * fast_.invLonStep;
     if (fast_.global) px -= std::floor(px / w) * w;
     const double py = (latDeg - fast_.originLat) * fast_.invLatStep;
     const std::uint8_t* cls = classes_.data();
     const bool global = fast_.global;
     return world::coverageClassAt(px, py, [cls, w, h, global](int cx, int cy) {
-      cx = global ? (cx < 0 ? cx + w : cx >= w ? cx - w : cx) : std::clamp(cx, 0, w - 1);
+      if (!global) cx = std::clamp(cx, 0, w - 1);
+      else if (unsigned(cx) >= unsigned(w)) cx = w >= 3 ? (cx < 0 ? cx + w : cx - w) : ((cx % w) + w) % w;
       cy = std::clamp(cy, 0, h - 1);
       return static_cast<Surface>(cls[std::size_t(cy) * std::size_t(w) + std::size_t(cx)] & kClassBits);
     });

@@ -3,12 +3,15 @@
 #include "globe/geo/Ellipsoid.h"
 #include "globe/raster/World.h"
 #include "plugin/landsea/LayeredLandSea.h"
+#include "plugin/waves/TimeRange.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
+#include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
@@ -27,6 +30,20 @@ const char* missingText(NotReady::Missing m) {
     case NotReady::Missing::SeaState: return "no sea state";
   }
   return "not ready";
+}
+
+// Every time of a sea query finite and within waves::kMaxTimeS (the
+// bindings check first, naming their own field; this is the façade's own
+// guarantee for C++ callers).
+void checkTimes(const Points& p) {
+  for (std::size_t i = 0, n = p.timePerPoint ? p.count : 1; i < n; ++i) {
+    if (waves::timeInRange(p.timeS[i])) continue;
+    char b[40];
+    const auto r = std::to_chars(b, b + sizeof b, p.timeS[i]);
+    throw std::invalid_argument("sea-surface query: timeS[" + std::to_string(i) + "] " + std::string(b, r.ptr) +
+                                (std::isfinite(p.timeS[i]) ? std::string(" s is outside ") + waves::kTimeRangeText
+                                                           : std::string(" is not finite")));
+  }
 }
 
 // The velocity (east, north) of the particle that is now at the surface
@@ -86,6 +103,7 @@ void Snapshot::querySurface(const Points& p, const SurfaceOutputs& out) const {
   if (out.wantsSea() && !sea) throw NotReady(NotReady::Missing::SeaState);
   if (p.count == 0) return;
   if (out.wantsSea() && !p.timeS) throw std::invalid_argument("sea-surface query: timeS is null");
+  if (out.wantsSea()) checkTimes(p);
   // Blocks as `geocean query` had them: large enough that the per-block
   // set-up vanishes, small enough to balance 2..N cores on 10 k points.
   constexpr std::size_t kGrain = 4096;
@@ -97,6 +115,7 @@ void Snapshot::querySurfaceOnThisThread(const Points& p, const SurfaceOutputs& o
   if (out.wantsSea() && !sea) throw NotReady(NotReady::Missing::SeaState);
   if (p.count == 0) return;
   if (out.wantsSea() && !p.timeS) throw std::invalid_argument("sea-surface query: timeS is null");
+  if (out.wantsSea()) checkTimes(p);
   queryRange(p, 0, p.count, out);
 }
 

@@ -119,7 +119,8 @@ struct Snapshot {
   // Without rasters every point is deep ocean (elevation NaN). Water depth
   // (Gerstner) is -elevation, at least 1 m where the mask says ocean.
   // Throws NotReady when a sea output is asked for without a sea state,
-  // std::invalid_argument when its times are missing.
+  // std::invalid_argument when its times are missing, not finite or outside
+  // -1e12 .. 1e12 s (waves::kMaxTimeS; the message names the index).
   void querySurface(const Points& points, const SurfaceOutputs& out) const;
   // The same answers on the calling thread only (no TBB): for callers that
   // parallelise themselves over small batches (plugin/bodies, per body).

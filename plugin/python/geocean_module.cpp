@@ -15,6 +15,7 @@
 #include "globe/raster/Raster.h"
 #include "plugin/ocean/Ocean.h"
 #include "plugin/pick/Picker.h"
+#include "plugin/waves/TimeRange.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -180,9 +181,12 @@ class Core {
       py::gil_scoped_release release;
       checkLatLon(la, lo, n, shape);
       for (std::size_t i = 0, nt = perPoint ? n : 1; i < nt; ++i)
-        if (!std::isfinite(ts[i]))
+        if (!geocean::waves::timeInRange(ts[i]))
           throw std::invalid_argument((perPoint ? at("t", i, shape) : std::string("t")) + " = " + num(ts[i]) +
-                                      " s is not finite");
+                                      (std::isfinite(ts[i]) ? std::string(" s is outside ") +
+                                                                  geocean::waves::kTimeRangeText +
+                                                                  " (beyond, the waves' phase w t keeps no precision)"
+                                                            : std::string(" s is not finite")));
       try {
         snap->querySurface({la, lo, n, ts, perPoint && n > 1}, out);
       } catch (const oc::NotReady& e) {

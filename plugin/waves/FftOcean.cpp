@@ -132,7 +132,8 @@ std::vector<glm::dvec4> FftOcean::build(double tS) const {
       // Reduced in double: t may be ~1e9 s. Beyond |w t| ~ 1.8e308 (t ~ 1e307 s)
       // the product overflows and the phase has no precision left (t's
       // spacing there is ~1e291 s): w t counts as 0 mod 2 pi, as the noise
-      // lattice takes cell 0 (fuzz_capi_sea_state finding 5: NaN heights).
+      // lattice takes cell 0 (found while tracing fuzz finding 5; the
+      // boundaries now refuse such times, plugin/waves/TimeRange.h).
       const double wt = m.omega * tS;
       double psi = std::fmod(m.phase0 - (std::isfinite(wt) ? wt : 0.0), kTwoPi);
       const Cpx h = 0.5 * m.amp * Cpx(std::cos(psi), std::sin(psi));

@@ -289,6 +289,9 @@ TEST(QueryCli, BadSeaStateValuesExitTwoNamingTheValue) {
       {"--waves foo", "--waves 'foo' is not a wave model (noise, noise-paper, gerstner, fft, none)"},
       {"--time nan", "--time 'nan' is not a finite number"},
       {"--time inf", "--time 'inf' is not a finite number"},
+      // Beyond the sea's time bound (plugin/waves/TimeRange.h, fuzz finding 5).
+      {"--waves gerstner --time 1e33", "--time 1e+33 s is outside -1e12 .. 1e12 s"},
+      {"--time -1.5e12", "--time -1.5e+12 s is outside -1e12 .. 1e12 s"},
       {"--wind-dir inf", "--wind-dir 'inf' is not a finite number"},
       {"--beaufort 13", "--beaufort 13 is not a Beaufort number 0..12"},
       {"--beaufort 2.5", "--beaufort 2.5 is not a Beaufort number"},
@@ -309,6 +312,10 @@ TEST(QueryCli, BadSeaStateValuesExitTwoNamingTheValue) {
   auto r = run(kGeocean + " query --points - --waves gerstner", "0,-150,1\n0,-150,nan\n");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("row 2: time 'nan' is not a finite number"), std::string::npos) << r.err;
+  r = run(kGeocean + " query --points - --waves gerstner", "0,-150,1e12\n0,-150,7e307\n");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("row 2: time 7e+307 s is outside -1e12 .. 1e12 s"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 2) << r.out;  // header and the row at the bound
 }
 
 TEST(QueryCli, WavesNoneGivesClassAndElevationOnly) {

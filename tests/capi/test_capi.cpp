@@ -939,3 +939,55 @@ TEST(CapiV15, SeaStateAtPointsMatchesPiersonMoskowitzAndIsNaNOnLand) {
   EXPECT_TRUE(std::isnan(hs[1]) && std::isnan(tp[1]) && std::isnan(lp[1]) && std::isnan(from[1]));
   EXPECT_EQ(fn(o.h, 1, lat, lon, nullptr, nullptr, nullptr, nullptr), GEOCEAN_OK);  // nothing asked
 }
+
+// Fuzz finding 5 (tests/fuzz/regressions/fuzz_capi_sea_state/gerstner_time_7e307_nan_height.bin):
+// a Gerstner sea (the finding's: 10 m/s from 270, seed 1, anchor -19.2,
+// -76.9, reference depth 4033 m) queried at 7.1e307 s answered NaN, and at
+// 1e33 s heights of 1e7 m: the SIMD batch's phase reduction has no digits
+// left there (plugin/waves/TimeRange.h). Every call taking a time now
+// refuses |t| > 1e12 s naming the field and the value; at the bound the sea
+// is still a sea (|h| below 4 Hs, unit normals).
+TEST(CapiTimes, TimesBeyondTheBoundAreRefusedNamingTheField) {
+  Ocean o;
+  const auto& a = plugin().api();
+  geocean_sea_state s = seaState(10.0, GEOCEAN_WAVES_GERSTNER);
+  s.wind_from_deg = 270.0, s.fetch_m = 0.0, s.seed = 1, s.gerstner_components = 37;
+  s.anchor_lat_deg = -19.215686274509807, s.anchor_lon_deg = -76.862745098039227;
+  s.reference_depth_m = 4033.2549019607845;
+  ASSERT_EQ(a.setSeaState(o.h, &s), GEOCEAN_OK) << lastError();
+  double hs = 0.0;
+  ASSERT_EQ(a.significantWaveHeight(o.h, &hs), GEOCEAN_OK);
+  const double lat[2] = {-17.294117647058826, -17.294117643278753}, lon[2] = {38.117647058823536, 86.823529411735763};
+  for (double t : {1e12, -1e12, 1.8e9}) {
+    double h[2], n[6];
+    ASSERT_EQ(a.querySeaSurface(o.h, 2, lat, lon, t, h, n, nullptr), GEOCEAN_OK) << lastError();
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_LT(std::abs(h[i]), 4.0 * hs) << "t " << t;
+      EXPECT_NEAR(std::hypot(n[3 * i], n[3 * i + 1], n[3 * i + 2]), 1.0, 1e-9) << "t " << t;
+    }
+  }
+  const struct {
+    double t;
+    const char* text;  // shortest round trip, as the host would print it
+  } beyond[] = {{7.1233136299299067e307, "7.123313629929907e+307"}, {1e33, "1e+33"},
+                {1.000001e12, "1.000001e+12"}, {-2e12, "-2e+12"}};
+  for (const auto& b : beyond) {
+    double h[2];
+    EXPECT_EQ(a.querySeaSurface(o.h, 2, lat, lon, b.t, h, nullptr, nullptr), GEOCEAN_ERROR_INVALID_ARGUMENT) << b.t;
+    EXPECT_EQ(lastError(), std::string("geocean_query_sea_surface: time_s ") + b.text +
+                               " s is outside -1e12 .. 1e12 s (beyond, the waves' phase w t keeps no precision)");
+  }
+  SurfaceAnswers ans(2);
+  const double times[2] = {5.0, 1e33};
+  EXPECT_EQ(a.querySurface(o.h, 2, lat, lon, times, 2, &ans.out), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("geocean_query_surface: time_s[1] 1e+33 s is outside -1e12 .. 1e12 s"), std::string::npos)
+      << lastError();
+  ASSERT_EQ(a.querySurface(o.h, 2, lat, lon, times, 1, &ans.out), GEOCEAN_OK) << lastError();
+
+  geocean_view v = poseView(30.0, -40.0, 100.0);
+  v.time_s = -1e13;
+  EXPECT_EQ(a.update(o.h, &v), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("geocean_update: view->time_s -1e+13 s is outside"), std::string::npos) << lastError();
+  v.time_s = 1e12;
+  EXPECT_EQ(a.update(o.h, &v), GEOCEAN_OK) << lastError();
+}

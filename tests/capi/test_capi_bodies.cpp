@@ -179,6 +179,11 @@ TEST(CapiBodies, BadInputGetsAStatusAndAMessageNamingTheValue) {
   c.step_s = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(api().bodiesCreate(oc.h, &c, &none), GEOCEAN_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(lastError().find("config->step_s nan"), std::string::npos) << lastError();
+  ASSERT_EQ(api().bodiesConfigInit(&c), GEOCEAN_OK);
+  c.start_s = 3e12;  // beyond the sea's time bound (plugin/waves/TimeRange.h)
+  EXPECT_EQ(api().bodiesCreate(oc.h, &c, &none), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("config->start_s 3e+12 s is outside -1e12 .. 1e12 s"), std::string::npos)
+      << lastError();
   c = {};
   EXPECT_EQ(api().bodiesCreate(oc.h, &c, &none), GEOCEAN_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(lastError().find("call geocean_bodies_config_init first"), std::string::npos) << lastError();
@@ -226,6 +231,10 @@ TEST(CapiBodies, BadInputGetsAStatusAndAMessageNamingTheValue) {
   EXPECT_EQ(api().bodiesAdvanceTo(b.h, std::numeric_limits<double>::quiet_NaN(), nullptr),
             GEOCEAN_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(lastError().find("time_s nan is not finite"), std::string::npos) << lastError();
+  EXPECT_EQ(api().bodiesAdvanceTo(b.h, 1e300, nullptr), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("geocean_bodies_advance_to: time_s 1e+300 s is outside -1e12 .. 1e12 s"),
+            std::string::npos)
+      << lastError();
   geocean_body_pose p;
   EXPECT_EQ(api().bodiesGetPoses(b.h, 0, nullptr, 1, &n), GEOCEAN_ERROR_NULL_ARGUMENT);
   ASSERT_EQ(api().bodiesAdd(b.h, &d, nullptr), GEOCEAN_OK);

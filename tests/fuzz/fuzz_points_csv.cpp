@@ -3,10 +3,11 @@
 // row 1, blank rows skipped) and parsed by globe/app/QueryIo's
 // parsePointRow. Checked beyond "no crash, no UB":
 //  - an accepted row holds finite values in range (lat [-90, 90], lon
-//    [-180, 360], time finite), and printing them back with %.17g and
+//    [-180, 360], time within +-waves::kMaxTimeS), and printing them back with %.17g and
 //    parsing again gives the same doubles (nothing lost or invented);
 //  - a refused row's message names its row ("row N: ...").
 #include "globe/app/QueryIo.h"
+#include "plugin/waves/TimeRange.h"
 
 #include <cmath>
 #include <cstdint>
@@ -46,7 +47,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     if (!(p.latDeg >= -90.0 && p.latDeg <= 90.0) || !(p.lonDeg >= -180.0 && p.lonDeg <= 360.0))
       failure("accepted a point out of range", line, std::to_string(p.latDeg) + "," + std::to_string(p.lonDeg));
-    if (p.timeS && !std::isfinite(*p.timeS)) failure("accepted a time that is not finite", line, "");
+    if (p.timeS && !geocean::waves::timeInRange(*p.timeS)) failure("accepted a time out of range", line, "");
     char b[120];
     if (p.timeS)
       std::snprintf(b, sizeof b, "%.17g,%.17g,%.17g", p.latDeg, p.lonDeg, *p.timeS);

@@ -195,6 +195,48 @@ TEST(LandSea, ClassIsTheCoverageRuleEverywhere) {
   EXPECT_GT(differsFromNearest, 500);  // the rule is not the nearest cell
 }
 
+// Fuzz finding 6 (tests/fuzz/regressions/fuzz_capi_pixels/coverage_offset_overflow.bin):
+// a global mask 1 or 2 cells wide. The 4 x 4 taps reach two cells either
+// side, more than one width out, so the class table's single wrap read the
+// neighbouring row's cell or before the buffer (UBSan). The truth is the
+// texture's GL_REPEAT: column index modulo the width, row clamped, as
+// the brute force of ClassIsTheCoverageRuleEverywhere. Rows alternate
+// ocean and land, columns differ, so a tap read from the wrong cell moves
+// the coverage by up to one tap's weight (1/6 and more).
+TEST(LandSea, NarrowGlobalMaskWrapsEveryTap) {
+  const ocean::MaskEncoding enc;
+  for (const int w : {1, 2, 3}) {
+    const int h = 6;
+    std::vector<float> px(std::size_t(w) * h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) px[std::size_t(y) * w + x] = float((x + y + (x == 1 ? y / 2 : 0)) % 2);
+    raster::GeoTransform gt;
+    gt.originLonDeg = -180.0, gt.originLatDeg = 90.0, gt.lonStepDeg = 360.0 / w, gt.latStepDeg = -180.0 / h;
+    gt.global = true;
+    const auto mask = raster::Raster::fromPixels(px, w, h, 1, gt);
+    const ocean::LandSea ls(mask, nullptr);
+    auto brute = [&](double lat, double lon) {
+      double p = gt.pixelX(lon);
+      p -= std::floor(p / w) * w;
+      return world::coverageClassAt(p, gt.pixelY(lat), [&](int cx, int cy) {
+        return enc.classify(mask->pixel(((cx % w) + w) % w, std::clamp(cy, 0, h - 1)));
+      });
+    };
+    int moved = 0;
+    for (double lat = -89.75; lat < 90.0; lat += 0.5)
+      for (double lon = -180.0; lon < 180.0; lon += 360.0 / w / 37.0) {
+        const world::CoverageClass b = brute(lat, lon);
+        // Same pixel coordinate up to the step's inverse vs a division: float rounding.
+        ASSERT_NEAR(ls.waterCoverage(lat, lon), b.coverage, 1e-6f) << "width " << w << " at " << lat << "," << lon;
+        if (std::abs(b.coverage - 0.5f) > 1e-6f) {
+          ASSERT_EQ(ls.classify(lat, lon), b.surface) << "width " << w << " at " << lat << "," << lon;
+        }
+        moved += b.coverage > 0.0f && b.coverage < 1.0f;
+      }
+    EXPECT_GT(moved, 100) << "width " << w;  // the walk crosses coasts, not one class
+  }
+}
+
 // A lone water cell in land is not drawn (its centre's coverage is
 // (2/3)^2 = 0.44, the B-spline's centre weight squared), so it is land; a
 // lone land cell in water likewise is water.

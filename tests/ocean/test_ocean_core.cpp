@@ -97,6 +97,35 @@ TEST(OceanCore, MissingPrerequisitesSayWhich) {
   EXPECT_THROW(o.setMaskEncoding(geocean::ocean::MaskEncoding::parse("0=sea")), std::invalid_argument);
 }
 
+// The façade's own time check (plugin/waves/TimeRange.h, fuzz finding 5):
+// a C++ caller gets the same refusal as the bindings, naming the index.
+TEST(OceanCore, SeaTimesBeyondTheBoundAreRefused) {
+  Ocean o;
+  o.setSeaState(Model::Gerstner, SeaState{});
+  const double lat[2] = {0, 1}, lon[2] = {-150, -150};
+  Answers a(2);
+  for (const bool thisThread : {false, true}) {
+    auto query = [&](const double* t, bool perPoint) {
+      const Points p{lat, lon, 2, t, perPoint};
+      thisThread ? o.current()->querySurfaceOnThisThread(p, a.outputs()) : o.current()->querySurface(p, a.outputs());
+    };
+    const double ok[2] = {1e12, -1e12}, big[2] = {0.0, 1e33}, nan[1] = {std::nan("")};
+    EXPECT_NO_THROW(query(ok, true));
+    try {
+      query(big, true);
+      ADD_FAILURE() << "t = 1e33 s accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_STREQ(e.what(), "sea-surface query: timeS[1] 1e+33 s is outside -1e12 .. 1e12 s");
+    }
+    try {
+      query(nan, false);
+      ADD_FAILURE() << "t = NaN accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_STREQ(e.what(), "sea-surface query: timeS[0] nan is not finite");
+    }
+  }
+}
+
 // The mask encoding is part of the state: swapping ocean and land swaps the
 // Pacific and Switzerland; an old snapshot keeps the old answers.
 TEST(OceanCore, MaskEncodingAndSnapshots) {

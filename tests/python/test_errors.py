@@ -32,6 +32,13 @@ def test_bad_times(world):
         world.query([0.0], [0.0], np.nan)
     with pytest.raises(ValueError, match=r"t\[1\] = inf s is not finite"):
         world.query([0.0, 1.0], [0.0, 1.0], [0.0, np.inf])
+    # Beyond the sea's time bound (plugin/waves/TimeRange.h): the phase w t
+    # has no precision left; Unix-epoch seconds (~1.8e9) are well inside.
+    with pytest.raises(ValueError, match=r"t\[1\] = 1e\+33 s is outside -1e12 \.\. 1e12 s"):
+        world.query([0.0, 1.0], [0.0, 1.0], [0.0, 1e33])
+    with pytest.raises(ValueError, match=r"t = -2e\+12 s is outside"):
+        world.query([0.0], [0.0], -2e12)
+    assert np.isfinite(world.query([0.0], [-150.0], 1e12)["sea_height_m"]).all()
 
 
 def test_wrong_shapes(world):

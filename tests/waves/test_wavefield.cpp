@@ -247,9 +247,12 @@ TEST(SeaState, DeterministicForASeedAndDifferentAcrossSeeds) {
   EXPECT_NE(n1.surfaceAt(10, 20, 5).heightM, n2.surfaceAt(10, 20, 5).heightM);
 }
 
-// fuzz_capi_sea_state finding 5: at t ~ 7e307 s the FFT tables' phase w t
-// overflowed to infinity and every ocean height was NaN. Now w t counts as
-// 0 there (no precision is left at such times): finite heights, unit normals.
+// Found while tracing fuzz finding 5 (itself a Gerstner sea, see
+// CapiTimes.TimesBeyondTheBoundAreRefusedNamingTheField): at t ~ 7e307 s the
+// FFT tables' phase w t overflowed to infinity and every ocean height was
+// NaN. Now w t counts as 0 there (no precision is left at such times):
+// finite heights, unit normals. The boundaries refuse |t| > 1e12 s; this
+// keeps the field itself finite for a caller inside the plugin.
 TEST(SeaState, FftAtTimesBeyondThePhaseRangeIsFinite) {
   std::string err;
   SeaState s;

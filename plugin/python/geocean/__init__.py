@@ -152,7 +152,9 @@ class Ocean:
             place; anything else is converted (copied) once.
         t : float or array_like of float
             Simulation time, seconds: one for all points, or one per point
-            (lat's shape). The same t always gives the same surface.
+            (lat's shape), within -1e12 .. 1e12 s (Unix-epoch seconds fit;
+            beyond, a wave's phase has no precision left: ValueError).
+            The same t always gives the same surface.
         horizontal_velocity : bool
             Also return ``horizontal_velocity_en_mps`` (costs a second
             surface evaluation per ocean point).

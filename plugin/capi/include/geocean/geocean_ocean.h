@@ -10,6 +10,10 @@
  *     read with geocean_last_error(). Every call that returns a status clears
  *     the calling thread's message first.
  *   - Angles are degrees, lengths metres, times seconds (names say so).
+ *     Simulation times are within -1e12 .. 1e12 s (31,700 years either
+ *     way; Unix-epoch seconds fit): beyond, a wave's phase w t has no
+ *     precision left, and every call taking a time refuses it with
+ *     INVALID_ARGUMENT naming the field and the value.
  *     Latitude/longitude are geodetic on WGS84, in double.
  *   - Thread safety: see each function. In short: create/destroy and the
  *     setters may be called from any thread; queries may run from any
@@ -289,8 +293,8 @@ GEOCEAN_API geocean_status geocean_set_sea_state(geocean_ocean* ocean, const geo
  * deep ocean. Depth is -elevation, at least 1 m where the mask says ocean
  * (coarse relief and mask disagree along coasts). Large batches run on all
  * cores. Needs a sea state.
- * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (time_s not finite), NOT_READY
- * (no sea state). */
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (time_s not finite or outside
+ * -1e12 .. 1e12 s), NOT_READY (no sea state). */
 GEOCEAN_API geocean_status geocean_query_sea_surface(const geocean_ocean* ocean, size_t count,
                                                      const double* lat_deg, const double* lon_deg, double time_s,
                                                      double* out_height_m, double* out_normal_enu,
@@ -321,7 +325,8 @@ GEOCEAN_API geocean_status geocean_surface_outputs_init(geocean_surface_outputs*
  * is deep ocean (elevation NaN). Large batches run on all cores.
  * Errors: NULL_ARGUMENT (ocean, outputs; lat_deg, lon_deg, time_s when
  * needed and count > 0), INVALID_ARGUMENT (outputs->struct_size,
- * time_count, a time not finite: the message names its index), NOT_READY
+ * time_count, a time not finite or outside -1e12 .. 1e12 s: the message
+ * names its index), NOT_READY
  * (a sea output without a sea state). */
 GEOCEAN_API geocean_status geocean_query_surface(const geocean_ocean* ocean, size_t count, const double* lat_deg,
                                                  const double* lon_deg, const double* time_s, size_t time_count,
@@ -378,7 +383,7 @@ typedef struct geocean_view {
                                     agrees with the host's own geometry */
   int32_t viewport_width_px;     /* the viewport the host draws into, 1 .. 16384 */
   int32_t viewport_height_px;
-  double time_s;                 /* simulation time; the same t gives the same sea as the queries */
+  double time_s;                 /* simulation time, -1e12 .. 1e12 s; the same t gives the same sea as the queries */
   double sun_dir_ecef[3];        /* towards the sun (any length > 0) */
   uint32_t draw_flags;           /* GEOCEAN_DRAW_* bits, 0 by default */
 } geocean_view;
@@ -496,7 +501,7 @@ typedef enum geocean_hull GEOCEAN_ENUM_INT32 {
 typedef struct geocean_bodies_config {
   uint32_t struct_size;       /* sizeof(geocean_bodies_config), set by the init */
   double step_s;              /* fixed step, s: > 0, <= 0.5 (default 1/60) */
-  double start_s;             /* simulation time of the initial states, s (default 0) */
+  double start_s;             /* simulation time of the initial states, -1e12 .. 1e12 s (default 0) */
   double water_density_kg_m3; /* default 1025 */
 } geocean_bodies_config;
 
@@ -551,8 +556,8 @@ GEOCEAN_API geocean_status geocean_bodies_remove(geocean_bodies* bodies, geocean
 GEOCEAN_API geocean_status geocean_bodies_count(const geocean_bodies* bodies, size_t* out_count);
 /* ABI 1.4: runs every whole step ending at or before time_s; *out_steps
  * (may be NULL) gets how many. The remainder is kept for the interpolated
- * poses. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (time_s not finite or
- * before the simulation time; a force that is not finite: the bodies stay
+ * poses. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (time_s not finite,
+ * outside -1e12 .. 1e12 s or before the simulation time; a force that is not finite: the bodies stay
  * as they were before that step). */
 GEOCEAN_API geocean_status geocean_bodies_advance_to(geocean_bodies* bodies, double time_s, int64_t* out_steps);
 /* ABI 1.4: the time of the last whole step, s. Errors: NULL_ARGUMENT. */
