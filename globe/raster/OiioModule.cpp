@@ -110,8 +110,12 @@ bool cacheRead(void* h, int x0, int x1, int y0, int y1, int ch, float* out, char
   const std::size_t n = std::size_t(x1 - x0) * std::size_t(y1 - y0);
   thread_local std::vector<unsigned char> tmp;
   tmp.resize(n * c->type.size());
-  if (!c->cache->get_pixels(c->file, 0, 0, x0, x1, y0, y1, 0, 1, ch, ch + 1, c->type, tmp.data())) {
-    setErr(err, errLen, c->cache->geterror());
+  const bool ok = c->cache->get_pixels(c->file, 0, 0, x0, x1, y0, y1, 0, 1, ch, ch + 1, c->type, tmp.data());
+  // A tile that fails to decode (the file truncated under the cache) can
+  // leave get_pixels true with the buffer unwritten: the error says so.
+  const std::string e = c->cache->geterror();
+  if (!ok || !e.empty()) {
+    setErr(err, errLen, e.empty() ? std::string("read failed") : e);
     return false;
   }
   geocean::raster::detail::toFloat(SampleKind(kindOf(c->type)), tmp.data(), n, out);

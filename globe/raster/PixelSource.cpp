@@ -35,7 +35,11 @@ struct TiffFile {
     TIFFSetWarningHandler(nullptr);
     TIFFSetErrorHandler(nullptr);
     registerGeoTiffTags();  // so GDAL_NODATA reads as text (sparse blocks are filled with it)
-    t = TIFFOpen(path.c_str(), "r");
+    // "m": no memory mapping. A file truncated while open (replaced in
+    // place, a full disk) made reads of a mapped tile past the new end
+    // SIGBUS (RasterFaults.FileReplacedOrTruncatedUnderCachedReads); read()
+    // returns short instead, and the tile is "unreadable".
+    t = TIFFOpen(path.c_str(), "rm");
   }
   ~TiffFile() {
     if (t) TIFFClose(t);

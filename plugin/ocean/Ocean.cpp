@@ -148,7 +148,19 @@ void Snapshot::queryRange(const Points& p, std::size_t begin, std::size_t end, c
     }
     if (!wantSea) continue;
     const double* t = p.timePerPoint ? p.timeS + i0 : p.timeS;
-    sea->queryClassified(lat, lon, t, p.timePerPoint, m, c, wantElevation ? e : nullptr, res.data());
+    // Off the globe (|lat| > 90, |lon| > 360, NaN: a host may pass
+    // anything): the class as classified, the sea NaN and never evaluated.
+    // Near DBL_MAX degrees the radians overflow and the kernel saw a NaN
+    // point (fuzz finding 7: UB converting its FFT cell to int).
+    std::array<Surface, kChunk> onGlobe;
+    bool offGlobe = false;
+    for (std::size_t k = 0; k < m; ++k) {
+      const bool on = std::abs(lat[k]) <= 90.0 && std::abs(lon[k]) <= 360.0;
+      onGlobe[k] = on ? c[k] : Surface::Land;
+      offGlobe |= !on;
+    }
+    sea->queryClassified(lat, lon, t, p.timePerPoint, m, offGlobe ? onGlobe.data() : c, wantElevation ? e : nullptr,
+                         res.data());
     std::size_t nOcean = 0;
     for (std::size_t k = 0; k < m; ++k) {
       const std::size_t i = i0 + k;

@@ -126,6 +126,28 @@ TEST(OceanCore, SeaTimesBeyondTheBoundAreRefused) {
   }
 }
 
+// Fuzz finding 7 (regressions/fuzz_capi_sea_state/fft_latitude_1e308_nan_point.bin):
+// with no rasters every point is ocean, also one off the globe; at a
+// latitude or longitude near DBL_MAX the radians overflowed, the FFT kernel
+// got a NaN point (UB converting its cell to int) and answered 0 m. Off the
+// globe (|lat| > 90, |lon| > 360) the class stays, the sea is NaN.
+TEST(OceanCore, PointsOffTheGlobeHaveNoSea) {
+  for (const Model m : {Model::Fft, Model::Gerstner, Model::Noise}) {
+    Ocean o;
+    o.setSeaState(m, SeaState{});
+    const double big = std::numeric_limits<double>::max();
+    const std::vector<double> lat = {big, 0.0, 0.0, 91.0, 10.0}, lon = {0.0, big, 3.7e307, 0.0, 361.0};
+    const Answers a = query(o, lat, lon, {5.0});
+    for (std::size_t i = 0; i < lat.size(); ++i) {
+      EXPECT_EQ(a.surface[i], Surface::Ocean) << i;  // no rasters: as classified
+      EXPECT_TRUE(std::isnan(a.height[i]) && std::isnan(a.normal[3 * i]) && std::isnan(a.w[i]))
+          << toString(m) << " point " << i << ": " << a.height[i];
+    }
+    const Answers on = query(o, {90.0, -90.0, 0.0}, {0.0, 360.0, -360.0}, {5.0});  // the edges are on it
+    for (int i = 0; i < 3; ++i) EXPECT_TRUE(std::isfinite(on.height[i])) << toString(m) << " " << i;
+  }
+}
+
 // The mask encoding is part of the state: swapping ocean and land swaps the
 // Pacific and Switzerland; an old snapshot keeps the old answers.
 TEST(OceanCore, MaskEncodingAndSnapshots) {
