@@ -138,3 +138,95 @@ float waterTilesAuto(vec2 lonLatDeg) {
 }
 #endif
 #endif
+
+#ifdef GEOCEAN_WATER_PAGES
+// Water coverage streamed as pyramid tiles for a draw that spans the view
+// (the ocean, plugin/render/WaterPages): a page table holds, for every tile
+// of every level, its layer in the pool (-1: not resident). A sample takes
+// the finest resident level from the one asked for up; the top tile is
+// always resident. The B-spline's weights are textureBSplineGather's, so at
+// level 0 the coverage is world::coverageClassAt's on the mask's own cells.
+layout(binding = 6) uniform sampler2DArray uPagePool;
+layout(binding = 7) uniform isampler2D uPageTable;
+uniform int uPageTop;            // the top level (one tile)
+uniform ivec4 uPageLevel[24];    // per level: width, height (texels), tiles across, first row in the table
+uniform vec4 uPageGeo;           // level 0: origin lon, origin lat, lon step, lat step (degrees)
+uniform ivec2 uPageTile;         // tile size, 1 if longitude wraps
+
+ivec2 pageWrap(int level, ivec2 g) {
+  ivec4 L = uPageLevel[level];
+  g.x = uPageTile.y != 0 ? ((g.x % L.x) + L.x) % L.x : clamp(g.x, 0, L.x - 1);
+  g.y = clamp(g.y, 0, L.y - 1);
+  return g;
+}
+
+int pageSlot(int level, ivec2 g) {  // g wrapped
+  ivec2 t = g / uPageTile.x;
+  return texelFetch(uPageTable, ivec2(t.x, uPageLevel[level].w + t.y), 0).r;
+}
+
+float pageTexel(int level, ivec2 g) {
+  g = pageWrap(level, g);
+  int T = uPageTile.x;
+  return texelFetch(uPagePool, ivec3(g - (g / T) * T + 1, pageSlot(level, g)), 0).r;  // + 1: the tile's border
+}
+
+// Continuous texel coordinates of a level, texel centres at integers.
+vec2 pagePos(vec2 lonLatDeg, int level) {
+  return vec2((lonLatDeg.x - uPageGeo.x) / uPageGeo.z, (lonLatDeg.y - uPageGeo.y) / uPageGeo.w) / float(1 << level) -
+         0.5;
+}
+
+// The finest level from `want` up whose tiles under the 4 x 4 texels at
+// lonLat are all resident.
+int pageLevel(vec2 lonLatDeg, int want) {
+  for (int l = want; l < uPageTop; ++l) {
+    ivec2 i = ivec2(floor(pagePos(lonLatDeg, l)));
+    ivec2 a = pageWrap(l, i - 1), b = pageWrap(l, i + 2);
+    if (pageSlot(l, a) >= 0 && pageSlot(l, b) >= 0 && pageSlot(l, ivec2(a.x, b.y)) >= 0 &&
+        pageSlot(l, ivec2(b.x, a.y)) >= 0)
+      return l;
+  }
+  return uPageTop;
+}
+
+float pageBSpline(vec2 lonLatDeg, int level) {
+  vec2 p = pagePos(lonLatDeg, level);
+  vec2 i = floor(p);
+  vec2 f = p - i;
+  vec2 f2 = f * f, f3 = f2 * f;
+  vec4 wx = vec4((1.0 - 3.0 * f.x + 3.0 * f2.x - f3.x) / 6.0, (4.0 - 6.0 * f2.x + 3.0 * f3.x) / 6.0,
+                 (1.0 + 3.0 * f.x + 3.0 * f2.x - 3.0 * f3.x) / 6.0, f3.x / 6.0);
+  vec4 wy = vec4((1.0 - 3.0 * f.y + 3.0 * f2.y - f3.y) / 6.0, (4.0 - 6.0 * f2.y + 3.0 * f3.y) / 6.0,
+                 (1.0 + 3.0 * f.y + 3.0 * f2.y - 3.0 * f3.y) / 6.0, f3.y / 6.0);
+  ivec2 g = ivec2(i) - 1;
+  float s = 0.0;
+  for (int y = 0; y < 4; ++y) {
+    vec4 row = vec4(pageTexel(level, g + ivec2(0, y)), pageTexel(level, g + ivec2(1, y)),
+                    pageTexel(level, g + ivec2(2, y)), pageTexel(level, g + ivec2(3, y)));
+    s += wy[y] * dot(row, wx);
+  }
+  return s;
+}
+
+float pageBilinear(vec2 lonLatDeg, int level) {
+  vec2 p = pagePos(lonLatDeg, level);
+  vec2 i = floor(p);
+  vec2 f = p - i;
+  ivec2 g = ivec2(i);
+  return mix(mix(pageTexel(level, g), pageTexel(level, g + ivec2(1, 0)), f.x),
+             mix(pageTexel(level, g + ivec2(0, 1)), pageTexel(level, g + ivec2(1, 1)), f.x), f.y);
+}
+
+#ifdef GEOCEAN_FRAGMENT_STAGE
+// Magnified: the B-spline of level 0 (or the finest resident); minified:
+// bilinear at the level whose texel is about the pixel (the pyramid's
+// levels are means of 2 x 2 texels: a mipmap), as textureBSplineAuto.
+float waterPagesAuto(vec2 lonLatDeg) {
+  float tpp = length(fwidth(pagePos(lonLatDeg, 0)));
+  int want = tpp < 1.0 ? 0 : min(int(floor(log2(tpp))), uPageTop);
+  int l = pageLevel(lonLatDeg, want);
+  return tpp < 1.0 ? pageBSpline(lonLatDeg, l) : pageBilinear(lonLatDeg, l);
+}
+#endif
+#endif

@@ -40,6 +40,8 @@ void main() {
   float w = 1.0;
 #elif defined(GEOCEAN_VERTEX_COVERAGE)
   float w = vCoverage;
+#elif defined(GEOCEAN_WATER_PAGES)
+  float w = waterPagesAuto(vLonLat);  // a streamed mask (plugin/render/WaterPages)
 #else
   float w = textureBSplineAuto(uWater, geoUv(vLonLat, uWaterGeo));
 #endif

@@ -80,6 +80,7 @@ int runRender(const RenderArgs& a) {
       return kExitBadInput;
     }
   }
+  if (ocean) ocean->setCompleteTiles(true);  // as terrain.waitForTiles
   if (const int rc = applyCoastRegion("render", a.coastRegion, ocean.get()); rc != kExitOk) return rc;
   std::shared_ptr<host::PluginBoats> boats;
   double targetLat = 0, targetLon = 0;

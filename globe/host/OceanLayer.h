@@ -34,12 +34,17 @@ class PluginOceanLayer : public render::Layer {
             const render::LayerInputs& inputs) override;
 
   geocean_ocean* ocean() const { return ocean_; }
+  // Single pictures (geocean render): the ocean waits for the streamed
+  // tiles each draw asks for (GEOCEAN_DRAW_COMPLETE_TILES), as the
+  // terrain's TerrainOptions::waitForTiles.
+  void setCompleteTiles(bool on) { completeTiles_ = on; }
   const OceanPlugin& plugin() const { return *plugin_; }
 
  private:
   std::shared_ptr<const OceanPlugin> plugin_;
   geocean_ocean* ocean_;
   render::LayerInfo info_;  // asked once: it does not change with the ocean's state
+  bool completeTiles_ = false;
 };
 
 // The host view for a camera: the same numbers the renderer draws its

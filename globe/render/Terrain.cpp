@@ -39,11 +39,10 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
     if (world_.waterTiles()) d.push_back("GEOCEAN_WATER_TILES 1");
     return d;
   };
-  // Under an ocean layer the terrain's water keeps the single texture: the
-  // ocean draws its coast from its own grids, made from the same cells
-  // (plugin/render/OceanWorld), and the two must agree.
+  // Under an ocean layer too: the ocean draws a streamed mask's coast from
+  // the same pyramid (plugin/render/WaterPages), so the two agree.
   program_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", with({}));
-  underOcean_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", {"GEOCEAN_UNDER_OCEAN 1"});
+  underOcean_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", with({"GEOCEAN_UNDER_OCEAN 1"}));
   seaProxy_ = gl::GlProgram::graphics("terrain.vert", "sea_proxy.frag");
   bare_ = gl::GlProgram::graphics("terrain.vert", "bare.frag", {"GEOCEAN_BARE 1"});
   glCreateVertexArrays(1, &vao_);
@@ -274,7 +273,7 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
   glUniform1f(prog.uniform("uOceanCellRadians"),
               float(2.0 * std::tan(0.5 * cam.vfovDeg() * kDeg) / cam.heightPx() * oceanCellPx));
   const GLint locOffset = prog.uniform("uTileOffset"), locSkirt = prog.uniform("uSkirtM");
-  TilePool* pool = world_.waterTiles();
+  gl::TilePool* pool = world_.waterTiles();
   const bool streamed = pool && prog.uniform("uWaterSlots") >= 0;
   if (streamed) glBindTextureUnit(5, pool->texture());
   glBindVertexArray(vao_);
@@ -298,7 +297,7 @@ bool TerrainRenderer::bindWaterBlock(const gl::GlProgram* prog, const Key& k) {
   // are at most pixelErrorPx pixels (its screen-space error), and 252
   // texels over its 32 cells make a texel about a pixel: the texture's level
   // follows the view.
-  TilePool& pool = *world_.waterTiles();
+  gl::TilePool& pool = *world_.waterTiles();
   const raster::TilePyramid& pyr = pool.pyramid();
   const raster::GeoTransform& t0 = pyr.source().transform();
   const bool wrap = t0.global;
@@ -379,8 +378,9 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
   std::vector<const Slot*> slots;
   selectTiles(cam, tiles, slots, stats);
   const auto pass = [&](const gl::GlProgram& prog) { drawTiles(prog, cam, light, sea, oceanCellPx, tiles, slots); };
-  const gl::GlProgram& colour = bare ? bare_ : sea == SeaShading::UnderOcean && !options_.seaProxy ? underOcean_ : program_;
-  if (TilePool* pool = world_.waterTiles(); pool && options_.waitForTiles && &colour == &program_) {
+  const gl::GlProgram& colour =
+      bare ? bare_ : sea == SeaShading::UnderOcean && (!options_.seaProxy || world_.waterTiles()) ? underOcean_ : program_;
+  if (gl::TilePool* pool = world_.waterTiles(); pool && options_.waitForTiles && (&colour == &program_ || &colour == &underOcean_)) {
     // A picture, not an interactive view: wait for the tiles this view asks
     // for (bounded: a view needing more than the pool holds draws what fits).
     for (int round = 0; round < 64; ++round) {
@@ -391,7 +391,8 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
       pool->endFrame();
     }
   }
-  if (!bare && sea == SeaShading::UnderOcean && options_.seaProxy) {
+  // Not with a streamed mask: the proxy's cut is the single water texture's.
+  if (!bare && sea == SeaShading::UnderOcean && options_.seaProxy && !world_.waterTiles()) {
     // Depth only, where the ocean layer will cover the pixel: the same
     // surface pulled a few float-depth units towards the eye (reversed Z),
     // so the colour pass fails GL_GREATER there before shading, while the
@@ -405,7 +406,7 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
   }
   pass(colour);
   // Finished tile loads go up after the frame's draws (they never wait).
-  if (TilePool* pool = world_.waterTiles()) pool->endFrame();
+  if (gl::TilePool* pool = world_.waterTiles()) pool->endFrame();
   stats.tilesDrawn = int(tiles.size());
   glBindVertexArray(0);
   return stats;

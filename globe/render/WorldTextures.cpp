@@ -1,6 +1,7 @@
 #include "globe/render/WorldTextures.h"
 
 #include "globe/gl/Texture.h"
+#include "globe/world/WaterPyramid.h"
 
 namespace geocean::render {
 
@@ -15,29 +16,13 @@ WorldTextures::WorldTextures(const world::WorldData& data)
   // Mipmapped so that far coasts average to partial coverage instead of aliasing.
   const auto& w = grids_->water();
   water_ = gl::redGeoTexture(w.values.data(), w.channels, w.width, w.height, GL_R8, true);
-  if (data.waterSource) waterTiles_ = std::make_unique<TilePool>(waterPyramid(data.waterSource, data.waterEncoding));
+  if (data.waterSource) waterTiles_ = std::make_unique<gl::TilePool>(world::waterPyramid(data.waterSource, data.waterEncoding));
 }
 
 WorldTextures::WorldTextures(const world::WorldData& data, std::shared_ptr<const raster::TilePyramid> water,
-                             TilePoolOptions pool)
+                             gl::TilePoolOptions pool)
     : WorldTextures(data) {
-  if (water) waterTiles_ = std::make_unique<TilePool>(std::move(water), pool);
-}
-
-std::shared_ptr<const raster::TilePyramid> waterPyramid(std::shared_ptr<const raster::Raster> mask,
-                                                        const world::MaskEncoding& encoding,
-                                                        raster::PyramidOptions options) {
-  // The map's id names the encoding's classes: another encoding, another cache.
-  std::string classes;
-  for (const world::Surface s : encoding.classOf) classes += char('0' + int(s));
-  options.valueMapId = "water-coverage:" + classes;
-  options.valueMap = [encoding](float* v, std::size_t n, int channels) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const float w = encoding.isWater(v[i * channels]) ? 1.0f : 0.0f;
-      for (int c = 0; c < channels; ++c) v[i * channels + c] = w;
-    }
-  };
-  return raster::TilePyramid::open(std::move(mask), std::move(options));
+  if (water) waterTiles_ = std::make_unique<gl::TilePool>(std::move(water), pool);
 }
 
 WorldTextures::~WorldTextures() {

@@ -8,7 +8,7 @@
 #pragma once
 
 #include "globe/raster/TilePyramid.h"
-#include "globe/render/TilePool.h"
+#include "globe/gl/TilePool.h"
 #include "globe/world/WorldGrids.h"
 
 #include <epoxy/gl.h>
@@ -21,12 +21,12 @@ namespace geocean::render {
 class WorldTextures {
  public:
   explicit WorldTextures(const world::WorldData& data);
-  // As above, and the water coverage drawn from a tile pyramid (waterPyramid)
+  // As above, and the water coverage drawn from a tile pyramid (world::waterPyramid)
   // through a GPU tile pool: rasters of any size (issue 12 item 2). The
   // single water texture stays for the passes that do not stream (the sea
   // proxy) and the CPU grids for picking and LOD bounds.
   WorldTextures(const world::WorldData& data, std::shared_ptr<const raster::TilePyramid> water,
-                TilePoolOptions pool = {});
+                gl::TilePoolOptions pool = {});
   ~WorldTextures();
   WorldTextures(const WorldTextures&) = delete;
   WorldTextures& operator=(const WorldTextures&) = delete;
@@ -44,19 +44,13 @@ class WorldTextures {
   double finestShapeTexelDeg() const { return grids_->finestShapeTexelDeg(); }
   const world::WaterIndex& waterIndex() const { return grids_->waterIndex(); }
   // The streamed water coverage, or null (the single texture only).
-  TilePool* waterTiles() const { return waterTiles_.get(); }
+  gl::TilePool* waterTiles() const { return waterTiles_.get(); }
 
  private:
   std::shared_ptr<const world::WorldGrids> grids_;
   GLuint imagery_ = 0, elevation_ = 0, water_ = 0;
   glm::vec4 imageryGeo_{0.0f};
-  std::unique_ptr<TilePool> waterTiles_;
+  std::unique_ptr<gl::TilePool> waterTiles_;
 };
-
-// A mask raster's water coverage (1 water, 0 land by the encoding; nodata
-// land, as MaskEncoding::classify) as a tile pyramid with its disk cache.
-std::shared_ptr<const raster::TilePyramid> waterPyramid(std::shared_ptr<const raster::Raster> mask,
-                                                        const world::MaskEncoding& encoding = {},
-                                                        raster::PyramidOptions options = {});
 
 }  // namespace geocean::render

@@ -2,6 +2,7 @@
 
 #include "globe/raster/Raster.h"
 #include "globe/raster/World.h"
+#include "globe/world/WaterPyramid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -185,15 +186,9 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
   // The first mask to answer, when it covers the Earth and is finer than the
   // drawn grid (at most 5'), is drawn from its tiles (issue 12 item 2); a
   // finer elevation layer (drawingMask null) decides the coast instead.
-  for (const RasterLayer& l : stack.layers()) {
-    if (l.kind != LayerKind::Mask) continue;
-    const raster::GeoTransform& t = l.raster->transform();
-    if (stack.drawingMask() && t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * l.raster->height() + 180.0) < 1e-6 &&
-        t.lonStepDeg < 0.999 * d.water.lonStepDeg) {
-      d.waterSource = l.raster;
-      d.waterEncoding = l.encoding;
-    }
-    break;
+  if (const RasterLayer* l = streamedMaskLayer(stack, d.water.lonStepDeg)) {
+    d.waterSource = l->raster;
+    d.waterEncoding = l->encoding;
   }
   return d;
 }

@@ -59,9 +59,13 @@ struct WorldCache {
   std::shared_ptr<const geocean::ocean::LandSea> landSea;
   std::shared_ptr<const Raster> mask, elevation;
   std::shared_ptr<const geocean::world::WorldGrids> grids;
+  // A layer's streamed mask (the host terrain's rule and pyramid), or null.
+  std::shared_ptr<const geocean::raster::TilePyramid> waterTiles;
   const geocean::world::WorldGrids& of(const Snapshot& snap) {
     if (!grids || landSea != snap.landSea || mask != snap.mask || elevation != snap.elevation) {
-      grids = geocean::ocean_render::oceanWorld(snap.mask, snap.elevation, snap.landSea.get(), snap.maskEncoding);
+      waterTiles = geocean::ocean_render::oceanWaterTiles(snap.landSea.get(), snap.mask);
+      grids = geocean::ocean_render::oceanWorld(snap.mask, snap.elevation, snap.landSea.get(), snap.maskEncoding,
+                                                waterTiles.get());
       landSea = snap.landSea;
       mask = snap.mask;
       elevation = snap.elevation;
@@ -82,6 +86,11 @@ class GlStateGuard {
       glActiveTexture(GLenum(GL_TEXTURE0 + u));
       glGetIntegerv(GL_TEXTURE_BINDING_2D, &texture_[u]);
     }
+    // Units 6 (2D array) and 7 (2D): a streamed mask's tile pool and page table.
+    glActiveTexture(GL_TEXTURE6);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &pageTextures_[0]);
+    glActiveTexture(GL_TEXTURE7);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &pageTextures_[1]);
     glActiveTexture(GLenum(activeTexture_));
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &ssboGeneric_);
     for (int i = 0; i < kSsbos; ++i) {
@@ -108,6 +117,10 @@ class GlStateGuard {
       glActiveTexture(GLenum(GL_TEXTURE0 + u));
       glBindTexture(GL_TEXTURE_2D, GLuint(texture_[u]));
     }
+    glActiveTexture(GL_TEXTURE6);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, GLuint(pageTextures_[0]));
+    glActiveTexture(GL_TEXTURE7);
+    glBindTexture(GL_TEXTURE_2D, GLuint(pageTextures_[1]));
     glActiveTexture(GLenum(activeTexture_));
     for (int i = 0; i < kSsbos; ++i) {
       if (ssbo_[i] != 0 && ssboSize_[i] > 0)
@@ -138,7 +151,7 @@ class GlStateGuard {
  private:
   static constexpr int kUnits = 4, kSsbos = 5, kDrawBuffers = 2;  // SSBOs 3-4: the FFT tables
   GLint program_ = 0, vao_ = 0, activeTexture_ = GL_TEXTURE0, texture_[kUnits] = {}, ssboGeneric_ = 0;
-  GLint ssbo_[kSsbos] = {};
+  GLint ssbo_[kSsbos] = {}, pageTextures_[2] = {};
   GLint64 ssboStart_[kSsbos] = {}, ssboSize_[kSsbos] = {};
   GLboolean blend_[kDrawBuffers] = {}, polygonOffsetFill_ = GL_FALSE;
   GLint blendFunc_[kDrawBuffers][4] = {};
@@ -158,6 +171,7 @@ struct FrameView {
   geocean::camera::Lighting light{};
   bool reference = false;
   bool refraction = true;
+  bool completeTiles = false;
 };
 
 FrameView frameViewOf(const geocean_view* v) {
@@ -205,10 +219,11 @@ FrameView frameViewOf(const geocean_view* v) {
                                                  up, proj, w, h)};
   f.light.sunEcef = glm::normalize(sun);
   f.light.timeS = v->time_s;
-  if (v->draw_flags & ~(GEOCEAN_DRAW_REFERENCE | GEOCEAN_DRAW_NO_REFRACTION))
+  if (v->draw_flags & ~(GEOCEAN_DRAW_REFERENCE | GEOCEAN_DRAW_NO_REFRACTION | GEOCEAN_DRAW_COMPLETE_TILES))
     bad("draw_flags " + std::to_string(v->draw_flags) + " has bits that are not GEOCEAN_DRAW_*");
   f.reference = (v->draw_flags & GEOCEAN_DRAW_REFERENCE) != 0;
   f.refraction = (v->draw_flags & GEOCEAN_DRAW_NO_REFRACTION) == 0;
+  f.completeTiles = (v->draw_flags & GEOCEAN_DRAW_COMPLETE_TILES) != 0;
   return f;
 }
 
@@ -346,6 +361,7 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
         o.model = snap->model;
         o.sea = snap->seaState;
         o.coast = snap->waves->coastFieldShared();  // Ocean::setCoastRegion: the query's near-shore field
+        o.waterTiles = ds.world.waterTiles;
         gl.renderer.reset();
         gl.renderer = std::make_unique<geocean::ocean_render::OceanRenderer>(ds.world.grids, snap->landSea, o);
       }
@@ -357,6 +373,7 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
       }
       oi.refraction = ds.view->refraction;
       gl.renderer->setInputs(oi);
+      gl.renderer->setCompleteTiles(ds.view->completeTiles);
       gl.renderer->draw(ds.view->cam, ds.view->light, ds.view->reference);
     } catch (const geocean::gl::ShaderError& e) {
       fail(GEOCEAN_ERROR_GL, e.what());
@@ -406,7 +423,9 @@ GEOCEAN_API geocean_status geocean_covers_opaquely(geocean_ocean* ocean, double 
     *out_covers = 0;
     const auto snap = ocean->current();
     if (!snap->mask && !snap->elevation) return;
-    const auto& grids = drawState(ocean).world.of(*snap);
+    WorldCache& world = drawState(ocean).world;
+    const auto& grids = world.of(*snap);
+    if (world.waterTiles) return;  // drawn from the streamed mask: the grids' water index is coarser
     *out_covers = geocean::ocean_render::coversOpaquely(grids, geocean::ocean_render::OceanOptions{}.cellPx, lat0_deg,
                                                         lat1_deg, lon0_deg, lon1_deg, pixel_footprint_m)
                       ? 1

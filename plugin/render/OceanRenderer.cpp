@@ -57,7 +57,14 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
                                                                              : "WV_MODEL 0"};
   if (options_.model == waves::Model::Fft) model.push_back("WV_FFT 1");
   if (coast) model.push_back("WV_COAST 1");
-  program_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", model);
+  if (options_.waterTiles) {
+    pages_ = std::make_unique<WaterPages>(options_.waterTiles);
+    auto paged = model;
+    paged.push_back("GEOCEAN_WATER_PAGES 1");
+    program_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", paged);
+  } else {
+    program_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", model);
+  }
   {
     auto open = model;
     open.push_back("GEOCEAN_OPEN_WATER 1");
@@ -187,6 +194,7 @@ OceanRenderer::~OceanRenderer() {
 void OceanRenderer::abandonGl() {
   glAbandoned_ = true;
   for (gl::GlProgram* p : {&program_, &smoothCoast_, &openWater_, &farShaded_, &bare_}) p->abandon();
+  if (pages_) pages_->abandonGl();
 }
 
 namespace {
@@ -339,6 +347,10 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   const auto t0 = std::chrono::steady_clock::now();
   grid_->build(cam, frame_);
   std::vector<std::uint32_t> idx = grid::compactIndices(frame_);
+  if (pages_) {
+    if (completeTiles_) pages_->complete(frame_, options_.cellPx);
+    else pages_->request(frame_, options_.cellPx);
+  }
   // Cells no wave can bring on screen are dropped; open water (coverage 1
   // throughout, WaterIndex) and cells much smaller than a water texel are
   // drawn by variants without the per-pixel coverage lookup, which was half
@@ -361,9 +373,12 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   cull.timeS = light.timeS;
   const CellGroups groups =
       partitionCells(frame_, world_->waterIndex(), options_.cellPx, cull, options_.cullOffscreen,
-                     !bare && options_.cheapCoverage, idx);
+                     !bare && options_.cheapCoverage && !pages_, idx);
   gridMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (idx.empty()) return;
+  if (idx.empty()) {
+    if (pages_) pages_->endFrame();
+    return;
+  }
   const std::size_t vbytes = frame_.vertices.size() * sizeof(grid::GridVertex);
   if (vbytes > vboBytes_) {  // grow only: memory stays flat over a flight
     vboBytes_ = vbytes;
@@ -476,6 +491,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     if (count == 0) continue;
     prog->use();
     setUniforms(*prog);
+    if (pages_ && prog == &program_) pages_->bind(*prog);
     glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
     first += count;
@@ -483,6 +499,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   glBindVertexArray(0);
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_BLEND);
+  if (pages_) pages_->endFrame();  // finished loads go up after the draws
   if (fft || coast)
     for (int i = 0; i < 2; ++i) {
       if (hostSsbo[i] != 0 && hostSize[i] > 0)
@@ -494,6 +511,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
 }
 
 bool OceanRenderer::coversOpaquely(double lat0, double lat1, double lon0, double lon1, double footprintM) const {
+  if (pages_) return false;  // the water index is the grid's, coarser than the streamed mask
   return ocean_render::coversOpaquely(*world_, options_.cellPx, lat0, lat1, lon0, lon1, footprintM);
 }
 

@@ -11,6 +11,7 @@
 #include "globe/world/WorldGrids.h"
 #include "plugin/grid/ScreenGrid.h"
 #include "plugin/landsea/LandSea.h"
+#include "plugin/render/WaterPages.h"
 #include "plugin/waves/WaveField.h"
 
 #include <memory>
@@ -34,6 +35,13 @@ struct OceanOptions {
   bool cullOffscreen = true;
   // Far open water (waves faded into roughness) shaded per vertex.
   bool farVertexShading = true;
+  // A streamed mask's coverage (world::waterPyramid of
+  // world::streamedMaskLayer, the host terrain's pyramid): the shoreline is
+  // drawn from its tiles (WaterPages.h), so the query's coverage rule on the
+  // mask's own cells is what is drawn. Null: the water grid's texture.
+  // Every cell then takes the per-pixel coverage (the water index is the
+  // grid's, coarser than the mask) and coversOpaquely is false.
+  std::shared_ptr<const raster::TilePyramid> waterTiles;
 };
 
 // Reorders a grid frame's compacted cell indices (6 per cell) into three
@@ -107,6 +115,10 @@ class OceanRenderer {
   void setCheapCoverage(bool on) { options_.cheapCoverage = on; }
   void setCullOffscreen(bool on) { options_.cullOffscreen = on; }
   void setFarVertexShading(bool on) { options_.farVertexShading = on; }
+  // Single pictures: each draw first waits (bounded) for the streamed
+  // tiles its view asks for, instead of drawing their ancestors.
+  void setCompleteTiles(bool on) { completeTiles_ = on; }
+  const WaterPages* waterPages() const { return pages_.get(); }
   // The shading's sea statistics: mean square slope of the spectrum's waves
   // not drawn (ocean.vert's uMssAbove), and the whitecaps' crest height.
   const std::vector<float>& mssAbove() const { return mssAbove_; }
@@ -137,6 +149,8 @@ class OceanRenderer {
   OceanInputs inputs_;
   bool writeData_ = false;
   bool glAbandoned_ = false;
+  std::unique_ptr<WaterPages> pages_;
+  bool completeTiles_ = false;
   double gridMs_ = 0.0;
 };
 

@@ -2,6 +2,8 @@
 
 #include "globe/geo/Ellipsoid.h"
 #include "globe/raster/Raster.h"
+#include "globe/world/WaterPyramid.h"
+#include "plugin/landsea/LayeredLandSea.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +20,8 @@ constexpr double kDeg = 3.14159265358979323846 / 180.0;
 // resampled through the classifier onto a global grid at the raster's step.
 std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const raster::Raster>& mask,
                                                     const std::shared_ptr<const raster::Raster>& elevation,
-                                                    const ocean::LandSea* landSea, const world::MaskEncoding& encoding) {
+                                                    const ocean::LandSea* landSea, const world::MaskEncoding& encoding,
+                                                    const raster::TilePyramid* waterTiles) {
   using world::WorldLayer;
   using raster::Raster;
   world::WorldData d;
@@ -39,7 +42,9 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
     std::fill(d.elevation.values.begin(), d.elevation.values.end(), -10000.0f);
   }
   world::nodataToSeaLevel(d.elevation);  // as the viewer does
-  if (mask && directly(mask)) {
+  if (waterTiles) {
+    d.water = world::waterLayerOf(*waterTiles, world::globalGridFor(mask.get()).lonStepDeg);
+  } else if (mask && directly(mask)) {
     d.water = world::waterLayerOf(*mask, encoding);
   } else if (landSea) {
     d.water = world::globalGridFor((mask ? mask : elevation).get());
@@ -53,6 +58,14 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
     std::fill(d.water.values.begin(), d.water.values.end(), 1.0f);
   }
   return std::make_shared<const world::WorldGrids>(std::move(d.elevation), std::move(d.water));
+}
+
+std::shared_ptr<const raster::TilePyramid> oceanWaterTiles(const ocean::LandSea* landSea,
+                                                           const std::shared_ptr<const raster::Raster>& mask) {
+  const auto* layered = dynamic_cast<const ocean::LayeredLandSea*>(landSea);
+  if (!layered || !mask) return nullptr;
+  const world::RasterLayer* l = world::streamedMaskLayer(layered->stack(), world::globalGridFor(mask.get()).lonStepDeg);
+  return l ? world::waterPyramid(l->raster, l->encoding) : nullptr;
 }
 
 bool coversOpaquely(const world::WorldGrids& world, double cellPx, double lat0, double lat1, double lon0, double lon1,

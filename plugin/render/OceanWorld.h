@@ -6,6 +6,7 @@
 #pragma once
 
 #include "globe/world/WorldGrids.h"
+#include "globe/raster/TilePyramid.h"
 #include "plugin/landsea/LandSea.h"
 
 #include <memory>
@@ -13,11 +14,22 @@
 namespace geocean::ocean_render {
 
 // mask, elevation, landSea may each be null (no relief: deep water; no
-// classes: water everywhere).
+// classes: water everywhere). With waterTiles (oceanWaterTiles) the water
+// grid is that pyramid's coarse level (world::waterLayerOf), not a
+// resample of every cell through the classifier.
 std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const raster::Raster>& mask,
                                                     const std::shared_ptr<const raster::Raster>& elevation,
                                                     const ocean::LandSea* landSea,
-                                                    const world::MaskEncoding& encoding = {});
+                                                    const world::MaskEncoding& encoding = {},
+                                                    const raster::TilePyramid* waterTiles = nullptr);
+
+// The streamed mask's coverage pyramid when the land/sea is a layer stack
+// whose first mask is drawn from tiles (world::streamedMaskLayer at the
+// water grid's step for `mask`, the snapshot's drawing mask: the host
+// terrain's rule, pyramid and disk cache); null
+// otherwise.
+std::shared_ptr<const raster::TilePyramid> oceanWaterTiles(const ocean::LandSea* landSea,
+                                                           const std::shared_ptr<const raster::Raster>& mask);
 
 // The ocean's side of the host/layer contract: true when it draws every
 // pixel over the rectangle opaque, for pixels whose footprint there is up to

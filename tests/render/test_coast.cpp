@@ -24,7 +24,10 @@
 #include "globe/raster/Raster.h"
 #include "globe/raster/World.h"
 #include "globe/render/Session.h"
+#include "globe/world/LayerStack.h"
 #include "plugin/landsea/LandSea.h"
+#include "plugin/ocean/Ocean.h"
+#include "plugin/render/OceanWorld.h"
 #include "shaders/Shaders.h"
 #include "tests/support/Subprocess.h"
 
@@ -96,6 +99,55 @@ Scene& scene() {
   return s;
 }
 
+// The bundled 1.25' mask as a layer over the default world, built the way
+// the product builds it (issue 12): the host's world by
+// world::loadLayeredWorld (its terrain streams the mask's tiles), the
+// ocean's grids, land/sea and streamed tiles from the façade's snapshot by
+// oceanWorld/oceanWaterTiles, as plugin/capi's draw does. The control is
+// the same stack drawn from the 5' water grids alone on both sides (no
+// tiles), as before the ocean streamed.
+struct Streamed {
+  std::shared_ptr<WorldTextures> world, gridWorld;
+  std::unique_ptr<GlobeRenderer> renderer, gridRenderer;
+  std::shared_ptr<ocean_render::OceanRenderer> ocean, gridOcean;
+};
+
+Streamed& streamed() {
+  static Streamed s = [] {
+    scene();  // the session's context
+    Streamed c;
+    // A cache of this test's own (the pyramid is built once per process).
+    const std::string cache = ::testing::TempDir() + "/coast_tiles." + std::to_string(::getpid());
+    ::setenv("GEOCEAN_TILE_CACHE", cache.c_str(), 1);
+    const std::string fine = raster::defaultWorld().maskFine;
+    world::WorldData d = world::loadLayeredWorld({{world::LayerKind::Mask, fine, "", 0}}, true);
+    EXPECT_TRUE(d.waterSource) << "the 1.25' mask should be streamed";
+    TerrainOptions t;
+    t.waitForTiles = true;  // as geocean render
+    c.world = std::make_shared<WorldTextures>(d);
+    c.renderer = std::make_unique<GlobeRenderer>(c.world, t);
+    d.waterSource = nullptr;
+    c.gridWorld = std::make_shared<WorldTextures>(d);
+    c.gridRenderer = std::make_unique<GlobeRenderer>(c.gridWorld, t);
+    ocean::Ocean o;
+    o.setDefaultWorld(ocean::Ocean::defaultWorldDir());
+    o.addMaskLayerFile(fine);
+    const auto snap = o.current();
+    ocean_render::OceanOptions oo;
+    oo.waterTiles = ocean_render::oceanWaterTiles(snap->landSea.get(), snap->mask);
+    const auto grids = ocean_render::oceanWorld(snap->mask, snap->elevation, snap->landSea.get(), snap->maskEncoding,
+                                                oo.waterTiles.get());
+    EXPECT_TRUE(oo.waterTiles) << "the ocean should stream the 1.25' mask";
+    c.ocean = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+    c.ocean->setCompleteTiles(true);
+    c.gridOcean = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea);
+    c.renderer->addLayer(std::make_shared<DirectOceanLayer>(c.ocean));
+    c.gridRenderer->addLayer(std::make_shared<DirectOceanLayer>(c.gridOcean));
+    return c;
+  }();
+  return s;
+}
+
 struct Frame {
   ViewPose pose;
   camera::Camera cam = camera::Camera::fromView(ViewPose{});
@@ -105,10 +157,14 @@ struct Frame {
   bool drawn(int x, int y) const { return ocean[std::size_t(y) * pose.width + x] != 0; }
 };
 
+Frame render(const ViewPose& p, GlobeRenderer& renderer, ocean_render::OceanRenderer* ocean, const std::string& name);
+
 Frame render(const ViewPose& p, bool fine, const std::string& name) {
   Scene& s = scene();
-  ocean_render::OceanRenderer* ocean = fine ? s.fineOcean.get() : s.defaultOcean;
-  GlobeRenderer& renderer = fine ? *s.fineRenderer : *s.defaultRenderer;
+  return render(p, fine ? *s.fineRenderer : *s.defaultRenderer, fine ? s.fineOcean.get() : s.defaultOcean, name);
+}
+
+Frame render(const ViewPose& p, GlobeRenderer& renderer, ocean_render::OceanRenderer* ocean, const std::string& name) {
   ocean->setWriteData(true);
   gl::Framebuffer fb(p.width, p.height, true);
   fb.bind();
@@ -208,7 +264,14 @@ std::vector<QueryRow> query(const std::vector<geo::Geodetic>& pts, const std::st
 // Every non-shore pixel's ground point through `geocean query` (with
 // `extra` layers): water with a sea height where the ocean drew, land
 // without one where it did not. Returns the pixels checked.
+int queryMismatches(const Frame& f, const std::string& extra, int& water, int& land, bool expectNone);
+
 void expectQueryFollowsPicture(const Frame& f, const std::string& extra, int& water, int& land) {
+  queryMismatches(f, extra, water, land, true);
+}
+
+// The pixels whose query disagrees with the picture (failures only with expectNone).
+int queryMismatches(const Frame& f, const std::string& extra, int& water, int& land, bool expectNone) {
   std::vector<geo::Geodetic> pts;
   std::vector<std::pair<int, int>> where;
   for (int y = 0; y < f.pose.height; y += 2)
@@ -219,7 +282,8 @@ void expectQueryFollowsPicture(const Frame& f, const std::string& extra, int& wa
       where.emplace_back(x, y);
     }
   const auto rows = query(pts, extra);
-  ASSERT_EQ(rows.size(), pts.size());
+  EXPECT_EQ(rows.size(), pts.size());
+  if (rows.size() != pts.size()) return -1;
   int bad = 0;
   water = land = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -227,14 +291,17 @@ void expectQueryFollowsPicture(const Frame& f, const std::string& extra, int& wa
     (drawn ? water : land)++;
     const bool wet = rows[i].surface != "land";
     if (wet != drawn || rows[i].hasSeaHeight != drawn) {
-      if (++bad <= 10)
+      if (++bad <= 10 && expectNone)
         ADD_FAILURE() << "pixel " << where[i].first << "," << where[i].second << " drawn "
                       << (drawn ? "water" : "land") << ", query at " << pts[i].latDeg << "," << pts[i].lonDeg
                       << " says " << rows[i].surface << (rows[i].hasSeaHeight ? " with" : " without")
                       << " a sea height";
     }
   }
-  EXPECT_EQ(bad, 0) << "of " << rows.size() << " pixels";
+  if (expectNone) {
+    EXPECT_EQ(bad, 0) << "of " << rows.size() << " pixels";
+  }
+  return bad;
 }
 
 TEST(Coast, CpuCoverageIsTheShadersBSpline) {
@@ -345,6 +412,38 @@ TEST(Coast, QueryFollowsThePictureWithThe3sGibraltarMask) {
   }
   EXPECT_GT(water, 2000);
   EXPECT_GT(land, 2000);
+}
+
+// A global mask finer than the water grid (the bundled 1.25' one) as a
+// layer: the ocean draws its coverage from the mask's streamed tiles, so
+// `geocean query --mask` follows the picture at every pixel away from the
+// shoreline. Drawn from the 5' water grids alone (the control), the same
+// views disagree.
+TEST(Coast, QueryFollowsThePictureWithAStreamedGlobalMask) {
+  Streamed& s = streamed();
+  const std::string extra = " --mask " + raster::defaultWorld().maskFine;
+  int water = 0, land = 0, controlBad = 0;
+  for (const auto& [name, p] :
+       {std::pair{std::string("tarifa_5km"), pose(36.05, -5.62, 5000.0, 150.0, -50.0)},
+        std::pair{std::string("gibraltar_5km"), pose(36.10, -5.37, 5000.0, 20.0, -55.0)},
+        std::pair{std::string("gibraltar_20km"), pose(36.0, -5.45, 20000.0, 0.0, -70.0)}}) {
+    const Frame f = render(p, *s.renderer, s.ocean.get(), "streamed_" + name);
+    int w = 0, l = 0;
+    expectQueryFollowsPicture(f, extra, w, l);
+    const Frame g = render(p, *s.gridRenderer, s.gridOcean.get(), "streamed_control_" + name);
+    int gw = 0, gl = 0;
+    const int bad = queryMismatches(g, extra, gw, gl, false);
+    std::printf("1.25' %s: %d water, %d land pixels agree; drawn from the grids: %d of %d disagree\n", name.c_str(),
+                w, l, bad, gw + gl);
+    water += w, land += l, controlBad += bad;
+  }
+  EXPECT_GT(water, 2000);
+  EXPECT_GT(land, 2000);
+  EXPECT_GT(controlBad, 100) << "the control (the grids' water) should disagree with the 1.25' query";
+  const gl::TilePool& pool = s.ocean->waterPages()->pool();
+  std::printf("ocean tile pool: %d resident, %llu uploads\n", pool.stats().resident,
+              (unsigned long long)pool.stats().uploads);
+  EXPECT_GT(pool.stats().uploads, 0u);
 }
 
 // Pixels of a frame whose drawn class differs from the side of the 3"

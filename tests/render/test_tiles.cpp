@@ -1,4 +1,4 @@
-// The GPU tile pool (globe/render/TilePool.h) and the terrain's streamed
+// The GPU tile pool (globe/gl/TilePool.h) and the terrain's streamed
 // water (issue 12 item 2): a fixed pool whatever the raster's size, the
 // ancestor drawn until a tile arrives (never a hole, never a wait), texels
 // on the GPU equal to the pyramid's, and the streamed picture of the default
@@ -9,9 +9,10 @@
 #include "globe/raster/GeoTiffWriter.h"
 #include "globe/raster/World.h"
 #include "globe/render/GlobeRenderer.h"
-#include "globe/render/TilePool.h"
+#include "globe/gl/TilePool.h"
 #include "globe/render/WorldTextures.h"
 #include "globe/world/LayerStack.h"
+#include "globe/world/WaterPyramid.h"
 #include "globe/world/WorldData.h"
 #include "tests/support/TempDir.h"
 
@@ -64,7 +65,7 @@ std::shared_ptr<const raster::Raster> synthetic(int w, int h) {
 }
 
 // Frames (endFrame) until `want` is drawn itself; polls, no timing asserted.
-int waitFor(render::TilePool& pool, TileId want) {
+int waitFor(gl::TilePool& pool, TileId want) {
   TileId drawn;
   for (int frame = 0; frame < 20000; ++frame) {
     const int s = pool.slotOf(want, &drawn);
@@ -82,10 +83,10 @@ TEST(TilePool, AncestorUntilTheTileArrivesThenItsExactTexels) {
   TempDir t;
   auto pyr = raster::TilePyramid::open(synthetic(4096, 2048), quiet(t.path));
   ASSERT_EQ(pyr->levels(), 5);
-  render::TilePoolOptions o;
+  gl::TilePoolOptions o;
   o.slots = 16;
   o.internalFormat = GL_R32F;
-  render::TilePool pool(pyr, o);
+  gl::TilePool pool(pyr, o);
   // Before any load: the pinned top (the whole raster) answers at once.
   TileId drawn;
   const TileId want{0, 5, 3};
@@ -119,9 +120,9 @@ TEST(TilePool, BoundsDoNotGrowWithTheRasterAndNothingWaits) {
   ro.fewLookups = true;
   auto pBig = raster::TilePyramid::open(raster::Raster::open(big, ro), quiet(t.path / "c"));
   auto pSmall = raster::TilePyramid::open(synthetic(1024, 512), quiet(t.path / "c"));
-  render::TilePoolOptions o;
+  gl::TilePoolOptions o;
   o.slots = 32;
-  render::TilePool a(pBig, o), b(pSmall, o);
+  gl::TilePool a(pBig, o), b(pSmall, o);
   EXPECT_EQ(a.gpuBytes(), b.gpuBytes());
   EXPECT_EQ(a.gpuBytes(), std::size_t(32) * 258 * 258);  // R8
   EXPECT_EQ(a.cpuBoundBytes(), b.cpuBoundBytes());
@@ -161,7 +162,7 @@ TEST(TilePool, BoundsDoNotGrowWithTheRasterAndNothingWaits) {
 
 namespace {
 gl::Image renderWorld(std::shared_ptr<render::WorldTextures> world, const camera::ViewPose& pose, int maxFrames,
-                      render::TilePool* pool, gl::Image* first = nullptr) {
+                      gl::TilePool* pool, gl::Image* first = nullptr) {
   render::GlobeRenderer r(world);
   gl::Framebuffer fb(pose.width, pose.height);
   fb.bind();
@@ -225,7 +226,7 @@ TEST(TerrainTiles, StreamedWaterMatchesTheSingleTextureAtTheDefaultMask) {
   const world::WorldData data = world::loadDefaultWorld();
   auto mask = raster::Raster::open(raster::defaultWorld().mask);
   auto single = std::make_shared<render::WorldTextures>(data);
-  auto tiled = std::make_shared<render::WorldTextures>(data, render::waterPyramid(mask, {}, quiet(t.path)));
+  auto tiled = std::make_shared<render::WorldTextures>(data, world::waterPyramid(mask, {}, quiet(t.path)));
   for (const auto& [name, pose] :
        {std::pair{"strait-40km", camera::ViewPose{35.95, -5.6, 40000.0, 0.0, -60.0, 0.0, 45.0, 480, 270}},
         std::pair{"europe-2500km", camera::ViewPose{45.0, 10.0, 2.5e6, 0.0, -90.0, 0.0, 45.0, 480, 270}}}) {
@@ -255,7 +256,7 @@ TEST(TerrainTiles, FineMaskWiderThanOneTextureIsDrawnStreamed) {
   ASSERT_EQ(fine->width(), 17280);
   EXPECT_GT(fine->width(), maxTex);
   const world::WorldData data = world::loadDefaultWorld();
-  auto pyr = render::waterPyramid(fine, {}, quiet(t.path));
+  auto pyr = world::waterPyramid(fine, {}, quiet(t.path));
   auto tiled = std::make_shared<render::WorldTextures>(data, pyr);
   auto single = std::make_shared<render::WorldTextures>(data);
   const camera::ViewPose pose{36.0, -5.5, 60000.0, 0.0, -70.0, 0.0, 45.0, 480, 270};

@@ -396,6 +396,13 @@ typedef struct geocean_view {
  * Since ABI 1.5: a plugin built before it rejects the bit
  * (INVALID_ARGUMENT naming draw_flags). */
 #define GEOCEAN_DRAW_NO_REFRACTION 2u
+/* A single picture: where the ocean draws a streamed mask's coverage from
+ * tiles (a layer's global mask finer than its water grid, issue 12), the
+ * draw first waits (bounded) for the tiles its view asks for instead of
+ * drawing their coarser ancestors. Views leave it off: they never wait.
+ * Added within ABI 1.5 (this session): an earlier 1.5 plugin rejects the
+ * bit (INVALID_ARGUMENT naming draw_flags). */
+#define GEOCEAN_DRAW_COMPLETE_TILES 4u
 
 /* Fills *view with defaults: struct_size, a 1280x720 view 10,000 km above
  * (0 N, 0 E) looking down, 45 deg field of view, reversed-Z projection,

@@ -31,7 +31,7 @@
 #include <unordered_map>
 #include <vector>
 
-namespace geocean::render {
+namespace geocean::gl {
 
 struct TilePoolOptions {
   int slots = 192;
@@ -51,6 +51,9 @@ class TilePool {
   ~TilePool();
   TilePool(const TilePool&) = delete;
   TilePool& operator=(const TilePool&) = delete;
+  // Without the context of its texture: the destructor then makes no GL
+  // call (the context owns the name) and only stops the workers.
+  void abandonGl() { texture_ = 0; }
 
   // The layer holding `want` or, until it arrives, its nearest resident
   // ancestor (`drawn` says which). Queues `want` when it is missing. Never
@@ -67,6 +70,10 @@ class TilePool {
   void waitIdle();
 
   GLuint texture() const { return texture_; }
+  // Every resident tile and its layer (a drawer's page table), and a count
+  // that changes whenever that set does.
+  std::vector<std::pair<raster::TileId, int>> residentTiles() const;
+  std::uint64_t residencyVersion() const { return residency_; }
   const raster::TilePyramid& pyramid() const { return *pyramid_; }
   int slots() const { return options_.slots; }
   std::size_t gpuBytes() const;
@@ -96,6 +103,7 @@ class TilePool {
   std::vector<SlotInfo> slotInfo_;
   std::unordered_map<std::uint64_t, int> resident_;  // key -> slot
   Stats stats_;
+  std::uint64_t residency_ = 0;
 
   // Shared with the workers.
   mutable std::mutex mutex_;
@@ -113,4 +121,4 @@ class TilePool {
   std::vector<std::thread> workers_;
 };
 
-}  // namespace geocean::render
+}  // namespace geocean::gl

@@ -1,10 +1,10 @@
-#include "globe/render/TilePool.h"
+#include "globe/gl/TilePool.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-namespace geocean::render {
+namespace geocean::gl {
 
 std::uint64_t TilePool::keyOf(raster::TileId id) {
   return (std::uint64_t(id.level) << 56) | (std::uint64_t(std::uint32_t(id.y)) << 28) | std::uint32_t(id.x);
@@ -42,7 +42,7 @@ TilePool::~TilePool() {
   space_.notify_all();
   idle_.notify_all();
   for (auto& w : workers_) w.join();
-  glDeleteTextures(1, &texture_);
+  if (texture_) glDeleteTextures(1, &texture_);
 }
 
 std::size_t TilePool::gpuBytes() const {
@@ -63,6 +63,13 @@ TilePool::Stats TilePool::stats() const {
   s.queued = int(queue_.size());
   s.ready = int(ready_.size());
   return s;
+}
+
+std::vector<std::pair<raster::TileId, int>> TilePool::residentTiles() const {
+  std::vector<std::pair<raster::TileId, int>> out;
+  out.reserve(resident_.size());
+  for (const auto& [key, slot] : resident_) out.emplace_back(slotInfo_[std::size_t(slot)].id, slot);
+  return out;
 }
 
 int TilePool::residentSlot(raster::TileId id) {
@@ -154,6 +161,7 @@ void TilePool::endFrame() {
     slotInfo_[std::size_t(best)] = {id, 0, false};
     resident_[k] = best;
     ++stats_.uploads;
+    ++residency_;
   }
   ++frame_;
 }
@@ -197,4 +205,4 @@ void TilePool::work() {
   }
 }
 
-}  // namespace geocean::render
+}  // namespace geocean::gl

@@ -1,0 +1,59 @@
+#include "globe/world/WaterPyramid.h"
+
+#include <cmath>
+#include <cstddef>
+#include <string>
+
+namespace geocean::world {
+
+std::shared_ptr<const raster::TilePyramid> waterPyramid(std::shared_ptr<const raster::Raster> mask,
+                                                        const MaskEncoding& encoding, raster::PyramidOptions options) {
+  // The map's id names the encoding's classes: another encoding, another cache.
+  std::string classes;
+  for (const Surface s : encoding.classOf) classes += char('0' + int(s));
+  options.valueMapId = "water-coverage:" + classes;
+  options.valueMap = [encoding](float* v, std::size_t n, int channels) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const float w = encoding.isWater(v[i * channels]) ? 1.0f : 0.0f;
+      for (int c = 0; c < channels; ++c) v[i * channels + c] = w;
+    }
+  };
+  return raster::TilePyramid::open(std::move(mask), std::move(options));
+}
+
+const RasterLayer* streamedMaskLayer(const LayerStack& stack, double gridLonStepDeg) {
+  if (!stack.drawingMask()) return nullptr;
+  for (const RasterLayer& l : stack.layers()) {
+    if (l.kind != LayerKind::Mask) continue;
+    const raster::GeoTransform& t = l.raster->transform();
+    const bool global = t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * l.raster->height() + 180.0) < 1e-6;
+    return global && t.lonStepDeg < 0.999 * gridLonStepDeg ? &l : nullptr;
+  }
+  return nullptr;
+}
+
+WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg) {
+  const raster::GeoTransform& t = water.source().transform();
+  int level = 0;
+  while (level + 1 < water.levels() && std::abs(t.lonStepDeg) * double(2 << level) <= stepDeg * (1.0 + 1e-9)) ++level;
+  while (level + 1 < water.levels() && water.levelWidth(level) > 16384) ++level;
+  const raster::GeoTransform lt = water.levelTransform(level);
+  WorldLayer l;
+  l.width = water.levelWidth(level), l.height = water.levelHeight(level);
+  l.originLonDeg = lt.originLonDeg, l.originLatDeg = lt.originLatDeg;
+  l.lonStepDeg = lt.lonStepDeg, l.latStepDeg = lt.latStepDeg;
+  l.values.assign(std::size_t(l.width) * l.height, 0.0f);
+  const int T = water.tileSize(), c = water.channels();
+  for (int ty = 0; ty < water.tilesY(level); ++ty)
+    for (int tx = 0; tx < water.tilesX(level); ++tx) {
+      const auto tile = water.interior({level, tx, ty});
+      for (int y = 0; y < T && ty * T + y < l.height; ++y)
+        for (int x = 0; x < T && tx * T + x < l.width; ++x) {
+          const float v = (*tile)[(std::size_t(y) * T + x) * c];
+          l.values[std::size_t(ty * T + y) * l.width + tx * T + x] = std::isnan(v) ? 0.0f : v;
+        }
+    }
+  return l;
+}
+
+}  // namespace geocean::world
