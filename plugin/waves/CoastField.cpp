@@ -7,6 +7,8 @@
 #include <limits>
 #include <sstream>
 
+#include <tbb/parallel_for.h>
+
 namespace geocean::waves {
 
 namespace {
@@ -23,6 +25,7 @@ constexpr double kPhaseEps = 1e-5, kAngleEps = 1e-9, kKrEps = 1e-7;
 // Kr bounds: where rays cross (caustics) or diverge at the shoreline the
 // ray-tube width has no meaning; the breaking cap limits heights anyway.
 constexpr double kKrMin = CoastField::kMinKr, kKrMax = CoastField::kMaxKr;
+constexpr double kMaxIslandRadiusNodes = 64.0;
 
 double smooth01(double x) {
   x = std::clamp(x, 0.0, 1.0);
@@ -49,6 +52,8 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
   if (r.nodes < 5 || r.nodes > 2049) return bad("nodes", r.nodes, "expected 5 .. 2049");
   if (r.margin < 1 || 2 * r.margin >= r.nodes) return bad("margin", r.margin, "expected 1 .. nodes / 2");
   if (r.cellM * (r.nodes - 1) > 40e3) return bad("cellM * (nodes - 1)", r.cellM * (r.nodes - 1), "expected <= 40 km");
+  if (!(r.islandRadiusM >= 0.0 && r.islandRadiusM <= 40e3))
+    return bad("islandRadiusM", r.islandRadiusM, "expected 0 (automatic) .. 40 km");
 
   const int n = r.nodes;
   cf.region_ = r;
@@ -67,10 +72,13 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
   const double half = 0.5 * (n - 1);
   auto x = [&](int i) { return (i - half) * r.cellM; };
   std::vector<double> depth(std::size_t(n) * n);
+  IslandInputs& isl = cf.islandInputs_;
+  isl.elevation.resize(depth.size());
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       const double h = depthAt(x(i), x(j));
       depth[std::size_t(j) * n + i] = std::isfinite(h) ? std::max(h, kMinDepthM) : kMinDepthM;
+      isl.elevation[std::size_t(j) * n + i] = std::isfinite(h) ? -h : -kMinDepthM;
     }
 
   const auto& comps = field.components();
@@ -82,13 +90,37 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
   std::vector<char> fixedNode(depth.size());
   auto at = [n](int i, int j) { return std::size_t(j) * n + i; };
   kd::Kernel kernel{};
+  // Travel directions at the centre (as the kernel's great circles there).
+  isl.nodes = n;
+  isl.components = int(comps.size());
+  isl.cellM = r.cellM;
+  isl.travel.assign(comps.size(), glm::dvec4(0.0));
+  std::vector<char> atSource(comps.size(), 0);
+  double longest = 0.0;
   for (std::size_t c = 0; c < comps.size(); ++c) {
     const WaveField::Component& w = comps[c];
-    // Travel direction at the centre (as the kernel's great circle there).
     glm::dvec3 g = radial * glm::dot(w.source, radial) - w.source;
-    if (glm::length(g) < 1e-12) continue;  // at its source: the taper is 0 here
-    g = glm::normalize(g);
-    const double s0x = glm::dot(g, cf.east_), s0y = glm::dot(g, cf.north_);
+    atSource[c] = glm::length(g) < 1e-12;  // at its source: the taper is 0 here
+    g = atSource[c] ? cf.east_ : glm::normalize(g);
+    isl.travel[c] = glm::dvec4(glm::dot(g, cf.east_), glm::dot(g, cf.north_), w.omega, 0.0);
+    longest = std::max(longest, 2.0 * kPi * WV_G / (w.omega * w.omega));
+  }
+  // Occlusion radius: a few wavelengths (the shadow's Fresnel zone), at most
+  // half the region and 64 nodes (the build's cost grows with its square).
+  isl.radiusCells = std::min({(r.islandRadiusM > 0.0 ? r.islandRadiusM : 6.0 * longest) / r.cellM, 0.5 * (n - 1),
+                              kMaxIslandRadiusNodes});
+  isl.radiusCells = std::max(isl.radiusCells, 1.0);
+  isl.landSat.assign(std::size_t(n + 1) * (n + 1), 0);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      isl.landSat[std::size_t(j + 1) * (n + 1) + i + 1] = int(isl.elevation[at(i, j)] > 0.0) +
+          isl.landSat[std::size_t(j) * (n + 1) + i + 1] + isl.landSat[std::size_t(j + 1) * (n + 1) + i] -
+          isl.landSat[std::size_t(j) * (n + 1) + i];
+  cf.islands_ = islandTable(isl, &cf.shadow_);
+  for (std::size_t c = 0; c < comps.size(); ++c) {
+    const WaveField::Component& w = comps[c];
+    if (atSource[c]) continue;
+    const double s0x = isl.travel[c].x, s0y = isl.travel[c].y;
     const double k0 = w.kRef;
     // The kernel's own dispersion solve (Guo + 2 Newton steps, ~1e-9) and
     // its deep-water cut-off: deep nodes get exactly k_deep, as the kernel.
@@ -199,8 +231,11 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
         const std::size_t p = at(i, j);
         if (!std::isfinite(s[p]) || !std::isfinite(q[p])) continue;  // not reached from the inflow edges
         const double delta = s[p] - k0 * (s0x * x(i) + s0y * x(j));
-        const double beta = std::atan2(s0x * sy[p] - s0y * sx[p], s0x * sx[p] + s0y * sy[p]);
-        const double kr = std::clamp(std::exp(-0.5 * q[p]), kKrMin, kKrMax);
+        // The island table: D_obs on the height, theta_def on the direction.
+        const glm::dvec4 isle = cf.islands_[c * std::size_t(n) * n + p];
+        const double lit = 1.0 - cf.shadow_[c * std::size_t(n) * n + p];
+        const double beta = lit * std::atan2(s0x * sy[p] - s0y * sx[p], s0x * sx[p] + s0y * sy[p]) + isle.w;
+        const double kr = (1.0 + lit * (std::clamp(std::exp(-0.5 * q[p]), kKrMin, kKrMax) - 1.0)) * isle.z;
         if (std::abs(delta) < kPhaseEps && std::abs(beta) < kAngleEps && std::abs(kr - 1.0) < kKrEps) continue;
         const int edge = std::min(std::min(i, j), std::min(n - 1 - i, n - 1 - j));
         const double wgt = smooth01(double(edge) / r.margin);
@@ -211,6 +246,25 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
       }
   }
   return cf;
+}
+
+std::vector<glm::dvec4> CoastField::islandTable(const IslandInputs& in, std::vector<double>* shadowOut) {
+  const int n = in.nodes;
+  std::vector<glm::dvec4> out(std::size_t(in.components) * n * n, glm::dvec4(1.0, 0.0, 1.0, 0.0));
+  std::vector<double> shadowLocal;
+  std::vector<double>& shadow = shadowOut ? *shadowOut : shadowLocal;
+  shadow.assign(out.size(), 0.0);
+  if (n == 0 || in.components == 0) return out;
+  tbb::parallel_for(0, n, [&](int j) {
+    kd::Kernel k{};
+    k.wvIslandElev = in.elevation.data();
+    k.wvIslandLandSat = in.landSat.data();
+    k.wvIslandComps = in.travel.data();
+    k.wvIslandTable = out.data();
+    k.wvIslandShadow = shadow.data();
+    for (int i = 0; i < n; ++i) k.wv_islandNode(n, i, j, in.components, in.cellM, in.radiusCells);
+  });
+  return out;
 }
 
 kd::WvCoast CoastField::at(const glm::dvec3& o) const {

@@ -21,7 +21,18 @@
 //
 // Limits: rays that enter through a shallow inflow edge start as the plane
 // wave there (choose a region whose up-wave edges are deep); first arrivals
-// only (no crossing seas behind a shoal); no diffraction.
+// only (no crossing seas behind a shoal).
+//
+// Islands (paper 003 sec. 3): the table (D_blo, theta_blo, D_obs, theta_def)
+// per component and node from the same elevation (shaders/coast_islands.glsl,
+// built on the CPU here and by plugin/render/CoastIslandsGpu on the GPU);
+// D_obs scales the amplitude and theta_def turns the direction behind land
+// (folded into the texels, so the kernel and its parity are unchanged); in
+// a shadow they replace the eikonal's ray-tube Kr and turning, which have
+// no meaning there (blended by the land's share of the Fresnel zones).
+// The diffracted wave keeps the eikonal's phase (only its height and
+// direction change, as in the paper); rebuilt with the field, i.e. when the
+// wind direction changes.
 #pragma once
 
 #include "plugin/waves/WaveKernel.h"
@@ -44,7 +55,19 @@ class CoastField {
     double cellM = 50.0;                // node spacing
     int nodes = 201;                    // N: nodes per side (odd: the centre is a node)
     int margin = 8;                     // edge nodes blended to 0
+    double islandRadiusM = 0.0;         // occlusion radius (<= 64 nodes); 0: 6 deep-water wavelengths of the longest
   };
+  // What the island table is built from (the same for CPU and GPU).
+  struct IslandInputs {
+    int nodes = 0, components = 0;
+    double cellM = 0.0, radiusCells = 0.0;
+    std::vector<double> elevation;    // per node (row-major), m; > 0: land
+    std::vector<int> landSat;         // summed-area table of the land nodes, (nodes + 1)^2
+    std::vector<glm::dvec4> travel;   // per component: travel direction (x east, y north), omega, 0
+  };
+  // The table on the CPU (threads over rows): component-major like texels();
+  // `shadow` (if given): per entry, how far D_obs replaces the eikonal's Kr (0 .. 1).
+  static std::vector<glm::dvec4> islandTable(const IslandInputs& in, std::vector<double>* shadow = nullptr);
   // depthAt(eastM, northM): water depth (m; <= 0 on land) at the offset from
   // the centre in its tangent plane. The field needs model Gerstner. On bad
   // input returns an empty field and sets `error` naming the field and value.
@@ -64,6 +87,9 @@ class CoastField {
   // Per component, per node (row-major, y then x): for wvCoastTexels[].
   const std::vector<glm::dvec4>& texels() const { return texels_; }
   std::vector<glm::vec4> gpuTexels() const;
+  // The island table (D_blo, theta_blo, D_obs, theta_def) the texels were folded with, and its inputs.
+  const std::vector<glm::dvec4>& islands() const { return islands_; }
+  const IslandInputs& islandInputs() const { return islandInputs_; }
 
   // The grid's frame: centre (ECEF) and unit east / north there.
   const glm::dvec3& centreEcef() const { return centre_; }
@@ -76,6 +102,9 @@ class CoastField {
   glm::dvec3 centre_{0.0}, east_{0.0}, north_{0.0};
   glm::dvec3 eAxis_{0.0}, nAxis_{0.0};  // east / north per cell, rounded to float
   std::vector<glm::dvec4> texels_;
+  std::vector<glm::dvec4> islands_;
+  std::vector<double> shadow_;
+  IslandInputs islandInputs_;
 };
 
 }  // namespace geocean::waves

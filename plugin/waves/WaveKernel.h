@@ -22,7 +22,9 @@ using glm::ivec4;
 // Using-declarations (not a using-directive) so that unqualified calls in the
 // shared code can never pick ::abs(int) and friends from the C library.
 using glm::abs;
+using glm::ceil;
 using glm::atan;
+using glm::clamp;
 using glm::cos;
 using glm::cross;
 using glm::dot;
@@ -55,7 +57,14 @@ struct Kernel {
   const WvFftPlane* wvFftPlanes = nullptr;
   const WR4* wvFftTexels = nullptr;
   const WR4* wvCoastTexels = nullptr;
+  // The island table's build (shaders/coast_islands.glsl, CoastField.cpp).
+  const WR* wvIslandElev = nullptr;
+  const int* wvIslandLandSat = nullptr;
+  const WR4* wvIslandComps = nullptr;
+  WR4* wvIslandTable = nullptr;
+  WR* wvIslandShadow = nullptr;
 #include "shaders/waves.glsl"
+#include "shaders/coast_islands.glsl"
 };
 #undef WR
 #undef WR2
@@ -63,6 +72,7 @@ struct Kernel {
 #undef WR4
 #undef WAVES_TYPES_GLSL
 #undef WAVES_GLSL
+#undef COAST_ISLANDS_GLSL
 }  // namespace kd
 
 namespace kf {

@@ -13,6 +13,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
+#include <cstdio>
 #include <functional>
 #include <memory>
 
@@ -233,4 +235,136 @@ TEST(Coast, SeaStateOutputsSeeRefraction) {
   // From 240 (travel 60) turning toward the shore normal's from-direction, 270.
   EXPECT_GT(s1.waveFromDeg, s0.waveFromDeg + 5.0);
   EXPECT_LT(s1.waveFromDeg, 270.0);
+}
+
+// ---- Islands (item 2): diffraction behind a semi-infinite breakwater -------
+
+namespace {
+// Fresnel integrals C(x), S(x) by composite Simpson (2000 panels per unit:
+// error far below 1e-6 for |x| <= 20); independent of the code under test.
+std::complex<double> fresnelCS(double x) {
+  const int m = std::max(2, int(std::ceil(std::abs(x) * 2000.0)) * 2);
+  const double h = x / m;
+  std::complex<double> sum = 0.0;
+  for (int i = 0; i <= m; ++i) {
+    const double t = i * h, wgt = (i == 0 || i == m) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+    sum += wgt * std::complex<double>(std::cos(0.5 * kPi * t * t), std::sin(0.5 * kPi * t * t));
+  }
+  return sum * h / 3.0;
+}
+// Sommerfeld's exact solution for a rigid (fully reflecting) semi-infinite
+// breakwater (Penney & Price 1952; Coastal Engineering Manual II-7): the
+// breakwater on theta = 0 from the tip, the wave coming from theta0 in (0, pi);
+// |u| at polar (r, theta) about the tip, theta in [0, 2 pi], relative to the
+// incident amplitude. u = e^{-ikr cos(theta - theta0)} F(s1) + e^{-ikr cos(theta + theta0)} F(s2),
+// s = 2 sqrt(k r / pi) cos((theta -+ theta0) / 2), F(s) = (1 - i)/2 int_{-inf}^{s} e^{i pi t^2 / 2} dt.
+double sommerfeld(double k, double r, double theta, double theta0) {
+  const std::complex<double> I(0.0, 1.0);
+  auto F = [&](double s) { return (1.0 - I) * 0.5 * (std::complex<double>(0.5, 0.5) + fresnelCS(s)); };
+  const double c = 2.0 * std::sqrt(k * r / kPi);
+  const std::complex<double> u = std::exp(-I * k * r * std::cos(theta - theta0)) * F(c * std::cos(0.5 * (theta - theta0))) +
+                                 std::exp(-I * k * r * std::cos(theta + theta0)) * F(c * std::cos(0.5 * (theta + theta0)));
+  return std::abs(u);
+}
+
+struct Breakwater {
+  double dirRad;  // from the tip (the region's centre) along the breakwater, in the grid (east = 0, ccw)
+  double widthM;
+  double depthM = 200.0;
+  double operator()(double e, double n) const {
+    const double along = e * std::cos(dirRad) + n * std::sin(dirRad), across = -e * std::sin(dirRad) + n * std::cos(dirRad);
+    return along > 0.0 && std::abs(across) < 0.5 * widthM ? -5.0 : depthM;
+  }
+};
+}  // namespace
+
+// Relative amplitude behind the breakwater, from the island table and from the
+// query (the kernel's amplitude of the single component over its amplitude
+// far up-wave), against Sommerfeld's solution.
+TEST(Coast, BreakwaterDiffractionFollowsSommerfeld) {
+  for (double wind : {8.0}) {
+    WaveField w = oneComponent(wind, 90.0);
+    const double omega = w.components()[0].omega, k = w.components()[0].kRef, lambda = 2.0 * kPi / k;
+    const double cell = lambda / 5.0;
+    for (double thetaIncDeg : {90.0, 60.0, 120.0}) {
+      // Travel direction in the grid (the table's), and the breakwater so
+      // that the wave comes from theta0 = thetaInc relative to it.
+      CoastField::Region r;
+      r.latDeg = 0.3, r.lonDeg = 0.3, r.cellM = cell, r.nodes = 161, r.islandRadiusM = 12.0 * lambda;  // 60 nodes
+      std::string err;
+      // First the direction (any depth: the travel direction is the region's centre's).
+      const CoastField probe = CoastField::build(w, r, [](double, double) { return 1e4; }, err);
+      ASSERT_FALSE(probe.empty()) << err;
+      const double gamma = std::atan2(probe.islandInputs().travel[0].y, probe.islandInputs().travel[0].x);
+      const double theta0 = thetaIncDeg * kPi / 180.0;
+      const Breakwater bw{gamma + kPi - theta0, 2.5 * cell};
+      auto c = std::make_shared<const CoastField>(CoastField::build(w, r, bw, err));
+      ASSERT_FALSE(c->empty()) << err;
+      w.setCoast(c);
+      Probe p{w, bw, omega};
+      const double a0 = p.phaseAmp(-60 * cell * std::cos(gamma), -60 * cell * std::sin(gamma), 3.0).second;
+      const int n = r.nodes, half = n / 2;
+      // Nearest node to (e, n): its position and its table entry.
+      auto node = [&](double e, double nn, double& ex, double& nx) {
+        const int i = half + int(std::lround(e / cell)), j = half + int(std::lround(nn / cell));
+        ex = (i - half) * cell, nx = (j - half) * cell;
+        return c->islands()[std::size_t(j) * n + i].z;
+      };
+      auto reference = [&](double e, double nn) {
+        const double rr = std::hypot(e, nn);
+        double th = std::atan2(nn, e) - bw.dirRad;  // from the breakwater, ccw
+        th -= 2.0 * kPi * std::floor(th / (2.0 * kPi));
+        return sommerfeld(k, rr, th, theta0);
+      };
+      // On the geometric shadow line (the tip's ray along the travel), 3-5 wavelengths on.
+      for (double dist : {3.0, 4.0, 5.0}) {
+        double e, nn;
+        const double table = node(dist * lambda * std::cos(gamma), dist * lambda * std::sin(gamma), e, nn);
+        const double ref = reference(e, nn), query = p.phaseAmp(e, nn, 3.0).second / a0;
+        std::printf("wind %.0f inc %.0f shadow line %.0f L: table %.3f query %.3f sommerfeld %.3f\n", wind,
+                    thetaIncDeg, dist, table, query, ref);
+        EXPECT_NEAR(table, 0.5, 0.1) << "inc " << thetaIncDeg << " at " << dist << " wavelengths";
+        EXPECT_NEAR(table, ref, 0.1);
+        EXPECT_NEAR(query, table, 0.02);
+      }
+      // Into the shadow (toward the breakwater's lee face) at 4 wavelengths
+      // from the tip: falling monotonically, as the reference.
+      double prev = 1.0;
+      const double side = std::sin(bw.dirRad - gamma) > 0 ? 1.0 : -1.0;
+      for (double intoDeg : {8.0, 16.0, 24.0, 32.0, 40.0}) {
+        // Stay 20 degrees off the lee face (a 2.5-cell wall of nodes: 7 cells away there).
+        if (intoDeg >= 180.0 - thetaIncDeg - 20.0) break;
+        const double a = gamma + side * intoDeg * kPi / 180.0;
+        double e, nn;
+        const double table = node(4.0 * lambda * std::cos(a), 4.0 * lambda * std::sin(a), e, nn);
+        const double ref = reference(e, nn);
+        std::printf("  into %.0f deg: table %.3f sommerfeld %.3f\n", intoDeg, table, ref);
+        EXPECT_LT(table, prev) << "inc " << thetaIncDeg << " into " << intoDeg;
+        EXPECT_NEAR(table, ref, 0.1) << "inc " << thetaIncDeg << " into " << intoDeg;
+        prev = table;
+      }
+    }
+  }
+}
+
+// Shorter waves are lower in the same shadow (Sommerfeld: the Fresnel
+// parameter grows with sqrt(k r)): two seas on one grid and one breakwater.
+TEST(Coast, BreakwaterShadowIsDeeperForShorterWaves) {
+  WaveField shortW = oneComponent(8.0, 90.0), longW = oneComponent(12.0, 90.0);
+  const double lShort = 2.0 * kPi / shortW.components()[0].kRef, lLong = 2.0 * kPi / longW.components()[0].kRef;
+  ASSERT_GT(lLong, 1.5 * lShort);
+  CoastField::Region r;
+  r.latDeg = 0.3, r.lonDeg = 0.3, r.cellM = lShort / 5.0, r.nodes = 161, r.islandRadiusM = 12.0 * lShort;
+  std::string err;
+  const Breakwater bw{0.5 * kPi, 2.5 * r.cellM};  // north from the tip; both seas travel east within 3 degrees
+  const CoastField a = CoastField::build(shortW, r, bw, err), b = CoastField::build(longW, r, bw, err);
+  ASSERT_FALSE(a.empty() || b.empty()) << err;
+  const int n = r.nodes, half = n / 2;
+  for (double intoDeg : {10.0, 20.0, 30.0}) {
+    const double ang = intoDeg * kPi / 180.0, dist = 4.0 * lShort;
+    const int i = half + int(std::lround(dist * std::cos(ang) / r.cellM)), j = half + int(std::lround(dist * std::sin(ang) / r.cellM));
+    const double sa = a.islands()[std::size_t(j) * n + i].z, sb = b.islands()[std::size_t(j) * n + i].z;
+    std::printf("into %.0f deg at %.0f m: short (%.0f m) %.3f, long (%.0f m) %.3f\n", intoDeg, dist, lShort, sa, lLong, sb);
+    EXPECT_LT(sa, sb - 0.03) << intoDeg;
+  }
 }
