@@ -48,6 +48,18 @@ class AiryWave final : public SeaSurface {
     }
   }
   double decayWaveNumberPerM() const override { return k_; }
+  void sampleSlopes(const double* lat, const double* lon, const double* t, std::size_t n,
+                    SeaSample* out) const override {
+    sample(lat, lon, t, n, true, out);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = lon[i] * kPi / 180.0 * 6378137.0;
+      const double r = t[i] >= ramp_ ? 1.0 : 0.5 * (1.0 - std::cos(kPi * std::max(t[i], 0.0) / ramp_));
+      out[i].horizontalVelocityEnMps = {0.0, 0.0};
+      out[i].slopeEn = {-a_ * r * k_ * std::sin(k_ * x - w_ * t[i]), 0.0};
+    }
+  }
+  // One wavelength: HullForce's sea grid follows it.
+  double shortestWavelengthM() const override { return 2 * kPi / k_; }
   double omega() const { return w_; }
 
  private:
