@@ -3,6 +3,7 @@
 // prints and the renderer draws), one row or JSON object per body per
 // output step.
 #include "globe/app/Command.h"
+#include "globe/app/LayerOptions.h"
 #include "globe/app/QueryIo.h"
 #include "globe/geo/Ellipsoid.h"
 #include "globe/raster/World.h"
@@ -11,6 +12,7 @@
 #include "plugin/bodies/OceanSea.h"
 #include "plugin/bodies/Simulation.h"
 #include "plugin/bodies/Spawn.h"
+#include "plugin/bodies/Terrain.h"
 #include "plugin/ocean/Ocean.h"
 
 #include <glm/gtc/quaternion.hpp>
@@ -36,6 +38,7 @@ struct FloatOptions {
   std::string scene, seconds = "60", dt = "0.0166666666666666667", every = "1", waves = "none", wind = "10",
               windDir = "270", seed = "1", waterDensity = "1025", model = "mesh", format = "text";
   bool noWorld = false;
+  LayerOptions layers;
 };
 
 struct BodySpec {
@@ -153,6 +156,35 @@ void appendNumber(std::string& s, double v) {
   s.append(b, r.ptr);
 }
 
+// The terrain under a body for its contact (TerrainContact on the hull's
+// vertices): a patch of the snapshot's elevation 400 m square at 2 m cells
+// centred on the body, re-centred once the body is within 100 m of its
+// edge (checked every simulated second: a body faster than 100 m/s could
+// leave it between checks).
+constexpr int kPatchN = 201;
+constexpr double kPatchCellM = 2.0, kPatchHalfM = 200.0, kPatchMarginM = 100.0;
+// Wet sand on a hull (TerrainContact's note, Engineering ToolBox 0.4-0.6).
+constexpr double kGroundFriction = 0.5;
+// grounded: the lowest hull vertex within this of the terrain (the contact
+// leaves a touching vertex 1e-9 m above it; a floating hull clears it by
+// the water under its keel).
+constexpr double kGroundedClearanceM = 0.01;
+
+std::shared_ptr<bodies::TerrainContact> contactAround(const ocean::Snapshot& snap, const bodies::BodyState& s,
+                                                     const bodies::HullMesh& hull) {
+  const geo::EnuFrame f = geo::enuFrame(geo::fromEcef(s.positionEcef));
+  geo::Geodetic sw = geo::fromEcef(f.originEcef + f.toEcef(glm::dvec3(-kPatchHalfM, -kPatchHalfM, 0.0)));
+  sw.heightM = 0.0;
+  return std::make_shared<bodies::TerrainContact>(bodies::terrainPatch(snap, sw, kPatchN, kPatchCellM),
+                                                  hull.vertices(), kGroundFriction);
+}
+
+bool nearPatchEdge(const bodies::TerrainContact& c, const bodies::BodyState& s) {
+  const glm::dvec3 p = c.terrain().toPatch(s.positionEcef);
+  const double size = (kPatchN - 1) * kPatchCellM;
+  return !(p.x > kPatchMarginM && p.y > kPatchMarginM && p.x < size - kPatchMarginM && p.y < size - kPatchMarginM);
+}
+
 int runFloat(const FloatOptions& o) {
   try {
     if (o.format != "text" && o.format != "json") throw Error{"--format '" + o.format + "' is not text or json"};
@@ -195,11 +227,13 @@ int runFloat(const FloatOptions& o) {
                     "' is not below the water density " + std::to_string(rhoW) + ": it would sink"};
 
     ocean::Ocean oc;
+    if (o.noWorld && (!o.layers.masks.empty() || !o.layers.elevations.empty() || o.layers.noDefaultWorld))
+      throw Error{"--no-world takes no --mask, --elevation or --no-default-world (it means no rasters at all)"};
     if (!o.noWorld) {
       try {
-        oc.setDefaultWorld(ocean::Ocean::defaultWorldDir());
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "geocean float: default world: %s (use --no-world for open sea everywhere)\n", e.what());
+        applyLayers(oc, o.layers, raster::OpenOptions{});
+      } catch (const raster::RasterError& e) {
+        std::fprintf(stderr, "geocean float: %s (use --no-world for open sea everywhere)\n", e.what());
         return kExitDataError;
       }
     }
@@ -227,6 +261,9 @@ int runFloat(const FloatOptions& o) {
     bodies::Simulation sim({.stepS = dt});
     std::vector<bodies::BodyId> ids;
     std::vector<std::shared_ptr<bodies::HullForce>> hulls;
+    // Per body: its terrain contact (null without an elevation) and where it sits in body.constraints.
+    std::vector<std::shared_ptr<bodies::TerrainContact>> contacts;
+    const bool terrain = snap->elevation != nullptr;
     bodies::HullForceOptions hopt;
     hopt.water.densityKgM3 = rhoW;
     for (const auto& b : specs) {
@@ -249,6 +286,8 @@ int runFloat(const FloatOptions& o) {
       if (b.thrustN != 0.0) sim.addBodyForce(id, std::make_shared<bodies::Thrust>(b.thrustN));
       ids.push_back(id);
       hulls.push_back(hull);
+      contacts.push_back(terrain ? contactAround(*snap, s, b.hull) : nullptr);
+      if (contacts.back()) sim.addBodyConstraint(id, contacts.back());
     }
     if (specs.size() > 1) {
       double r = 0.0;
@@ -261,6 +300,21 @@ int runFloat(const FloatOptions& o) {
     const long nOut = static_cast<long>(std::floor(seconds / every + 1e-9));
     for (long k = 0; k <= nOut; ++k) {
       const double t = k * every;
+      // At most a second at a time, so the terrain patches can follow the bodies
+      // (the fixed step gives the same steps whatever the chunks).
+      while (true) {
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+          bodies::Body& b = sim.body(ids[i]);
+          if (!contacts[i] || !nearPatchEdge(*contacts[i], b.state)) continue;
+          auto c = contactAround(*snap, b.state, specs[i].hull);
+          std::replace(b.constraints.begin(), b.constraints.end(),
+                       std::shared_ptr<const bodies::StepConstraint>(contacts[i]),
+                       std::shared_ptr<const bodies::StepConstraint>(c));
+          contacts[i] = c;
+        }
+        if (sim.time() + 1.0 >= t) break;
+        sim.advanceTo(sim.time() + 1.0);
+      }
       sim.advanceTo(t);
       for (std::size_t i = 0; i < ids.size(); ++i) {
         const bodies::Body& b = sim.body(ids[i]);
@@ -272,13 +326,8 @@ int runFloat(const FloatOptions& o) {
         const glm::dvec3 v = ctx.enu.toLocal(b.state.velocityEcef);
         double heading = std::atan2(bx.x, bx.y) / kDeg;
         if (heading < 0) heading += 360.0;
-        bool grounded = false;
-        if (snap->elevation) {
-          float elev = 0;
-          snap->elevationAt(&ctx.geodetic.latDeg, &ctx.geodetic.lonDeg, 1, &elev);
-          grounded = std::isfinite(elev) && !std::isnan(e.seaHeightM) &&
-                     e.seaHeightM - e.keelDepthM <= static_cast<double>(elev);
-        }
+        // Touching the terrain its contact stops it on (a hull vertex on the patch).
+        const bool grounded = contacts[i] && contacts[i]->clearanceM(b.state) <= kGroundedClearanceM;
         const double vals[] = {ctx.geodetic.latDeg,
                                ctx.geodetic.lonDeg,
                                ctx.geodetic.heightM,
@@ -345,7 +394,8 @@ const Register kRegister{
        sub.add_option("--water-density", o->waterDensity, "kg/m^3 (default 1025)");
        sub.add_option("--model", o->model, "mesh (hull clipped against the sea, default) or points (paper 000 eq. 3-4)");
        sub.add_option("--format", o->format, "text (CSV) or json (one object per line)");
-       sub.add_flag("--no-world", o->noWorld, "no rasters: open sea everywhere, grounded always false");
+       sub.add_flag("--no-world", o->noWorld, "no rasters: open sea everywhere, no terrain, grounded always false");
+       addLayerOptions(sub, o->layers);
        return [o] { return runFloat(*o); };
      }}};
 

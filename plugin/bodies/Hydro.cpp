@@ -44,6 +44,7 @@ struct Vtx {
   glm::dvec3 r;   // ENU offset from the centre of mass
   double d;       // depth below the local surface (> 0 wet)
   double p;       // pressure (Pa)
+  double x, y;    // r along the body's x and y axes laid horizontal (the waterplane's moments)
 };
 
 // Per-thread scratch for the per-vertex arrays (no allocation per step).
@@ -52,10 +53,94 @@ struct Scratch {
   std::vector<double> lat, lon, h, t;
   std::vector<SeaSample> sea;
   std::vector<Vtx> v;
+  // The sea grid (HullForce): node offsets, their geodetic points and times,
+  // samples, and the slopes and twist along the grid's axes.
+  std::vector<glm::dvec3> gOff;
+  std::vector<double> gLat, gLon, gH, gT, fx, fy, fxy;
+  std::vector<SeaSample> gSea;
   void resize(std::size_t n) {
     off.resize(n), lat.resize(n), lon.resize(n), h.resize(n), t.resize(n), sea.resize(n), v.resize(n);
   }
+  void resizeGrid(std::size_t n) {
+    gOff.resize(n), gLat.resize(n), gLon.resize(n), gH.resize(n), gT.resize(n), gSea.resize(n);
+    fx.resize(n), fy.resize(n), fxy.resize(n);
+  }
 };
+
+// Cubic Hermite basis on [0, 1]: value at 0, slope at 0, value at 1, slope at 1.
+inline void hermite(double t, double* b) {
+  const double t2 = t * t, t3 = t2 * t;
+  b[0] = 2 * t3 - 3 * t2 + 1, b[1] = t3 - 2 * t2 + t, b[2] = -2 * t3 + 3 * t2, b[3] = t3 - t2;
+}
+
+// The sea under the hull on a grid (Hydro.h): writes the surface height
+// above every vertex to S.sea[i].heightM and the height and vertical
+// velocity at the centre one step earlier to `previous` (one query with the
+// nodes). Returns the node count, or 0 when the grid does not apply (the
+// caller then queries every vertex).
+int seaOnGrid(const SeaSurface& sea, const StepContext& ctx, const glm::dmat3& R, std::size_t n,
+              double pointsPerWavelength, Scratch& S, SeaSample& previous) {
+  const double lambda = sea.shortestWavelengthM();
+  if (!(lambda > 0.0) || !(pointsPerWavelength > 0.0)) return 0;
+  // Above 89 degrees the east-north axes turn across a hull's width (the
+  // slopes' axes would need a frame per node): query every vertex.
+  if (std::abs(ctx.geodetic.latDeg) > 89.0) return 0;
+  // Grid axes: the hull's heading laid horizontal, and its left.
+  glm::dvec3 ax(R[0].x, R[0].y, 0.0);
+  if (glm::length(ax) < 1e-6) ax = glm::dvec3(-R[1].y, R[1].x, 0.0);  // bow straight up or down
+  ax = glm::normalize(ax);
+  const glm::dvec3 ay(-ax.y, ax.x, 0.0);
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = glm::dot(S.off[i], ax), y = glm::dot(S.off[i], ay);
+    x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+  }
+  const double spacing = lambda / pointsPerWavelength;
+  const double cx = std::max(2.0, std::ceil((x1 - x0) / spacing) + 1.0);
+  const double cy = std::max(2.0, std::ceil((y1 - y0) / spacing) + 1.0);
+  if (!(cx * cy < double(n))) return 0;
+  const int nx = int(cx), ny = int(cy), nodes = nx * ny;
+  const double sx = x1 > x0 ? (x1 - x0) / (nx - 1) : 1.0, sy = y1 > y0 ? (y1 - y0) / (ny - 1) : 1.0;
+  S.resizeGrid(std::size_t(nodes) + 1);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) S.gOff[std::size_t(j) * nx + i] = (x0 + i * sx) * ax + (y0 + j * sy) * ay;
+  offsetsToGeodetic(ctx, S.gOff.data(), std::size_t(nodes), S.gLat.data(), S.gLon.data(), S.gH.data());
+  std::fill(S.gT.begin(), S.gT.begin() + nodes, ctx.timeS);
+  // The centre one step earlier rides along (the water's acceleration).
+  S.gLat[nodes] = ctx.geodetic.latDeg, S.gLon[nodes] = ctx.geodetic.lonDeg, S.gT[nodes] = ctx.timeS - ctx.stepS;
+  sea.sampleSlopes(S.gLat.data(), S.gLon.data(), S.gT.data(), std::size_t(nodes) + 1, S.gSea.data());
+  for (int k = 0; k < nodes; ++k) {
+    const SeaSample& g = S.gSea[k];
+    if (std::isnan(g.heightM)) return 0;  // a coast under the hull
+    S.fx[k] = g.slopeEn.x * ax.x + g.slopeEn.y * ax.y;
+    S.fy[k] = g.slopeEn.x * ay.x + g.slopeEn.y * ay.y;
+  }
+  previous = S.gSea[nodes];
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int ja = std::max(j - 1, 0), jb = std::min(j + 1, ny - 1), ia = std::max(i - 1, 0),
+                ib = std::min(i + 1, nx - 1);
+      S.fxy[std::size_t(j) * nx + i] =
+          0.5 * ((S.fx[std::size_t(jb) * nx + i] - S.fx[std::size_t(ja) * nx + i]) / ((jb - ja) * sy) +
+                 (S.fy[std::size_t(j) * nx + ib] - S.fy[std::size_t(j) * nx + ia]) / ((ib - ia) * sx));
+    }
+  for (std::size_t v = 0; v < n; ++v) {
+    const double u = (glm::dot(S.off[v], ax) - x0) / sx, w = (glm::dot(S.off[v], ay) - y0) / sy;
+    const int i = std::clamp(int(u), 0, nx - 2), j = std::clamp(int(w), 0, ny - 2);
+    double bu[4], bw[4];
+    hermite(std::clamp(u - i, 0.0, 1.0), bu);
+    hermite(std::clamp(w - j, 0.0, 1.0), bw);
+    double eta = 0.0;
+    for (int b = 0; b < 2; ++b)
+      for (int a = 0; a < 2; ++a) {
+        const std::size_t k = std::size_t(j + b) * nx + (i + a);
+        const double vu = bu[2 * a], du = bu[2 * a + 1] * sx, vw = bw[2 * b], dw = bw[2 * b + 1] * sy;
+        eta += S.gSea[k].heightM * vu * vw + S.fx[k] * du * vw + S.fy[k] * vu * dw + S.fxy[k] * du * dw;
+      }
+    S.sea[v].heightM = eta;
+  }
+  return nodes;
+}
 
 Scratch& scratch() {
   thread_local Scratch s;
@@ -119,6 +204,7 @@ HullForce::HullForce(std::shared_ptr<const HullMesh> hull, std::shared_ptr<const
   requireNonNegative("heave damping ratio", options_.heaveDampingRatio, "");
   requireNonNegative("roll damping ratio", options_.rollDampingRatio, "");
   requireNonNegative("pitch damping ratio", options_.pitchDampingRatio, "");
+  requireNonNegative("sea grid points per wavelength", options_.seaGridPointsPerWavelength, "");
   const glm::dvec3 ext = hull_->maxCorner() - hull_->minCorner();
   lengthM_ = ext.x;
   const double rho = options_.water.densityKgM3;
@@ -150,8 +236,6 @@ HullEvaluation HullForce::evaluate(const BodyState& state, const MassProperties&
   const glm::dmat3 R = bodyToEnu(state, ctx);
   for (std::size_t i = 0; i < n; ++i) S.off[i] = R * verts[i];
   offsetsToGeodetic(ctx, S.off.data(), n, S.lat.data(), S.lon.data(), S.h.data());
-  std::fill(S.t.begin(), S.t.begin() + n, ctx.timeS);
-  sea_->sample(S.lat.data(), S.lon.data(), S.t.data(), n, false, S.sea.data());
 
   // The centre: the surface and the water's velocity at t, and its vertical
   // velocity one step earlier for the acceleration (a backward difference,
@@ -161,11 +245,27 @@ HullEvaluation HullForce::evaluate(const BodyState& state, const MassProperties&
   std::array<double, 2> cLat{}, cLon{}, cT{ctx.timeS, ctx.timeS - probe};
   cLat.fill(ctx.geodetic.latDeg), cLon.fill(ctx.geodetic.lonDeg);
   std::array<SeaSample, 2> c;
-  sea_->sample(cLat.data(), cLon.data(), cT.data(), 2, true, c.data());
+  out.seaGridNodes = seaOnGrid(*sea_, ctx, R, n, options_.seaGridPointsPerWavelength, S, c[1]);
+  if (out.seaGridNodes > 0) {
+    sea_->sample(cLat.data(), cLon.data(), cT.data(), 1, true, c.data());
+  } else {
+    std::fill(S.t.begin(), S.t.begin() + n, ctx.timeS);
+    sea_->sample(S.lat.data(), S.lon.data(), S.t.data(), n, false, S.sea.data());
+    sea_->sample(cLat.data(), cLon.data(), cT.data(), 2, true, c.data());
+  }
   out.seaHeightM = c[0].heightM;
 
   const double rho = options_.water.densityKgM3, g = ctx.gravityMps2, rhoG = rho * g;
   const double k = sea_->decayWaveNumberPerM();
+  // The body's x and y axes laid horizontal (for the waterplane's moments).
+  auto horizontal = [](glm::dvec3 v) {
+    v.z = 0.0;
+    const double l = glm::length(v);
+    return l > 1e-9 ? v / l : glm::dvec3(0.0);
+  };
+  glm::dvec3 hx = horizontal(R[0]), hy = horizontal(R[1]);
+  if (hx == glm::dvec3(0.0)) hx = glm::normalize(glm::cross(hy, glm::dvec3(0, 0, 1)));
+  if (hy == glm::dvec3(0.0)) hy = glm::normalize(glm::cross(glm::dvec3(0, 0, 1), hx));
   bool anyWet = false;
   double lowest = ctx.geodetic.heightM;
   for (std::size_t i = 0; i < n; ++i) {
@@ -178,7 +278,7 @@ HullEvaluation HullForce::evaluate(const BodyState& state, const MassProperties&
       p = k > 0.0 ? rhoG * (d - eta * (1.0 - std::exp(-k * d))) : rhoG * d;
       p = std::max(p, 0.0);
     }
-    S.v[i] = Vtx{S.off[i], d, p};
+    S.v[i] = Vtx{S.off[i], d, p, glm::dot(S.off[i], hx), glm::dot(S.off[i], hy)};
   }
   out.keelDepthM = std::isnan(c[0].heightM) ? std::numeric_limits<double>::quiet_NaN() : c[0].heightM - lowest;
   if (!anyWet) return out;
@@ -196,16 +296,7 @@ HullEvaluation HullForce::evaluate(const BodyState& state, const MassProperties&
 
   glm::dvec3 F(0.0), T(0.0), volMoment(0.0);
   double vol = 0.0, areaUp = 0.0, wpX = 0.0, wpY = 0.0, wpXX = 0.0, wpYY = 0.0;
-  // The body's x and y axes laid horizontal (for the waterplane's moments).
-  auto horizontal = [](glm::dvec3 v) {
-    v.z = 0.0;
-    const double l = glm::length(v);
-    return l > 1e-9 ? v / l : glm::dvec3(0.0);
-  };
-  glm::dvec3 hx = horizontal(R[0]), hy = horizontal(R[1]);
-  if (hx == glm::dvec3(0.0)) hx = glm::normalize(glm::cross(hy, glm::dvec3(0, 0, 1)));
-  if (hy == glm::dvec3(0.0)) hy = glm::normalize(glm::cross(glm::dvec3(0, 0, 1), hx));
-  auto integrate = [&](const Vtx& a, const Vtx& b, const Vtx& cc) {
+  auto integrate = [&](const Vtx& a, const Vtx& b, const Vtx& cc) __attribute__((always_inline)) {
     const glm::dvec3 Sv = 0.5 * glm::cross(b.r - a.r, cc.r - a.r);  // area x outward normal
     const double P = a.p + b.p + cc.p;
     const glm::dvec3 sr = a.r + b.r + cc.r;
@@ -217,8 +308,7 @@ HullEvaluation HullForce::evaluate(const BodyState& state, const MassProperties&
     areaUp += Sv.z;
     // Second moments of the waterplane, -integral of (offset along the
     // body's horizontal axes)^2 n_up dA: int f^2 = A/6 (sum f_i^2 + sum f_i f_j).
-    const double xa = glm::dot(a.r, hx), xb = glm::dot(b.r, hx), xc = glm::dot(cc.r, hx);
-    const double ya = glm::dot(a.r, hy), yb = glm::dot(b.r, hy), yc = glm::dot(cc.r, hy);
+    const double xa = a.x, xb = b.x, xc = cc.x, ya = a.y, yb = b.y, yc = cc.y;
     wpX += Sv.z * (xa + xb + xc) / 3.0, wpY += Sv.z * (ya + yb + yc) / 3.0;
     wpXX += Sv.z * (xa * xa + xb * xb + xc * xc + xa * xb + xb * xc + xc * xa) / 6.0;
     wpYY += Sv.z * (ya * ya + yb * yb + yc * yc + ya * yb + yb * yc + yc * ya) / 6.0;
@@ -250,7 +340,7 @@ HullEvaluation HullForce::evaluate(const BodyState& state, const MassProperties&
       if (p.d > 0.0) poly[m++] = p;
       if ((p.d > 0.0) != (q.d > 0.0)) {
         const double s = p.d / (p.d - q.d);
-        poly[m++] = Vtx{p.r + s * (q.r - p.r), 0.0, 0.0};
+        poly[m++] = Vtx{p.r + s * (q.r - p.r), 0.0, 0.0, p.x + s * (q.x - p.x), p.y + s * (q.y - p.y)};
       }
     }
     for (int j = 1; j + 1 < m; ++j) integrate(poly[0], poly[j], poly[j + 1]);

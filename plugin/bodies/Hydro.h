@@ -32,6 +32,20 @@
 //     long-wave diffraction term, which makes the heave follow long swell.
 //     Not modelled: added mass in surge, sway, roll, pitch and yaw; wave
 //     radiation damping (the damping is the drag below).
+//   * the sea under the hull: with a sea that states its shortest
+//     wavelength lambda_min (SeaSurface::shortestWavelengthM; OceanSea:
+//     Gerstner), the surface is queried on a grid in the horizontal plane,
+//     aligned with the hull's heading, over its footprint, spacing at most
+//     lambda_min / seaGridPointsPerWavelength, height and slope at each
+//     node, and interpolated to the vertices by bicubic Hermite (the twist
+//     from central differences of the slopes): error O((k h)^4) of each
+//     component, against O((k h)^2) for bilinear heights. When the grid
+//     would have as many nodes as the hull has vertices, or a node has no
+//     sea (a coast), every vertex is queried instead. Measured against
+//     every vertex (boat of 20 m, 123 vertices, Gerstner at 10 m/s,
+//     lambda_min 5.7 m, 2.5 per wavelength: 40 nodes; 400 poses): force
+//     error rms 2.2e-4, max 9.3e-4 of the weight, torque rms 5e-5, max
+//     1.7e-4 of weight x length (test BodyWaves.SeaGrid...).
 //   * drag per submerged triangle on the velocity relative to the water
 //     (orbital velocity from the surface at the centre, decayed e^{-k d}):
 //     pressure drag -1/2 rho (C_D / 2) |v_n| v_n A n on every face, the
@@ -92,6 +106,8 @@ struct HullForceOptions {
   double heaveDampingRatio = 0.1;        // radiation damping, fractions of critical (see above)
   double rollDampingRatio = 0.05;
   double pitchDampingRatio = 0.1;
+  // Sea grid nodes per shortest wavelength (see above); 0: query every vertex.
+  double seaGridPointsPerWavelength = 2.5;
 };
 
 // What the water does to one body at one instant (tests, tools, the CLI).
@@ -104,6 +120,7 @@ struct HullEvaluation {
   double seaHeightM = 0.0;           // sea surface above the ellipsoid at the centre (NaN: no sea)
   double heaveAddedMassKg = 0.0;     // a33 used this step
   glm::dvec2 metacentricHeightM{0.0};  // GM transverse (roll, about body x) and longitudinal (pitch)
+  int seaGridNodes = 0;              // nodes of the sea grid this step (0: every vertex queried)
 };
 
 class HullForce final : public ForceModel {

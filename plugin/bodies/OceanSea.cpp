@@ -1,5 +1,6 @@
 #include "plugin/bodies/OceanSea.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <numbers>
@@ -11,6 +12,34 @@ namespace geocean::bodies {
 OceanSea::OceanSea(std::shared_ptr<const ocean::Snapshot> snapshot) : snap_(std::move(snapshot)) {
   if (!snap_) throw std::invalid_argument("geocean::bodies: OceanSea snapshot is null");
   if (snap_->waves) k_ = 2.0 * std::numbers::pi / snap_->waves->peakWavelengthM();
+  if (snap_->waves && snap_->waves->model() == waves::Model::Gerstner && !snap_->waves->coastField()) {
+    double kMax = 0.0;
+    for (const auto& c : snap_->waves->components()) kMax = std::max(kMax, c.kRef);
+    if (kMax > 0.0) shortest_ = 2.0 * std::numbers::pi / kMax;
+  }
+}
+
+void OceanSea::sampleSlopes(const double* latDeg, const double* lonDeg, const double* tS, std::size_t n,
+                            SeaSample* out) const {
+  if (n == 0) return;
+  if (!snap_->waves) {  // flat: heights (0 or NaN) from sample()
+    sample(latDeg, lonDeg, tS, n, false, out);
+    return;
+  }
+  thread_local std::vector<double> h, vz, nrm;
+  h.resize(n), vz.resize(n), nrm.resize(3 * n);
+  ocean::SurfaceOutputs o;
+  o.heightM = h.data();
+  o.verticalVelocityMps = vz.data();
+  o.normalEnu = nrm.data();
+  snap_->querySurfaceOnThisThread(ocean::Points{latDeg, lonDeg, n, tS, true}, o);
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i] = SeaSample{h[i], 0.0, {0.0, 0.0}, {0.0, 0.0}};
+    if (std::isnan(h[i])) continue;
+    out[i].verticalVelocityMps = vz[i];
+    // The surface z = eta(e, n) has the normal (-eta_e, -eta_n, 1) / |.|.
+    out[i].slopeEn = {-nrm[3 * i] / nrm[3 * i + 2], -nrm[3 * i + 1] / nrm[3 * i + 2]};
+  }
 }
 
 void OceanSea::sample(const double* latDeg, const double* lonDeg, const double* tS, std::size_t n, bool velocities,

@@ -24,11 +24,20 @@ class OceanSea final : public SeaSurface {
   // the dominant waves' pressure; shorter components decay faster than this
   // in reality, so their pressure at depth is overestimated.
   double decayWaveNumberPerM() const override { return k_; }
+  // Heights, vertical velocities and slopes (from the façade's normals).
+  void sampleSlopes(const double* latDeg, const double* lonDeg, const double* tS, std::size_t n,
+                    SeaSample* out) const override;
+  // Gerstner: 2 pi / the largest component wave number (its phase is set
+  // at the reference depth; the local depth changes only amplitudes and
+  // orbits). 0 (every vertex queried) for the other models, without waves
+  // (the coastline is the only detail: a grid would blur it) and with a
+  // coast field (refraction shortens the waves over the shelf).
+  double shortestWavelengthM() const override { return shortest_; }
   const ocean::Snapshot& snapshot() const { return *snap_; }
 
  private:
   std::shared_ptr<const ocean::Snapshot> snap_;
-  double k_ = 0.0;
+  double k_ = 0.0, shortest_ = 0.0;
 };
 
 // A terrain patch for TerrainContact from the snapshot's elevation (the

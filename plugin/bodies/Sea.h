@@ -17,6 +17,7 @@ struct SeaSample {
   double heightM = std::numeric_limits<double>::quiet_NaN();
   double verticalVelocityMps = 0.0;  // d(height)/dt at the fixed point
   glm::dvec2 horizontalVelocityEnMps{0.0};  // water particle at the surface, east/north
+  glm::dvec2 slopeEn{0.0};  // d(height)/d(east, north): sampleSlopes only
 };
 
 class SeaSurface {
@@ -31,6 +32,16 @@ class SeaSurface {
   // velocity decay under the surface, e^{-k d} at depth d (linear deep-water
   // theory). 0: hydrostatic under the local surface (long-wave limit).
   virtual double decayWaveNumberPerM() const = 0;
+  // The height, d(height)/dt and the slope at each point (horizontal
+  // velocities left 0): what HullForce's sea grid reads (Hydro.h). Only
+  // called when shortestWavelengthM() > 0.
+  virtual void sampleSlopes(const double* latDeg, const double* lonDeg, const double* tS, std::size_t n,
+                            SeaSample* out) const = 0;
+  // The shortest wavelength (m) the surface carries: it sets the spacing of
+  // the sea grid under a hull. 0: not known, or the surface is not smooth
+  // between queries (coasts, land): every hull vertex is queried. Infinity:
+  // a constant surface.
+  virtual double shortestWavelengthM() const { return 0.0; }
 };
 
 // Still water at a constant height above the ellipsoid (default 0).
@@ -41,6 +52,10 @@ class FlatSea final : public SeaSurface {
     for (std::size_t i = 0; i < n; ++i) out[i] = SeaSample{heightM_, 0.0, {0.0, 0.0}};
   }
   double decayWaveNumberPerM() const override { return 0.0; }
+  void sampleSlopes(const double*, const double*, const double*, std::size_t n, SeaSample* out) const override {
+    for (std::size_t i = 0; i < n; ++i) out[i] = SeaSample{heightM_, 0.0, {0.0, 0.0}, {0.0, 0.0}};
+  }
+  double shortestWavelengthM() const override { return std::numeric_limits<double>::infinity(); }
 
  private:
   double heightM_;

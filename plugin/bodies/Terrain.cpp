@@ -170,4 +170,14 @@ void TerrainContact::afterStep(Body& body, const BodyState& before) const {
   }
 }
 
+double TerrainContact::clearanceM(const BodyState& s) const {
+  double lowest = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& p : points_) {
+    const glm::dvec3 q = terrain_->toPatch(s.positionEcef + s.bodyToEcef(p));
+    const double h = terrain_->heightAt(q.x, q.y);
+    if (!std::isnan(h) && !(q.z - h >= lowest)) lowest = q.z - h;
+  }
+  return lowest;
+}
+
 }  // namespace geocean::bodies

@@ -76,6 +76,11 @@ class TerrainContact final : public StepConstraint {
   TerrainContact(std::shared_ptr<const HeightField> terrain, std::vector<glm::dvec3> contactPointsBody,
                  double frictionCoefficient = 0.0);
   void afterStep(Body& body, const BodyState& before) const override;
+  // Height of the lowest contact point above the terrain in `state` (m; the
+  // contact leaves a touching point at +1e-9); NaN when every point is
+  // outside the patch. `geocean float` reports grounded when <= 1 cm.
+  double clearanceM(const BodyState& state) const;
+  const HeightField& terrain() const { return *terrain_; }
 
  private:
   std::shared_ptr<const HeightField> terrain_;

@@ -39,6 +39,11 @@ class LiveSea final : public bodies::SeaSurface {
     sea_->sample(latDeg, lonDeg, tS, n, velocities, out);
   }
   double decayWaveNumberPerM() const override { return sea_->decayWaveNumberPerM(); }
+  void sampleSlopes(const double* latDeg, const double* lonDeg, const double* tS, std::size_t n,
+                    bodies::SeaSample* out) const override {
+    sea_->sampleSlopes(latDeg, lonDeg, tS, n, out);
+  }
+  double shortestWavelengthM() const override { return sea_->shortestWavelengthM(); }
   const Snapshot& snapshot() const { return *snap_; }
 
  private:

@@ -50,29 +50,23 @@ void checkTimes(const Points& p) {
 // above each point: the wave kernel's own analytic particle velocity
 // (Gerstner: a omega per component; FFT: the dDx/dt, dDy/dt tables; the
 // noise models move particles vertically only, so it is 0) evaluated at the
-// particle's rest point, which the surface inversion finds. Ocean points only.
+// particle's rest point, which the height's surface inversion found
+// (restOffsetEnuM). Ocean points only.
 void horizontalVelocities(const waves::WaveField& field, const double* latDeg, const double* lonDeg,
-                          const double* tS, const double* depthM, std::size_t n, double* outEn) {
-  constexpr std::size_t kChunk = 64;
-  std::array<waves::SurfacePoint, kChunk> sp;
-  for (std::size_t i0 = 0; i0 < n; i0 += kChunk) {
-    const std::size_t m = std::min(kChunk, n - i0);
-    // The same inversion as the height's (same inputs, same rest point).
-    field.surfaceBatch(latDeg + i0, lonDeg + i0, tS + i0, true, depthM + i0, m, sp.data());
-    for (std::size_t k = 0; k < m; ++k) {
-      const std::size_t i = i0 + k;
-      const glm::dvec3 off = sp[k].restOffsetEnuM;
-      double restLat = latDeg[i], restLon = lonDeg[i];
-      if (off != glm::dvec3(0.0)) {
-        const geo::EnuFrame f = geo::enuFrame({latDeg[i], lonDeg[i], 0.0});
-        const geo::Geodetic rest = geo::fromEcef(f.originEcef + f.toEcef(off));
-        restLat = rest.latDeg;
-        restLon = rest.lonDeg;
-      }
-      const glm::dvec3 v = field.sample(restLat, restLon, tS[i], depthM[i]).horizontalVelocityEnuMps;
-      outEn[2 * i] = v.x;
-      outEn[2 * i + 1] = v.y;
+                          const double* tS, const double* depthM, const glm::dvec3* restOffsetEnuM, std::size_t n,
+                          double* outEn) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec3 off = restOffsetEnuM[i];
+    double restLat = latDeg[i], restLon = lonDeg[i];
+    if (off != glm::dvec3(0.0)) {
+      const geo::EnuFrame f = geo::enuFrame({latDeg[i], lonDeg[i], 0.0});
+      const geo::Geodetic rest = geo::fromEcef(f.originEcef + f.toEcef(off));
+      restLat = rest.latDeg;
+      restLon = rest.lonDeg;
     }
+    const glm::dvec3 v = field.sample(restLat, restLon, tS[i], depthM[i]).horizontalVelocityEnuMps;
+    outEn[2 * i] = v.x;
+    outEn[2 * i + 1] = v.y;
   }
 }
 
@@ -126,6 +120,7 @@ void Snapshot::queryRange(const Points& p, std::size_t begin, std::size_t end, c
   std::array<waves::SeaQueryResult, kChunk> res;
   std::array<double, kChunk> oLat, oLon, oT, oDepth;
   std::array<std::size_t, kChunk> oIdx;
+  std::array<glm::dvec3, kChunk> oRest;
   const bool wantSea = out.wantsSea();
   const bool wantElevation = out.elevationM || (wantSea && elevation);
   for (std::size_t i0 = begin; i0 < end; i0 += kChunk) {
@@ -186,14 +181,15 @@ void Snapshot::queryRange(const Points& p, std::size_t begin, std::size_t end, c
         out.horizontalVelocityEnMps[2 * i] = out.horizontalVelocityEnMps[2 * i + 1] = kNaN;
         if (water) {
           oLat[nOcean] = lat[k], oLon[nOcean] = lon[k], oT[nOcean] = p.timePerPoint ? t[k] : t[0];
-          oDepth[nOcean] = r.depthM, oIdx[nOcean] = i;
+          oDepth[nOcean] = r.depthM, oIdx[nOcean] = i, oRest[nOcean] = r.restOffsetEnuM;
           ++nOcean;
         }
       }
     }
     if (nOcean == 0) continue;
     std::array<double, 2 * kChunk> v;
-    horizontalVelocities(sea->field(), oLat.data(), oLon.data(), oT.data(), oDepth.data(), nOcean, v.data());
+    horizontalVelocities(sea->field(), oLat.data(), oLon.data(), oT.data(), oDepth.data(), oRest.data(), nOcean,
+                         v.data());
     for (std::size_t k = 0; k < nOcean; ++k) {
       out.horizontalVelocityEnMps[2 * oIdx[k]] = v[2 * k];
       out.horizontalVelocityEnMps[2 * oIdx[k] + 1] = v[2 * k + 1];

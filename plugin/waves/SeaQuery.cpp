@@ -34,6 +34,7 @@ SeaQueryResult SeaQuery::atWater(double latDeg, double lonDeg, double tS, ocean:
   r.seaHeightM = p.heightM;
   r.normalEnu = p.normalEnu;
   r.verticalVelocityMps = p.verticalVelocityMps;
+  r.restOffsetEnuM = p.restOffsetEnuM;
   return r;
 }
 
@@ -72,6 +73,7 @@ void SeaQuery::queryClassified(const double* latDeg, const double* lonDeg, const
       r.seaHeightM = sp[k].heightM;
       r.normalEnu = sp[k].normalEnu;
       r.verticalVelocityMps = sp[k].verticalVelocityMps;
+      r.restOffsetEnuM = sp[k].restOffsetEnuM;
     }
   }
 }

@@ -22,6 +22,9 @@ struct SeaQueryResult {
   glm::dvec3 normalEnu{0.0, 0.0, 1.0};  // (0,0,1) where there is no sea
   double verticalVelocityMps = 0.0;
   double depthM = kDeepWaterM;          // water depth used (m)
+  // Rest point of the particle now at the surface above (ENU offset from
+  // the point, the inversion's answer): where its velocity is evaluated.
+  glm::dvec3 restOffsetEnuM{0.0};
 };
 
 class SeaQuery {

@@ -14,6 +14,7 @@
 #include <ctime>
 #include <cstdio>
 #include <memory>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -44,10 +45,10 @@ std::shared_ptr<const SeaSurface> makeSea(const char* model) {
 
 // n bodies on a grid 60 m apart around (30, -40), stepped `steps` times at 60 Hz.
 double bodyStepsPerSecond(const HullMesh& hull, bool points, std::shared_ptr<const SeaSurface> sea, int n, int steps,
-                          int threads, bool parallel = false) {
+                          int threads, bool parallel = false, HullForceOptions options = {}) {
   auto work = [&](int part, double& seconds) {
     Simulation sim({.stepS = 1.0 / 60, .parallel = parallel});
-    auto hf = std::make_shared<HullForce>(std::make_shared<HullMesh>(hull), sea);
+    auto hf = std::make_shared<HullForce>(std::make_shared<HullMesh>(hull), sea, options);
     const glm::dvec3 ext = hull.maxCorner() - hull.minCorner();
     auto cp = ContactPointForce::hollowCylinderProxy(ext.x, 0.5 * ext.y, 4, sea);
     for (int i = part; i < n; i += threads) {
@@ -77,9 +78,43 @@ double bodyStepsPerSecond(const HullMesh& hull, bool points, std::shared_ptr<con
 
 }  // namespace
 
-int main() {
+// 200 boats on Gerstner, one Simulation stepped sequentially on one
+// thread: the sea grid under each hull (HullForce's default) against the
+// reference, every vertex queried, in the same run, rounds alternated.
+void seaGridTable(const HullMesh& boat, std::shared_ptr<const SeaSurface> gerstner) {
+  std::printf("| 200 boats, gerstner, 1 thread | round | sea points per boat-step | body-steps per CPU-s | ratio to every vertex | Hz at one core |\n|---|---|---|---|---|---|\n");
+  for (int round = 1; round <= 3; ++round) {
+    double ref = 0.0;
+    for (double ppw : {0.0, 2.5, 3.0}) {
+      HullForceOptions o;
+      o.seaGridPointsPerWavelength = ppw;
+      // The grid's node count for an upright boat (it varies a little with the heel).
+      HullForce probe(std::make_shared<HullMesh>(boat), gerstner, o);
+      const geo::Geodetic p{30.0, -40.0, -boat.restingWaterlineZ(0.45)};
+      const geo::EnuFrame f = geo::enuFrame(p);
+      BodyState s;
+      s.positionEcef = f.originEcef;
+      s.orientation = glm::quat_cast(f.rotation());
+      Simulation one({.stepS = 1.0 / 60});
+      const int nodes = probe.evaluate(s, boat.massProperties(0.45 * 1025), one.context(s)).seaGridNodes;
+      const int points = nodes > 0 ? nodes + 2 : int(boat.vertices().size()) + 2;
+      bodyStepsPerSecond(boat, false, gerstner, 200, 120, 1, false, o);
+      const double cpu = gCpuRate;
+      if (ppw == 0.0) ref = cpu;
+      std::printf("| %s | %d | %d | %.0f | %.2f | %.1f |\n",
+                  ppw == 0.0 ? "every vertex (reference)" : (ppw == 2.5 ? "grid, 2.5 per lambda_min" : "grid, 3 per lambda_min"),
+                  round, points, cpu, cpu / ref, cpu / 200.0);
+    }
+  }
+}
+
+int main(int argc, char** argv) {
   const HullMesh box = HullMesh::box({8.0, 4.0, 2.0}), cyl = HullMesh::cylinder(1.0, 3.0),
                  boat = HullMesh::boat(20.0);
+  if (argc > 1 && std::string(argv[1]) == "grid") {  // only the sea-grid table
+    seaGridTable(boat, makeSea("gerstner"));
+    return 0;
+  }
   const char* models[] = {"none", "noise", "gerstner", "fft"};
   std::printf("| hull (triangles) | none | noise | gerstner | fft |\n|---|---|---|---|---|\n");
   struct H {
@@ -117,6 +152,7 @@ int main() {
                   par / 200, par / seq, parCpu, parCpu / seqCpu);
     }
   }
+  seaGridTable(boat, gerstner);
   for (int tt : {1, 2}) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, tt);
     const double seq = bodyStepsPerSecond(boat, true, gerstner, 1000, 60, 1, false);

@@ -2,10 +2,12 @@
 // JSON keys, several bodies (repeated options and a scene file), thrust
 // along the heading, waves moving the draft, and bad input (exit 2, the
 // message naming the option and the value).
+#include "globe/raster/GeoTiffWriter.h"
 #include "tests/support/Subprocess.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -126,4 +128,42 @@ TEST(FloatCli, BadInputNamesTheOptionAndTheValue) {
     EXPECT_EQ(r.exitCode, 2) << c.args;
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
   }
+}
+
+TEST(FloatCli, GroundedComesFromTheHullTouchingTheTerrain) {
+  // test_beach.cpp's synthetic beach as an elevation GeoTIFF (2e-5 degree
+  // cells, the ground rising 1 in 10 to the east through the waterline at
+  // longitude 0; sea where it is below 0): an 8 x 3 x 2 m box of density
+  // 500 (draft 1 m) 150 m out, its 3 kN engine pushing it east. Afloat it
+  // is not grounded; stopped on the beach (the terrain contact on its hull)
+  // it is.
+  const int w = 1000, h = 500;
+  const double step = 2e-5, mPerDeg = 111319.49;  // WGS84 equator: a pi / 180
+  std::vector<float> px(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      px[std::size_t(y) * w + x] = float(std::clamp((-0.01 + (x + 0.5) * step) * mPerDeg / 10.0, -20.0, 10.0));
+  geocean::raster::GeoTiffWriteOptions wo;
+  wo.transform.originLonDeg = -0.01, wo.transform.originLatDeg = 0.005;
+  wo.transform.lonStepDeg = step, wo.transform.latStepDeg = -step;
+  const std::string tif = ::testing::TempDir() + "/float_beach.tif";
+  geocean::raster::writeGeoTiff(tif, px.data(), w, h, 1, geocean::raster::SampleType::F32, wo);
+  const std::string at = "0," + std::to_string(-150.0 / mPerDeg);
+  auto r = run(kGeocean + " float --no-default-world --elevation " + tif + " --body box:8x3x2 --density 500 --at " +
+               at + " --heading 90 --thrust 3000 --seconds 160 --every 10");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto rows = csv(r.out);
+  ASSERT_EQ(rows.size(), 17u);
+  EXPECT_EQ(rows[0].at("grounded"), "false");  // afloat at its draft in 15 m of water
+  EXPECT_EQ(rows[3].at("grounded"), "false");  // under way, 30 s in
+  EXPECT_GT(num(rows[3], "speed_mps"), 1.0);
+  // Stopped at the shore (test_beach: within 14 m of the waterline, at rest).
+  EXPECT_EQ(rows.back().at("grounded"), "true");
+  EXPECT_LT(num(rows.back(), "speed_mps"), 0.05);
+  EXPECT_GT(num(rows.back(), "lon") * mPerDeg, -14.0);
+  EXPECT_LT(num(rows.back(), "lon") * mPerDeg, 4.0);
+  // --no-world means no rasters at all: layers with it are refused.
+  r = run(kGeocean + " float --no-world --elevation " + tif + " --body box:8x3x2 --density 500 --at " + at);
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--no-world takes no --mask, --elevation"), std::string::npos) << r.err;
 }

@@ -48,6 +48,18 @@ class AiryWave final : public SeaSurface {
     }
   }
   double decayWaveNumberPerM() const override { return k_; }
+  void sampleSlopes(const double* lat, const double* lon, const double* t, std::size_t n,
+                    SeaSample* out) const override {
+    sample(lat, lon, t, n, true, out);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = lon[i] * kPi / 180.0 * 6378137.0;
+      const double r = t[i] >= ramp_ ? 1.0 : 0.5 * (1.0 - std::cos(kPi * std::max(t[i], 0.0) / ramp_));
+      out[i].horizontalVelocityEnMps = {0.0, 0.0};
+      out[i].slopeEn = {-a_ * r * k_ * std::sin(k_ * x - w_ * t[i]), 0.0};
+    }
+  }
+  // One wavelength: HullForce's sea grid follows it.
+  double shortestWavelengthM() const override { return 2 * kPi / k_; }
   double omega() const { return w_; }
 
  private:
@@ -415,4 +427,59 @@ TEST(BodyHydroValidation, BadInputsNameTheField) {
   EXPECT_NEAR(rectangularPlateAddedMassCoefficient(1.0), 0.579, 1e-12);
   EXPECT_NEAR(rectangularPlateAddedMassCoefficient(10.0), 0.947, 1e-12);
   EXPECT_THROW(rectangularPlateAddedMassCoefficient(0.5), std::invalid_argument);
+}
+
+TEST(BodyWaves, SeaGridUnderTheHullGivesTheForcesOfEveryVertexQueried) {
+  // The default sea grid (2.5 nodes per shortest wavelength) against the
+  // reference, every vertex queried, on the façade's Gerstner sea at
+  // 10 m/s (lambda_min 5.7 m): a 20 m boat at 400 random poses (heave
+  // +-0.5 m, tilt up to 8.6 degrees, any heading and time). Measured: force
+  // error rms 2.2e-4, max 9.3e-4 of the weight; torque rms 5e-5, max
+  // 1.7e-4 of weight x length. Bounds: twice the measured maxima.
+  ocean::Ocean o;
+  waves::SeaState st;
+  st.windSpeedMps = 10.0, st.anchorLatDeg = 30.0, st.anchorLonDeg = -40.0;
+  o.setSeaState(waves::Model::Gerstner, st);
+  auto sea = std::make_shared<OceanSea>(o.current());
+  ASSERT_NEAR(sea->shortestWavelengthM(), 5.71, 0.01);
+  const double L = 20.0;
+  auto hull = std::make_shared<HullMesh>(HullMesh::boat(L));
+  HullForceOptions every;
+  every.seaGridPointsPerWavelength = 0.0;
+  const HullForce ref(hull, sea, every), grid(hull, sea);
+  const MassProperties mp = hull->massProperties(0.45 * kRho);
+  std::uint64_t seed = 5;
+  auto uniform = [&] {
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    return double(seed >> 11) * 0x1.0p-53;
+  };
+  double worstF = 0.0, worstT = 0.0, sumF2 = 0.0;
+  int nodes = 0;
+  const int n = 400;
+  for (int k = 0; k < n; ++k) {
+    geo::Geodetic at{30.0 + uniform() * 0.01, -40.0 + uniform() * 0.01, (uniform() - 0.5) * 1.0 -
+                                                                            hull->restingWaterlineZ(0.45)};
+    const geo::EnuFrame f = geo::enuFrame(at);
+    BodyState s = stateAt(at);
+    const double h = uniform() * 2 * kPi;
+    const glm::dvec3 axis = glm::normalize(glm::dvec3(uniform() - 0.5, uniform() - 0.5, 0.0));
+    const glm::dquat heading = glm::angleAxis(h, glm::dvec3(0, 0, 1)), tilt = glm::angleAxis((uniform() - 0.5) * 0.3, axis);
+    s.orientation = glm::normalize(glm::quat_cast(f.rotation()) * tilt * heading);
+    Simulation sim({.stepS = 1.0 / 60});
+    StepContext ctx = sim.context(s);
+    ctx.timeS = 10.0 + uniform() * 1000.0;
+    const HullEvaluation a = ref.evaluate(s, mp, ctx), b = grid.evaluate(s, mp, ctx);
+    ASSERT_EQ(a.seaGridNodes, 0);
+    ASSERT_GT(b.seaGridNodes, 0);
+    nodes = std::max(nodes, b.seaGridNodes);
+    const double W = mp.massKg() * ctx.gravityMps2;
+    const double dF = glm::length(a.wrench.force() - b.wrench.force()) / W;
+    worstF = std::max(worstF, dF), sumF2 += dF * dF;
+    worstT = std::max(worstT, glm::length(a.wrench.torque() - b.wrench.torque()) / (W * L));
+  }
+  std::printf("[ measured ] sea grid (<= %d nodes for %zu vertices): force error rms %.2e max %.2e of the weight, torque max %.2e of W L\n",
+              nodes, hull->vertices().size(), std::sqrt(sumF2 / n), worstF, worstT);
+  EXPECT_LT(nodes, int(hull->vertices().size()) / 2);
+  EXPECT_LT(worstF, 2e-3);
+  EXPECT_LT(worstT, 4e-4);
 }
