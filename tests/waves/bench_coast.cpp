@@ -3,14 +3,17 @@
 // points over a planar shelf without a coast field (the deep-water phase with
 // local shoaling: the reference) and with one (depth-dependent phase,
 // refraction, Kr, Miche), and the coast field's CPU build time for 16
-// components. Not run by ctest; results in docs/PERFORMANCE.md.
+// components, and the island table's build on CPU and GPU. Not run by ctest; results in docs/PERFORMANCE.md.
 #include "globe/geo/Ellipsoid.h"
+#include "globe/gl/HeadlessContext.h"
+#include "plugin/render/CoastIslandsGpu.h"
 #include "plugin/waves/CoastField.h"
 #include "plugin/waves/WaveField.h"
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <random>
 #include <vector>
@@ -104,5 +107,44 @@ void BM_CoastBuild(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(CoastField::build(w, region(int(state.range(0))), shelfDepth, err));
 }
 BENCHMARK(BM_CoastBuild)->Arg(201)->Arg(401)->Unit(benchmark::kMillisecond);
+
+// The island table (paper 003 sec. 3) over a round island of 1 km radius in
+// 30 m of water, 10 km square: Args (nodes per side, components). CPU: the
+// table alone (CoastField::islandTable, TBB over rows); GPU: the compute
+// shader on this machine's GL (llvmpipe here), including its compile, upload
+// and read-back (plugin/render/CoastIslandsGpu). 513^2 x 3 is the paper's case.
+double islandDepth(double e, double n) { return std::hypot(e, n) < 1000.0 ? -5.0 : 30.0; }
+
+CoastField::IslandInputs islandInputs(int nodes, int comps) {
+  SeaState s = sea();
+  s.gerstnerComponents = comps;
+  std::string err;
+  const WaveField w = *WaveField::create(Model::Gerstner, s, err);
+  CoastField::Region r = region(nodes);
+  // The field's own inputs (the build also runs the eikonal; only the table is timed).
+  return CoastField::build(w, r, islandDepth, err).islandInputs();
+}
+
+void BM_IslandTableCpu(benchmark::State& state) {
+  const CoastField::IslandInputs in = islandInputs(int(state.range(0)), int(state.range(1)));
+  for (auto _ : state) benchmark::DoNotOptimize(CoastField::islandTable(in));
+}
+BENCHMARK(BM_IslandTableCpu)->Args({201, 16})->Args({513, 3})->Args({513, 16})->Unit(benchmark::kMillisecond);
+
+void BM_IslandTableGpu(benchmark::State& state) {
+  std::string err;
+  auto ctx = geocean::gl::HeadlessContext::create(err);
+  if (!ctx) {
+    state.SkipWithError(err.c_str());
+    return;
+  }
+  const CoastField::IslandInputs in = islandInputs(int(state.range(0)), int(state.range(1)));
+  for (auto _ : state) {
+    auto t = geocean::ocean_render::buildIslandTableGpu(in, err);
+    if (t.empty()) state.SkipWithError(err.c_str());
+    benchmark::DoNotOptimize(t);
+  }
+}
+BENCHMARK(BM_IslandTableGpu)->Args({201, 16})->Args({513, 3})->Args({513, 16})->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
