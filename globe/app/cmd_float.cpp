@@ -14,6 +14,7 @@
 #include "plugin/bodies/Spawn.h"
 #include "plugin/bodies/Terrain.h"
 #include "plugin/ocean/Ocean.h"
+#include "plugin/waves/TimeRange.h"
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -192,6 +193,9 @@ int runFloat(const FloatOptions& o) {
       throw Error{"--model '" + o.model + "' is not mesh (hull clipped against the sea) or points (paper 000)"};
     const double seconds = number("--seconds", o.seconds);
     if (!(seconds >= 0.0)) throw Error{"--seconds " + o.seconds + " must be >= 0"};
+    // The sea's time bound (plugin/waves/TimeRange.h); 1e300 also overflowed
+    // the output count's conversion to long (header only, exit 0).
+    if (seconds > waves::kMaxTimeS) throw Error{"--seconds " + o.seconds + " s is above 1e12 s"};
     const double dt = positive("--dt", o.dt, "s");
     if (dt > 0.5) throw Error{"--dt " + o.dt + " s is above 0.5 s"};
     const double every = positive("--every", o.every, "s");

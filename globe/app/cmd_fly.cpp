@@ -11,6 +11,7 @@
 #include "globe/gl/Hud.h"
 #endif
 #include "globe/host/OceanLayer.h"
+#include "plugin/waves/TimeRange.h"
 
 #include <epoxy/gl.h>
 
@@ -64,6 +65,12 @@ int runFly(const FlyArgs& a) {
     }
     if (a.frames < 2 || a.frames > 1000000) throw render::ArgError("--frames: " + std::to_string(a.frames) + " must be in 2..1000000");
     if (!(a.fps > 0.0)) throw render::ArgError("--fps must be positive");
+    // The last frame's time within the sea's bound (plugin/waves/TimeRange.h).
+    if (!(a.frames / a.fps <= waves::kMaxTimeS)) {
+      char b[160];
+      std::snprintf(b, sizeof b, "--fps %g: the last frame's time %g s is above 1e12 s", a.fps, a.frames / a.fps);
+      throw render::ArgError(b);
+    }
     if (!a.sun.empty()) sunAzEl = render::parseNumbers(a.sun, 2, "--sun AZ,EL");
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean fly: %s\n", e.what());

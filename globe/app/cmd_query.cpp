@@ -76,6 +76,8 @@ std::string parseWaveOptions(const QueryOptions& o, WaveSetup& w) {
   if (auto e = number("--wind-dir", o.windDir, w.sea.windFromDeg); !e.empty()) return e;
   if (auto e = number("--fetch", o.fetch, w.sea.fetchM); !e.empty()) return e;
   if (w.sea.fetchM < 0.0) return "--fetch " + o.fetch + " m is negative";
+  if (w.sea.fetchM > 0.0 && w.sea.fetchM < 1.0)
+    return "--fetch " + o.fetch + " m is below 1 m (0: fully developed)";
   {
     std::uint32_t seed = 0;
     const auto [p, ec] = std::from_chars(o.seed.data(), o.seed.data() + o.seed.size(), seed);

@@ -237,7 +237,10 @@ std::optional<WaveField> WaveField::create(Model model, const SeaState& sea, std
   if (!std::isfinite(sea.windSpeedMps) || sea.windSpeedMps < 0.2 || sea.windSpeedMps > 60.0)
     return bad("windSpeedMps", sea.windSpeedMps, "expected 0.2 .. 60 m/s");
   if (!std::isfinite(sea.windFromDeg)) return bad("windFromDeg", sea.windFromDeg, "expected a finite angle");
-  if (!std::isfinite(sea.fetchM) || sea.fetchM < 0.0) return bad("fetchM", sea.fetchM, "expected >= 0 m");
+  // 0 is fully developed; below 1 m of fetch JONSWAP's peak runs away
+  // (1e-300 m: a peak frequency of 1e102 rad/s, NaN heights).
+  if (!std::isfinite(sea.fetchM) || !(sea.fetchM == 0.0 || sea.fetchM >= 1.0))
+    return bad("fetchM", sea.fetchM, "expected 0 (fully developed) or >= 1 m");
   if (!(sea.anchorLatDeg >= -90.0 && sea.anchorLatDeg <= 90.0))
     return bad("anchorLatDeg", sea.anchorLatDeg, "expected -90 .. 90");
   // Bounded, not just finite: lon * pi overflowed to NaN at -1.8e308

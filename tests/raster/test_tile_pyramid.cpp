@@ -345,7 +345,7 @@ TEST(RasterFaults, FileReplacedOrTruncatedUnderCachedReads) {
           continue;
         }
         // OpenImageIO's ImageCache answers tiles past the new end with
-        // unwritten memory and no error (open finding 7, docs/RELIABILITY.md):
+        // unwritten memory and no error (open, docs/RELIABILITY.md "Faults"):
         // only the libtiff path is held to "old value or NaN" here.
         if (fewLookups) {
           ASSERT_EQ(v, want) << x << "," << y;

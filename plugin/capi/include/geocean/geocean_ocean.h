@@ -122,7 +122,7 @@ typedef struct geocean_sea_state {
   int32_t model;               /* a geocean_wave_model */
   double wind_speed_mps;       /* at 19.5 m (Pierson-Moskowitz reference height), 0.2 .. 60 */
   double wind_from_deg;        /* direction the wind blows FROM, clockwise from north */
-  double fetch_m;              /* 0: fully developed sea (Pierson-Moskowitz); > 0: JONSWAP */
+  double fetch_m;              /* 0: fully developed sea (Pierson-Moskowitz); >= 1 m: JONSWAP */
   uint32_t seed;               /* same seed, same sea */
   int32_t gerstner_components; /* 1 .. 64 */
   int32_t noise_octaves;       /* 1 .. 12 */
@@ -321,7 +321,8 @@ GEOCEAN_API geocean_status geocean_surface_outputs_init(geocean_surface_outputs*
  * pass, exactly what `geocean query` prints. time_s: time_count values, 1
  * (one time for every point) or count (one per point); may be NULL with
  * time_count 0 when no sea output (height .. horizontal velocity) is asked
- * for. Sea outputs are NaN on land and lakes. Without rasters every point
+ * for. Sea outputs are NaN on land and lakes, and off the globe (|lat| > 90,
+ * |lon| > 360, NaN). Without rasters every point
  * is deep ocean (elevation NaN). Large batches run on all cores.
  * Errors: NULL_ARGUMENT (ocean, outputs; lat_deg, lon_deg, time_s when
  * needed and count > 0), INVALID_ARGUMENT (outputs->struct_size,
