@@ -21,6 +21,29 @@ in float vCoverage;
 #ifdef GEOCEAN_FAR_SHADED
 in vec3 vColor;  // far open water: shaded per vertex (OceanRenderer)
 #endif
+#ifdef FOAM_TIMES
+// Whitecaps from the Jacobian per fragment (Gerstner, FFT): the rest point
+// (offset from the wave patch origin: linear across a cell, so exact) and
+// the water depth the vertex used.
+in vec3 vRest;
+in float vWaveDepthM;
+#include "waves_types.glsl"
+layout(std430, binding = 0) readonly buffer WvOctaveBuffer { WvOctave wvOctaves[]; };
+layout(std430, binding = 1) readonly buffer WvWaveBuffer { WvWave wvWaves[]; };
+layout(std430, binding = 2) readonly buffer WvFrameBuffer { WvFrame wvFrames[]; };
+uniform int uWaveCount;
+#if WV_MODEL == 2
+layout(std430, binding = 3) readonly buffer WvFftPlaneBuffer { WvFftPlane wvFftPlanes[]; };
+layout(std430, binding = 4) readonly buffer WvFftTexelBuffer { vec4 wvFftTexels[]; };
+uniform int uFftCascades;
+#endif
+#if WV_MODEL == 1 && defined(WV_COAST)
+layout(std430, binding = 3) readonly buffer WvCoastBuffer { WvCoast wvCoasts[]; };
+layout(std430, binding = 4) readonly buffer WvCoastTexelBuffer { vec4 wvCoastTexels[]; };
+#endif
+#include "waves.glsl"
+#include "foam.glsl"
+#endif
 
 uniform vec4 uWaterGeo;
 uniform vec3 uSunDir;
@@ -51,6 +74,14 @@ void main() {
 
 #ifdef GEOCEAN_FAR_SHADED
   outColor = vec4(vColor, alpha);
+#elif defined(FOAM_TIMES)
+  // The kernel is evaluated per fragment, so the folds stay resolved while
+  // a pixel (1/8 of the cell's footprint) is under half the shortest wave
+  // (peak / 16: vFar ~0.25); the mean cover takes over by vFar 0.75.
+  float far = smoothstep(0.25, 0.75, vFar);
+  float crest = far < 1.0 ? whitecapFoam(vRest, wvFrames[0], vWaveDepthM) : 0.0;
+  crest = mix(crest, uWhitecapCover, far);
+  outColor = vec4(oceanColorCrest(vEyeRel, vNormal, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, crest, w), alpha);
 #else
   outColor = vec4(oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, vFoamM, w), alpha);
 #endif

@@ -61,6 +61,10 @@ out float vDepthM;
 out float vFar;
 out float vMss;
 out float vFoamM;
+#ifdef FOAM_TIMES
+out vec3 vRest;  // ocean.frag's whitecaps (foam.glsl)
+out float vWaveDepthM;
+#endif
 #ifdef GEOCEAN_FAR_SHADED
 // Far open water (OceanRenderer): the waves have faded into roughness and
 // nothing left varies within a cell, so the colour is made per vertex.
@@ -85,6 +89,10 @@ void main() {
   vec2 lonLat = vec2(float(lonD + double(uRefLonDeg)), float(aLatLon.x));
   vec3 d = aEyeRel + uEyeMinusOrigin;
   WvFrame fr = wvFrames[0];
+#ifdef FOAM_TIMES
+  vRest = d;
+  vWaveDepthM = 1e30;
+#endif
   vec3 up = wv_upAt(fr, d);
 #ifdef GEOCEAN_BARE
   vec3 p = aEyeRel;
@@ -97,6 +105,9 @@ void main() {
 #if WV_MODEL == 1
   float elev = textureLod(uElevation, geoUv(lonLat, uElevationGeo), 0.0).r;
   float depth = elev < -500.0 ? 1e30 : max(-elev, 1.0);
+#ifdef FOAM_TIMES
+  vWaveDepthM = depth;
+#endif
 #ifdef WV_COAST
   WvResult r = wv_gerstnerCoast(0, uWaveCount, d, fr, depth, wvCoasts[0]);
 #else

@@ -74,18 +74,18 @@ float depthCurve(float depthM, float tauMin, float tauMax) {
 
 // w: water coverage (0.5 = coast); far: how far the waves have faded into
 // roughness (0 near, 1 far); mss: the mean square slope not in `normal`
-// (ocean.vert: the spectrum's waves not drawn, and the slope the fade removes).
-vec3 oceanColor(vec3 eyeRel, vec3 normal, vec3 upIn, float heightM, vec3 sun, vec3 hazeTr, vec3 hazeIn,
-                float reliefDepthM, float far, float mss, float foamM, float w) {
+// (ocean.vert: the spectrum's waves not drawn, and the slope the fade
+// removes); crest: the whitecaps' foam (0..1).
+vec3 oceanColorCrest(vec3 eyeRel, vec3 normal, vec3 upIn, vec3 sun, vec3 hazeTr, vec3 hazeIn,
+                     float reliefDepthM, float far, float mss, float crest, float w) {
   // Depth (eq. 9's height): relief, or the coverage where the 20' relief
   // puts coastal water above sea level.
   float depth = max(reliefDepthM, (w - 0.5) * 120.0);
   vec3 up = normalize(upIn);
   vec3 v = normalize(-eyeRel);
   vec3 n = normalize(mix(normalize(normal), up, far * 0.7));
-  // Whitecaps on the highest crests, and the shore band (eq. 11: water +
-  // sum f_i foam) pulsing with the surf.
-  float crest = mix(smoothstep(foamM - uFoamSoftM, foamM + uFoamSoftM, heightM), uWhitecapCover, far);
+  // The whitecaps, and the shore band (eq. 11: water + sum f_i foam)
+  // pulsing with the surf.
   float surf = 0.5 + 0.5 * sin(uTimeS * 0.9 - depth * 1.7);
   float shore = depthCurve(depth, 4.0, 0.3) * 0.55 * surf + depthCurve(depth, 1.2, 0.0) * 0.4;
   float foam = clamp(crest + shore, 0.0, 1.0);
@@ -96,4 +96,11 @@ vec3 oceanColor(vec3 eyeRel, vec3 normal, vec3 upIn, float heightM, vec3 sun, ve
   float seen = uRefraction != 0 && reliefDepthM > 0.0 ? reliefDepthM : depth;
   vec3 c = seaColorOptics(n, v, up, uSunDir, sun, seen, mss, foam, refl, uRefraction != 0);
   return toDisplay(c * hazeTr + hazeIn);
+}
+
+// Noise (and far shading): whitecaps on the highest crests, above foamM.
+vec3 oceanColor(vec3 eyeRel, vec3 normal, vec3 upIn, float heightM, vec3 sun, vec3 hazeTr, vec3 hazeIn,
+                float reliefDepthM, float far, float mss, float foamM, float w) {
+  float crest = mix(smoothstep(foamM - uFoamSoftM, foamM + uFoamSoftM, heightM), uWhitecapCover, far);
+  return oceanColorCrest(eyeRel, normal, upIn, sun, hazeTr, hazeIn, reliefDepthM, far, mss, crest, w);
 }

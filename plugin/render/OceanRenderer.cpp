@@ -1,6 +1,7 @@
 #include "plugin/render/OceanRenderer.h"
 
 #include "plugin/waves/CoastField.h"
+#include "plugin/waves/FftOcean.h"
 #include "plugin/render/OceanWorld.h"
 
 #include "globe/gl/Texture.h"
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <cstdio>
 #include <cmath>
@@ -57,22 +59,27 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
                                                                              : "WV_MODEL 0"};
   if (options_.model == waves::Model::Fft) model.push_back("WV_FFT 1");
   if (coast) model.push_back("WV_COAST 1");
+  // Gerstner and FFT whitecaps per fragment from the Jacobian (foam.glsl);
+  // the far per-vertex group has faded to the mean cover.
+  std::vector<std::string> shaded = model;
+  if (jacobianFoam()) shaded.push_back("FOAM_TIMES " + std::to_string(kFoamTimes));
   if (options_.waterTiles) {
     pages_ = std::make_unique<WaterPages>(options_.waterTiles);
-    auto paged = model;
+    auto paged = shaded;
     paged.push_back("GEOCEAN_WATER_PAGES 1");
     program_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", paged);
   } else {
-    program_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", model);
+    program_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", shaded);
   }
   {
-    auto open = model;
+    auto open = shaded;
     open.push_back("GEOCEAN_OPEN_WATER 1");
     openWater_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", open);
     open.back() = "GEOCEAN_VERTEX_COVERAGE 1";
     smoothCoast_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", open);
-    open.back() = "GEOCEAN_FAR_SHADED 1";
-    farShaded_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", open);
+    auto far = model;
+    far.push_back("GEOCEAN_FAR_SHADED 1");
+    farShaded_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", far);
   }
   model.push_back("GEOCEAN_BARE 1");
   bare_ = gl::GlProgram::graphics("ocean.vert", "bare.frag", model);
@@ -174,6 +181,80 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     std::fill(foamHeightM_.begin() + 1, foamHeightM_.end(), foamHeightM_[0]);
   // Soft edge: 2 % of Hs either side (an anti-aliased rim, not a halo).
   foamSoftM_ = 0.02 * waves_->spectrumHsM();
+}
+
+std::array<double, OceanRenderer::kFoamTimes> OceanRenderer::foamTimes(double tS) {
+  // Past samples on a fixed grid strictly before tS (ages in (0, 1], (1, 2], ..
+  // steps): the same times for every frame within a step, so the FFT's
+  // tables for them come from its cache.
+  std::array<double, kFoamTimes> t{};
+  t[0] = tS;
+  const double last = std::ceil(tS / kFoamStepS) * kFoamStepS - kFoamStepS;
+  for (int k = 1; k < kFoamTimes; ++k) t[std::size_t(k)] = last - (k - 1) * kFoamStepS;
+  return t;
+}
+
+double OceanRenderer::foamOf(const double* det, const double* ageS) const {
+  // foam.glsl's whitecapFoam in double.
+  double foam = 0.0;
+  for (int k = 0; k < kFoamTimes; ++k) {
+    const double e0 = foamJacobian_ - foamJacobianSoft_, e1 = foamJacobian_ + foamJacobianSoft_;
+    const double x = std::clamp((det[k] - e0) / (e1 - e0), 0.0, 1.0);
+    foam = std::max(foam, (1.0 - x * x * (3.0 - 2.0 * x)) * std::exp(-ageS[k] / kFoamDecayS));
+  }
+  return foam;
+}
+
+void OceanRenderer::calibrateJacobianFoam(double latDeg, double lonDeg) {
+  // The Jacobian threshold at which the foam a frame draws covers W of the
+  // sea around (latDeg, lonDeg): the Jacobian's statistics vary over the
+  // globe (the FFT tile is seen up to 60 degrees oblique by its triplanar
+  // plane, Gerstner directions follow great circles), so draw() calibrates
+  // again where it looks once that has moved kFoamCalibrationM away.
+  // 4096 particles over 40 x 40 peak wavelengths at 4 frame times (at
+  // 0, 1/4, 1/2, 3/4 of a step past the grid, as frames fall), each with
+  // its history; a pixel counts as foam where the foam is >= kFoamCounted,
+  // weighted by the displaced surface's area
+  // per rest area (the present determinant), as a top-down view sees it.
+  // Sampling: +-12 % in W at 0.5 % cover (the noise quantile's figure).
+  foamCalibratedAt_ = geo::toEcef({latDeg, lonDeg, 0.0});
+  constexpr std::size_t kP = 4096;
+  constexpr int kBases = 4;
+  const double spanDeg = 40.0 * waves_->peakWavelengthM() / 111320.0;
+  std::uint32_t state = 424242u;
+  const auto uniform = [&] { return double((state = state * 1664525u + 1013904223u) >> 8) / 16777216.0; };
+  std::vector<glm::dvec3> at(kP);
+  for (auto& o : at)
+    o = geo::toEcef({latDeg + (uniform() - 0.5) * spanDeg, lonDeg + (uniform() - 0.5) * spanDeg, 0.0});
+  std::vector<double> det(kP * kBases * kFoamTimes), age(kP * kBases * kFoamTimes), area(kP * kBases);
+  waves::WaveField::CpuPatch patch;
+  for (int b = 0; b < kBases; ++b) {
+    const double tS = 300.0 * b + kFoamStepS * (0.25 * b + 0.01);
+    const auto times = foamTimes(tS);
+    for (int k = 0; k < kFoamTimes; ++k)
+      for (std::size_t i = 0; i < kP; ++i) {
+        waves_->cpuPatch(at[i], times[std::size_t(k)], patch);
+        const std::size_t j = (std::size_t(b) * kP + i) * kFoamTimes + std::size_t(k);
+        det[j] = waves_->evaluate(patch, glm::dvec3(0.0), 1e30).jac.w;
+        age[j] = tS - times[std::size_t(k)];
+        if (k == 0) area[std::size_t(b) * kP + i] = std::max(det[j], 0.0);
+      }
+  }
+  double total = 0.0;
+  for (double a : area) total += a;
+  const auto cover = [&](double thr) {
+    foamJacobian_ = thr, foamJacobianSoft_ = 0.1 * thr;
+    double c = 0.0;
+    for (std::size_t p = 0; p < area.size(); ++p)
+      if (foamOf(&det[p * kFoamTimes], &age[p * kFoamTimes]) >= kFoamCounted) c += area[p];
+    return c / total;
+  };
+  double lo = 0.0, hi = 2.0;
+  for (int it = 0; it < 40; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (cover(mid) < whitecap_ ? lo : hi) = mid;
+  }
+  cover(0.5 * (lo + hi));
 }
 
 double OceanRenderer::whitecapCover(double windSpeedMps) {
@@ -398,7 +479,24 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   // the camera, where precision is visible.
   const geo::Geodetic g = geo::fromEcef(cam.eyeEcef());
   const glm::dvec3 origin = geo::toEcef({g.latDeg, g.lonDeg, 0.0});
+  if (jacobianFoam() && !bare && glm::length(origin - foamCalibratedAt_) > kFoamCalibrationM)
+    calibrateJacobianFoam(g.latDeg, g.lonDeg);
   waves_->gpuPatch(origin, light.timeS, patch_);
+  const int waveCount = int(patch_.waves.size());
+  const auto foamT = foamTimes(light.timeS);
+  if (jacobianFoam() && !bare) {
+    // The past times' wave data after the present's (foam.glsl).
+    const std::size_t texels = patch_.fftTexels.size();
+    for (int k = 1; k < kFoamTimes; ++k) {
+      waves_->gpuPatch(origin, foamT[std::size_t(k)], pastPatch_);
+      patch_.waves.insert(patch_.waves.end(), pastPatch_.waves.begin(), pastPatch_.waves.end());
+      for (auto pl : pastPatch_.fftPlanes) {
+        pl.cell.z += int(std::size_t(k) * texels / waves::FftOcean::kTexelParts);
+        patch_.fftPlanes.push_back(pl);
+      }
+      patch_.fftTexels.insert(patch_.fftTexels.end(), pastPatch_.fftTexels.begin(), pastPatch_.fftTexels.end());
+    }
+  }
   upload(ssbo_[0], patch_.octaves);
   upload(ssbo_[1], patch_.waves);
   upload(ssbo_[2], std::vector<waves::kf::WvFrame>{patch_.frame});
@@ -429,7 +527,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     const glm::vec3 eyeMinusO(cam.eyeEcef() - origin);
     glUniform3fv(p.uniform("uEyeMinusOrigin"), 1, &eyeMinusO[0]);
     glUniform1i(p.uniform("uOctaveCount"), int(patch_.octaves.size()));
-    glUniform1i(p.uniform("uWaveCount"), int(patch_.waves.size()));
+    glUniform1i(p.uniform("uWaveCount"), waveCount);
     glUniform1fv(p.uniform("uOctaveWavelengthM"), GLsizei(std::min<std::size_t>(octaveWavelengthM_.size(), 16)),
                  octaveWavelengthM_.data());
     // A cell's footprint on the ground is this x its distance.
@@ -438,6 +536,14 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glUniform1fv(p.uniform("uFoamHeightM"), 17, foamHeightM_.data());
     glUniform1f(p.uniform("uFoamSoftM"), float(foamSoftM_));
     glUniform1f(p.uniform("uWhitecapCover"), float(whitecap_));
+    if (jacobianFoam()) {
+      float ages[kFoamTimes];
+      for (int k = 0; k < kFoamTimes; ++k) ages[k] = float(light.timeS - foamT[std::size_t(k)]);
+      glUniform1fv(p.uniform("uFoamAgeS"), kFoamTimes, ages);
+      glUniform1f(p.uniform("uFoamJacobian"), float(foamJacobian_));
+      glUniform1f(p.uniform("uFoamJacobianSoft"), float(foamJacobianSoft_));
+      glUniform1f(p.uniform("uFoamDecayS"), float(kFoamDecayS));
+    }
     glUniform4fv(p.uniform("uElevationGeo"), 1, &elevationGeo[0]);
     glUniform4fv(p.uniform("uWaterGeo"), 1, &waterGeo[0]);
     const glm::vec3 sun(light.sunEcef);

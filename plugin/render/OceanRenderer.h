@@ -14,6 +14,7 @@
 #include "plugin/render/WaterPages.h"
 #include "plugin/waves/WaveField.h"
 
+#include <array>
 #include <memory>
 #include <optional>
 
@@ -42,6 +43,11 @@ struct OceanOptions {
   // Every cell then takes the per-pixel coverage (the water index is the
   // grid's, coarser than the mask) and coversOpaquely is false.
   std::shared_ptr<const raster::TilePyramid> waterTiles;
+  // Gerstner and FFT whitecaps from the Jacobian's folds per fragment
+  // (shaders/foam.glsl). Off by default for now: near the eye at a grazing
+  // view the decaying trail still shows its 0.5 s copies as stripes
+  // (boats_chase); off, these models keep the height-quantile crests.
+  bool jacobianFoam = false;
 };
 
 // Reorders a grid frame's compacted cell indices (6 per cell) into three
@@ -126,6 +132,33 @@ class OceanRenderer {
   double foamHeightM(int octavesDrawn = 16) const { return foamHeightM_[std::size_t(octavesDrawn)]; }
   // Monahan & O'Muircheartaigh (1980): whitecap cover W = 3.84e-6 U10^3.41.
   static double whitecapCover(double windSpeedMps);
+  // Gerstner and FFT whitecaps (shaders/foam.glsl): foam where the Jacobian
+  // determinant of the choppy map is below foamJacobian() (calibrated so
+  // the foam-covered fraction of the sea is W), staying with the water
+  // particle and decaying as exp(-age / kFoamDecayS), sampled at the present
+  // and kFoamTimes - 1 earlier times on a kFoamStepS grid. 0: no such foam.
+  static constexpr double kFoamDecayS = 2.0;  // Callaghan et al. 2012: 0.5-8 s
+  // 0.5 s: a short component's fold lasts a fraction of its 1.5-3 s period,
+  // so coarser steps leave the trail as separate copies of the fold.
+  static constexpr double kFoamStepS = 0.5;
+  static constexpr int kFoamTimes = 6;
+  // Foam counted as sea covered (Monahan's W is bright foam in photographs):
+  // over the navy water (red 27/255) under full foam's 221/255, the tone
+  // curve puts red 170 (SeaOptics' foam pixel) at 0.40 foam.
+  static constexpr double kFoamCounted = 0.40;
+  double foamJacobian() const { return foamJacobian_; }
+  // Calibrates foamJacobian() around a place (draw() does it at its nadir,
+  // again after moving kFoamCalibrationM; 0 before).
+  void calibrateJacobianFoam(double latDeg, double lonDeg);
+  static constexpr double kFoamCalibrationM = 100000.0;  // recalibrated when the nadir moves this far
+  // The sample times for a frame at tS: tS, then the grid's past times.
+  static std::array<double, kFoamTimes> foamTimes(double tS);
+  // The foam (0..1) foam.glsl draws for a particle whose Jacobian
+  // determinants at foamTimes(tS) are det (ages: tS - foamTimes).
+  double foamOf(const double* det, const double* ageS) const;
+  bool jacobianFoam() const {
+    return options_.jacobianFoam && (options_.model == waves::Model::Gerstner || options_.model == waves::Model::Fft);
+  }
   // CPU time of the last draw's grid build (ScreenGrid::build + index
   // compaction), wall ms: the part of the ocean pass that is not GL.
   double lastGridMs() const { return gridMs_; }
@@ -146,6 +179,9 @@ class OceanRenderer {
   std::vector<float> mssAbove_;
   std::vector<float> foamHeightM_;
   double foamSoftM_ = 0.0, whitecap_ = 0.0;
+  double foamJacobian_ = 0.0, foamJacobianSoft_ = 0.0;
+  waves::GpuPatch pastPatch_;
+  glm::dvec3 foamCalibratedAt_{0.0};  // the origin: never a nadir, so the first draw calibrates
   OceanInputs inputs_;
   bool writeData_ = false;
   bool glAbandoned_ = false;

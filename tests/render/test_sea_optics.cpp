@@ -20,9 +20,10 @@ constexpr double kPi = 3.14159265358979;
 
 // Our sea states give the wind at 19.5 m (PM's height); the papers' laws
 // are for about 10 m (Cox-Munk's anemometer was at 12.5 m): U19.5 = 1.026 U10.
-std::shared_ptr<ocean_render::OceanRenderer> oceanAt(double u10) {
+std::shared_ptr<ocean_render::OceanRenderer> oceanAt(double u10, waves::Model model = waves::Model::Noise) {
   ocean_render::OceanOptions oo;
-  oo.model = waves::Model::Noise;
+  oo.model = model;
+  oo.jacobianFoam = model != waves::Model::Noise;
   oo.sea.windSpeedMps = 1.026 * u10;
   oo.sea.windFromDeg = 270.0;
   return std::make_shared<ocean_render::OceanRenderer>(session().world->grids(), ocean_render::defaultLandSea(), oo);
@@ -199,12 +200,14 @@ TEST(SeaOptics, GlitterIsCentredOnTheSpecularPointAndSpreadsWithTheWindAsCoxMunk
 // so the fraction is counted over 144 views 5.5 km apart (at U = 8, about
 // 100 crests foam in them: +-10 % from counting alone). The sun is low
 // and behind (no glitter in view); a foam pixel is one whose red channel is
-// over 170, what half foam over the dark water gives.
-TEST(SeaOptics, WhitecapCoverFollowsMonahan) {
+// over 170, what half foam over the dark water gives. Noise: crests above a
+// height quantile; Gerstner and FFT: the Jacobian's folds per fragment with
+// their decaying history (shaders/foam.glsl).
+void expectMonahanCover(waves::Model model, const char* name) {
   Session& s = session();
   OceanGuard guard;
   for (double u10 : {8.0, 12.0, 16.0}) {
-    const auto ocean = oceanAt(u10);
+    const auto ocean = oceanAt(u10, model);
     useOcean(ocean);
     std::size_t foam = 0, total = 0;
     for (int v = 0; v < 144; ++v) {
@@ -213,18 +216,46 @@ TEST(SeaOptics, WhitecapCoverFollowsMonahan) {
       p.headingDeg = 0.0, p.pitchDeg = -90.0, p.width = p.height = 128, p.fovYDeg = 90.0;
       FrameSettings fs;
       fs.sunEcef = sunFromLocal(p.latDeg, p.lonDeg, 200.0, 15.0);
-      fs.timeS = 10.0 * v;
+      fs.timeS = 10.0 * v + 0.37;
       s.render(p, fs);
       const Image img = s.image();
-      if (v == 0) dump(img, "foam_u" + std::to_string(int(u10)));
+      if (v == 0) dump(img, std::string("foam_") + name + "_u" + std::to_string(int(u10)));
       for (std::size_t i = 0; i < std::size_t(img.width) * img.height; ++i) foam += img.rgba[i * 4] > 170, ++total;
     }
     const double frac = double(foam) / total, w = 3.84e-6 * std::pow(u10, 3.41);
-    std::printf("U10 = %.0f m/s: foam %.4f of the sea, Monahan %.4f (ratio %.2f); crest threshold %.2f m\n", u10, frac,
-                w, frac / w, ocean->foamHeightM());
-    EXPECT_GT(frac, w / 1.5) << u10;
-    EXPECT_LT(frac, w * 1.5) << u10;
+    std::printf("%s U10 = %.0f m/s: foam %.4f of the sea, Monahan %.4f (ratio %.2f); crest %.2f m, Jacobian %.3f\n",
+                name, u10, frac, w, frac / w, ocean->foamHeightM(), ocean->foamJacobian());
+    EXPECT_GT(frac, w / 1.5) << name << " " << u10;
+    EXPECT_LT(frac, w * 1.5) << name << " " << u10;
   }
+}
+
+TEST(SeaOptics, WhitecapCoverFollowsMonahan) { expectMonahanCover(waves::Model::Noise, "noise"); }
+TEST(SeaOptics, GerstnerWhitecapCoverFollowsMonahan) { expectMonahanCover(waves::Model::Gerstner, "gerstner"); }
+TEST(SeaOptics, FftWhitecapCoverFollowsMonahan) { expectMonahanCover(waves::Model::Fft, "fft"); }
+
+// The whitecaps' foam stays with the water and decays: a particle whose
+// Jacobian folded 1 s ago carries exp(-1 / tau) of full foam, and none once
+// every sample is unfolded; the sample times fall on the 0.5 s grid before t.
+TEST(SeaOptics, JacobianFoamDecaysExponentially) {
+  const auto ocean = oceanAt(12.0, waves::Model::Gerstner);
+  ocean->calibrateJacobianFoam(0.0, 0.0);
+  const double thr = ocean->foamJacobian();
+  ASSERT_GT(thr, 0.0);
+  ASSERT_LT(thr, 1.0);
+  const auto t = ocean_render::OceanRenderer::foamTimes(10.25);
+  static_assert(ocean_render::OceanRenderer::kFoamTimes == 6);
+  EXPECT_DOUBLE_EQ(t[0], 10.25);
+  EXPECT_DOUBLE_EQ(t[1], 10.0);
+  EXPECT_DOUBLE_EQ(t[5], 8.0);
+  const double tau = ocean_render::OceanRenderer::kFoamDecayS;
+  const double folded = 0.0, open = 1.0;
+  const double age[6] = {0.0, 1.0, 2.0, 3.0, 4.0, 5.0};
+  const double now[6] = {folded, open, open, open, open, open}, past[6] = {open, folded, open, open, open, open},
+               none[6] = {open, open, open, open, open, open};
+  EXPECT_DOUBLE_EQ(ocean->foamOf(now, age), 1.0);
+  EXPECT_NEAR(ocean->foamOf(past, age), std::exp(-1.0 / tau), 1e-12);
+  EXPECT_DOUBLE_EQ(ocean->foamOf(none, age), 0.0);
 }
 
 }  // namespace
