@@ -12,7 +12,7 @@
 #include "plugin/bodies/Simulation.h"
 #include "plugin/bodies/Spawn.h"
 #include "plugin/ocean/Ocean.h"
-#include "plugin/waves/TimeRange.h"
+#include "plugin/ocean/TimeRange.h"
 
 #include <glm/gtc/quaternion.hpp>
 
