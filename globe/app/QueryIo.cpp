@@ -1,6 +1,6 @@
 #include "globe/app/QueryIo.h"
 
-#include "plugin/waves/TimeRange.h"
+#include "plugin/ocean/TimeRange.h"
 
 #include <charconv>
 #include <cmath>

@@ -14,7 +14,7 @@
 #include "plugin/bodies/Spawn.h"
 #include "plugin/bodies/Terrain.h"
 #include "plugin/ocean/Ocean.h"
-#include "plugin/waves/TimeRange.h"
+#include "plugin/ocean/TimeRange.h"
 
 #include <glm/gtc/quaternion.hpp>
 

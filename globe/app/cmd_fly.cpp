@@ -11,7 +11,7 @@
 #include "globe/gl/Hud.h"
 #endif
 #include "globe/host/OceanLayer.h"
-#include "plugin/waves/TimeRange.h"
+#include "plugin/ocean/TimeRange.h"
 
 #include <epoxy/gl.h>
 
