@@ -169,24 +169,35 @@ void runParity(Model model) {
 // (wind from 250).
 double islandDepth(double e, double n) { return std::hypot(e + 1500.0, n) < 600.0 ? -5.0 : 30.0; }
 
-// maxEastM: points east of it are skipped (the shelf's land beyond its shoreline).
-void runCoastParity(const std::function<double(double, double)>& depthAt, double maxEastM, const char* name) {
-  std::string err;
-  auto ctx = geocean::gl::HeadlessContext::create(err);
-  ASSERT_TRUE(ctx) << err;
+// The sea and the 10 km region both coast tests use: Gerstner, 15 m/s from
+// 250, anchored at the region's centre.
+SeaState coastSea() {
   SeaState sea;
   sea.windSpeedMps = 15.0;
   sea.windFromDeg = 250.0;
   sea.seed = 42;
   sea.anchorLatDeg = 0.3;
   sea.anchorLonDeg = 0.3;
-  auto field = WaveField::create(Model::Gerstner, sea, err);
-  ASSERT_TRUE(field) << err;
+  return sea;
+}
+CoastField::Region coastRegion() {
   CoastField::Region region;
   region.latDeg = 0.3;
   region.lonDeg = 0.3;
   region.cellM = 50.0;
   region.nodes = 201;
+  return region;
+}
+
+// maxEastM: points east of it are skipped (the shelf's land beyond its shoreline).
+void runCoastParity(const std::function<double(double, double)>& depthAt, double maxEastM, const char* name) {
+  std::string err;
+  auto ctx = geocean::gl::HeadlessContext::create(err);
+  ASSERT_TRUE(ctx) << err;
+  const SeaState sea = coastSea();
+  auto field = WaveField::create(Model::Gerstner, sea, err);
+  ASSERT_TRUE(field) << err;
+  const CoastField::Region region = coastRegion();
   auto coast = std::make_shared<const CoastField>(CoastField::build(*field, region, depthAt, err));
   ASSERT_FALSE(coast->empty()) << err;
   field->setCoast(coast);
@@ -285,19 +296,10 @@ TEST(WavesGpuParity, IslandTableGpuEqualsCpu) {
   std::string err;
   auto ctx = geocean::gl::HeadlessContext::create(err);
   ASSERT_TRUE(ctx) << err;
-  SeaState sea;
-  sea.windSpeedMps = 15.0;
-  sea.windFromDeg = 250.0;
-  sea.seed = 42;
-  sea.anchorLatDeg = 0.3;
-  sea.anchorLonDeg = 0.3;
+  const SeaState sea = coastSea();
   auto field = WaveField::create(Model::Gerstner, sea, err);
   ASSERT_TRUE(field) << err;
-  CoastField::Region region;
-  region.latDeg = 0.3;
-  region.lonDeg = 0.3;
-  region.cellM = 50.0;
-  region.nodes = 201;
+  const CoastField::Region region = coastRegion();
   const CoastField coast = CoastField::build(*field, region, islandDepth, err);
   ASSERT_FALSE(coast.empty()) << err;
   const std::vector<glm::vec4> gpu = geocean::ocean_render::buildIslandTableGpu(coast.islandInputs(), err);
