@@ -61,6 +61,14 @@ float textureBSplineAuto(sampler2D tex, vec2 uv) {
 }
 #endif
 
+// The four cubic B-spline weights of taps -1, 0, 1, 2 at fraction f (the
+// same expressions the 4 x 4 coverage reads of the tiles and pages use).
+vec4 bsplineWeights4(float f) {
+  float f2 = f * f, f3 = f2 * f;
+  return vec4((1.0 - 3.0 * f + 3.0 * f2 - f3) / 6.0, (4.0 - 6.0 * f2 + 3.0 * f3) / 6.0,
+              (1.0 + 3.0 * f + 3.0 * f2 - 3.0 * f3) / 6.0, f3 / 6.0);
+}
+
 #ifdef GEOCEAN_WATER_TILES
 // Water coverage streamed as pyramid tiles (globe/render/TilePool): the
 // terrain tile being drawn lies inside a 2 x 2 block of tiles of one level,
@@ -114,11 +122,7 @@ float waterTilesBSpline(vec2 lonLatDeg) {
   vec2 p = waterTexelPos(lonLatDeg);
   vec2 i = floor(p);
   vec2 f = p - i;
-  vec2 f2 = f * f, f3 = f2 * f;
-  vec4 wx = vec4((1.0 - 3.0 * f.x + 3.0 * f2.x - f3.x) / 6.0, (4.0 - 6.0 * f2.x + 3.0 * f3.x) / 6.0,
-                 (1.0 + 3.0 * f.x + 3.0 * f2.x - 3.0 * f3.x) / 6.0, f3.x / 6.0);
-  vec4 wy = vec4((1.0 - 3.0 * f.y + 3.0 * f2.y - f3.y) / 6.0, (4.0 - 6.0 * f2.y + 3.0 * f3.y) / 6.0,
-                 (1.0 + 3.0 * f.y + 3.0 * f2.y - 3.0 * f3.y) / 6.0, f3.y / 6.0);
+  vec4 wx = bsplineWeights4(f.x), wy = bsplineWeights4(f.y);
   ivec2 g = ivec2(i) - 1;
   float s = 0.0;
   for (int y = 0; y < 4; ++y) {
@@ -194,11 +198,7 @@ float pageBSpline(vec2 lonLatDeg, int level) {
   vec2 p = pagePos(lonLatDeg, level);
   vec2 i = floor(p);
   vec2 f = p - i;
-  vec2 f2 = f * f, f3 = f2 * f;
-  vec4 wx = vec4((1.0 - 3.0 * f.x + 3.0 * f2.x - f3.x) / 6.0, (4.0 - 6.0 * f2.x + 3.0 * f3.x) / 6.0,
-                 (1.0 + 3.0 * f.x + 3.0 * f2.x - 3.0 * f3.x) / 6.0, f3.x / 6.0);
-  vec4 wy = vec4((1.0 - 3.0 * f.y + 3.0 * f2.y - f3.y) / 6.0, (4.0 - 6.0 * f2.y + 3.0 * f3.y) / 6.0,
-                 (1.0 + 3.0 * f.y + 3.0 * f2.y - 3.0 * f3.y) / 6.0, f3.y / 6.0);
+  vec4 wx = bsplineWeights4(f.x), wy = bsplineWeights4(f.y);
   ivec2 g = ivec2(i) - 1;
   float s = 0.0;
   for (int y = 0; y < 4; ++y) {
