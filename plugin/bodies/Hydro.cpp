@@ -3,6 +3,7 @@
 #include "plugin/bodies/Validate.h"
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/type_precision.hpp>
 
 #include <algorithm>
 #include <array>
@@ -466,24 +467,108 @@ void Thrust::accumulate(const Body& body, const StepContext&, Wrench& wrench) co
   wrench.addForce(newtons_ * body.state.bodyToEcef(glm::dvec3(1.0, 0.0, 0.0)));
 }
 
-Repulsion::Repulsion(const Simulation& sim, double radiusM, double stiffnessNpm)
-    : sim_(&sim), radius_(radiusM), stiffness_(stiffnessNpm) {
-  requirePositive("repulsion radius", radiusM, "m");
+Repulsion::Repulsion(const Simulation& sim, double defaultRadiusM, double stiffnessNpm)
+    : sim_(&sim), radius_(defaultRadiusM), stiffness_(stiffnessNpm) {
+  requirePositive("repulsion radius", defaultRadiusM, "m");
   requirePositive("repulsion stiffness", stiffnessNpm, "N/m");
+  defaultSpheres_ = {RepulsionSphere{glm::dvec3(0.0), radius_}};
 }
 
-void Repulsion::accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const {
-  glm::dvec3 F(0.0);
-  for (const Body& o : sim_->bodies()) {
-    if (o.id == body.id) continue;
-    glm::dvec3 d = ctx.enu.toLocal(o.state.positionEcef - body.state.positionEcef);
-    d.z = 0.0;
-    const double dist = glm::length(d);
-    const double overlap = 2.0 * radius_ - dist;
-    if (overlap <= 0.0 || dist <= 0.0) continue;
-    F -= stiffness_ * overlap * d / dist;
+void Repulsion::setSpheres(BodyId id, std::vector<RepulsionSphere> spheres) {
+  if (spheres.empty()) fail("repulsion sphere count of body " + std::to_string(id), 0.0, "", "must be > 0");
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    detail::requireFinite("repulsion sphere " + std::to_string(i) + " centre", spheres[i].centreBody, "m");
+    requirePositive("repulsion sphere " + std::to_string(i) + " radius", spheres[i].radiusM, "m");
   }
-  wrench.addForce(ctx.enu.toEcef(F));
+  spheres_[id] = std::move(spheres);
+}
+
+void Repulsion::forgetBody(BodyId id) { spheres_.erase(id); }
+
+std::vector<RepulsionSphere> Repulsion::spheresAlongHull(const HullMesh& hull) {
+  const glm::dvec3 lo = hull.minCorner(), hi = hull.maxCorner(), mid = 0.5 * (lo + hi);
+  const double L = hi.x - lo.x, B = hi.y - lo.y, r = 0.5 * std::min(L, B);
+  const int n = std::max(1, int(std::ceil(L / (2.0 * r) - 1e-9)));
+  std::vector<RepulsionSphere> out;
+  for (int j = 0; j < n; ++j) {
+    // Centres from lo.x + r to hi.x - r: the row spans the length.
+    const double x = n == 1 ? mid.x : lo.x + r + (L - 2.0 * r) * j / (n - 1);
+    out.push_back({glm::dvec3(x, mid.y, mid.z), r});
+  }
+  return out;
+}
+
+const std::vector<RepulsionSphere>& Repulsion::spheresOf(BodyId id) const {
+  const auto it = spheres_.find(id);
+  return it == spheres_.end() ? defaultSpheres_ : it->second;
+}
+
+namespace {
+glm::i64vec3 cellOf(const glm::dvec3& p, double cell) {
+  return {std::int64_t(std::floor(p.x / cell)), std::int64_t(std::floor(p.y / cell)), std::int64_t(std::floor(p.z / cell))};
+}
+// 21 bits a coordinate: cells of >= 1 m over +-6.4e6 m wrap, which only
+// adds candidates (the bound test rejects them), never loses one.
+std::uint64_t cellKey(const glm::i64vec3& c) {
+  return (std::uint64_t(c.x) & 0x1fffffu) | ((std::uint64_t(c.y) & 0x1fffffu) << 21) |
+         ((std::uint64_t(c.z) & 0x1fffffu) << 42);
+}
+}  // namespace
+
+void Repulsion::beginStep(const Simulation& sim) const {
+  const auto& all = sim.bodies();
+  placed_.clear();
+  offsets_.clear();
+  radii_.clear();
+  cells_.clear();
+  double maxBound = 0.0;
+  for (const Body& b : all) {
+    const auto& sp = spheresOf(b.id);
+    Placed p{b.id, b.state.positionEcef, 0.0, offsets_.size(), sp.size()};
+    for (const RepulsionSphere& s : sp) {
+      offsets_.push_back(b.state.bodyToEcef(s.centreBody));
+      radii_.push_back(s.radiusM);
+      p.boundM = std::max(p.boundM, glm::length(s.centreBody) + s.radiusM);
+    }
+    maxBound = std::max(maxBound, p.boundM);
+    placed_.push_back(p);
+  }
+  // Two bodies that can touch are closer than 2 maxBound: in neighbouring cells.
+  cellM_ = std::max(2.0 * maxBound, 1.0);
+  for (std::size_t i = 0; i < placed_.size(); ++i) cells_[cellKey(cellOf(placed_[i].positionEcef, cellM_))].push_back(std::uint32_t(i));
+  step_ = sim.stepCount();
+}
+
+void Repulsion::accumulate(const Body& body, const StepContext&, Wrench& wrench) const {
+  if (step_ != sim_->stepCount() || placed_.size() != sim_->bodies().size())
+    throw std::logic_error("geocean::bodies: Repulsion::accumulate without beginStep (add it with addForceModel)");
+  const auto it = std::lower_bound(placed_.begin(), placed_.end(), body.id,
+                                   [](const Placed& p, BodyId v) { return p.id < v; });
+  if (it == placed_.end() || it->id != body.id) return;
+  const Placed& a = *it;
+  const auto self = std::size_t(it - placed_.begin());
+  const glm::i64vec3 home = cellOf(a.positionEcef, cellM_);
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const auto cell = cells_.find(cellKey(home + glm::i64vec3(dx, dy, dz)));
+        if (cell == cells_.end()) continue;
+        for (const std::uint32_t j : cell->second) {
+          if (j == self) continue;
+          const Placed& b = placed_[j];
+          // The difference of the centres first, in full precision; the
+          // pair's other side computes exactly its negation.
+          const glm::dvec3 ab = b.positionEcef - a.positionEcef;
+          if (glm::dot(ab, ab) >= (a.boundM + b.boundM) * (a.boundM + b.boundM)) continue;
+          for (std::size_t s = a.first; s < a.first + a.n; ++s)
+            for (std::size_t t = b.first; t < b.first + b.n; ++t) {
+              const glm::dvec3 d = ab + (offsets_[t] - offsets_[s]);
+              const double dist = glm::length(d), overlap = radii_[s] + radii_[t] - dist;
+              if (overlap <= 0.0 || dist <= 0.0) continue;
+              wrench.addForceAtOffset(-stiffness_ * overlap / dist * d, offsets_[s]);
+            }
+        }
+      }
 }
 
 }  // namespace geocean::bodies

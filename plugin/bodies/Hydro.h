@@ -75,10 +75,11 @@
 // the hollow-cylinder proxy (eq. 2).
 //
 // Thrust: the engine force F_e along the hull's x axis at the centre of mass.
-// Repulsion: F_c between bodies (paper eq. 3), a spring on the overlap of
-// their horizontal radii.
+// Repulsion: F_c between bodies (paper eq. 3-4), springs on the overlap of
+// spheres fixed in the bodies.
 //
-// All models are const and keep no state: they may be evaluated for
+// All models are const and keep no state across steps (Repulsion places
+// the step's bodies once in beginStep): they may be evaluated for
 // different bodies on different threads at once.
 #pragma once
 
@@ -86,7 +87,9 @@
 #include "plugin/bodies/Sea.h"
 #include "plugin/bodies/Simulation.h"
 
+#include <cstdint>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 namespace geocean::bodies {
@@ -188,18 +191,57 @@ class Thrust final : public ForceModel {
   double newtons_;
 };
 
-// Repulsion between bodies (paper 000 eq. 3, F_c): each body is a disc of
-// radiusM in the local horizontal; overlapping discs push apart with
-// stiffness N/m of overlap. Reads the other bodies' states from `sim` at the
-// step's start (Simulation computes every force before any body moves).
+// Repulsion between bodies (paper 000 eq. 3-4, F_c_i and its torque):
+// each body carries spheres fixed in it (body axes, about the centre of
+// mass); two spheres of different bodies that overlap push apart along the
+// line of their centres, stiffness N per m of overlap, each force acting at
+// its sphere's centre (a torque, as eq. 4). The pair's forces are equal and
+// opposite on one line, computed from the same differences (bit for bit):
+// the pair's linear and angular momentum are conserved to rounding. A body
+// without spheres of its own has one of defaultRadiusM at its centre of
+// mass. The spheres of a step are placed in a hash grid by beginStep (cells
+// of the largest body's diameter), so a step costs O(bodies), not O(n^2).
+struct RepulsionSphere {
+  glm::dvec3 centreBody{0.0};  // m, body axes about the centre of mass
+  double radiusM = 0.0;
+};
+
 class Repulsion final : public ForceModel {
  public:
-  Repulsion(const Simulation& sim, double radiusM, double stiffnessNpm);
+  Repulsion(const Simulation& sim, double defaultRadiusM, double stiffnessNpm);
+  // Replaces body `id`'s spheres (radii finite and > 0, centres finite).
+  // Not during a step.
+  void setSpheres(BodyId id, std::vector<RepulsionSphere> spheres);
+  void forgetBody(BodyId id);
+  // A row of spheres along the hull's x axis covering its footprint:
+  // ceil(L / B) spheres of radius B / 2 (L length, B beam of the bounding
+  // box), centres on the box's centre line from bow to stern.
+  static std::vector<RepulsionSphere> spheresAlongHull(const HullMesh& hull);
+  double stiffnessNpm() const { return stiffness_; }
+
+  void beginStep(const Simulation& sim) const override;
   void accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const override;
 
  private:
+  struct Placed {
+    BodyId id;
+    glm::dvec3 positionEcef;
+    double boundM;          // bounding radius about the centre of mass
+    std::size_t first, n;   // its spheres in offsets_ / radii_
+  };
+  const std::vector<RepulsionSphere>& spheresOf(BodyId id) const;
+
   const Simulation* sim_;
   double radius_, stiffness_;
+  std::vector<RepulsionSphere> defaultSpheres_;
+  std::unordered_map<BodyId, std::vector<RepulsionSphere>> spheres_;
+  // This step's placement (beginStep, one thread; read by accumulate).
+  mutable std::vector<Placed> placed_;  // in body order (ids ascending)
+  mutable std::vector<glm::dvec3> offsets_;  // sphere centres - centre of mass, ECEF
+  mutable std::vector<double> radii_;
+  mutable std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+  mutable double cellM_ = 1.0;
+  mutable std::int64_t step_ = -1;
 };
 
 // Geodetic coordinates of ENU offsets from the step's centre of mass, to

@@ -135,6 +135,7 @@ void Simulation::step() {
     for (const auto& e : errors)
       if (e) std::rethrow_exception(e);
   };
+  for (const auto& m : globalForces_) m->beginStep(*this);
   // Phase 1: every force from the states at the step's start.
   forEachBody([&](std::size_t i) {
     const Body& b = bodies_[i];

@@ -36,6 +36,7 @@ using BodyId = std::uint64_t;
 
 class ForceModel;
 class StepConstraint;
+class Simulation;
 
 struct Body {
   BodyId id = 0;
@@ -61,6 +62,10 @@ class ForceModel {
  public:
   virtual ~ForceModel() = default;
   virtual void accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const = 0;
+  // For models added with Simulation::addForceModel: called once per step on
+  // one thread, with the states at the step's start, before any accumulate
+  // of that step (a broadphase over all bodies: Repulsion).
+  virtual void beginStep(const Simulation& sim) const { (void)sim; }
 };
 
 // Runs after a body's integration with its state at the step's start, and

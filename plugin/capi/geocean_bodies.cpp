@@ -1,4 +1,4 @@
-// The C ABI of floating bodies (ABI 1.4) over plugin/bodies: a Simulation
+// The C ABI of floating bodies (ABI 1.4; repulsion 1.6) over plugin/bodies: a Simulation
 // whose hulls float on the ocean's current snapshot (bodies::OceanSea, the
 // surface the queries give and the draw draws). Each entry point checks its
 // C arguments and runs inside guard() (CapiSupport.h); one mutex per
@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <cmath>
 #include <charconv>
+#include <cstddef>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -86,10 +88,16 @@ struct geocean_bodies {
   std::shared_ptr<LiveSea> sea = std::make_shared<LiveSea>();
   bodies::Simulation sim;
   std::map<bodies::BodyId, std::shared_ptr<const bodies::HullMesh>> hulls;
+  std::shared_ptr<bodies::Repulsion> repulsion;  // ABI 1.6; null: off
 
-  geocean_bodies(geocean_ocean* o, const bodies::SimulationConfig& c, double rhoW)
+  geocean_bodies(geocean_ocean* o, const bodies::SimulationConfig& c, double rhoW, double repulsionNpm)
       : ocean(o), waterDensity(rhoW), sim(c) {
     sea->refresh(o->current());
+    if (repulsionNpm > 0.0) {
+      // Every body gets its hull's spheres when added; the default radius is never used.
+      repulsion = std::make_shared<bodies::Repulsion>(sim, 1.0, repulsionNpm);
+      sim.addForceModel(repulsion);
+    }
   }
 };
 
@@ -149,8 +157,14 @@ GEOCEAN_API geocean_status geocean_bodies_create(geocean_ocean* ocean, const geo
     geocean_bodies_config c{};
     geocean_bodies_config_init(&c);
     if (config) {
-      requireStructSize(config, "config", "geocean_bodies_config_init");
-      c = *config;
+      // A 1.4/1.5 host's struct ends before the 1.6 field: read what it has.
+      constexpr std::size_t kSize14 = offsetof(geocean_bodies_config, repulsion_stiffness_n_per_m);
+      if (config->struct_size < kSize14)
+        fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "config->struct_size " + std::to_string(config->struct_size) +
+                                                 " is smaller than " + std::to_string(kSize14) +
+                                                 ": call geocean_bodies_config_init first");
+      std::memcpy(&c, config, std::min<std::size_t>(config->struct_size, sizeof c));
+      c.struct_size = sizeof c;
     }
     if (!(c.step_s > 0.0 && c.step_s <= 0.5))
       fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "config->step_s " + num(c.step_s) + " s is not in (0, 0.5]");
@@ -159,8 +173,11 @@ GEOCEAN_API geocean_status geocean_bodies_create(geocean_ocean* ocean, const geo
     if (!(c.water_density_kg_m3 > 0.0) || !std::isfinite(c.water_density_kg_m3))
       fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
            "config->water_density_kg_m3 " + num(c.water_density_kg_m3) + " kg/m^3 is not finite and > 0");
+    if (!(c.repulsion_stiffness_n_per_m >= 0.0) || !std::isfinite(c.repulsion_stiffness_n_per_m))
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "config->repulsion_stiffness_n_per_m " +
+                                               num(c.repulsion_stiffness_n_per_m) + " N/m is not finite and >= 0");
     *out = new geocean_bodies(ocean, bodies::SimulationConfig{.stepS = c.step_s, .startS = c.start_s},
-                              c.water_density_kg_m3);
+                              c.water_density_kg_m3, c.repulsion_stiffness_n_per_m);
   });
 }
 
@@ -204,6 +221,7 @@ GEOCEAN_API geocean_status geocean_bodies_add(geocean_bodies* b, const geocean_b
     const bodies::BodyId id = b->sim.addBody(hull->massProperties(d.density_kg_m3), s);
     b->sim.addBodyForce(id, force);
     if (d.thrust_n != 0.0) b->sim.addBodyForce(id, std::make_shared<bodies::Thrust>(d.thrust_n));
+    if (b->repulsion) b->repulsion->setSpheres(id, bodies::Repulsion::spheresAlongHull(*hull));
     b->hulls[id] = hull;
     if (out_id) *out_id = id;
   });
@@ -216,6 +234,7 @@ GEOCEAN_API geocean_status geocean_bodies_remove(geocean_bodies* b, geocean_body
     if (!b->hulls.count(id)) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "body id " + std::to_string(id) + ": no such body");
     b->sim.removeBody(id);
     b->hulls.erase(id);
+    if (b->repulsion) b->repulsion->forgetBody(id);
   });
 }
 

@@ -1,4 +1,4 @@
-// ABI 1.4, floating bodies, through the run-time loader as a host sees
+// ABI 1.4 (1.6: repulsion), floating bodies, through the run-time loader as a host sees
 // them: the poses equal those of a façade-level bodies::Simulation built
 // the same way (same bits, so the ABI adds nothing to the physics), the
 // fixed step holds through the ABI, and bad input gets a status and a
@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -303,6 +304,106 @@ TEST(CapiBodies, PosesMayBeReadWhileAnotherThreadSteps) {
   double t = 0;
   ASSERT_EQ(api().bodiesTime(b.h, &t), GEOCEAN_OK);
   EXPECT_EQ(t, 240.0 / 60.0);
+}
+
+// ---- ABI 1.6: repulsion between bodies (paper 000 eq. 3-4, F_c) ----
+
+// Two 6 x 3 x 2 m boxes side by side, bow north, their centres 2 m apart
+// east-west (beam 3 m: the hulls overlap by 1 m), at rest on the flat sea;
+// returns the poses after `seconds`.
+std::vector<geocean_body_pose> sideBySide(const geocean_bodies_config* c, double seconds) {
+  Ocean oc;
+  Bodies b(oc.h, c);
+  if (!b.h) return {};
+  geocean_body_desc d;
+  api().bodyDescInit(&d);
+  d.hull = GEOCEAN_HULL_BOX;
+  d.size_m[0] = 6.0, d.size_m[1] = 3.0, d.size_m[2] = 2.0;
+  d.density_kg_m3 = 600.0;
+  const double dLon = 1.0 / (111320.0 * std::cos(kLat * M_PI / 180.0));  // ~1 m of longitude
+  for (double side : {-1.0, 1.0}) {
+    d.lat_deg = kLat, d.lon_deg = kLon + side * dLon;
+    EXPECT_EQ(api().bodiesAdd(b.h, &d, nullptr), GEOCEAN_OK) << lastError();
+  }
+  EXPECT_EQ(api().bodiesAdvanceTo(b.h, seconds, nullptr), GEOCEAN_OK) << lastError();
+  std::vector<geocean_body_pose> p(2);
+  size_t n = 0;
+  EXPECT_EQ(api().bodiesGetPoses(b.h, 0, p.data(), 2, &n), GEOCEAN_OK) << lastError();
+  return p;
+}
+
+double apartM(const std::vector<geocean_body_pose>& p) {
+  return std::sqrt(std::pow(p[1].position_ecef_m[0] - p[0].position_ecef_m[0], 2) +
+                   std::pow(p[1].position_ecef_m[1] - p[0].position_ecef_m[1], 2) +
+                   std::pow(p[1].position_ecef_m[2] - p[0].position_ecef_m[2], 2));
+}
+
+TEST(CapiBodies, RepulsionPushesOverlappingHullsApartAndKeepsThePairsMomentum) {
+  geocean_bodies_config c;
+  ASSERT_EQ(api().bodiesConfigInit(&c), GEOCEAN_OK);
+  EXPECT_EQ(c.repulsion_stiffness_n_per_m, 0.0);  // off by default
+  // Without repulsion the hulls stay where they are (control: the test can fail).
+  const double start = apartM(sideBySide(&c, 0.0));
+  EXPECT_NEAR(start, 2.0, 0.01);  // 1 m of longitude each way, spherically
+  const auto still = sideBySide(&c, 10.0);
+  ASSERT_EQ(still.size(), 2u);
+  EXPECT_NEAR(apartM(still), start, 1e-6);
+
+  c.repulsion_stiffness_n_per_m = 2e4;
+  const auto p = sideBySide(&c, 10.0);
+  ASSERT_EQ(p.size(), 2u);
+  // Each box is two spheres of radius 1.5 m (ceil(6 / 3)) at x = -1.5, 1.5:
+  // the spheres side by side overlap by 1 m, the diagonal pairs not at all.
+  // Pushed apart, the boxes end at least a beam (3 m) apart, the water's
+  // drag slowing them afterwards.
+  EXPECT_GT(apartM(p), 3.0);
+  // The spring's energy, k x 1 m^2 x 2 pairs / 2 = 2e4 J, bounds their
+  // speed: each box of 21,600 kg at most sqrt(2e4 / 21,600) = 0.96 m/s;
+  // at 10 s the water has slowed them below it.
+  for (const auto& q : p) {
+    const double v = std::sqrt(q.velocity_ecef_mps[0] * q.velocity_ecef_mps[0] +
+                               q.velocity_ecef_mps[1] * q.velocity_ecef_mps[1] +
+                               q.velocity_ecef_mps[2] * q.velocity_ecef_mps[2]);
+    EXPECT_LT(v, 0.96) << q.id;
+  }
+  // Mirror-image bodies on a flat sea: the repulsion's pair of forces is
+  // equal and opposite, and so are the water's forces on the two, so the
+  // pair's horizontal momentum stays 0 (their heave is alike, it adds up):
+  // the horizontal velocities cancel within 1e-6 of one body's (rounding
+  // of the two bodies' ENU frames a metre apart).
+  const double la = kLat * M_PI / 180.0, lo = kLon * M_PI / 180.0;
+  const double east[3] = {-std::sin(lo), std::cos(lo), 0.0};
+  const double north[3] = {-std::sin(la) * std::cos(lo), -std::sin(la) * std::sin(lo), std::cos(la)};
+  auto along = [](const double* v, const double* axis) { return v[0] * axis[0] + v[1] * axis[1] + v[2] * axis[2]; };
+  const double sumE = along(p[0].velocity_ecef_mps, east) + along(p[1].velocity_ecef_mps, east);
+  const double sumN = along(p[0].velocity_ecef_mps, north) + along(p[1].velocity_ecef_mps, north);
+  const double one = std::abs(along(p[0].velocity_ecef_mps, east));
+  EXPECT_GT(one, 0.01) << "they moved apart (east-west)";
+  EXPECT_LT(std::abs(sumE), 1e-6 * one) << sumE << " of " << one;
+  // North, across the line of centres, nothing pushes: each drifts alike by
+  // what the hydrostatics of a hull moving sideways give (measured 3e-5 m/s).
+  const double stillN = along(still[0].velocity_ecef_mps, north);
+  EXPECT_LT(std::abs(sumN), 1e-3 * one) << sumN << " still " << stillN;
+
+  // A host built against 1.4/1.5 passes the shorter struct: the field it
+  // does not have is not read (whatever follows in memory), repulsion off.
+  c.struct_size = offsetof(geocean_bodies_config, repulsion_stiffness_n_per_m);
+  const auto old = sideBySide(&c, 10.0);
+  ASSERT_EQ(old.size(), 2u);
+  EXPECT_NEAR(apartM(old), start, 1e-6);
+
+  // Bad stiffness: named.
+  Ocean oc;
+  geocean_bodies* none = nullptr;
+  ASSERT_EQ(api().bodiesConfigInit(&c), GEOCEAN_OK);
+  c.repulsion_stiffness_n_per_m = -1.0;
+  EXPECT_EQ(api().bodiesCreate(oc.h, &c, &none), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("config->repulsion_stiffness_n_per_m -1 N/m is not finite and >= 0"), std::string::npos)
+      << lastError();
+  c.repulsion_stiffness_n_per_m = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(api().bodiesCreate(oc.h, &c, &none), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("config->repulsion_stiffness_n_per_m inf"), std::string::npos) << lastError();
+  EXPECT_EQ(none, nullptr);
 }
 
 }  // namespace

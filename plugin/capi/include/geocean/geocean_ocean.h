@@ -53,7 +53,7 @@ extern "C" {
  * A host built against MAJOR.MINOR runs with a plugin of the same MAJOR and
  * a MINOR at least as high. */
 #define GEOCEAN_ABI_VERSION_MAJOR 1
-#define GEOCEAN_ABI_VERSION_MINOR 5
+#define GEOCEAN_ABI_VERSION_MINOR 6
 #define GEOCEAN_ABI_VERSION ((uint32_t)((GEOCEAN_ABI_VERSION_MAJOR << 16) | GEOCEAN_ABI_VERSION_MINOR))
 
 /* Enums that cross the boundary as values have int32_t as their C++
@@ -401,8 +401,8 @@ typedef struct geocean_view {
  * tiles (a layer's global mask finer than its water grid, issue 12), the
  * draw first waits (bounded) for the tiles its view asks for instead of
  * drawing their coarser ancestors. Views leave it off: they never wait.
- * Added within ABI 1.5 (this session): an earlier 1.5 plugin rejects the
- * bit (INVALID_ARGUMENT naming draw_flags). */
+ * ABI 1.6 (first shipped inside a 1.5 build; a 1.5 plugin rejects the
+ * bit with INVALID_ARGUMENT naming draw_flags). */
 #define GEOCEAN_DRAW_COMPLETE_TILES 4u
 
 /* Fills *view with defaults: struct_size, a 1280x720 view 10,000 km above
@@ -511,6 +511,12 @@ typedef struct geocean_bodies_config {
   double step_s;              /* fixed step, s: > 0, <= 0.5 (default 1/60) */
   double start_s;             /* simulation time of the initial states, -1e12 .. 1e12 s (default 0) */
   double water_density_kg_m3; /* default 1025 */
+  /* ABI 1.6 (read only when struct_size covers it; a 1.4/1.5 host's shorter
+   * struct gets 0): repulsion between bodies (paper 000 eq. 3-4, F_c), N per
+   * m of overlap of the spheres along each hull (ceil(L/B) spheres of radius
+   * B/2 on its centre line), acting at the spheres' centres; finite, >= 0;
+   * 0 (default): bodies pass through each other. */
+  double repulsion_stiffness_n_per_m;
 } geocean_bodies_config;
 
 /* A body to add. Fill with geocean_body_desc_init() first. The body starts
@@ -537,7 +543,7 @@ typedef struct geocean_body_pose {
   double lat_deg, lon_deg, height_m; /* centre of mass, geodetic on WGS84 */
 } geocean_body_pose;
 
-/* ABI 1.4: fills *config with the defaults. Errors: NULL_ARGUMENT. Thread-safe. */
+/* ABI 1.4: fills *config with the defaults (1.6: repulsion 0). Errors: NULL_ARGUMENT. Thread-safe. */
 GEOCEAN_API geocean_status geocean_bodies_config_init(geocean_bodies_config* config);
 /* ABI 1.4: fills *desc with the defaults. Errors: NULL_ARGUMENT. Thread-safe. */
 GEOCEAN_API geocean_status geocean_body_desc_init(geocean_body_desc* desc);
