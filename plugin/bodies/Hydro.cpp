@@ -436,7 +436,13 @@ void ContactPointForce::accumulate(const Body& body, const StepContext& ctx, Wre
   for (std::size_t i = 0; i < n; ++i) S.off[i] = R * points_[i];
   offsetsToGeodetic(ctx, S.off.data(), n, S.lat.data(), S.lon.data(), S.h.data());
   std::fill(S.t.begin(), S.t.begin() + n, ctx.timeS);
-  sea_->sample(S.lat.data(), S.lon.data(), S.t.data(), n, true, S.sea.data());
+  const bool each = options_.waterVelocityAtEachPoint;
+  sea_->sample(S.lat.data(), S.lon.data(), S.t.data(), n, each, S.sea.data());
+  SeaSample centre{};
+  if (!each) sea_->sample(&ctx.geodetic.latDeg, &ctx.geodetic.lonDeg, &ctx.timeS, 1, true, &centre);
+  const glm::dvec3 vCentre = std::isnan(centre.heightM)
+                                 ? glm::dvec3(0.0)
+                                 : glm::dvec3(centre.horizontalVelocityEnMps, centre.verticalVelocityMps);
   const double rho = options_.water.densityKgM3, k = sea_->decayWaveNumberPerM();
   const double vi = volume_ / n, ai = area_ / n;
   const glm::dvec3 vCom = ctx.enu.toLocal(body.state.velocityEcef);
@@ -449,7 +455,8 @@ void ContactPointForce::accumulate(const Body& body, const StepContext& ctx, Wre
     const double frac = std::clamp(d / column_ + 0.5, 0.0, 1.0);
     if (frac <= 0.0) continue;
     glm::dvec3 f(0.0, 0.0, rho * ctx.gravityMps2 * vi * frac);  // Fn_i
-    const glm::dvec3 vWater = glm::dvec3(s.horizontalVelocityEnMps, s.verticalVelocityMps) * std::exp(-k * std::max(d, 0.0));
+    const glm::dvec3 vSurface = each ? glm::dvec3(s.horizontalVelocityEnMps, s.verticalVelocityMps) : vCentre;
+    const glm::dvec3 vWater = vSurface * std::exp(-k * std::max(d, 0.0));
     const glm::dvec3 vRel = vCom + glm::cross(wEnu, S.off[i]) - vWater;
     f -= 0.5 * rho * options_.dragCoefficient * ai * frac * glm::length(vRel) * vRel;  // Fd_i
     F += f;

@@ -70,7 +70,8 @@
 // fixed in the body, each carrying 1/n of the volume over a vertical column;
 // buoyancy rho g V_i f_i along the local up (f_i the column's submerged
 // fraction from the sea height at the point), drag on the point's velocity
-// relative to the water, torque from the same points (eq. 4). Gravity acts at
+// relative to the water (the orbital velocity at the centre decayed to the
+// point's depth, ContactPointOptions), torque from the same points (eq. 4). Gravity acts at
 // the centre of mass (Simulation). Use with MassProperties::isotropicFrom of
 // the hollow-cylinder proxy (eq. 2).
 //
@@ -154,6 +155,12 @@ double rectangularPlateAddedMassCoefficient(double aspect);
 struct ContactPointOptions {
   WaterProperties water;
   double dragCoefficient = 1.0;  // quadratic, on each point's share of the waterplane (Hoerner)
+  // The water's velocity for the drag: false (default), the surface's at the
+  // centre of mass decayed e^{-k d} to each point's depth, as HullForce
+  // does (one velocity query per body-step: the façade evaluates horizontal
+  // velocities point by point on the scalar kernel, 8 of them cost ~2.5x
+  // the rest of the step); true, the surface's above each point.
+  bool waterVelocityAtEachPoint = false;
 };
 
 class ContactPointForce final : public ForceModel {

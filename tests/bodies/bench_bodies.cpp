@@ -45,14 +45,16 @@ std::shared_ptr<const SeaSurface> makeSea(const char* model) {
 
 // n bodies on a grid 60 m apart around (30, -40), stepped `steps` times at 60 Hz.
 double bodyStepsPerSecond(const HullMesh& hull, bool points, std::shared_ptr<const SeaSurface> sea, int n, int steps,
-                          int threads, bool parallel = false, HullForceOptions options = {}) {
+                          int threads, bool parallel = false, HullForceOptions options = {},
+                          ContactPointOptions pointOptions = {}) {
+  const double waterline = hull.restingWaterlineZ(0.45);  // once: it is not a step's cost
   auto work = [&](int part, double& seconds) {
     Simulation sim({.stepS = 1.0 / 60, .parallel = parallel});
     auto hf = std::make_shared<HullForce>(std::make_shared<HullMesh>(hull), sea, options);
     const glm::dvec3 ext = hull.maxCorner() - hull.minCorner();
-    auto cp = ContactPointForce::hollowCylinderProxy(ext.x, 0.5 * ext.y, 4, sea);
+    auto cp = ContactPointForce::hollowCylinderProxy(ext.x, 0.5 * ext.y, 4, sea, pointOptions);
     for (int i = part; i < n; i += threads) {
-      const geo::Geodetic p{30.0 + (i / 20) * 5.4e-4, -40.0 + (i % 20) * 6.2e-4, -hull.restingWaterlineZ(0.45)};
+      const geo::Geodetic p{30.0 + (i / 20) * 5.4e-4, -40.0 + (i % 20) * 6.2e-4, -waterline};
       const geo::EnuFrame f = geo::enuFrame(p);
       BodyState s;
       s.positionEcef = f.originEcef;
@@ -108,9 +110,38 @@ void seaGridTable(const HullMesh& boat, std::shared_ptr<const SeaSurface> gerstn
   }
 }
 
+// 1,000 contact-point bodies (paper 000, 8 points each) in one Simulation,
+// sequential on one thread, against the goal (60 Hz on one core = 60,000
+// body-steps per CPU-second). References in the same run, rounds
+// alternated: the same bodies with the water's velocity queried at every
+// point (the code before ContactPointOptions::waterVelocityAtEachPoint
+// became false) and on the flat sea (no sea query at all).
+void pointsTable(const HullMesh& boat, std::shared_ptr<const SeaSurface> flat, std::shared_ptr<const SeaSurface> gerstner) {
+  std::printf("| 1,000 contact-point bodies, 1 thread | round | body-steps per CPU-s | ratio to every point's velocity | Hz at one core | of the 60 Hz goal |\n|---|---|---|---|---|---|\n");
+  for (int round = 1; round <= 3; ++round) {
+    ContactPointOptions every;
+    every.waterVelocityAtEachPoint = true;
+    bodyStepsPerSecond(boat, true, gerstner, 1000, 60, 1, false, {}, every);
+    const double ref = gCpuRate;
+    std::printf("| gerstner, velocity at every point (reference) | %d | %.0f | 1.00 | %.1f | %.2f |\n", round, ref,
+                ref / 1000.0, ref / 60000.0);
+    bodyStepsPerSecond(boat, true, gerstner, 1000, 60, 1, false);
+    const double g = gCpuRate;
+    std::printf("| gerstner, velocity at the centre (default) | %d | %.0f | %.2f | %.1f | %.2f |\n", round, g, g / ref,
+                g / 1000.0, g / 60000.0);
+    bodyStepsPerSecond(boat, true, flat, 1000, 60, 1, false);
+    const double f = gCpuRate;
+    std::printf("| flat sea | %d | %.0f | %.2f | %.1f | %.2f |\n", round, f, f / ref, f / 1000.0, f / 60000.0);
+  }
+}
+
 int main(int argc, char** argv) {
   const HullMesh box = HullMesh::box({8.0, 4.0, 2.0}), cyl = HullMesh::cylinder(1.0, 3.0),
                  boat = HullMesh::boat(20.0);
+  if (argc > 1 && std::string(argv[1]) == "points") {  // only the 1,000 contact-point bodies table
+    pointsTable(boat, makeSea("none"), makeSea("gerstner"));
+    return 0;
+  }
   if (argc > 1 && std::string(argv[1]) == "grid") {  // only the sea-grid table
     seaGridTable(boat, makeSea("gerstner"));
     return 0;
