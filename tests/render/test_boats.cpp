@@ -10,12 +10,15 @@
 #include "globe/host/Boats.h"
 #include "globe/render/Session.h"
 #include "globe/world/WorldData.h"
+#include "tests/support/Subprocess.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -169,6 +172,89 @@ TEST(RenderBoats, TheCliRefusesAFollowBeyondTheBoatsAndBoatsWithoutTheOcean) {
   auto [rc3, t3] = run("--boats -1");
   EXPECT_EQ(rc3, 2);
   EXPECT_NE(t3.find("--boats -1 is not in 0..10000"), std::string::npos) << t3;
+}
+
+
+// The chased boat's pixels in a picture: boat 3 of the viewer's spawn
+// (seed 1) is the yellow one (palette {0.90, 0.70, 0.10}: red and green
+// well above blue; sea, foam and sky are grey to blue). Returns the count
+// and the centroid (x right, y down, pixels).
+struct Blob {
+  int n = 0;
+  double x = 0, y = 0;
+};
+Blob yellowPixels(const gl::Image& img) {
+  Blob b;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const std::uint8_t* p = &img.rgba[(std::size_t(y) * img.width + x) * 4];
+      if (int(p[0]) > int(p[2]) + 60 && int(p[1]) > int(p[2]) + 40) ++b.n, b.x += x, b.y += y;
+    }
+  if (b.n) b.x /= b.n, b.y /= b.n;
+  return b;
+}
+
+// `fly --follow I` and `view --follow I` (issue 14 item 5): the camera
+// chases boat I, 3 L behind and 1.2 L above its centre of mass, looking at
+// it, so the boat stays at the picture's centre while it moves (its engine
+// drives it some metres over the flight) and the camera keeps its height
+// above the boat. Without the chase the flight looks at the target from
+// orbit and no boat is near the centre (the test can fail).
+TEST(RenderBoats, FlyAndViewFollowKeepTheChasedBoatAtThePictureCentre) {
+  Scene& sc = scene();  // the same spawn (seed 1, around 30, -40): boat 3's length
+  ASSERT_NE(sc.boats, nullptr);
+  const double L = sc.boats->lengthM(2);
+  const std::string dir = ::testing::TempDir() + "/boats_follow";
+  std::filesystem::remove_all(dir);
+  const auto r = geocean::test::run(std::string(GEOCEAN_EXE) +
+                                    " fly --to 30,-40 --boats 3 --follow 3 --frames 4 --fps 0.1 --size 200x120"
+                                    " --waves gerstner --out " + dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::ifstream csv(dir + "/timings.csv");
+  std::string line;
+  std::getline(csv, line);  // header: frame,time_s,lat,lon,alt_m,...
+  std::vector<std::array<double, 3>> cam;
+  while (std::getline(csv, line)) {
+    std::stringstream ss(line);
+    std::string f[5];
+    for (auto& x : f) std::getline(ss, x, ',');
+    cam.push_back({std::stod(f[2]), std::stod(f[3]), std::stod(f[4])});
+  }
+  ASSERT_EQ(cam.size(), 4u);
+  for (int i = 0; i < 4; ++i) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/frame_%05d.png", i);
+    const gl::Image img = gl::readImage(dir + name);
+    const Blob b = yellowPixels(img);
+    // About 190 pixels (0.8 % of the picture) at 3 L; its centroid near the centre (the
+    // deck above the centre of mass, the hull under the waterline hidden:
+    // a few pixels up), within a tenth of the width and height.
+    EXPECT_GT(b.n, 80) << name;
+    EXPECT_NEAR(b.x, 100.0, 20.0) << name;
+    EXPECT_NEAR(b.y, 60.0, 12.0) << name;
+    // The camera 1.2 L above the centre of mass, which floats within a
+    // metre of the sea (a draft of L/8 at most, waves of ~1 m).
+    EXPECT_NEAR(cam[i][2], 1.2 * L, 2.0) << name;
+  }
+  // And the boat went somewhere: the camera moved with it (metres, locally).
+  const double dn = (cam[3][0] - cam[0][0]) * 111'000.0;
+  const double de = (cam[3][1] - cam[0][1]) * 111'000.0 * std::cos(30.0 * M_PI / 180.0);
+  EXPECT_GT(std::hypot(dn, de), 5.0);
+
+  // `view --follow 3` in a window (GLFW under Xvfb), its last frame.
+  if (!geocean::test::haveTool("xvfb-run")) {
+    std::printf("view --follow not checked: xvfb-run is not installed (Debian xvfb, xauth)\n");
+    return;
+  }
+  const std::string shot = dir + "/view.png";
+  const auto v = geocean::test::run("xvfb-run -a -s '-screen 0 640x480x24' " + std::string(GEOCEAN_EXE) +
+                                    " view --fly-to 30,-40 --boats 3 --follow 3 --frames 30 --size 200x120 --no-hud"
+                                    " --screenshot " + shot);
+  ASSERT_EQ(v.exitCode, 0) << v.err;
+  const Blob b = yellowPixels(gl::readImage(shot));
+  EXPECT_GT(b.n, 80);
+  EXPECT_NEAR(b.x, 100.0, 20.0);
+  EXPECT_NEAR(b.y, 60.0, 12.0);
 }
 
 }  // namespace
