@@ -439,7 +439,16 @@ void ContactPointForce::accumulate(const Body& body, const StepContext& ctx, Wre
   const bool each = options_.waterVelocityAtEachPoint;
   sea_->sample(S.lat.data(), S.lon.data(), S.t.data(), n, each, S.sea.data());
   SeaSample centre{};
-  if (!each) sea_->sample(&ctx.geodetic.latDeg, &ctx.geodetic.lonDeg, &ctx.timeS, 1, true, &centre);
+  if (!each) {
+    // From beginStep's one query for all centres when it was for this state.
+    const auto it = std::lower_bound(centres_.begin(), centres_.end(), body.id,
+                                     [](const Centre& c, BodyId v) { return c.id < v; });
+    if (it != centres_.end() && it->id == body.id && it->positionEcef == body.state.positionEcef &&
+        centreTimeS_ == ctx.timeS)
+      centre = centreSea_[std::size_t(it - centres_.begin())];
+    else
+      sea_->sample(&ctx.geodetic.latDeg, &ctx.geodetic.lonDeg, &ctx.timeS, 1, true, &centre);
+  }
   const glm::dvec3 vCentre = std::isnan(centre.heightM)
                                  ? glm::dvec3(0.0)
                                  : glm::dvec3(centre.horizontalVelocityEnMps, centre.verticalVelocityMps);
@@ -464,6 +473,26 @@ void ContactPointForce::accumulate(const Body& body, const StepContext& ctx, Wre
   }
   wrench.addForce(ctx.enu.toEcef(F));
   wrench.addTorque(ctx.enu.toEcef(T));
+}
+
+void ContactPointForce::beginStep(const Simulation& sim) const {
+  centres_.clear();
+  centreSea_.clear();
+  if (options_.waterVelocityAtEachPoint) return;
+  std::vector<double> lat, lon, t;
+  for (const Body& b : sim.bodies()) {
+    bool mine = false;
+    for (const auto& m : b.forces) mine |= m.get() == this;
+    if (!mine) continue;
+    // As Simulation::context computes it, so accumulate's centre is this point.
+    const geo::Geodetic g = geo::fromEcef(b.state.positionEcef);
+    centres_.push_back({b.id, b.state.positionEcef});
+    lat.push_back(g.latDeg), lon.push_back(g.lonDeg);
+  }
+  centreTimeS_ = sim.time();
+  t.assign(lat.size(), centreTimeS_);
+  centreSea_.resize(lat.size());
+  sea_->sample(lat.data(), lon.data(), t.data(), lat.size(), true, centreSea_.data());
 }
 
 // ---- Thrust, Repulsion -----------------------------------------------------------

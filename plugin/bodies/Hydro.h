@@ -178,6 +178,10 @@ class ContactPointForce final : public ForceModel {
                                                                 std::shared_ptr<const SeaSurface> sea,
                                                                 ContactPointOptions options = {});
 
+  // The water's velocity at every centre of mass of this model's bodies in
+  // one sea query (a SIMD batch fills its vectors; per body a 1-point query
+  // would cost a whole vector); accumulate uses it for the same state and time.
+  void beginStep(const Simulation& sim) const override;
   void accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const override;
   const std::vector<glm::dvec3>& points() const { return points_; }
 
@@ -186,6 +190,14 @@ class ContactPointForce final : public ForceModel {
   double volume_, column_, area_;
   std::shared_ptr<const SeaSurface> sea_;
   ContactPointOptions options_;
+  // This step's centres (beginStep, one thread; read by accumulate).
+  struct Centre {
+    BodyId id;
+    glm::dvec3 positionEcef;
+  };
+  mutable std::vector<Centre> centres_;  // ids ascending
+  mutable std::vector<SeaSample> centreSea_;
+  mutable double centreTimeS_ = 0.0;
 };
 
 // Engine force along the body's x axis (bow) at the centre of mass (N).

@@ -135,7 +135,12 @@ void Simulation::step() {
     for (const auto& e : errors)
       if (e) std::rethrow_exception(e);
   };
+  // Every distinct model once, in a fixed order (global, then by body).
+  beganModels_.clear();
   for (const auto& m : globalForces_) m->beginStep(*this);
+  for (const Body& b : bodies_)
+    for (const auto& m : b.forces)
+      if (beganModels_.insert(m.get()).second) m->beginStep(*this);
   // Phase 1: every force from the states at the step's start.
   forEachBody([&](std::size_t i) {
     const Body& b = bodies_[i];

@@ -28,6 +28,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <unordered_set>
 #include <vector>
 
 namespace geocean::bodies {
@@ -62,9 +63,10 @@ class ForceModel {
  public:
   virtual ~ForceModel() = default;
   virtual void accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const = 0;
-  // For models added with Simulation::addForceModel: called once per step on
+  // Called once per step for every distinct model (global or a body's), on
   // one thread, with the states at the step's start, before any accumulate
-  // of that step (a broadphase over all bodies: Repulsion).
+  // of that step: work over all bodies at once (Repulsion's broadphase,
+  // ContactPointForce's one sea query for every body's centre).
   virtual void beginStep(const Simulation& sim) const { (void)sim; }
 };
 
@@ -134,6 +136,7 @@ class Simulation {
   double alpha_ = 0.0;
   std::vector<Wrench> wrenches_;       // per body, reused across steps
   std::vector<StepContext> contexts_;  // per body, reused across steps
+  std::unordered_set<const ForceModel*> beganModels_;  // step(): beginStep once each
 };
 
 }  // namespace geocean::bodies

@@ -1,6 +1,8 @@
 // The per-body phases on TBB (SimulationConfig::parallel) give the same
 // bits as the sequential loop, for hull forces on a Gerstner sea with
-// repulsion between the bodies, and a failing force is reported alike.
+// repulsion between the bodies, and a failing force is reported alike;
+// contact-point bodies' one sea query for all centres per step gives the
+// forces of a query per body.
 #include "plugin/bodies/Hull.h"
 #include "plugin/bodies/Hydro.h"
 #include "plugin/bodies/OceanSea.h"
@@ -10,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -91,6 +94,56 @@ TEST(BodyParallel, AFailingForceIsReportedForTheSameBodyEitherWay) {
   }
   EXPECT_EQ(msg[0], msg[1]);
   EXPECT_NE(msg[0].find("force on body 3"), std::string::npos) << msg[0];
+}
+
+
+// Counts the sea's queries (a wrapper, to see the batch is what runs).
+class CountingSea final : public SeaSurface {
+ public:
+  explicit CountingSea(std::shared_ptr<const SeaSurface> s) : s_(std::move(s)) {}
+  void sample(const double* la, const double* lo, const double* t, std::size_t n, bool v, SeaSample* out) const override {
+    ++calls;
+    s_->sample(la, lo, t, n, v, out);
+  }
+  double decayWaveNumberPerM() const override { return s_->decayWaveNumberPerM(); }
+  void sampleSlopes(const double* la, const double* lo, const double* t, std::size_t n, SeaSample* out) const override {
+    s_->sampleSlopes(la, lo, t, n, out);
+  }
+  mutable int calls = 0;
+
+ private:
+  std::shared_ptr<const SeaSurface> s_;
+};
+
+TEST(BodyParallel, ContactPointsQueryAllCentresAtOnceWithTheForcesOfOneQueryEach) {
+  const auto sea = std::make_shared<CountingSea>(gerstner());
+  Simulation sim({.stepS = 1.0 / 60, .parallel = false});
+  auto cp = ContactPointForce::hollowCylinderProxy(20.0, 2.5, 4, sea);
+  for (int i = 0; i < 40; ++i) {
+    BodyState s = restingUpright(HullMesh::box({20.0, 5.0, 5.0}), 0.4, 30.0 + (i / 8) * 3e-4, -40.0 + (i % 8) * 3e-4,
+                                 17.0 * i);
+    const BodyId id = sim.addBody(MassProperties::box(0.4 * 1025 * 500.0, {20.0, 5.0, 5.0}), s);
+    sim.addBodyForce(id, cp);
+  }
+  sim.advanceTo(3.0);  // moving in the waves
+  cp->beginStep(sim);  // what the next step does: one query for the 40 centres
+  // The same model without beginStep: each centre queried on its own.
+  auto single = ContactPointForce::hollowCylinderProxy(20.0, 2.5, 4, sea);
+  double worst = 0.0, scale = 0.0;
+  sea->calls = 0;
+  for (const Body& b : sim.bodies()) {
+    const StepContext ctx = sim.context(b.state);
+    Wrench w1, w2;
+    cp->accumulate(b, ctx, w1);
+    single->accumulate(b, ctx, w2);
+    worst = std::max({worst, glm::length(w1.force() - w2.force()), glm::length(w1.torque() - w2.torque()) / 20.0});
+    scale = std::max(scale, glm::length(w1.force()));
+  }
+  // The same points through the same kernel; lanes of other points in a
+  // vector may round the inversion differently: rounding only.
+  EXPECT_LE(worst, 1e-9 * scale) << worst << " of " << scale;
+  EXPECT_GT(scale, 1e5);
+  EXPECT_EQ(sea->calls, 40 * 3) << "the batched model queries the points only, the other the centre too";
 }
 
 }  // namespace
