@@ -294,9 +294,11 @@ int runFloat(const FloatOptions& o) {
       if (contacts.back()) sim.addBodyConstraint(id, contacts.back());
     }
     if (specs.size() > 1) {
-      double r = 0.0;
-      for (const auto& b : specs) r = std::max(r, 0.5 * glm::length(b.hull.maxCorner() - b.hull.minCorner()));
-      sim.addForceModel(std::make_shared<bodies::Repulsion>(sim, r, 1e5));
+      // Paper 000's F_c, as the C ABI's: spheres along each hull (Hydro.h).
+      auto rep = std::make_shared<bodies::Repulsion>(sim, 1.0, 1e5);
+      for (std::size_t i = 0; i < ids.size(); ++i)
+        rep->setSpheres(ids[i], bodies::Repulsion::spheresAlongHull(specs[i].hull));
+      sim.addForceModel(rep);
     }
 
     std::string out;
