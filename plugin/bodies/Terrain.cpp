@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -29,6 +30,20 @@ HeightField::HeightField(const geo::Geodetic& origin, int nx, int ny, double spa
       // Rounded up so the float bound never cuts below the true maximum.
       cellMax_[std::size_t(j) * (nx - 1) + i] = std::nextafter(static_cast<float>(m), std::numeric_limits<float>::max());
     }
+  levelMax_.push_back(cellMax_);
+  levelW_.push_back(nx - 1), levelH_.push_back(ny - 1);
+  while (levelW_.back() > 1 || levelH_.back() > 1) {
+    const int w = levelW_.back(), h = levelH_.back(), W = (w + 1) / 2, H = (h + 1) / 2;
+    const std::vector<float>& c = levelMax_.back();
+    std::vector<float> up(std::size_t(W) * H, -std::numeric_limits<float>::max());
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) {
+        float& u = up[std::size_t(j / 2) * W + i / 2];
+        u = std::max(u, c[std::size_t(j) * w + i]);
+      }
+    levelMax_.push_back(std::move(up));
+    levelW_.push_back(W), levelH_.push_back(H);
+  }
 }
 
 void HeightField::testCell(int i, int j, const glm::dvec3& a, const glm::dvec3& b, std::optional<Hit>& best) const {
@@ -52,21 +67,102 @@ void HeightField::testCell(int i, int j, const glm::dvec3& a, const glm::dvec3& 
   }
 }
 
-std::optional<HeightField::Hit> HeightField::sweep(const glm::dvec3& a, const glm::dvec3& b) const {
-  const glm::dvec3 d = b - a;
-  // Clip the ground projection to the grid (Liang-Barsky).
-  double t0 = 0.0, t1 = 1.0;
+bool HeightField::clipToGrid(const glm::dvec3& a, const glm::dvec3& d, double& t0, double& t1) const {
+  t0 = 0.0, t1 = 1.0;
   const double lo[2] = {0.0, 0.0}, hi[2] = {(nx_ - 1) * s_, (ny_ - 1) * s_};
   for (int k = 0; k < 2; ++k) {
     if (d[k] == 0.0) {
-      if (a[k] < lo[k] || a[k] > hi[k]) return std::nullopt;
+      if (a[k] < lo[k] || a[k] > hi[k]) return false;
       continue;
     }
     double ta = (lo[k] - a[k]) / d[k], tb = (hi[k] - a[k]) / d[k];
     if (ta > tb) std::swap(ta, tb);
     t0 = std::max(t0, ta), t1 = std::min(t1, tb);
   }
-  if (t0 > t1) return std::nullopt;
+  return t0 <= t1;
+}
+
+std::optional<HeightField::Hit> HeightField::sweep(const glm::dvec3& a, const glm::dvec3& b) const {
+  const glm::dvec3 d = b - a;
+  double t0, t1;
+  if (!clipToGrid(a, d, t0, t1)) return std::nullopt;
+  // Cells crossed ~ the ground length over the spacing: few, walk them.
+  const double cells = (t1 - t0) * (std::abs(d.x) + std::abs(d.y)) / s_;
+  return cells <= 16.0 ? walk(a, b, t0, t1) : sweepQuadtree(a, b);
+}
+
+std::optional<HeightField::Hit> HeightField::sweepCellWalk(const glm::dvec3& a, const glm::dvec3& b) const {
+  double t0, t1;
+  if (!clipToGrid(a, b - a, t0, t1)) return std::nullopt;
+  return walk(a, b, t0, t1);
+}
+
+std::optional<HeightField::Hit> HeightField::sweepQuadtree(const glm::dvec3& a, const glm::dvec3& b) const {
+  double t0, t1;
+  if (!clipToGrid(a, b - a, t0, t1)) return std::nullopt;
+  // Start at the smallest node holding the clipped segment's ground box.
+  const glm::dvec3 d = b - a, p0 = a + t0 * d, p1 = a + t1 * d;
+  auto cellOf = [&](double v, int n) { return std::clamp(int(std::floor(v / s_)), 0, n - 2); };
+  int i0 = cellOf(std::min(p0.x, p1.x), nx_), i1 = cellOf(std::max(p0.x, p1.x), nx_);
+  int j0 = cellOf(std::min(p0.y, p1.y), ny_), j1 = cellOf(std::max(p0.y, p1.y), ny_);
+  int level = 0;
+  while (level + 1 < int(levelMax_.size()) && (i0 != i1 || j0 != j1)) i0 >>= 1, i1 >>= 1, j0 >>= 1, j1 >>= 1, ++level;
+  std::optional<Hit> best;
+  descend(level, i0, j0, a, b, t0, t1, best);
+  return best;
+}
+
+void HeightField::descend(int level, int bi, int bj, const glm::dvec3& a, const glm::dvec3& b, double ta, double tb,
+                          std::optional<Hit>& best) const {
+  const glm::dvec3 d = b - a;
+  // Coarse: the segment's lowest point over the node against its highest vertex.
+  if (std::min(a.z + ta * d.z, a.z + tb * d.z) > levelMax_[level][std::size_t(bj) * levelW_[level] + bi]) return;
+  if (level == 0) {
+    testCell(bi, bj, a, b, best);
+    return;
+  }
+  // The children the segment meets, by where it enters them. Their
+  // intervals are padded by a rounding's width, so a segment along a
+  // boundary opens both sides (a hit is exact whichever cell finds it).
+  struct Child {
+    double ta, tb;
+    int i, j;
+  };
+  std::array<Child, 4> kids;
+  int n = 0;
+  const int cw = 1 << (level - 1);
+  for (int dj = 0; dj < 2; ++dj)
+    for (int di = 0; di < 2; ++di) {
+      const int i = 2 * bi + di, j = 2 * bj + dj;
+      if (i >= levelW_[level - 1] || j >= levelH_[level - 1]) continue;
+      const double lo[2] = {double(i) * cw * s_, double(j) * cw * s_};
+      const double hi[2] = {std::min(double(i + 1) * cw, double(nx_ - 1)) * s_,
+                            std::min(double(j + 1) * cw, double(ny_ - 1)) * s_};
+      double c0 = ta, c1 = tb;
+      bool in = true;
+      for (int k = 0; k < 2 && in; ++k) {
+        const double pad = 1e-9 * (hi[k] - lo[k]);
+        if (d[k] == 0.0) {
+          in = a[k] >= lo[k] - pad && a[k] <= hi[k] + pad;
+          continue;
+        }
+        double x0 = (lo[k] - pad - a[k]) / d[k], x1 = (hi[k] + pad - a[k]) / d[k];
+        if (x0 > x1) std::swap(x0, x1);
+        c0 = std::max(c0, x0), c1 = std::min(c1, x1);
+        in = c0 <= c1;
+      }
+      if (in) kids[n++] = {c0, c1, i, j};
+    }
+  for (int k = 1; k < n; ++k)  // insertion sort of at most 4
+    for (int m = k; m > 0 && kids[m].ta < kids[m - 1].ta; --m) std::swap(kids[m], kids[m - 1]);
+  for (int k = 0; k < n; ++k) {
+    if (best && kids[k].ta > best->t) return;  // every later cell is further along
+    descend(level - 1, kids[k].i, kids[k].j, a, b, kids[k].ta, kids[k].tb, best);
+  }
+}
+
+std::optional<HeightField::Hit> HeightField::walk(const glm::dvec3& a, const glm::dvec3& b, double t0, double t1) const {
+  const glm::dvec3 d = b - a;
   // Amanatides-Woo over the cells, in order along the segment.
   const glm::dvec3 p = a + t0 * d;
   int i = std::clamp(int(std::floor(p.x / s_)), 0, nx_ - 2), j = std::clamp(int(std::floor(p.y / s_)), 0, ny_ - 2);

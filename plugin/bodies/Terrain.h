@@ -9,6 +9,14 @@
 // past a cell the segment clips at a corner. Each cell is split along the
 // (i, j)-(i+1, j+1) diagonal; segment/triangle by Moller & Trumbore (1997) in
 // double. The first hit along the segment is the contact.
+//
+// Over the cells a quadtree of maximum heights (paper 000's quadtree): a
+// node whose highest vertex is below the segment's lowest point over the
+// node is skipped whole, the others are opened child by child in the order
+// the segment meets them. sweep() walks the cells directly when the
+// segment crosses few of them (a body's step: 1-2 cells) and descends the
+// quadtree for long ones (a fast body, a long step), where it skips the
+// open sky above the terrain.
 #pragma once
 
 #include "plugin/bodies/Simulation.h"
@@ -34,6 +42,9 @@ class HeightField {
   // First crossing of the segment a -> b (patch frame) from above the
   // surface to below it, by the cell walk.
   std::optional<Hit> sweep(const glm::dvec3& a, const glm::dvec3& b) const;
+  // The two ways sweep() chooses between (the same hits; tests, benchmark).
+  std::optional<Hit> sweepCellWalk(const glm::dvec3& a, const glm::dvec3& b) const;
+  std::optional<Hit> sweepQuadtree(const glm::dvec3& a, const glm::dvec3& b) const;
   // The same by testing every triangle of the grid: the reference.
   std::optional<Hit> sweepBruteForce(const glm::dvec3& a, const glm::dvec3& b) const;
   // Height of the triangulated surface at (east, north); NaN outside.
@@ -50,11 +61,21 @@ class HeightField {
   // Segment against cell (i, j)'s two triangles; keeps the nearest t.
   void testCell(int i, int j, const glm::dvec3& a, const glm::dvec3& b, std::optional<Hit>& best) const;
 
+  // The segment's parameter interval over the grid (Liang-Barsky); false if none.
+  bool clipToGrid(const glm::dvec3& a, const glm::dvec3& d, double& t0, double& t1) const;
+  std::optional<Hit> walk(const glm::dvec3& a, const glm::dvec3& b, double t0, double t1) const;
+  void descend(int level, int bi, int bj, const glm::dvec3& a, const glm::dvec3& b, double ta, double tb,
+               std::optional<Hit>& best) const;
+
   geo::EnuFrame frame_;
   int nx_, ny_;
   double s_;
   std::vector<double> h_;
   std::vector<float> cellMax_;  // per cell, for the coarse test
+  // Quadtree of maxima: level 0 is cellMax_, level k nodes of 2^k x 2^k
+  // cells (dims levelW_[k] x levelH_[k]); the last level is one node.
+  std::vector<std::vector<float>> levelMax_;
+  std::vector<int> levelW_, levelH_;
 };
 
 // After each step, for every contact point (body axes) swept from the

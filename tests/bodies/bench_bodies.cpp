@@ -6,6 +6,7 @@
 #include "plugin/bodies/Hydro.h"
 #include "plugin/bodies/OceanSea.h"
 #include "plugin/bodies/Simulation.h"
+#include "plugin/bodies/Terrain.h"
 
 #include <glm/gtc/quaternion.hpp>
 #include <tbb/global_control.h>
@@ -14,6 +15,7 @@
 #include <ctime>
 #include <cstdio>
 #include <memory>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
@@ -135,7 +137,53 @@ void pointsTable(const HullMesh& boat, std::shared_ptr<const SeaSurface> flat, s
   }
 }
 
+// Terrain sweeps: the cell walk against the quadtree of maxima on the
+// 512 x 512 scene of bench_terrain (2 m cells, 50 m relief), segments from
+// 5-60 m above the ground going down 0-70 m and 60-100 m above it going
+// down 0-20 m (half each), of each ground length;
+// CPU microseconds per sweep, the same segments both ways, rounds alternated.
+void sweepTable() {
+  constexpr int kN = 512;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> jitter(-0.5, 0.5), u(0.0, 1.0);
+  std::vector<double> h(std::size_t(kN) * kN);
+  for (int j = 0; j < kN; ++j)
+    for (int i = 0; i < kN; ++i)
+      h[std::size_t(j) * kN + i] = 20 * std::sin(i / 37.0) * std::cos(j / 23.0) + 5 * std::sin(i / 7.0 + j / 11.0) + jitter(rng);
+  const HeightField T(geo::Geodetic{46.5, 8.0, 0.0}, kN, kN, 2.0, h);
+  std::printf("| ground length | round | cell walk (us per sweep) | quadtree (us per sweep) | walk / quadtree | hits |\n|---|---|---|---|---|---|\n");
+  for (double len : {3.0, 30.0, 300.0, 1000.0}) {
+    std::vector<std::pair<glm::dvec3, glm::dvec3>> segs;
+    for (int k = 0; k < 4000; ++k) {
+      const glm::dvec3 a(1024.0 * u(rng), 1024.0 * u(rng), 0.0);
+      const double az = 2 * M_PI * u(rng);
+      glm::dvec3 b = a + len * glm::dvec3(std::cos(az), std::sin(az), 0.0);
+      // Half near the ground (most hit soon), half 60-100 m above it (most fly clear).
+      const double z = (std::isnan(T.heightAt(a.x, a.y)) ? 0.0 : T.heightAt(a.x, a.y)) +
+                       (k % 2 ? 5.0 + 55.0 * u(rng) : 60.0 + 40.0 * u(rng));
+      segs.push_back({{a.x, a.y, z}, {b.x, b.y, z - (k % 2 ? 70.0 : 20.0) * u(rng)}});
+    }
+    for (int round = 1; round <= 3; ++round) {
+      double sec[2];
+      int hits = 0;
+      for (int way = 0; way < 2; ++way) {
+        const double c0 = cpuSeconds();  // CPU time: preemption by other processes is not counted
+        int n = 0;
+        for (const auto& [a, b] : segs) n += (way == 0 ? T.sweepCellWalk(a, b) : T.sweepQuadtree(a, b)).has_value();
+        sec[way] = cpuSeconds() - c0;
+        hits = n;
+      }
+      std::printf("| %.0f m | %d | %.3f | %.3f | %.2f | %d / %zu |\n", len, round, 1e6 * sec[0] / segs.size(),
+                  1e6 * sec[1] / segs.size(), sec[0] / sec[1], hits, segs.size());
+    }
+  }
+}
+
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "sweeps") {  // only the terrain sweep table
+    sweepTable();
+    return 0;
+  }
   const HullMesh box = HullMesh::box({8.0, 4.0, 2.0}), cyl = HullMesh::cylinder(1.0, 3.0),
                  boat = HullMesh::boat(20.0);
   if (argc > 1 && std::string(argv[1]) == "points") {  // only the 1,000 contact-point bodies table

@@ -32,7 +32,7 @@ std::shared_ptr<HeightField> scene(unsigned seed) {
 }
 }  // namespace
 
-TEST(BodyTerrain, CellWalkFindsTheBruteForceFirstHit) {
+TEST(BodyTerrain, CellWalkAndQuadtreeFindTheBruteForceFirstHit) {
   const auto T = scene(3);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> xy(-20.0, kN * kSpacing + 20.0), z(-30.0, 40.0);
@@ -43,11 +43,16 @@ TEST(BodyTerrain, CellWalkFindsTheBruteForceFirstHit) {
     const double len = k % 3 == 0 ? 800.0 : (k % 3 == 1 ? 3.0 : 0.05);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     glm::dvec3 d(u(rng) * len, u(rng) * len, -std::abs(u(rng)) * 60.0 - 1.0);
-    const auto fast = T->sweep(a, a + d), ref = T->sweepBruteForce(a, a + d);
-    ASSERT_EQ(fast.has_value(), ref.has_value()) << k;
+    const auto ref = T->sweepBruteForce(a, a + d);
+    // sweep() picks the cell walk or the quadtree by length; both, each way.
+    for (const auto& fast : {T->sweep(a, a + d), T->sweepCellWalk(a, a + d), T->sweepQuadtree(a, a + d)}) {
+      ASSERT_EQ(fast.has_value(), ref.has_value()) << k;
+      if (ref) {
+        EXPECT_EQ(fast->t, ref->t) << k;  // the same triangle test on the same triangle
+      }
+    }
     if (ref) {
       ++hits;
-      EXPECT_EQ(fast->t, ref->t) << k;  // the same triangle test on the same triangle
       EXPECT_NEAR(ref->pointEnu.z, T->heightAt(ref->pointEnu.x, ref->pointEnu.y), 1e-9);
     }
   }
