@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <numbers>
 #include <string>
 
 using namespace geocean::capi;
@@ -89,6 +90,9 @@ struct geocean_bodies {
   bodies::Simulation sim;
   std::map<bodies::BodyId, std::shared_ptr<const bodies::HullMesh>> hulls;
   std::shared_ptr<bodies::Repulsion> repulsion;  // ABI 1.6; null: off
+  // ABI 1.6 contact-point models, one per proxy size: bodies that share one
+  // have their centres queried together each step (ContactPointForce::beginStep).
+  std::map<std::pair<double, double>, std::shared_ptr<const bodies::ContactPointForce>> proxies;
 
   geocean_bodies(geocean_ocean* o, const bodies::SimulationConfig& c, double rhoW, double repulsionNpm)
       : ocean(o), waterDensity(rhoW), sim(c) {
@@ -190,8 +194,16 @@ GEOCEAN_API geocean_status geocean_bodies_add(geocean_bodies* b, const geocean_b
   return guard("geocean_bodies_add", [&] {
     requireNonNull(b, "bodies");
     requireNonNull(desc, "desc");
-    requireStructSize(desc, "desc", "geocean_body_desc_init");
-    const geocean_body_desc d = *desc;
+    constexpr std::size_t kSize14 = offsetof(geocean_body_desc, forces);  // a 1.4/1.5 host's struct
+    if (desc->struct_size < kSize14)
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "desc->struct_size " + std::to_string(desc->struct_size) +
+                                               " is smaller than " + std::to_string(kSize14) +
+                                               ": call geocean_body_desc_init first");
+    geocean_body_desc d{};
+    geocean_body_desc_init(&d);
+    std::memcpy(&d, desc, std::min<std::size_t>(desc->struct_size, sizeof d));
+    if (d.forces != GEOCEAN_BODY_FORCES_HULL && d.forces != GEOCEAN_BODY_FORCES_CONTACT_POINTS)
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "desc->forces " + std::to_string(d.forces) + " is not a geocean_body_forces");
     requireFiniteField(d.lat_deg, "desc->lat_deg", "deg");
     requireFiniteField(d.lon_deg, "desc->lon_deg", "deg");
     if (std::abs(d.lat_deg) > 90.0) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "desc->lat_deg " + num(d.lat_deg) + " is not in [-90, 90]");
@@ -213,13 +225,28 @@ GEOCEAN_API geocean_status geocean_bodies_add(geocean_bodies* b, const geocean_b
         fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "desc->lat_deg, lon_deg " + num(d.lat_deg) + ", " + num(d.lon_deg) +
                                                  " is " + geocean::ocean::toString(c) + ", not ocean");
     }
-    bodies::HullForceOptions hopt;
-    hopt.water.densityKgM3 = b->waterDensity;
-    auto force = std::make_shared<bodies::HullForce>(hull, b->sea, hopt);
-    const bodies::BodyState s =
-        bodies::restingUpright(*hull, d.density_kg_m3 / b->waterDensity, d.lat_deg, d.lon_deg, d.heading_deg);
-    const bodies::BodyId id = b->sim.addBody(hull->massProperties(d.density_kg_m3), s);
-    b->sim.addBodyForce(id, force);
+    const double ratio = d.density_kg_m3 / b->waterDensity;
+    bodies::BodyState s = bodies::restingUpright(*hull, ratio, d.lat_deg, d.lon_deg, d.heading_deg);
+    bodies::BodyId id = 0;
+    if (d.forces == GEOCEAN_BODY_FORCES_HULL) {
+      bodies::HullForceOptions hopt;
+      hopt.water.densityKgM3 = b->waterDensity;
+      id = b->sim.addBody(hull->massProperties(d.density_kg_m3), s);
+      b->sim.addBodyForce(id, std::make_shared<bodies::HullForce>(hull, b->sea, hopt));
+    } else {
+      // As `geocean float --model points`: the proxy of the hull's length and beam.
+      const glm::dvec3 ext = hull->maxCorner() - hull->minCorner();
+      const double R = 0.5 * std::min(ext.y, ext.z * 2.0), L = ext.x;
+      const double m = d.density_kg_m3 * std::numbers::pi * R * R * L;
+      // Its own draft: every column's submerged fraction is the density ratio,
+      // the points' plane (at the centre of mass) (ratio - 1/2) 2R under water.
+      s.positionEcef = geocean::geo::toEcef({d.lat_deg, d.lon_deg, -(ratio - 0.5) * 2.0 * R});
+      auto& proxy = b->proxies[{L, R}];
+      if (!proxy)
+        proxy = bodies::ContactPointForce::hollowCylinderProxy(L, R, 4, b->sea, {.water = {.densityKgM3 = b->waterDensity}});
+      id = b->sim.addBody(bodies::MassProperties::isotropicFrom(bodies::MassProperties::hollowCylinder(m, 0.8 * R, R, L)), s);
+      b->sim.addBodyForce(id, proxy);
+    }
     if (d.thrust_n != 0.0) b->sim.addBodyForce(id, std::make_shared<bodies::Thrust>(d.thrust_n));
     if (b->repulsion) b->repulsion->setSpheres(id, bodies::Repulsion::spheresAlongHull(*hull));
     b->hulls[id] = hull;

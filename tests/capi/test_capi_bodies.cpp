@@ -406,4 +406,78 @@ TEST(CapiBodies, RepulsionPushesOverlappingHullsApartAndKeepsThePairsMomentum) {
   EXPECT_EQ(none, nullptr);
 }
 
+
+// ---- ABI 1.6: paper 000's contact-point bodies ----
+
+TEST(CapiBodies, ContactPointBodiesAreTheFacadeProxysBitsAndAShortDescIsAHull) {
+  Ocean oc;
+  const geocean_sea_state sea = capiSea();
+  ASSERT_EQ(api().setSeaState(oc.h, &sea), GEOCEAN_OK) << lastError();
+  Bodies b(oc.h);
+  geocean_body_desc d;
+  ASSERT_EQ(api().bodyDescInit(&d), GEOCEAN_OK);
+  EXPECT_EQ(d.forces, GEOCEAN_BODY_FORCES_HULL);  // the default
+  d.lat_deg = kLat, d.lon_deg = kLon, d.heading_deg = 30.0, d.density_kg_m3 = 450.0;
+  d.forces = GEOCEAN_BODY_FORCES_CONTACT_POINTS;
+  for (int i = 0; i < 3; ++i) {  // three of one size share one model (one centre query per step)
+    d.lon_deg = kLon + 0.001 * i;
+    ASSERT_EQ(api().bodiesAdd(b.h, &d, nullptr), GEOCEAN_OK) << lastError();
+  }
+  // A 1.4/1.5 host's desc ends before `forces`: whatever follows, a hull body.
+  geocean_body_desc old = d;
+  old.struct_size = offsetof(geocean_body_desc, forces);
+  old.lon_deg = kLon + 0.003;
+  ASSERT_EQ(api().bodiesAdd(b.h, &old, nullptr), GEOCEAN_OK) << lastError();
+
+  // The façade, as the header documents it.
+  geocean::ocean::Ocean core;
+  geocean::waves::SeaState ws;
+  ws.windSpeedMps = 12.0;
+  ws.seed = 7;
+  ws.anchorLatDeg = kLat;
+  ws.anchorLonDeg = kLon;
+  core.setSeaState(geocean::waves::Model::Gerstner, ws);
+  auto oceanSea = std::make_shared<bodies::OceanSea>(core.current());
+  bodies::Simulation sim({.stepS = 1.0 / 60.0});
+  auto hull = std::make_shared<const bodies::HullMesh>(bodies::HullMesh::boat(20.0));
+  const glm::dvec3 ext = hull->maxCorner() - hull->minCorner();
+  const double R = std::min(0.5 * ext.y, ext.z), L = ext.x, ratio = 450.0 / 1025.0;
+  auto proxy = bodies::ContactPointForce::hollowCylinderProxy(L, R, 4, oceanSea);
+  for (int i = 0; i < 3; ++i) {
+    bodies::BodyState s = bodies::restingUpright(*hull, ratio, kLat, kLon + 0.001 * i, 30.0);
+    s.positionEcef = geocean::geo::toEcef({kLat, kLon + 0.001 * i, -(ratio - 0.5) * 2.0 * R});
+    const auto id = sim.addBody(bodies::MassProperties::isotropicFrom(
+                                    bodies::MassProperties::hollowCylinder(450.0 * M_PI * R * R * L, 0.8 * R, R, L)),
+                                s);
+    sim.addBodyForce(id, proxy);
+  }
+  const auto hid = sim.addBody(hull->massProperties(450.0), bodies::restingUpright(*hull, ratio, kLat, kLon + 0.003, 30.0));
+  sim.addBodyForce(hid, std::make_shared<bodies::HullForce>(hull, oceanSea));
+
+  ASSERT_EQ(api().bodiesAdvanceTo(b.h, 20.0, nullptr), GEOCEAN_OK) << lastError();
+  sim.advanceTo(20.0);
+  std::vector<geocean_body_pose> p(4);
+  size_t n = 0;
+  ASSERT_EQ(api().bodiesGetPoses(b.h, 0, p.data(), 4, &n), GEOCEAN_OK);
+  ASSERT_EQ(n, 4u);
+  for (size_t i = 0; i < 4; ++i) {
+    const bodies::BodyState& s = sim.bodies()[i].state;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(p[i].position_ecef_m[k], s.positionEcef[k]) << i;
+      EXPECT_EQ(p[i].velocity_ecef_mps[k], s.velocityEcef[k]) << i;
+    }
+    EXPECT_EQ(p[i].orientation_wxyz[0], s.orientation.w) << i;
+  }
+  // They float (near the sea, moving in the waves), the proxies at their own draft.
+  for (size_t i = 0; i < 3; ++i) EXPECT_LT(std::abs(p[i].height_m), 3.0) << i;
+  EXPECT_GT(std::abs(p[0].velocity_ecef_mps[0]) + std::abs(p[0].velocity_ecef_mps[1]) +
+                std::abs(p[0].velocity_ecef_mps[2]),
+            0.01);
+
+  geocean_body_desc bad = d;
+  bad.forces = 5;
+  EXPECT_EQ(api().bodiesAdd(b.h, &bad, nullptr), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("desc->forces 5 is not a geocean_body_forces"), std::string::npos) << lastError();
+}
+
 }  // namespace

@@ -519,6 +519,12 @@ typedef struct geocean_bodies_config {
   double repulsion_stiffness_n_per_m;
 } geocean_bodies_config;
 
+/* The forces of the water on a body (ABI 1.6). */
+typedef enum geocean_body_forces GEOCEAN_ENUM_INT32 {
+  GEOCEAN_BODY_FORCES_HULL = 0,          /* the hull mesh clipped against the sea every step (default) */
+  GEOCEAN_BODY_FORCES_CONTACT_POINTS = 1 /* paper 000 eq. 3-4: 4 x 2 points of a hollow-cylinder proxy */
+} geocean_body_forces;
+
 /* A body to add. Fill with geocean_body_desc_init() first. The body starts
  * upright at rest, floating at its still-water draft (centre of mass at
  * -resting waterline above the ellipsoid), bow towards heading_deg. */
@@ -530,6 +536,12 @@ typedef struct geocean_body_desc {
   double lat_deg, lon_deg;
   double heading_deg;    /* bow, clockwise from north (default 0) */
   double thrust_n;       /* engine force along the bow, N (default 0) */
+  /* ABI 1.6 (read only when struct_size covers it; a 1.4/1.5 host's shorter
+   * struct gets HULL): a geocean_body_forces. CONTACT_POINTS: the proxy of
+   * length L (the hull's) and radius R = min(B/2, H) (beam B, height H),
+   * mass density x pi R^2 L, isotropic inertia (paper eq. 2); it starts at
+   * the proxy's own draft. */
+  int32_t forces;
 } geocean_body_desc;
 
 /* One body's state. Orientation rotates body vectors (x bow, y port, z up)
@@ -557,7 +569,7 @@ GEOCEAN_API geocean_status geocean_bodies_create(geocean_ocean* ocean, const geo
 GEOCEAN_API void geocean_bodies_destroy(geocean_bodies* bodies);
 /* ABI 1.4: adds a body at the simulation's current time; *out_id (may be
  * NULL) gets its id. Errors: NULL_ARGUMENT (bodies, desc), INVALID_ARGUMENT
- * (struct_size, hull, a size not finite or not > 0, density not in
+ * (struct_size, hull, 1.6: forces, a size not finite or not > 0, density not in
  * (0, water density), latitude or longitude out of range, a value not
  * finite, a point on land or a lake: no sea to float on; the message names
  * the field and the value). */
