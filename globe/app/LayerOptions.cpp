@@ -25,7 +25,18 @@ void addLayerOptions(CLI::App& sub, LayerOptions& o, bool withEncoding) {
   sub.add_flag("--no-default-world", o.noDefaultWorld, "no bundled world underneath: only the given rasters");
 }
 
+namespace {
+// `--mask ''` would otherwise reach the raster reader and print ": no such file".
+void requireFileNames(const LayerOptions& o) {
+  for (const std::string& m : o.masks)
+    if (m.empty()) throw std::invalid_argument("--mask: the file name is empty");
+  for (const std::string& e : o.elevations)
+    if (e.empty()) throw std::invalid_argument("--elevation: the file name is empty");
+}
+}  // namespace
+
 void applyLayers(ocean::Ocean& ocean, const LayerOptions& o, const raster::OpenOptions& ro) {
+  requireFileNames(o);
   const bool noElevation = o.noElevation;
   if (o.noDefaultWorld && o.masks.empty() && (o.elevations.empty() || noElevation))
     throw std::invalid_argument("--no-default-world needs --mask or --elevation");
@@ -44,6 +55,7 @@ void applyLayers(ocean::Ocean& ocean, const LayerOptions& o, const raster::OpenO
 }
 
 std::vector<world::LayerSource> layerSources(const LayerOptions& o) {
+  requireFileNames(o);
   if (o.noDefaultWorld && o.masks.empty() && o.elevations.empty())
     throw std::invalid_argument("--no-default-world needs --mask or --elevation");
   // The drawn default world keeps its own encoding: an encoding without a mask would do nothing.

@@ -374,6 +374,15 @@ int runQuery(const QueryOptions& o) {
             if (eof && !blk->text.empty() && blk->text.back() != '\n') blk->text.push_back('\n');
             const std::size_t lastNl = blk->text.rfind('\n');
             const std::size_t cut = lastNl == std::string::npos ? 0 : lastNl + 1;
+            if (cut == 0 && blk->text.size() >= kBlock) {
+              // No line end in a whole block: not a point row, and buffering
+              // it until one comes would hold memory without bound.
+              blk->text.clear();
+              blk->firstRow = row + 1;
+              blk->error = "row " + std::to_string(row + 1) + ": longer than 1 MiB (no line end), not a point row";
+              eof = true;
+              return blk;
+            }
             carry.assign(blk->text, cut, std::string::npos);  // the partial last line waits
             blk->text.resize(cut);
             blk->firstRow = row + 1;

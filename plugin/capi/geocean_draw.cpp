@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -49,6 +50,35 @@ struct GlResources {
   void* context = nullptr;
   std::shared_ptr<const Snapshot> builtFrom;  // rebuilt when the state changes
   std::unique_ptr<geocean::ocean_render::OceanRenderer> renderer;
+  // A labelled buffer in the same context: a context destroyed and a new
+  // one made at the same handle (EGL and GLX reuse freed addresses) is told
+  // apart by it, instead of drawing with names that died with the old one
+  // (or that the host's new objects now own).
+  GLuint sentinel = 0;
+  std::string label;
+  explicit GlResources(void* ctx) : context(ctx), label("geocean ocean " + std::to_string(reinterpret_cast<std::uintptr_t>(this))) {
+    glCreateBuffers(1, &sentinel);
+    glObjectLabel(GL_BUFFER, sentinel, GLsizei(label.size()), label.c_str());
+  }
+  ~GlResources() {
+    renderer.reset();
+    if (sentinel) glDeleteBuffers(1, &sentinel);
+  }
+  GlResources(const GlResources&) = delete;
+  GlResources& operator=(const GlResources&) = delete;
+  // With `context` current: are these names still this context's?
+  bool alive() const {
+    if (!sentinel || !glIsBuffer(sentinel)) return false;
+    char got[64] = {};
+    GLsizei n = 0;
+    glGetObjectLabel(GL_BUFFER, sentinel, GLsizei(sizeof got), &n, got);
+    return label == std::string(got, std::size_t(std::max<GLsizei>(n, 0)));
+  }
+  // Without their context: forget the names (no GL call can reach them).
+  void abandon() {
+    if (renderer) renderer->abandonGl();
+    sentinel = 0;
+  }
 };
 
 // The ocean's world grids (CPU) for a snapshot's rasters: its textures and
@@ -261,7 +291,7 @@ void DrawStateDeleter::operator()(DrawState* d) const { delete d; }
 void releaseDrawState(std::unique_ptr<DrawState, DrawStateDeleter>& d) {
   // Without their context, the GL names are left to it (no GL call can
   // reach them); the CPU side (grids, grid frame, wave tables) is freed.
-  if (d && d->gl && currentGlContext() != d->gl->context && d->gl->renderer) d->gl->renderer->abandonGl();
+  if (d && d->gl && (currentGlContext() != d->gl->context || !d->gl->alive())) d->gl->abandon();
   d.reset();
 }
 }  // namespace geocean::capi
@@ -342,16 +372,19 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
     if (ds.gl && ds.gl->context != ctx)
       fail(GEOCEAN_ERROR_GL, "the ocean's GL resources belong to another context: call geocean_release_gl "
                              "with that context current first");
+    if (ds.gl && !ds.gl->alive()) {
+      // The same handle, but not the context the names were made in: that
+      // one was destroyed (its names with it). Made anew below.
+      ds.gl->abandon();
+      ds.gl.reset();
+    }
     if (epoxy_gl_version() < 45 || !epoxy_is_desktop_gl())
       fail(GEOCEAN_ERROR_GL, "the current context is OpenGL " + std::to_string(epoxy_gl_version() / 10) + "." +
                                  std::to_string(epoxy_gl_version() % 10) +
                                  (epoxy_is_desktop_gl() ? "" : " ES") + "; the ocean needs desktop OpenGL 4.5");
     GlStateGuard state;
     try {
-      if (!ds.gl) {
-        ds.gl = std::make_unique<GlResources>();
-        ds.gl->context = ctx;
-      }
+      if (!ds.gl) ds.gl = std::make_unique<GlResources>(ctx);
       GlResources& gl = *ds.gl;
       if (!gl.renderer || gl.builtFrom->landSea != snap->landSea || gl.builtFrom->mask != snap->mask ||
           gl.builtFrom->elevation != snap->elevation ||
@@ -391,6 +424,7 @@ GEOCEAN_API geocean_status geocean_release_gl(geocean_ocean* ocean) {
                                         "of the first geocean_draw");
     if (ctx != ocean->draw->gl->context)
       fail(GEOCEAN_ERROR_GL, "the current context is not the one the ocean's GL resources were made in");
+    if (!ocean->draw->gl->alive()) ocean->draw->gl->abandon();  // their context was destroyed: nothing to delete
     ocean->draw->gl.reset();
   });
 }
@@ -416,7 +450,10 @@ GEOCEAN_API geocean_status geocean_covers_opaquely(geocean_ocean* ocean, double 
     requireNonNull(ocean, "ocean");
     requireNonNull(out_covers, "out_covers");
     const double v[] = {lat0_deg, lat1_deg, lon0_deg, lon1_deg, pixel_footprint_m};
-    if (!allFinite(v, 5)) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "a bound or the footprint is not finite");
+    static constexpr const char* kNames[] = {"lat0_deg", "lat1_deg", "lon0_deg", "lon1_deg", "pixel_footprint_m"};
+    for (int i = 0; i < 5; ++i)
+      if (!std::isfinite(v[i]))
+        fail(GEOCEAN_ERROR_INVALID_ARGUMENT, std::string(kNames[i]) + " " + std::to_string(v[i]) + " is not finite");
     if (!(pixel_footprint_m > 0.0))
       fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
            "pixel_footprint_m " + std::to_string(pixel_footprint_m) + " is not > 0");

@@ -57,6 +57,13 @@ std::shared_ptr<const Raster> fromMemory(const float* values, int32_t width, int
   if (width <= 0 || height <= 0)
     fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
          "raster size " + std::to_string(width) + " x " + std::to_string(height) + " is not positive");
+  // No caller can own more floats than the 47-bit user address space holds:
+  // refused here by name instead of an allocation failing (or reading past
+  // the caller's buffer where the kernel overcommits).
+  constexpr std::size_t kMaxPixels = (std::size_t(1) << 47) / sizeof(float);
+  if (std::size_t(width) * std::size_t(height) > kMaxPixels)
+    fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "raster size " + std::to_string(width) + " x " + std::to_string(height) +
+                                             " is larger than any buffer (2^47 bytes)");
   auto finite = [](double v) { return std::isfinite(v); };
   if (!finite(p->origin_lon_deg) || !finite(p->origin_lat_deg))
     fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "placement origin is not finite");
@@ -92,6 +99,41 @@ std::string installedDataDir() {
   return fs::exists(d / "landmask_5m.tif", ec) ? d.string() : std::string();
 }
 
+// A file name or layer name: an empty one would name nothing in messages
+// (": no such file"), so it is refused by name.
+void requireNonNullOrEmpty(const char* s, const char* what) {
+  requireNonNull(s, what);
+  if (!*s) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, std::string(what) + " is empty");
+}
+
+// WaveField::create names the C++ fields and prints values to 6 digits
+// ("sea state: windSpeedMps = 70 is invalid (...)"); a C host set
+// geocean_sea_state's, so the message names those, with the value it gave.
+std::string abiSeaStateMessage(const std::string& m, const geocean_sea_state& s) {
+  auto text = [](auto v) {
+    char b[40];
+    const auto r = std::to_chars(b, b + sizeof b, v);
+    return std::string(b, r.ptr);
+  };
+  const struct {
+    const char* cpp;
+    const char* c;
+    std::string value;
+  } fields[] = {{"windSpeedMps", "wind_speed_mps", text(s.wind_speed_mps)},
+                {"windFromDeg", "wind_from_deg", text(s.wind_from_deg)},
+                {"fetchM", "fetch_m", text(s.fetch_m)},
+                {"anchorLatDeg", "anchor_lat_deg", text(s.anchor_lat_deg)},
+                {"anchorLonDeg", "anchor_lon_deg", text(s.anchor_lon_deg)},
+                {"referenceDepthM", "reference_depth_m", text(s.reference_depth_m)},
+                {"gerstnerComponents", "gerstner_components", text(s.gerstner_components)},
+                {"noiseOctaves", "noise_octaves", text(s.noise_octaves)}};
+  const std::size_t rest = m.find(" is invalid");
+  for (const auto& f : fields)
+    if (m.rfind(std::string("sea state: ") + f.cpp + " = ", 0) == 0 && rest != std::string::npos)
+      return std::string("sea_state->") + f.c + " " + f.value + m.substr(rest);
+  return m;
+}
+
 // The four file setters: handle and path checked, options converted, then
 // the façade's setter (Ocean::setMaskFile or setElevationFile).
 using FileSetter = void (Ocean::*)(const std::string&, const geocean::raster::OpenOptions&);
@@ -100,7 +142,7 @@ geocean_status setFile(const char* function, geocean_ocean* ocean, const char* p
                        Options options) {
   return guard(function, [&] {
     requireNonNull(ocean, "ocean");
-    requireNonNull(path, "path");
+    requireNonNullOrEmpty(path, "path");
     (ocean->core.*set)(path, openOptions(options));
   });
 }
@@ -245,7 +287,7 @@ GEOCEAN_API geocean_status geocean_add_mask_layer_file(geocean_ocean* ocean, con
                                                        const char* encoding, const geocean_raster_options* options) {
   return guard("geocean_add_mask_layer_file", [&] {
     requireNonNull(ocean, "ocean");
-    requireNonNull(path, "path");
+    requireNonNullOrEmpty(path, "path");
     ocean->core.addMaskLayerFile(path, priority, encodingOf(encoding), layerOpenOptions(options));
   });
 }
@@ -254,7 +296,7 @@ GEOCEAN_API geocean_status geocean_add_elevation_layer_file(geocean_ocean* ocean
                                                             int32_t priority, const geocean_raster_options* options) {
   return guard("geocean_add_elevation_layer_file", [&] {
     requireNonNull(ocean, "ocean");
-    requireNonNull(path, "path");
+    requireNonNullOrEmpty(path, "path");
     ocean->core.addElevationLayerFile(path, priority, layerOpenOptions(options));
   });
 }
@@ -265,7 +307,7 @@ GEOCEAN_API geocean_status geocean_add_mask_layer_pixels(geocean_ocean* ocean, c
                                                          const char* encoding) {
   return guard("geocean_add_mask_layer_pixels", [&] {
     requireNonNull(ocean, "ocean");
-    requireNonNull(name, "name");
+    requireNonNullOrEmpty(name, "name");
     const auto enc = encodingOf(encoding);  // before the copy: a bad spec costs nothing
     ocean->core.addMaskLayer(fromMemory(values, width, height, placement, name), priority, enc);
   });
@@ -277,7 +319,7 @@ GEOCEAN_API geocean_status geocean_add_elevation_layer_pixels(geocean_ocean* oce
                                                               int32_t priority) {
   return guard("geocean_add_elevation_layer_pixels", [&] {
     requireNonNull(ocean, "ocean");
-    requireNonNull(name, "name");
+    requireNonNullOrEmpty(name, "name");
     ocean->core.addElevationLayer(fromMemory(values_m, width, height, placement, name), priority);
   });
 }
@@ -340,7 +382,13 @@ GEOCEAN_API geocean_status geocean_query_elevation(const geocean_ocean* ocean, s
     requireNonNull(lat_deg, "lat_deg");
     requireNonNull(lon_deg, "lon_deg");
     requireNonNull(out_elevation_m, "out_elevation_m");
-    ocean->core.current()->elevationAt(lat_deg, lon_deg, count, out_elevation_m);
+    // In chunks: the layered and cached samplers allocate per point they
+    // get, so a batch of any size costs a fixed amount of memory here
+    // (CapiBatchMemory.* holds every query to that).
+    const auto snap = ocean->core.current();
+    constexpr std::size_t kChunk = 1024;
+    for (std::size_t i = 0; i < count; i += kChunk)
+      snap->elevationAt(lat_deg + i, lon_deg + i, std::min(kChunk, count - i), out_elevation_m + i);
   });
 }
 
@@ -398,7 +446,11 @@ GEOCEAN_API geocean_status geocean_set_sea_state(geocean_ocean* ocean, const geo
     s.anchorLatDeg = sea_state->anchor_lat_deg;
     s.anchorLonDeg = sea_state->anchor_lon_deg;
     s.referenceDepthM = sea_state->reference_depth_m;
-    ocean->core.setSeaState(model, s);
+    try {
+      ocean->core.setSeaState(model, s);
+    } catch (const std::invalid_argument& e) {
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, abiSeaStateMessage(e.what(), *sea_state));
+    }
   });
 }
 

@@ -52,6 +52,8 @@ const Row kRows[] = {
     {"query 0 0 --waves gerstner --coast-region 0,0,1e300", "--coast-region size 1e300 m is outside 500 .. 40000 m"},
     {"query 0 0 --mask /nonexistent/m.tif", "/nonexistent/m.tif: no such file", 3},
     {"query --points /nonexistent/points.csv", "--points /nonexistent/points.csv: cannot open", 3},
+    {"query 0 0 --mask ''", "--mask: the file name is empty"},
+    {"query 0 0 --elevation ''", "--elevation: the file name is empty"},
     // render (argument checks come before the GL context)
     {"render --out x.png --size 0x0", "--size: '0x0' is not WIDTHxHEIGHT with each in 1..16384"},
     {"render --out x.png --size 99999999999x2", "is not WIDTHxHEIGHT"},
@@ -63,6 +65,7 @@ const Row kRows[] = {
     {"render --out x.png --time -1e13", "--time -1e+13 s is outside -1e12 .. 1e12 s"},
     {"render --out x.png --time abc", "--time"},
     {"render", "--out is required"},
+    {"render --out x.png --elevation ''", "--elevation: the file name is empty"},
     // fly
     {"fly --out o --frames 1", "--frames: 1 must be in 2..1000000"},
     {"fly --out o --frames 1e9", "--frames"},
@@ -77,6 +80,7 @@ const Row kRows[] = {
     {"pick --ray 1,2,3", "--ray: expected 6 comma-separated numbers, got 3"},
     {"pick --camera 0,0,100,0,-90 --fov 45 --size 10x10 --pixel 50,5", "--pixel 50,5 is outside the 10x10 viewport"},
     {"pick --rays /nonexistent/rays.csv", "--rays /nonexistent/rays.csv: cannot open", 3},
+    {"pick --ray 0,0,100,0,0,-1 --mask ''", "--mask: the file name is empty"},
     // float
     {"float --body box:1x1x1 --density nan --at 0,0", "--density 'nan' is not a finite number"},
     {"float --body box:0x1x1 --density 500 --at 0,0", "--body 'box:0x1x1': size 0 m must be > 0"},
@@ -89,6 +93,7 @@ const Row kRows[] = {
     {"float --body box:1x1x1 --density 500 --at 0,0 --every 0", "--every 0 s must be > 0"},
     {"float --body box:1x1x1 --density 500 --at 0,0 --wind inf", "--wind 'inf' is not a finite number"},
     {"float --body box:1x1x1 --density 500 --at 0,0 --waves foam", "--waves 'foam' is not none, noise, gerstner or fft"},
+    {"float --body box:1x1x1 --density 500 --at 0,0 --mask ''", "--mask: the file name is empty"},
     // mask (argument checks come before GMT)
     {"mask --region nan/1/0/1 --resolution 3s --out m.tif", "--region 'nan/1/0/1': 'nan' is not a number"},
     {"mask --region 0/1/0/1 --resolution 7q --out m.tif", "--resolution '7q': unit 'q' is not s, m or d"},
@@ -138,6 +143,12 @@ TEST(BadInputMatrix, BatchRowsAndEmptyBatches) {
     EXPECT_EQ(res.exitCode, r.exitCode) << r.cmd << " <<< " << r.input << res.err;
     EXPECT_NE(res.err.find(r.mustSay), std::string::npos) << r.cmd << " <<< " << r.input << ": " << res.err;
   }
+  // A row longer than the reader's 1 MiB block (no line end): refused by
+  // number, the rows before it answered, memory not grown to hold it.
+  const auto huge = run(kGeocean + " query --points -", "0,0\n" + std::string(3 << 20, '7') + "\n0,0\n");
+  EXPECT_EQ(huge.exitCode, 2) << huge.err;
+  EXPECT_NE(huge.err.find("row 2: longer than 1 MiB (no line end), not a point row"), std::string::npos) << huge.err;
+  EXPECT_EQ(std::count(huge.out.begin(), huge.out.end(), '\n'), 2) << "header and row 1";
   for (const char* empty : {"", "lat,lon,time\n", "\n\n"}) {
     const auto res = run(kGeocean + " query --points -", empty);
     EXPECT_EQ(res.exitCode, 0) << "'" << empty << "': " << res.err;

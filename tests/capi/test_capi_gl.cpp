@@ -18,6 +18,7 @@
 extern "C" std::size_t __sanitizer_get_current_allocated_bytes();
 #endif
 
+#include <epoxy/egl.h>
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
@@ -367,6 +368,103 @@ TEST(CapiGl, DestroyWithoutTheContextFreesTheCpuSide) {
   const std::size_t drawn = freedByDestroy(true);
   EXPECT_GT(drawn, plain + std::size_t(30) * 1024 * 1024) << "freed " << drawn << " B after a draw, " << plain
                                                            << " B without one";
+}
+
+}  // namespace
+
+namespace {
+
+// Issue 17 item 4, the GL context lost mid-session: unbound between draws,
+// destroyed while another context is current, destroyed and replaced by a
+// new context at the same handle. Each a clear status (or, for the last, a
+// correct frame), never a crash, never a draw into the wrong context.
+TEST(CapiGl, ContextLostMidSessionIsAClearErrorNeverACrash) {
+  auto a = std::make_unique<Host>();
+  ASSERT_TRUE(a->ctx);
+  Ocean o;
+  const geocean_view v = nadir(30.0, -40.0, 500.0);
+  ASSERT_EQ(api().update(o.h, &v), GEOCEAN_OK);
+  a->beginFrame();
+  ASSERT_EQ(api().draw(o.h), GEOCEAN_OK) << lastError();
+  ASSERT_EQ(a->drawnPixels(), kSize * kSize);
+  const double lat = 30.0, lon = -40.0;
+  double h0 = 0.0, h1 = 1.0;
+  ASSERT_EQ(api().querySeaSurface(o.h, 1, &lat, &lon, 2.0, &h0, nullptr, nullptr), GEOCEAN_OK);
+
+  // 1. Unbound between draws: NO_GL_CONTEXT, the rest of the ocean works,
+  //    and with the context current again the next draw is whole.
+  const EGLDisplay dpy = eglGetCurrentDisplay();
+  ASSERT_TRUE(eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT));
+  EXPECT_EQ(api().draw(o.h), GEOCEAN_ERROR_NO_GL_CONTEXT);
+  EXPECT_EQ(lastError(), "geocean_draw: no OpenGL context is current on this thread (neither EGL nor GLX): make "
+                         "the host's context current");
+  EXPECT_EQ(api().releaseGl(o.h), GEOCEAN_ERROR_NO_GL_CONTEXT);
+  EXPECT_EQ(api().update(o.h, &v), GEOCEAN_OK);
+  ASSERT_EQ(api().querySeaSurface(o.h, 1, &lat, &lon, 2.0, &h1, nullptr, nullptr), GEOCEAN_OK);
+  EXPECT_EQ(h0, h1);
+  ASSERT_TRUE(a->ctx->makeCurrent());
+  a->beginFrame();
+  ASSERT_EQ(api().draw(o.h), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(a->drawnPixels(), kSize * kSize);
+  const void* handleA = eglGetCurrentContext();
+
+  // 2. Destroyed while another context is current: GL error, nothing drawn
+  //    into the other context; destroy frees the CPU side with no GL call.
+  {
+    auto b = std::make_unique<Host>();  // current now
+    ASSERT_TRUE(b->ctx);
+    // The host destroys a's context (by EGL: a's HeadlessContext would also
+    // terminate the display both share, and b with it).
+    ASSERT_TRUE(eglDestroyContext(dpy, const_cast<void*>(handleA)));
+    b->beginFrame();
+    EXPECT_EQ(api().draw(o.h), GEOCEAN_ERROR_GL);
+    EXPECT_NE(lastError().find("geocean_draw: the ocean's GL resources belong to another context"), std::string::npos)
+        << lastError();
+    EXPECT_EQ(b->drawnPixels(), 0);
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    ASSERT_EQ(api().querySeaSurface(o.h, 1, &lat, &lon, 2.0, &h1, nullptr, nullptr), GEOCEAN_OK);
+    EXPECT_EQ(h0, h1);
+    Ocean fresh;  // the host's way on: a new ocean draws in the live context
+    ASSERT_EQ(api().update(fresh.h, &v), GEOCEAN_OK);
+    ASSERT_EQ(api().draw(fresh.h), GEOCEAN_OK) << lastError();
+    EXPECT_EQ(b->drawnPixels(), kSize * kSize);
+  }
+  a.reset();  // its context was destroyed above; its display with b's
+  api().destroy(o.h);  // its context is gone and none is current: CPU side freed, no GL call
+  o.h = nullptr;
+  EXPECT_EQ(lastError(), "");
+
+  // 3. The same handle, but not the names: a context destroyed and a new
+  //    one given its address (EGL and GLX may reuse it; Mesa 22 here did not
+  //    in 8 tries) leaves the ocean's names dead and the host's new objects
+  //    owning some of those numbers. Made deterministic: the host deletes
+  //    every buffer name 1..4096 of the current context (the plugin's among
+  //    them) and makes 8 buffers of its own. The draw must notice and make
+  //    its resources anew, not draw with (or write into) those names.
+  Host c;
+  ASSERT_TRUE(c.ctx);
+  Ocean p;
+  ASSERT_EQ(api().update(p.h, &v), GEOCEAN_OK);
+  c.beginFrame();
+  ASSERT_EQ(api().draw(p.h), GEOCEAN_OK) << lastError();
+  std::vector<GLuint> names(4096);
+  for (GLuint i = 0; i < names.size(); ++i) names[i] = i + 1;
+  glDeleteBuffers(GLsizei(names.size()), names.data());
+  GLuint hostBuffers[8];
+  glCreateBuffers(8, hostBuffers);
+  for (GLuint b : hostBuffers) glNamedBufferData(b, 16, nullptr, GL_STATIC_DRAW);
+  ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  c.beginFrame();
+  EXPECT_EQ(api().draw(p.h), GEOCEAN_OK) << lastError();
+  EXPECT_EQ(c.drawnPixels(), kSize * kSize) << "drew with names the context no longer has";
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  for (GLuint b : hostBuffers) {
+    GLint size = 0;
+    glGetNamedBufferParameteriv(b, GL_BUFFER_SIZE, &size);
+    EXPECT_EQ(size, 16) << "the host's buffer " << b << " was written by the ocean";
+  }
+  EXPECT_EQ(api().releaseGl(p.h), GEOCEAN_OK) << lastError();
+  glDeleteBuffers(8, hostBuffers);
 }
 
 }  // namespace
