@@ -21,6 +21,11 @@ uniform vec4 uWaterGeo;
 uniform vec3 uSunDir;
 uniform int uSeaShading;  // 0: no sea shading; 1: water shaded as distant sea
 layout(binding = 0) uniform sampler2D uImagery;
+// The user's imagery layers (--imagery), first on top: premultiplied sRGB,
+// alpha 0 where a layer has no data or outside it (its border).
+uniform int uImageryLayers;
+uniform vec4 uImageryLayerGeo[4];
+layout(binding = 8) uniform sampler2D uImageryLayer[4];
 layout(binding = 2) uniform sampler2D uWater;
 
 layout(location = 0) out vec4 outColor;
@@ -28,6 +33,18 @@ layout(location = 0) out vec4 outColor;
 void main() {
   vec3 up = normalize(vNormal);
   vec3 albedo = texture(uImagery, geoUv(vLonLat, uImageryGeo)).rgb;
+  for (int i = uImageryLayers - 1; i >= 0; --i) {
+    vec4 geo = uImageryLayerGeo[i];
+    // Longitude relative to the layer's centre in [-180, 180): a layer
+    // across the antimeridian works, and the wrap falls opposite the layer
+    // (outside it). The gradients come from the unwrapped coordinates, so
+    // the wrap never changes the mip level.
+    vec2 uv = geoUv(vLonLat, geo);
+    float d = vLonLat.x - (geo.x + 0.5 * geo.z);
+    d -= 360.0 * floor(d / 360.0 + 0.5);
+    vec4 s = textureGrad(uImageryLayer[i], vec2(0.5 + d / geo.z, uv.y), dFdx(uv), dFdy(uv));
+    albedo = albedo * (1.0 - s.a) + s.rgb;
+  }
   float sunMu = dot(uSunDir, up);
   // Skylight fades out on the night side.
   vec3 c = albedo * (vSun * max(dot(normalize(vRelief), uSunDir), 0.0) * 1.6 +

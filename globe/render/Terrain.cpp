@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace geocean::render {
 
@@ -260,6 +261,12 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
   world_.bind();
   glUniformMatrix4fv(prog.uniform("uViewProj"), 1, GL_FALSE, &cam.gpu().viewProj[0][0]);
   glUniform4fv(prog.uniform("uImageryGeo"), 1, &world_.imageryGeo()[0]);
+  if (const GLint loc = prog.uniform("uImageryLayers"); loc >= 0) {
+    glUniform1i(loc, world_.imageryLayers());
+    for (int i = 0; i < world_.imageryLayers(); ++i)
+      glUniform4fv(prog.uniform(("uImageryLayerGeo[" + std::to_string(i) + "]").c_str()), 1,
+                   &world_.imageryLayerGeo(i)[0]);
+  }
   glUniform4fv(prog.uniform("uElevationGeo"), 1, &world_.elevationGeo()[0]);
   glUniform4fv(prog.uniform("uWaterGeo"), 1, &world_.waterGeo()[0]);
   glUniform1f(prog.uniform("uExaggeration"), float(options_.exaggeration));

@@ -21,7 +21,9 @@ bool globalInMemory(const raster::Raster& r) {
 
 }  // namespace
 
-const char* toString(LayerKind k) { return k == LayerKind::Mask ? "mask" : "elevation"; }
+const char* toString(LayerKind k) {
+  return k == LayerKind::Mask ? "mask" : k == LayerKind::Elevation ? "elevation" : "imagery";
+}
 
 double RasterLayer::cellDeg() const {
   const auto& t = raster->transform();
@@ -57,7 +59,8 @@ LayerStack::LayerStack(std::vector<RasterLayer> layers) : layers_(std::move(laye
   drawingElevation_ = drawing(LayerKind::Elevation);
   double finestMask = INFINITY, finestElevation = INFINITY;
   for (const RasterLayer& l : layers_)
-    (l.kind == LayerKind::Mask ? finestMask : finestElevation) =
+    if (l.kind != LayerKind::Imagery)
+      (l.kind == LayerKind::Mask ? finestMask : finestElevation) =
         std::min(l.kind == LayerKind::Mask ? finestMask : finestElevation, l.cellDeg());
   if (drawingMask_ && finestElevation < finestMask) drawingMask_ = nullptr;
 }
@@ -79,6 +82,7 @@ void LayerStack::classifyBatch(const double* lat, const double* lon, std::size_t
   std::vector<float> v;
   for (std::size_t li = 0; li < layers_.size() && !pending.empty(); ++li) {
     const RasterLayer& l = layers_[li];
+    if (l.kind == LayerKind::Imagery) continue;
     la.resize(pending.size());
     lo.resize(pending.size());
     v.resize(pending.size());
@@ -164,9 +168,14 @@ WorldLayer waterLayerOf(const LayerStack& stack) {
 
 LayerStack openLayerStack(const std::vector<LayerSource>& layers, bool defaultWorld, const raster::OpenOptions& options) {
   std::vector<RasterLayer> all;
-  for (const LayerSource& l : layers)
+  for (const LayerSource& l : layers) {
     all.push_back({l.kind, raster::Raster::open(l.path, options),
                    l.encoding.empty() ? MaskEncoding{} : MaskEncoding::parse(l.encoding), l.priority});
+    const int c = all.back().raster->channels();
+    if (l.kind == LayerKind::Imagery && c != 3 && c != 4)
+      throw raster::RasterError(l.path + ": imagery needs 3 (RGB) or 4 (RGBA) channels, the file has " +
+                                std::to_string(c));
+  }
   if (defaultWorld) {
     const raster::WorldFiles files = raster::defaultWorld();
     all.push_back({LayerKind::Mask, raster::Raster::open(files.mask, options), {}, kDefaultWorldPriority});
@@ -175,11 +184,84 @@ LayerStack openLayerStack(const std::vector<LayerSource>& layers, bool defaultWo
   return LayerStack(std::move(all));
 }
 
+ImageryLayer imageryLayerOf(std::shared_ptr<const raster::Raster> r, int maxSide) {
+  const int c = r->channels();
+  if (c != 3 && c != 4)
+    throw raster::RasterError(r->path() + ": imagery needs 3 (RGB) or 4 (RGBA) channels, the file has " +
+                              std::to_string(c));
+  ImageryLayer l;
+  l.name = r->path();
+  const raster::GeoTransform* t = &r->transform();
+  raster::GeoTransform lt;
+  std::vector<float> px;
+  if (r->inMemory() && std::max(r->width(), r->height()) <= maxSide) {
+    l.width = r->width(), l.height = r->height();
+    px = r->pixels();
+  } else {
+    // Too big for one texture or not in memory: a coarse level of its pyramid
+    // (built once, then read from the tile cache).
+    const auto pyr = raster::TilePyramid::open(r);
+    int level = 0;
+    while (level + 1 < pyr->levels() && std::max(pyr->levelWidth(level), pyr->levelHeight(level)) > maxSide) ++level;
+    lt = pyr->levelTransform(level);
+    t = &lt;
+    l.width = pyr->levelWidth(level), l.height = pyr->levelHeight(level);
+    px.assign(std::size_t(l.width) * l.height * c, NAN);
+    const int T = pyr->tileSize();
+    for (int ty = 0; ty < pyr->tilesY(level); ++ty)
+      for (int tx = 0; tx < pyr->tilesX(level); ++tx) {
+        if (pyr->kind({level, tx, ty}) == raster::TileKind::Empty) continue;
+        const auto tile = pyr->interior({level, tx, ty});
+        for (int y = 0; y < T && ty * T + y < l.height; ++y)
+          for (int x = 0; x < T && tx * T + x < l.width; ++x)
+            for (int k = 0; k < c; ++k)
+              px[(std::size_t(ty * T + y) * l.width + tx * T + x) * c + k] = (*tile)[(std::size_t(y) * T + x) * c + k];
+      }
+  }
+  l.originLonDeg = t->originLonDeg, l.originLatDeg = t->originLatDeg;
+  l.lonStepDeg = t->lonStepDeg, l.latStepDeg = t->latStepDeg;
+  l.global = r->transform().global;
+  l.rgba.resize(std::size_t(l.width) * l.height * 4);
+  for (std::size_t i = 0; i < std::size_t(l.width) * l.height; ++i) {
+    const float* v = &px[i * c];
+    bool valid = true;
+    for (int k = 0; k < c; ++k) {
+      if (std::isnan(v[k])) {
+        valid = false;
+        continue;
+      }
+      if (!(v[k] >= 0.0f && v[k] <= 255.0f))
+        throw raster::RasterError(l.name + ": imagery values must be 8-bit (0..255); pixel (" +
+                                  std::to_string(i % l.width) + ", " + std::to_string(i / l.width) + ") channel " +
+                                  std::to_string(k) + " is " + std::to_string(v[k]));
+    }
+    // Alpha is the validity: nodata in any channel, or the file's alpha.
+    const float a = !valid ? 0.0f : c == 4 ? v[3] / 255.0f : 1.0f;
+    for (int k = 0; k < 3; ++k) l.rgba[i * 4 + k] = std::uint8_t(valid ? v[k] * a + 0.5f : 0.0f);
+    l.rgba[i * 4 + 3] = std::uint8_t(a * 255.0f + 0.5f);
+  }
+  return l;
+}
+
 WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultWorld,
                            const raster::OpenOptions& options) {
   if (layers.empty() && defaultWorld) return loadDefaultWorld();
   const LayerStack stack = openLayerStack(layers, defaultWorld, options);
+  std::vector<ImageryLayer> imagery;
+  for (const RasterLayer& l : stack.layers())
+    if (l.kind == LayerKind::Imagery) imagery.push_back(imageryLayerOf(l.raster));
+  if (int(imagery.size()) > kMaxImageryLayers)
+    throw std::invalid_argument("--imagery: at most " + std::to_string(kMaxImageryLayers) + " imagery layers are drawn, " +
+                                std::to_string(imagery.size()) + " given");
+  const bool shapeLayers = std::any_of(layers.begin(), layers.end(),
+                                       [](const LayerSource& l) { return l.kind != LayerKind::Imagery; });
+  if (!shapeLayers && defaultWorld) {  // only imagery: the default world's grids as without layers
+    WorldData d = loadDefaultWorld();
+    d.imageryLayers = std::move(imagery);
+    return d;
+  }
   WorldData d;
+  d.imageryLayers = std::move(imagery);
   d.imagery = layerOf(*raster::Raster::open(raster::defaultWorld().imagery));
   d.elevation = elevationLayerOf(stack);
   d.water = waterLayerOf(stack);
