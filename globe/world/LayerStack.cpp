@@ -264,13 +264,21 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
   d.imageryLayers = std::move(imagery);
   d.imagery = layerOf(*raster::Raster::open(raster::defaultWorld().imagery));
   d.elevation = elevationLayerOf(stack);
-  d.water = waterLayerOf(stack);
   // The first mask to answer, when it covers the Earth and is finer than the
   // drawn grid (at most 5'), is drawn from its tiles (issue 12 item 2); a
-  // finer elevation layer (drawingMask null) decides the coast instead.
-  if (const RasterLayer* l = streamedMaskLayer(stack, d.water.lonStepDeg)) {
+  // finer elevation layer (drawingMask null) decides the coast instead. Its
+  // water grid is then the pyramid's coarse level, as the ocean's
+  // (plugin/render/OceanWorld): one level's tiles from the disk cache instead
+  // of classifying every grid cell through the stack.
+  const auto m = stack.drawingMask();
+  const double gridStep =
+      m && globalInMemory(*m) ? m->transform().lonStepDeg : globalGridFor((m ? m : stack.drawingElevation()).get()).lonStepDeg;
+  if (const RasterLayer* l = streamedMaskLayer(stack, gridStep)) {
     d.waterSource = l->raster;
     d.waterEncoding = l->encoding;
+    d.water = waterLayerOf(*waterPyramid(l->raster, l->encoding), gridStep);
+  } else {
+    d.water = waterLayerOf(stack);
   }
   return d;
 }

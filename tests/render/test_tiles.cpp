@@ -293,6 +293,25 @@ TEST(TerrainTiles, LayeredWorldStreamsAFinerGlobalMaskAndAWaitingFrameIsComplete
   const world::WorldData data = world::loadLayeredWorld({{world::LayerKind::Mask, fine, "", 0}}, true);
   ASSERT_TRUE(data.waterSource);
   EXPECT_EQ(data.waterSource->path(), fine);
+  // Its CPU water grid is the pyramid's 5' level, as the ocean's
+  // (OceanWorld), not a classification through the stack: each cell the
+  // mean water of the 4 x 4 mask cells under it, read here from the mask.
+  ASSERT_EQ(data.water.width, 4320);
+  ASSERT_EQ(data.water.height, 2160);
+  ASSERT_EQ(data.waterSource->width(), 4 * 4320);
+  const world::MaskEncoding enc;
+  int coastCells = 0;
+  for (int k = 0; k < 2000; ++k) {
+    // Cells along 36 N (the Strait) and spread over the globe.
+    const int i = (k * 2161) % 4320, j = k < 1000 ? 648 + k % 8 : (k * 977) % 2160;
+    double sum = 0.0;
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x) sum += enc.isWater(data.waterSource->pixel(4 * i + x, 4 * j + y)) ? 1.0 : 0.0;
+    const float v = data.water.values[std::size_t(j) * 4320 + i];
+    EXPECT_NEAR(v, sum / 16.0, 1e-6) << i << "," << j;
+    coastCells += sum > 0.0 && sum < 16.0;
+  }
+  EXPECT_GT(coastCells, 10);  // the test saw partial cells, not only open sea and inland
   auto tiled = std::make_shared<render::WorldTextures>(data);
   ASSERT_TRUE(tiled->waterTiles());
   EXPECT_TRUE(fs::exists(t.path / "cache"));  // the pyramid's cache went where it was told
