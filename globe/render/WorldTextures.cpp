@@ -3,6 +3,7 @@
 #include "globe/gl/Texture.h"
 #include "globe/world/WaterPyramid.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace geocean::render {
@@ -41,6 +42,12 @@ WorldTextures::WorldTextures(const world::WorldData& data)
     glGenerateTextureMipmap(t);
     imageryLayers_.push_back(t);
     imageryLayerGeo_.push_back(il.geo());
+  }
+  if (data.elevationTiles) {
+    gl::TilePoolOptions o;
+    o.internalFormat = GL_R32F;
+    o.nodataValue = NAN;  // the shader falls back to the elevation grid there
+    elevationTiles_ = std::make_unique<gl::TilePool>(data.elevationTiles, o);
   }
   if (data.waterSource) waterTiles_ = std::make_unique<gl::TilePool>(world::waterPyramid(data.waterSource, data.waterEncoding));
 }

@@ -50,6 +50,9 @@ class WorldTextures {
   const world::WaterIndex& waterIndex() const { return grids_->waterIndex(); }
   // The streamed water coverage, or null (the single texture only).
   gl::TilePool* waterTiles() const { return waterTiles_.get(); }
+  // The streamed elevation (WorldData::elevationTiles: R32F, NaN where the
+  // raster has no data), or null.
+  gl::TilePool* elevationTiles() const { return elevationTiles_.get(); }
 
  private:
   std::shared_ptr<const world::WorldGrids> grids_;
@@ -57,7 +60,7 @@ class WorldTextures {
   glm::vec4 imageryGeo_{0.0f};
   std::vector<GLuint> imageryLayers_;
   std::vector<glm::vec4> imageryLayerGeo_;
-  std::unique_ptr<gl::TilePool> waterTiles_;
+  std::unique_ptr<gl::TilePool> waterTiles_, elevationTiles_;
 };
 
 }  // namespace geocean::render

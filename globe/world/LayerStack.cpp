@@ -263,7 +263,42 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
   WorldData d;
   d.imageryLayers = std::move(imagery);
   d.imagery = layerOf(*raster::Raster::open(raster::defaultWorld().imagery));
-  d.elevation = elevationLayerOf(stack);
+  const auto e = stack.drawingElevation();
+  const double elevationStep =
+      e && globalInMemory(*e) ? e->transform().lonStepDeg : globalGridFor(e.get()).lonStepDeg;
+  if (const RasterLayer* l = streamedElevationLayer(stack, elevationStep)) {
+    // Its tiles are drawn; the CPU grid is the pyramid's coarse level (means
+    // of its cells), cells without data from the layers below it.
+    d.elevationTiles = raster::TilePyramid::open(l->raster);
+    d.elevation = levelLayerOf(*d.elevationTiles, elevationStep);
+    std::vector<RasterLayer> below;
+    for (const RasterLayer& o : stack.layers())
+      if (&o != l && o.kind == LayerKind::Elevation) below.push_back(o);
+    std::vector<std::size_t> holes;
+    for (std::size_t i = 0; i < d.elevation.values.size(); ++i)
+      if (std::isnan(d.elevation.values[i])) holes.push_back(i);
+    if (!below.empty() && !holes.empty()) {
+      const LayerStack rest(std::move(below));
+      // In chunks: a sparse raster leaves most of the grid to the layers below.
+      constexpr std::size_t kChunk = std::size_t(1) << 20;
+      std::vector<double> lat, lon;
+      std::vector<float> v;
+      for (std::size_t k0 = 0; k0 < holes.size(); k0 += kChunk) {
+        const std::size_t n = std::min(kChunk, holes.size() - k0);
+        lat.resize(n), lon.resize(n), v.resize(n);
+        for (std::size_t k = 0; k < n; ++k) {
+          const std::size_t i = holes[k0 + k], w = std::size_t(d.elevation.width);
+          lat[k] = d.elevation.originLatDeg + (double(i / w) + 0.5) * d.elevation.latStepDeg;
+          lon[k] = d.elevation.originLonDeg + (double(i % w) + 0.5) * d.elevation.lonStepDeg;
+        }
+        rest.elevationBatch(lat.data(), lon.data(), n, v.data());
+        for (std::size_t k = 0; k < n; ++k) d.elevation.values[holes[k0 + k]] = v[k];
+      }
+    }
+    nodataToSeaLevel(d.elevation);
+  } else {
+    d.elevation = elevationLayerOf(stack);
+  }
   // The first mask to answer, when it covers the Earth and is finer than the
   // drawn grid (at most 5'), is drawn from its tiles (issue 12 item 2); a
   // finer elevation layer (drawingMask null) decides the coast instead. Its

@@ -15,6 +15,7 @@
 
 namespace geocean::raster {
 class Raster;
+class TilePyramid;
 }
 
 namespace geocean::world {
@@ -61,6 +62,10 @@ struct WorldData {
   // grids above stay for the CPU. Null: `water` is what is drawn.
   std::shared_ptr<const raster::Raster> waterSource;
   MaskEncoding waterEncoding;
+  // A global elevation layer finer than `elevation` that answers first: the
+  // host draws it streamed (NaN texels fall back to `elevation`), the grid
+  // stays for the CPU. Null: `elevation` is what is drawn.
+  std::shared_ptr<const raster::TilePyramid> elevationTiles;
 };
 
 // An in-memory raster as a layer: all channels, or only `channel` (>= 0).
