@@ -143,6 +143,55 @@ float waterTilesAuto(vec2 lonLatDeg) {
 #endif
 #endif
 
+#ifdef GEOCEAN_ELEVATION_TILES
+// Elevation streamed as pyramid tiles (WorldTextures::elevationTiles), the
+// same 2 x 2 block of one level per terrain tile as the water's
+// (TerrainRenderer::bindBlock); NaN texels (no data in the raster) take the
+// elevation grid's value at the texel's centre: the layers below.
+layout(binding = 4) uniform sampler2DArray uElevPool;
+uniform ivec4 uElevSlots;
+uniform ivec4 uElevBlock;
+uniform ivec3 uElevLevel;
+uniform vec4 uElevLevelGeo;
+
+float elevTexel(ivec2 g, sampler2D grid, vec4 gridGeo) {
+  int w = uElevLevel.x;
+  g.x = uElevLevel.z != 0 ? ((g.x % w) + w) % w : clamp(g.x, 0, w - 1);
+  g.y = clamp(g.y, 0, uElevLevel.y - 1);
+  int T = uElevBlock.w;
+  ivec2 t = g / T;
+  int dx = t.x - uElevBlock.x;
+  if (dx < 0) dx += uElevBlock.z;
+  int dy = t.y - uElevBlock.y;
+  ivec2 local = clamp(g - t * T, ivec2(0), ivec2(T - 1));
+  if (dx < 0 || dx > 1) {
+    local.x = dx < 0 ? -1 : T;
+    dx = clamp(dx, 0, 1);
+  }
+  if (dy < 0 || dy > 1) {
+    local.y = dy < 0 ? -1 : T;
+    dy = clamp(dy, 0, 1);
+  }
+  int layer = dy == 0 ? (dx == 0 ? uElevSlots.x : uElevSlots.y) : (dx == 0 ? uElevSlots.z : uElevSlots.w);
+  float v = texelFetch(uElevPool, ivec3(local + 1, layer), 0).r;
+  if (isnan(v)) {
+    vec2 c = vec2(uElevLevelGeo.x + (float(g.x) + 0.5) * uElevLevelGeo.z, uElevLevelGeo.y + (float(g.y) + 0.5) * uElevLevelGeo.w);
+    v = textureLod(grid, geoUv(c, gridGeo), 0.0).r;
+  }
+  return v;
+}
+
+// Bilinear elevation (m) at lon/lat from the streamed level.
+float elevTiles(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
+  vec2 p = vec2((lonLatDeg.x - uElevLevelGeo.x) / uElevLevelGeo.z, (lonLatDeg.y - uElevLevelGeo.y) / uElevLevelGeo.w) - 0.5;
+  vec2 i = floor(p);
+  vec2 f = p - i;
+  ivec2 g = ivec2(i);
+  return mix(mix(elevTexel(g, grid, gridGeo), elevTexel(g + ivec2(1, 0), grid, gridGeo), f.x),
+             mix(elevTexel(g + ivec2(0, 1), grid, gridGeo), elevTexel(g + ivec2(1, 1), grid, gridGeo), f.x), f.y);
+}
+#endif
+
 #ifdef GEOCEAN_WATER_PAGES
 // Water coverage streamed as pyramid tiles for a draw that spans the view
 // (the ocean, plugin/render/WaterPages): a page table holds, for every tile

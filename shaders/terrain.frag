@@ -22,12 +22,38 @@ uniform vec3 uSunDir;
 uniform int uSeaShading;  // 0: no sea shading; 1: water shaded as distant sea
 layout(binding = 0) uniform sampler2D uImagery;
 layout(binding = 2) uniform sampler2D uWater;
+// The user's imagery layers (--imagery), first on top: premultiplied sRGB,
+// alpha 0 where a layer has no data or outside it (its border). Four named
+// samplers, not an array: llvmpipe's LLVM 15 crashed compiling the indexed
+// array in the streamed-water variant.
+uniform int uImageryLayers;
+uniform vec4 uImageryLayerGeo[4];
+layout(binding = 8) uniform sampler2D uImageryLayer0;
+layout(binding = 9) uniform sampler2D uImageryLayer1;
+layout(binding = 10) uniform sampler2D uImageryLayer2;
+layout(binding = 11) uniform sampler2D uImageryLayer3;
+
+// Layer `geo` over `below`. Longitude is taken relative to the layer's
+// centre in [-180, 180): a layer across the antimeridian works and the wrap
+// falls opposite the layer (outside it). The gradients come from the
+// unwrapped coordinates, so the wrap never changes the mip level.
+vec3 overImagery(sampler2D tex, vec4 geo, vec3 below) {
+  vec2 uv = geoUv(vLonLat, geo);
+  float d = vLonLat.x - (geo.x + 0.5 * geo.z);
+  d -= 360.0 * floor(d / 360.0 + 0.5);
+  vec4 s = textureGrad(tex, vec2(0.5 + d / geo.z, uv.y), dFdx(uv), dFdy(uv));
+  return below * (1.0 - s.a) + s.rgb;
+}
 
 layout(location = 0) out vec4 outColor;
 
 void main() {
   vec3 up = normalize(vNormal);
   vec3 albedo = texture(uImagery, geoUv(vLonLat, uImageryGeo)).rgb;
+  if (uImageryLayers > 3) albedo = overImagery(uImageryLayer3, uImageryLayerGeo[3], albedo);
+  if (uImageryLayers > 2) albedo = overImagery(uImageryLayer2, uImageryLayerGeo[2], albedo);
+  if (uImageryLayers > 1) albedo = overImagery(uImageryLayer1, uImageryLayerGeo[1], albedo);
+  if (uImageryLayers > 0) albedo = overImagery(uImageryLayer0, uImageryLayerGeo[0], albedo);
   float sunMu = dot(uSunDir, up);
   // Skylight fades out on the night side.
   vec3 c = albedo * (vSun * max(dot(normalize(vRelief), uSunDir), 0.0) * 1.6 +

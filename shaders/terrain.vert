@@ -41,7 +41,11 @@ void main() {
   float h = -uSkirtM * aSkirt;
 #else
   vec2 uvE = geoUv(aLonLat, uElevationGeo);
+#ifdef GEOCEAN_ELEVATION_TILES
+  float elev = elevTiles(aLonLat, uElevation, uElevationGeo);
+#else
   float elev = textureLod(uElevation, uvE, 0.0).r;
+#endif
   // The fragment shaders draw the shoreline at B-spline coverage 0.5; the
   // ground must already be under the sea wherever that can be water, or it
   // hides the wave grid (seen 2 m above the Strait of Gibraltar).
@@ -66,11 +70,22 @@ void main() {
   vRelief = aNormal, vSun = vec3(1.0), vHazeTr = vec3(1.0), vHazeIn = vec3(0.0), vDepthM = 0.0, vSeaColor = vec3(0.0), vWater = 0.0;
 #else
   // Relief: the elevation gradient tilts the normal (east/north tangents).
+#ifdef GEOCEAN_ELEVATION_TILES
+  // One texel of the streamed level either side.
+  vec2 st = abs(uElevLevelGeo.zw);
+  float hE = elevTiles(aLonLat + vec2(st.x, 0.0), uElevation, uElevationGeo);
+  float hW = elevTiles(aLonLat - vec2(st.x, 0.0), uElevation, uElevationGeo);
+  float hN = elevTiles(aLonLat + vec2(0.0, st.y), uElevation, uElevationGeo);
+  float hS = elevTiles(aLonLat - vec2(0.0, st.y), uElevation, uElevationGeo);
+  float cellNS = st.y * 111320.0;
+  float cellEW = max(st.x * 111320.0 * cos(radians(aLonLat.y)), 1.0);
+#else
   vec2 texel = 1.0 / vec2(textureSize(uElevation, 0));
   float hE = textureLod(uElevation, uvE + vec2(texel.x, 0), 0.0).r, hW = textureLod(uElevation, uvE - vec2(texel.x, 0), 0.0).r;
   float hN = textureLod(uElevation, uvE - vec2(0, texel.y), 0.0).r, hS = textureLod(uElevation, uvE + vec2(0, texel.y), 0.0).r;
   float cellNS = abs(uElevationGeo.w) * texel.y * 111320.0;
   float cellEW = max(abs(uElevationGeo.z) * texel.x * 111320.0 * cos(radians(aLonLat.y)), 1.0);
+#endif
   vec3 up = aNormal;
   vec3 east = normalize(cross(vec3(0.0, 0.0, 1.0), up) + vec3(1e-6, 0.0, 0.0));
   vec3 north = cross(up, east);

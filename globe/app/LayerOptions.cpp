@@ -32,8 +32,18 @@ void requireFileNames(const LayerOptions& o) {
     if (m.empty()) throw std::invalid_argument("--mask: the file name is empty");
   for (const std::string& e : o.elevations)
     if (e.empty()) throw std::invalid_argument("--elevation: the file name is empty");
+  for (const std::string& i : o.imagery)
+    if (i.empty()) throw std::invalid_argument("--imagery: the file name is empty");
 }
 }  // namespace
+
+void addImageryOption(CLI::App& sub, LayerOptions& o) {
+  sub.add_option("--imagery", o.imagery,
+                 "imagery raster (RGB or RGBA, 8-bit), repeatable: drawn over the default imagery, the finest on "
+                 "top; nodata or alpha 0 shows the layer below")
+      ->take_all()
+      ->expected(1);
+}
 
 void applyLayers(ocean::Ocean& ocean, const LayerOptions& o, const raster::OpenOptions& ro) {
   requireFileNames(o);
@@ -71,7 +81,9 @@ int loadDrawnWorld(const char* command, const LayerOptions& o, std::vector<world
                    world::WorldData& data) {
   try {
     sources = layerSources(o);
-    data = world::loadLayeredWorld(sources, !o.noDefaultWorld);
+    std::vector<world::LayerSource> drawn = sources;
+    for (const std::string& i : o.imagery) drawn.push_back({world::LayerKind::Imagery, i, "", 0});
+    data = world::loadLayeredWorld(drawn, !o.noDefaultWorld);
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "geocean %s: %s\n", command, e.what());
     return kExitBadInput;

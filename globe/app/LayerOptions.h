@@ -16,6 +16,7 @@ namespace geocean::app {
 
 struct LayerOptions {
   std::vector<std::string> masks, elevations;
+  std::vector<std::string> imagery;  // drawing commands only (addImageryOption)
   std::string maskEncoding;  // the --mask files' (without --mask: the default world's mask)
   bool noDefaultWorld = false;
   bool noElevation = false;  // pick --no-terrain: no elevation at all
@@ -24,6 +25,11 @@ struct LayerOptions {
 // --mask, --elevation (repeatable), --no-default-world; --mask-encoding
 // when withEncoding.
 void addLayerOptions(CLI::App& sub, LayerOptions& o, bool withEncoding = true);
+
+// --imagery FILE (repeatable) for the drawing commands (view, render, fly):
+// RGB or RGBA 8-bit rasters drawn over the default Blue Marble, the finest
+// (of equal priority) on top, the layer below where one has no data.
+void addImageryOption(CLI::App& sub, LayerOptions& o);
 
 // The bundled world (unless --no-default-world) as the base, each --mask
 // and --elevation as a layer of priority 0 over it (the finer answers
@@ -37,8 +43,8 @@ void applyLayers(ocean::Ocean& ocean, const LayerOptions& o, const raster::OpenO
 // Throws std::invalid_argument for --no-default-world without any raster.
 std::vector<world::LayerSource> layerSources(const LayerOptions& o);
 
-// The drawing commands' start: layerSources and the host's world built from
-// them. A failure is printed as "geocean <command>: ..."; returns the exit
+// The drawing commands' start: layerSources (for the ocean: no imagery) and
+// the host's world built from them and the --imagery layers. A failure is printed as "geocean <command>: ..."; returns the exit
 // code (kExitOk, kExitBadInput, kExitDataError).
 int loadDrawnWorld(const char* command, const LayerOptions& o, std::vector<world::LayerSource>& sources,
                    world::WorldData& data);

@@ -211,6 +211,7 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
                       addCoastOption(sub, a->coastRegion);
                       addLayerOptions(sub, a->layers);
+                      addImageryOption(sub, a->layers);
                       addBoatOptions(sub, a->boats);
                       return [a] { return runFly(*a); };
                     }}};

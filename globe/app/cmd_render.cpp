@@ -126,6 +126,7 @@ const Register reg{{"render", "Render one frame headless to a PNG",
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
                       addCoastOption(sub, a->coastRegion);
                       addLayerOptions(sub, a->layers);
+                      addImageryOption(sub, a->layers);
                       addBoatOptions(sub, a->boats);
                       return [a] { return runRender(*a); };
                     }}};

@@ -364,6 +364,7 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                       sub.add_flag("--no-refraction", a->noRefraction,
                                    "no bottom seen through the water (the depth tint alone)");
                       addLayerOptions(sub, a->layers);
+                      addImageryOption(sub, a->layers);
                       addBoatOptions(sub, a->boats);
                       return [a] { return runView(*a); };
                     }}};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace geocean::render {
 
@@ -32,11 +33,14 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
   double texelDeg = world_.finestShapeTexelDeg();
   if (world_.waterTiles())  // the streamed mask's own texel
     texelDeg = std::min(texelDeg, std::abs(world_.waterTiles()->pyramid().source().transform().lonStepDeg));
+  if (world_.elevationTiles())  // the streamed relief's
+    texelDeg = std::min(texelDeg, std::abs(world_.elevationTiles()->pyramid().source().transform().lonStepDeg));
   while (maxLevel_ > 0 && texelDeg > 0.0 && 90.0 / double(1 << (maxLevel_ - 1)) / (kGrid - 1) <= texelDeg / 16.0)
     --maxLevel_;
   // Streamed water (WorldTextures::waterTiles): the same programs reading the tile pool.
   const auto with = [&](std::vector<std::string> d) {
     if (world_.waterTiles()) d.push_back("GEOCEAN_WATER_TILES 1");
+    if (world_.elevationTiles()) d.push_back("GEOCEAN_ELEVATION_TILES 1");
     return d;
   };
   // Under an ocean layer too: the ocean draws a streamed mask's coast from
@@ -260,6 +264,12 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
   world_.bind();
   glUniformMatrix4fv(prog.uniform("uViewProj"), 1, GL_FALSE, &cam.gpu().viewProj[0][0]);
   glUniform4fv(prog.uniform("uImageryGeo"), 1, &world_.imageryGeo()[0]);
+  if (const GLint loc = prog.uniform("uImageryLayers"); loc >= 0) {
+    glUniform1i(loc, world_.imageryLayers());
+    for (int i = 0; i < world_.imageryLayers(); ++i)
+      glUniform4fv(prog.uniform(("uImageryLayerGeo[" + std::to_string(i) + "]").c_str()), 1,
+                   &world_.imageryLayerGeo(i)[0]);
+  }
   glUniform4fv(prog.uniform("uElevationGeo"), 1, &world_.elevationGeo()[0]);
   glUniform4fv(prog.uniform("uWaterGeo"), 1, &world_.waterGeo()[0]);
   glUniform1f(prog.uniform("uExaggeration"), float(options_.exaggeration));
@@ -276,10 +286,14 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
   gl::TilePool* pool = world_.waterTiles();
   const bool streamed = pool && prog.uniform("uWaterSlots") >= 0;
   if (streamed) glBindTextureUnit(5, pool->texture());
+  gl::TilePool* elevPool = world_.elevationTiles();
+  const bool elevStreamed = elevPool && prog.uniform("uElevSlots") >= 0;
+  if (elevStreamed) glBindTextureUnit(4, elevPool->texture());
   glBindVertexArray(vao_);
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const Key& k = tiles[i];
     if (streamed) bindWaterBlock(&prog, k);
+    if (elevStreamed) bindBlock(&prog, *elevPool, k, "uElev");
     const glm::vec3 off(slots[i]->centerEcef - cam.eyeEcef());  // double difference, then float
     glUniform3fv(locOffset, 1, &off[0]);
     // Skirts hang deeper than the largest height error between levels
@@ -291,13 +305,16 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
 }
 
 bool TerrainRenderer::bindWaterBlock(const gl::GlProgram* prog, const Key& k) {
+  return bindBlock(prog, *world_.waterTiles(), k, "uWater");
+}
+
+bool TerrainRenderer::bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, const Key& k, const char* prefix) {
   // The finest pyramid level whose 2 x 2 tiles hold this terrain tile and
   // the filter's reach (3 texels: the B-spline's 2 and a skirt's), and are
   // resident; the finest such level is asked for. The terrain tile's cells
   // are at most pixelErrorPx pixels (its screen-space error), and 252
   // texels over its 32 cells make a texel about a pixel: the texture's level
   // follows the view.
-  gl::TilePool& pool = *world_.waterTiles();
   const raster::TilePyramid& pyr = pool.pyramid();
   const raster::GeoTransform& t0 = pyr.source().transform();
   const bool wrap = t0.global;
@@ -340,18 +357,22 @@ bool TerrainRenderer::bindWaterBlock(const gl::GlProgram* prog, const Key& k) {
   }
   if (!prog) return level == want;
   const double s = double(1 << level);
-  glUniform4i(prog->uniform("uWaterSlots"), slots[0], slots[1], slots[2], slots[3]);
-  glUniform4i(prog->uniform("uWaterBlock"), bx, by, pyr.tilesX(level), T);
-  glUniform3i(prog->uniform("uWaterLevel"), pyr.levelWidth(level), pyr.levelHeight(level), wrap ? 1 : 0);
-  glUniform4f(prog->uniform("uWaterLevelGeo"), float(t0.originLonDeg), float(t0.originLatDeg), float(t0.lonStepDeg * s),
-              float(t0.latStepDeg * s));
+  const std::string p(prefix);
+  glUniform4i(prog->uniform((p + "Slots").c_str()), slots[0], slots[1], slots[2], slots[3]);
+  glUniform4i(prog->uniform((p + "Block").c_str()), bx, by, pyr.tilesX(level), T);
+  glUniform3i(prog->uniform((p + "Level").c_str()), pyr.levelWidth(level), pyr.levelHeight(level), wrap ? 1 : 0);
+  glUniform4f(prog->uniform((p + "LevelGeo").c_str()), float(t0.originLonDeg), float(t0.originLatDeg),
+              float(t0.lonStepDeg * s), float(t0.latStepDeg * s));
   return level == want;
 }
 
 TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const camera::Camera& selectFrom,
                                            const camera::Lighting& light) {
   if (mirrored_.id() == 0)  // compiled on the first reflection a layer asks for
-    mirrored_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", {"GEOCEAN_CLIP_SEA 1"});
+    mirrored_ = gl::GlProgram::graphics(
+        "terrain.vert", "terrain.frag",
+        world_.elevationTiles() ? std::vector<std::string>{"GEOCEAN_CLIP_SEA 1", "GEOCEAN_ELEVATION_TILES 1"}
+                                : std::vector<std::string>{"GEOCEAN_CLIP_SEA 1"});
   TerrainStats stats;
   std::vector<Key> tiles;
   std::vector<const Slot*> slots;
@@ -391,6 +412,15 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
       pool->endFrame();
     }
   }
+  if (gl::TilePool* pool = world_.elevationTiles(); pool && options_.waitForTiles && !bare) {
+    for (int round = 0; round < 64; ++round) {
+      bool complete = true;
+      for (const Key& k : tiles) complete = bindBlock(nullptr, *pool, k, "uElev") && complete;
+      if (complete) break;
+      pool->waitIdle();
+      pool->endFrame();
+    }
+  }
   // Not with a streamed mask: the proxy's cut is the single water texture's.
   if (!bare && sea == SeaShading::UnderOcean && options_.seaProxy && !world_.waterTiles()) {
     // Depth only, where the ocean layer will cover the pixel: the same
@@ -407,6 +437,7 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
   pass(colour);
   // Finished tile loads go up after the frame's draws (they never wait).
   if (gl::TilePool* pool = world_.waterTiles()) pool->endFrame();
+  if (gl::TilePool* pool = world_.elevationTiles()) pool->endFrame();
   stats.tilesDrawn = int(tiles.size());
   glBindVertexArray(0);
   return stats;

@@ -126,6 +126,8 @@ class TerrainRenderer {
   // (none with a null prog: only the requests). True when they are of the
   // level the tile wants.
   bool bindWaterBlock(const gl::GlProgram* prog, const Key& k);
+  // The same for any pool: uniforms prefix + Slots, Block, Level, LevelGeo.
+  bool bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, const Key& k, const char* prefix);
 
   const WorldTextures& world_;
   TerrainOptions options_;

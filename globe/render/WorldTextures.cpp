@@ -3,6 +3,9 @@
 #include "globe/gl/Texture.h"
 #include "globe/world/WaterPyramid.h"
 
+#include <cmath>
+#include <stdexcept>
+
 namespace geocean::render {
 
 WorldTextures::WorldTextures(const world::WorldData& data)
@@ -16,6 +19,36 @@ WorldTextures::WorldTextures(const world::WorldData& data)
   // Mipmapped so that far coasts average to partial coverage instead of aliasing.
   const auto& w = grids_->water();
   water_ = gl::redGeoTexture(w.values.data(), w.channels, w.width, w.height, GL_R8, true);
+  if (int(data.imageryLayers.size()) > world::kMaxImageryLayers)
+    throw std::invalid_argument("more than " + std::to_string(world::kMaxImageryLayers) + " imagery layers");
+  for (const world::ImageryLayer& il : data.imageryLayers) {
+    GLint maxSize = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    if (il.width > maxSize || il.height > maxSize)
+      throw std::runtime_error(il.name + ": imagery of " + std::to_string(il.width) + "x" + std::to_string(il.height) +
+                               " is larger than a GL texture (" + std::to_string(maxSize) + ")");
+    // Premultiplied sRGB: filtering and mipmaps blend valid texels with the
+    // transparent nodata ones without darkening. A regional layer fades to
+    // the layer below outside its edge (transparent border).
+    GLuint t = gl::createGeoTexture(GL_SRGB8_ALPHA8, il.width, il.height, true);
+    if (!il.global) {
+      const float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+      glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+      glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+      glTextureParameterfv(t, GL_TEXTURE_BORDER_COLOR, border);
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(t, 0, 0, 0, il.width, il.height, GL_RGBA, GL_UNSIGNED_BYTE, il.rgba.data());
+    glGenerateTextureMipmap(t);
+    imageryLayers_.push_back(t);
+    imageryLayerGeo_.push_back(il.geo());
+  }
+  if (data.elevationTiles) {
+    gl::TilePoolOptions o;
+    o.internalFormat = GL_R32F;
+    o.nodataValue = NAN;  // the shader falls back to the elevation grid there
+    elevationTiles_ = std::make_unique<gl::TilePool>(data.elevationTiles, o);
+  }
   if (data.waterSource) waterTiles_ = std::make_unique<gl::TilePool>(world::waterPyramid(data.waterSource, data.waterEncoding));
 }
 
@@ -28,12 +61,14 @@ WorldTextures::WorldTextures(const world::WorldData& data, std::shared_ptr<const
 WorldTextures::~WorldTextures() {
   const GLuint t[] = {imagery_, elevation_, water_};
   glDeleteTextures(3, t);
+  if (!imageryLayers_.empty()) glDeleteTextures(GLsizei(imageryLayers_.size()), imageryLayers_.data());
 }
 
 void WorldTextures::bind() const {
   glBindTextureUnit(0, imagery_);
   glBindTextureUnit(1, elevation_);
   glBindTextureUnit(2, water_);
+  for (std::size_t i = 0; i < imageryLayers_.size(); ++i) glBindTextureUnit(GLuint(8 + i), imageryLayers_[i]);
 }
 
 }  // namespace geocean::render

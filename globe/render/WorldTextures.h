@@ -15,6 +15,7 @@
 #include <glm/vec4.hpp>
 
 #include <memory>
+#include <vector>
 
 namespace geocean::render {
 
@@ -31,9 +32,13 @@ class WorldTextures {
   WorldTextures(const WorldTextures&) = delete;
   WorldTextures& operator=(const WorldTextures&) = delete;
 
-  // Binds imagery, elevation, water to units 0, 1, 2.
+  // Binds imagery, elevation, water to units 0, 1, 2 and the user's imagery
+  // layers to units 8 and up.
   void bind() const;
   glm::vec4 imageryGeo() const { return imageryGeo_; }
+  // The user's imagery layers (WorldData::imageryLayers), in answer order.
+  int imageryLayers() const { return int(imageryLayers_.size()); }
+  glm::vec4 imageryLayerGeo(int i) const { return imageryLayerGeo_[std::size_t(i)]; }
   glm::vec4 elevationGeo() const { return grids_->elevation().geo(); }
   glm::vec4 waterGeo() const { return grids_->water().geo(); }
 
@@ -45,12 +50,17 @@ class WorldTextures {
   const world::WaterIndex& waterIndex() const { return grids_->waterIndex(); }
   // The streamed water coverage, or null (the single texture only).
   gl::TilePool* waterTiles() const { return waterTiles_.get(); }
+  // The streamed elevation (WorldData::elevationTiles: R32F, NaN where the
+  // raster has no data), or null.
+  gl::TilePool* elevationTiles() const { return elevationTiles_.get(); }
 
  private:
   std::shared_ptr<const world::WorldGrids> grids_;
   GLuint imagery_ = 0, elevation_ = 0, water_ = 0;
   glm::vec4 imageryGeo_{0.0f};
-  std::unique_ptr<gl::TilePool> waterTiles_;
+  std::vector<GLuint> imageryLayers_;
+  std::vector<glm::vec4> imageryLayerGeo_;
+  std::unique_ptr<gl::TilePool> waterTiles_, elevationTiles_;
 };
 
 }  // namespace geocean::render

@@ -21,7 +21,9 @@ bool globalInMemory(const raster::Raster& r) {
 
 }  // namespace
 
-const char* toString(LayerKind k) { return k == LayerKind::Mask ? "mask" : "elevation"; }
+const char* toString(LayerKind k) {
+  return k == LayerKind::Mask ? "mask" : k == LayerKind::Elevation ? "elevation" : "imagery";
+}
 
 double RasterLayer::cellDeg() const {
   const auto& t = raster->transform();
@@ -57,7 +59,8 @@ LayerStack::LayerStack(std::vector<RasterLayer> layers) : layers_(std::move(laye
   drawingElevation_ = drawing(LayerKind::Elevation);
   double finestMask = INFINITY, finestElevation = INFINITY;
   for (const RasterLayer& l : layers_)
-    (l.kind == LayerKind::Mask ? finestMask : finestElevation) =
+    if (l.kind != LayerKind::Imagery)
+      (l.kind == LayerKind::Mask ? finestMask : finestElevation) =
         std::min(l.kind == LayerKind::Mask ? finestMask : finestElevation, l.cellDeg());
   if (drawingMask_ && finestElevation < finestMask) drawingMask_ = nullptr;
 }
@@ -79,6 +82,7 @@ void LayerStack::classifyBatch(const double* lat, const double* lon, std::size_t
   std::vector<float> v;
   for (std::size_t li = 0; li < layers_.size() && !pending.empty(); ++li) {
     const RasterLayer& l = layers_[li];
+    if (l.kind == LayerKind::Imagery) continue;
     la.resize(pending.size());
     lo.resize(pending.size());
     v.resize(pending.size());
@@ -164,9 +168,14 @@ WorldLayer waterLayerOf(const LayerStack& stack) {
 
 LayerStack openLayerStack(const std::vector<LayerSource>& layers, bool defaultWorld, const raster::OpenOptions& options) {
   std::vector<RasterLayer> all;
-  for (const LayerSource& l : layers)
+  for (const LayerSource& l : layers) {
     all.push_back({l.kind, raster::Raster::open(l.path, options),
                    l.encoding.empty() ? MaskEncoding{} : MaskEncoding::parse(l.encoding), l.priority});
+    const int c = all.back().raster->channels();
+    if (l.kind == LayerKind::Imagery && c != 3 && c != 4)
+      throw raster::RasterError(l.path + ": imagery needs 3 (RGB) or 4 (RGBA) channels, the file has " +
+                                std::to_string(c));
+  }
   if (defaultWorld) {
     const raster::WorldFiles files = raster::defaultWorld();
     all.push_back({LayerKind::Mask, raster::Raster::open(files.mask, options), {}, kDefaultWorldPriority});
@@ -175,20 +184,136 @@ LayerStack openLayerStack(const std::vector<LayerSource>& layers, bool defaultWo
   return LayerStack(std::move(all));
 }
 
+ImageryLayer imageryLayerOf(std::shared_ptr<const raster::Raster> r, int maxSide) {
+  const int c = r->channels();
+  if (c != 3 && c != 4)
+    throw raster::RasterError(r->path() + ": imagery needs 3 (RGB) or 4 (RGBA) channels, the file has " +
+                              std::to_string(c));
+  ImageryLayer l;
+  l.name = r->path();
+  const raster::GeoTransform* t = &r->transform();
+  raster::GeoTransform lt;
+  std::vector<float> px;
+  if (r->inMemory() && std::max(r->width(), r->height()) <= maxSide) {
+    l.width = r->width(), l.height = r->height();
+    px = r->pixels();
+  } else {
+    // Too big for one texture or not in memory: a coarse level of its pyramid
+    // (built once, then read from the tile cache).
+    const auto pyr = raster::TilePyramid::open(r);
+    int level = 0;
+    while (level + 1 < pyr->levels() && std::max(pyr->levelWidth(level), pyr->levelHeight(level)) > maxSide) ++level;
+    lt = pyr->levelTransform(level);
+    t = &lt;
+    l.width = pyr->levelWidth(level), l.height = pyr->levelHeight(level);
+    px.assign(std::size_t(l.width) * l.height * c, NAN);
+    const int T = pyr->tileSize();
+    for (int ty = 0; ty < pyr->tilesY(level); ++ty)
+      for (int tx = 0; tx < pyr->tilesX(level); ++tx) {
+        if (pyr->kind({level, tx, ty}) == raster::TileKind::Empty) continue;
+        const auto tile = pyr->interior({level, tx, ty});
+        for (int y = 0; y < T && ty * T + y < l.height; ++y)
+          for (int x = 0; x < T && tx * T + x < l.width; ++x)
+            for (int k = 0; k < c; ++k)
+              px[(std::size_t(ty * T + y) * l.width + tx * T + x) * c + k] = (*tile)[(std::size_t(y) * T + x) * c + k];
+      }
+  }
+  l.originLonDeg = t->originLonDeg, l.originLatDeg = t->originLatDeg;
+  l.lonStepDeg = t->lonStepDeg, l.latStepDeg = t->latStepDeg;
+  l.global = r->transform().global;
+  l.rgba.resize(std::size_t(l.width) * l.height * 4);
+  for (std::size_t i = 0; i < std::size_t(l.width) * l.height; ++i) {
+    const float* v = &px[i * c];
+    bool valid = true;
+    for (int k = 0; k < c; ++k) {
+      if (std::isnan(v[k])) {
+        valid = false;
+        continue;
+      }
+      if (!(v[k] >= 0.0f && v[k] <= 255.0f))
+        throw raster::RasterError(l.name + ": imagery values must be 8-bit (0..255); pixel (" +
+                                  std::to_string(i % l.width) + ", " + std::to_string(i / l.width) + ") channel " +
+                                  std::to_string(k) + " is " + std::to_string(v[k]));
+    }
+    // Alpha is the validity: nodata in any channel, or the file's alpha.
+    const float a = !valid ? 0.0f : c == 4 ? v[3] / 255.0f : 1.0f;
+    for (int k = 0; k < 3; ++k) l.rgba[i * 4 + k] = std::uint8_t(valid ? v[k] * a + 0.5f : 0.0f);
+    l.rgba[i * 4 + 3] = std::uint8_t(a * 255.0f + 0.5f);
+  }
+  return l;
+}
+
 WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultWorld,
                            const raster::OpenOptions& options) {
   if (layers.empty() && defaultWorld) return loadDefaultWorld();
   const LayerStack stack = openLayerStack(layers, defaultWorld, options);
+  std::vector<ImageryLayer> imagery;
+  for (const RasterLayer& l : stack.layers())
+    if (l.kind == LayerKind::Imagery) imagery.push_back(imageryLayerOf(l.raster));
+  if (int(imagery.size()) > kMaxImageryLayers)
+    throw std::invalid_argument("--imagery: at most " + std::to_string(kMaxImageryLayers) + " imagery layers are drawn, " +
+                                std::to_string(imagery.size()) + " given");
+  const bool shapeLayers = std::any_of(layers.begin(), layers.end(),
+                                       [](const LayerSource& l) { return l.kind != LayerKind::Imagery; });
+  if (!shapeLayers && defaultWorld) {  // only imagery: the default world's grids as without layers
+    WorldData d = loadDefaultWorld();
+    d.imageryLayers = std::move(imagery);
+    return d;
+  }
   WorldData d;
+  d.imageryLayers = std::move(imagery);
   d.imagery = layerOf(*raster::Raster::open(raster::defaultWorld().imagery));
-  d.elevation = elevationLayerOf(stack);
-  d.water = waterLayerOf(stack);
+  const auto e = stack.drawingElevation();
+  const double elevationStep =
+      e && globalInMemory(*e) ? e->transform().lonStepDeg : globalGridFor(e.get()).lonStepDeg;
+  if (const RasterLayer* l = streamedElevationLayer(stack, elevationStep)) {
+    // Its tiles are drawn; the CPU grid is the pyramid's coarse level (means
+    // of its cells), cells without data from the layers below it.
+    d.elevationTiles = raster::TilePyramid::open(l->raster);
+    d.elevation = levelLayerOf(*d.elevationTiles, elevationStep);
+    std::vector<RasterLayer> below;
+    for (const RasterLayer& o : stack.layers())
+      if (&o != l && o.kind == LayerKind::Elevation) below.push_back(o);
+    std::vector<std::size_t> holes;
+    for (std::size_t i = 0; i < d.elevation.values.size(); ++i)
+      if (std::isnan(d.elevation.values[i])) holes.push_back(i);
+    if (!below.empty() && !holes.empty()) {
+      const LayerStack rest(std::move(below));
+      // In chunks: a sparse raster leaves most of the grid to the layers below.
+      constexpr std::size_t kChunk = std::size_t(1) << 20;
+      std::vector<double> lat, lon;
+      std::vector<float> v;
+      for (std::size_t k0 = 0; k0 < holes.size(); k0 += kChunk) {
+        const std::size_t n = std::min(kChunk, holes.size() - k0);
+        lat.resize(n), lon.resize(n), v.resize(n);
+        for (std::size_t k = 0; k < n; ++k) {
+          const std::size_t i = holes[k0 + k], w = std::size_t(d.elevation.width);
+          lat[k] = d.elevation.originLatDeg + (double(i / w) + 0.5) * d.elevation.latStepDeg;
+          lon[k] = d.elevation.originLonDeg + (double(i % w) + 0.5) * d.elevation.lonStepDeg;
+        }
+        rest.elevationBatch(lat.data(), lon.data(), n, v.data());
+        for (std::size_t k = 0; k < n; ++k) d.elevation.values[holes[k0 + k]] = v[k];
+      }
+    }
+    nodataToSeaLevel(d.elevation);
+  } else {
+    d.elevation = elevationLayerOf(stack);
+  }
   // The first mask to answer, when it covers the Earth and is finer than the
   // drawn grid (at most 5'), is drawn from its tiles (issue 12 item 2); a
-  // finer elevation layer (drawingMask null) decides the coast instead.
-  if (const RasterLayer* l = streamedMaskLayer(stack, d.water.lonStepDeg)) {
+  // finer elevation layer (drawingMask null) decides the coast instead. Its
+  // water grid is then the pyramid's coarse level, as the ocean's
+  // (plugin/render/OceanWorld): one level's tiles from the disk cache instead
+  // of classifying every grid cell through the stack.
+  const auto m = stack.drawingMask();
+  const double gridStep =
+      m && globalInMemory(*m) ? m->transform().lonStepDeg : globalGridFor((m ? m : stack.drawingElevation()).get()).lonStepDeg;
+  if (const RasterLayer* l = streamedMaskLayer(stack, gridStep)) {
     d.waterSource = l->raster;
     d.waterEncoding = l->encoding;
+    d.water = waterLayerOf(*waterPyramid(l->raster, l->encoding), gridStep);
+  } else {
+    d.water = waterLayerOf(stack);
   }
   return d;
 }

@@ -22,8 +22,10 @@
 
 namespace geocean::world {
 
-enum class LayerKind : std::uint8_t { Mask, Elevation };
-const char* toString(LayerKind k);  // "mask" | "elevation"
+// Imagery layers (RGB or RGBA, 8-bit) are drawn only: they never answer
+// a class or an elevation.
+enum class LayerKind : std::uint8_t { Mask, Elevation, Imagery };
+const char* toString(LayerKind k);  // "mask" | "elevation" | "imagery"
 
 // Below every user layer (whose priorities are the caller's ints).
 constexpr int kDefaultWorldPriority = std::numeric_limits<int>::min();
@@ -85,14 +87,25 @@ struct LayerSource {
   int priority = 0;
 };
 // The stack of `layers` (in this order) over the default world's mask and
-// relief (unless !defaultWorld), as the ocean façade builds it.
+// relief (unless !defaultWorld), as the ocean façade builds it. Throws
+// raster::RasterError naming the file for an imagery layer without 3 or 4
+// channels.
 LayerStack openLayerStack(const std::vector<LayerSource>& layers, bool defaultWorld,
                           const raster::OpenOptions& options = {});
+// An imagery raster as drawn (WorldData::imageryLayers): its own pixels
+// when it is in memory and no side exceeds maxSide, else the finest level of
+// its tile pyramid (raster::TilePyramid, the on-disk tile cache) that fits.
+// Throws raster::RasterError naming the file for a channel count other than
+// 3 or 4 or a value outside 0..255.
+ImageryLayer imageryLayerOf(std::shared_ptr<const raster::Raster> r, int maxSide = 8192);
+
 // The host's world: the default imagery, elevation and water from
 // openLayerStack by the drawing rule (globally at most 5': finer detail of
-// a user's raster is not drawn yet). Without layers exactly
+// a user's raster is not drawn yet), the imagery layers over the default
+// imagery (at most kMaxImageryLayers). Without layers exactly
 // loadDefaultWorld(). Throws raster::RasterError naming the file,
-// std::invalid_argument for a bad encoding or an empty stack.
+// std::invalid_argument for a bad encoding, an empty stack or too many
+// imagery layers.
 WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultWorld,
                            const raster::OpenOptions& options = {});
 

@@ -32,7 +32,24 @@ const RasterLayer* streamedMaskLayer(const LayerStack& stack, double gridLonStep
   return nullptr;
 }
 
+const RasterLayer* streamedElevationLayer(const LayerStack& stack, double gridLonStepDeg) {
+  for (const RasterLayer& l : stack.layers()) {
+    if (l.kind != LayerKind::Elevation) continue;
+    const raster::GeoTransform& t = l.raster->transform();
+    const bool global = t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * l.raster->height() + 180.0) < 1e-6;
+    return global && t.lonStepDeg < 0.999 * gridLonStepDeg ? &l : nullptr;
+  }
+  return nullptr;
+}
+
 WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg) {
+  WorldLayer l = levelLayerOf(water, stepDeg);
+  for (float& v : l.values)
+    if (std::isnan(v)) v = 0.0f;
+  return l;
+}
+
+WorldLayer levelLayerOf(const raster::TilePyramid& water, double stepDeg) {
   const raster::GeoTransform& t = water.source().transform();
   int level = 0;
   while (level + 1 < water.levels() && std::abs(t.lonStepDeg) * double(2 << level) <= stepDeg * (1.0 + 1e-9)) ++level;
@@ -42,7 +59,7 @@ WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg) {
   l.width = water.levelWidth(level), l.height = water.levelHeight(level);
   l.originLonDeg = lt.originLonDeg, l.originLatDeg = lt.originLatDeg;
   l.lonStepDeg = lt.lonStepDeg, l.latStepDeg = lt.latStepDeg;
-  l.values.assign(std::size_t(l.width) * l.height, 0.0f);
+  l.values.assign(std::size_t(l.width) * l.height, NAN);
   const int T = water.tileSize(), c = water.channels();
   for (int ty = 0; ty < water.tilesY(level); ++ty)
     for (int tx = 0; tx < water.tilesX(level); ++tx) {
@@ -50,7 +67,7 @@ WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg) {
       for (int y = 0; y < T && ty * T + y < l.height; ++y)
         for (int x = 0; x < T && tx * T + x < l.width; ++x) {
           const float v = (*tile)[(std::size_t(y) * T + x) * c];
-          l.values[std::size_t(ty * T + y) * l.width + tx * T + x] = std::isnan(v) ? 0.0f : v;
+          l.values[std::size_t(ty * T + y) * l.width + tx * T + x] = v;
         }
     }
   return l;

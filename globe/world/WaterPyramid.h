@@ -30,5 +30,13 @@ const RasterLayer* streamedMaskLayer(const LayerStack& stack, double gridLonStep
 // (from the disk cache) instead of classifying every grid cell through
 // the stack.
 WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg);
+// Any pyramid's level chosen as above as a global grid of its first
+// channel, NaN where it has no data.
+WorldLayer levelLayerOf(const raster::TilePyramid& pyramid, double stepDeg);
+
+// The elevation layer drawn from its tiles (issue 12 item 2): the first
+// elevation layer to answer, when it covers the Earth and is finer than the
+// drawn elevation grid's step (gridLonStepDeg); null otherwise.
+const RasterLayer* streamedElevationLayer(const LayerStack& stack, double gridLonStepDeg);
 
 }  // namespace geocean::world

@@ -8,11 +8,14 @@
 
 #include <glm/vec4.hpp>
 
+#include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace geocean::raster {
 class Raster;
+class TilePyramid;
 }
 
 namespace geocean::world {
@@ -30,8 +33,28 @@ struct WorldLayer {
   }
 };
 
+// A user's imagery layer (--imagery, issue 12 item 1) as drawn over the
+// default imagery: RGBA8, sRGB colour premultiplied by the alpha, which is
+// the layer's validity (0 where nodata or outside: the layer below shows).
+// Row 0 first as stored; a regional or global lon/lat grid.
+struct ImageryLayer {
+  std::string name;  // the file
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;
+  double originLonDeg = -180.0, originLatDeg = 90.0, lonStepDeg = 1.0, latStepDeg = -1.0;
+  bool global = false;  // spans 360 degrees of longitude: wraps
+  glm::vec4 geo() const {
+    return {float(originLonDeg), float(originLatDeg), float(lonStepDeg * width), float(latStepDeg * height)};
+  }
+};
+// The terrain shader's imagery slots (texture units 8 and up).
+constexpr int kMaxImageryLayers = 4;
+
 struct WorldData {
   WorldLayer imagery;    // RGB 0..255, sRGB
+  // The user's imagery over `imagery`, in answer order (the first is on
+  // top): LayerStack's order for LayerKind::Imagery.
+  std::vector<ImageryLayer> imageryLayers;
   WorldLayer elevation;  // metres, ocean negative
   WorldLayer water;      // 1 water (ocean or lake), 0 land
   // A global mask finer than `water` that answers first (loadLayeredWorld):
@@ -39,6 +62,10 @@ struct WorldData {
   // grids above stay for the CPU. Null: `water` is what is drawn.
   std::shared_ptr<const raster::Raster> waterSource;
   MaskEncoding waterEncoding;
+  // A global elevation layer finer than `elevation` that answers first: the
+  // host draws it streamed (NaN texels fall back to `elevation`), the grid
+  // stays for the CPU. Null: `elevation` is what is drawn.
+  std::shared_ptr<const raster::TilePyramid> elevationTiles;
 };
 
 // An in-memory raster as a layer: all channels, or only `channel` (>= 0).

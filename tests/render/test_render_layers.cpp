@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -117,4 +118,116 @@ TEST(RenderLayers, BadLayerFilesAreNamed) {
   r = geocean::test::run(kExe + " render --size 32x20 --out " + out + " --mask-encoding 0=ocean");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("--mask-encoding needs --mask"), std::string::npos) << r.err;
+}
+
+namespace {
+
+// A synthetic imagery layer over the Sahara (lon 5..15, lat 15..25, 0.05
+// degree cells, 8-bit RGB): magenta, which no Blue Marble land pixel is,
+// with a 2 x 2 degree hole of nodata (0) at its centre (20 N, 10 E).
+std::string magentaTif() {
+  static const std::string path = [] {
+    constexpr int n = 200;
+    constexpr double step = 0.05;
+    std::vector<std::uint8_t> px(std::size_t(n) * n * 3);
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const double lat = 25.0 - (y + 0.5) * step, lon = 5.0 + (x + 0.5) * step;
+        const bool hole = std::abs(lat - 20.0) < 1.0 && std::abs(lon - 10.0) < 1.0;
+        const std::uint8_t rgb[3] = {230, 20, 230};
+        for (int c = 0; c < 3; ++c) px[(std::size_t(y) * n + x) * 3 + c] = hole ? 0 : rgb[c];
+      }
+    geocean::raster::GeoTiffWriteOptions wo;
+    wo.transform = {5.0, 25.0, step, -step, false};
+    wo.nodata = 0.0;
+    const std::string p = ::testing::TempDir() + "/render_magenta.tif";
+    geocean::raster::writeGeoTiff(p, px.data(), n, n, 3, geocean::raster::SampleType::U8, wo);
+    return p;
+  }();
+  return path;
+}
+
+struct Px {
+  double r = 0, g = 0, b = 0;
+};
+// Mean colour and largest channel difference between a and b over the
+// pixels whose Chebyshev distance from the frame's centre is in [d0, d1].
+Px ring(const geocean::gl::Image& a, const geocean::gl::Image& b, int d0, int d1, int* maxDiff) {
+  Px m;
+  int n = 0;
+  *maxDiff = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      const int d = std::max(std::abs(x - a.width / 2), std::abs(y - a.height / 2));
+      if (d < d0 || d > d1) continue;
+      const std::size_t i = (std::size_t(y) * a.width + x) * 4;
+      m.r += a.rgba[i], m.g += a.rgba[i + 1], m.b += a.rgba[i + 2];
+      for (int c = 0; c < 3; ++c) *maxDiff = std::max(*maxDiff, std::abs(int(a.rgba[i + c]) - int(b.rgba[i + c])));
+      ++n;
+    }
+  m.r /= n, m.g /= n, m.b /= n;
+  return m;
+}
+
+}  // namespace
+
+// --imagery (issue 12 item 1): straight down on (20 N, 10 E) from 2,000 km,
+// 200 x 200 pixels, 45 degrees: the layer's 10 x 10 degrees reach about 66
+// pixels from the centre (the nadir angle of a point 5 degrees away), its
+// hole about 13. Where the layer has data the land is magenta; in its hole
+// and outside it the picture is the default imagery's, to the bit (alpha 0:
+// albedo * 1 + 0). Looked at: imagery_sahara.png in the test's temp dir.
+TEST(RenderLayers, AnImageryLayerIsDrawnWhereItHasDataAndTheLayerBelowElsewhere) {
+  const std::string cam = " --camera 20,10,2000000,0,-90 --size 200x200 --fov 45 --sun 180,60 --no-ocean";
+  const std::string outBase = ::testing::TempDir() + "/imagery_default.png";
+  const std::string outImg = ::testing::TempDir() + "/imagery_sahara.png";
+  std::filesystem::remove(outBase);
+  std::filesystem::remove(outImg);
+  auto r = geocean::test::run(kExe + " render" + cam + " --out " + outBase);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  r = geocean::test::run(kExe + " render" + cam + " --out " + outImg + " --imagery " + magentaTif());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto base = geocean::gl::readImage(outBase), img = geocean::gl::readImage(outImg);
+  ASSERT_EQ(img.width, 200);
+  ASSERT_EQ(base.width, 200);
+  int diff = 0;
+  ring(img, base, 0, 9, &diff);  // inside the hole (13 px), off its bilinear edge
+  EXPECT_LE(diff, 1);
+  ring(img, base, 80, 100, &diff);  // outside the layer (66 px)
+  EXPECT_LE(diff, 1);
+  const Px m = ring(img, base, 25, 55, &diff);  // the layer's data
+  EXPECT_GT(m.r, 2.0 * m.g) << m.r << " " << m.g << " " << m.b;
+  EXPECT_GT(m.b, 2.0 * m.g) << m.r << " " << m.g << " " << m.b;
+  const Px d = ring(base, img, 25, 55, &diff);
+  EXPECT_GT(d.r, d.b) << "the default there is desert (red above blue)";
+}
+
+TEST(RenderLayers, BadImageryFilesAreNamed) {
+  const std::string out = ::testing::TempDir() + "/bad_imagery.png";
+  const std::string dir = ::testing::TempDir();
+  // One channel: a mask or a relief given as imagery.
+  const std::vector<std::uint8_t> grey(16 * 8, 100);
+  geocean::raster::GeoTiffWriteOptions wo;
+  wo.transform = {0.0, 8.0, 1.0, -1.0, false};
+  wo.tileSize = 0;
+  geocean::raster::writeGeoTiff(dir + "/grey_imagery.tif", grey.data(), 16, 8, 1, geocean::raster::SampleType::U8, wo);
+  auto r = geocean::test::run(kExe + " render --size 32x20 --no-ocean --out " + out + " --imagery " + dir +
+                              "/grey_imagery.tif");
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_NE(r.err.find(dir + "/grey_imagery.tif: imagery needs 3 (RGB) or 4 (RGBA) channels, the file has 1"),
+            std::string::npos)
+      << r.err;
+  // Floats beyond 8 bits.
+  std::vector<float> hot(16 * 8 * 3, 10.0f);
+  hot[5 * 3 + 1] = 300.0f;
+  geocean::raster::writeGeoTiff(dir + "/hot_imagery.tif", hot.data(), 16, 8, 3, geocean::raster::SampleType::F32, wo);
+  r = geocean::test::run(kExe + " fly --frames 2 --size 32x20 --no-ocean --out " + dir + "/bad_imagery_fly --imagery " +
+                         dir + "/hot_imagery.tif");
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_NE(r.err.find(dir + "/hot_imagery.tif: imagery values must be 8-bit (0..255); pixel (5, 0) channel 1 is 300"),
+            std::string::npos)
+      << r.err;
+  r = geocean::test::run(kExe + " render --size 32x20 --no-ocean --out " + out + " --imagery /nonexistent/photo.tif");
+  EXPECT_EQ(r.exitCode, 3);
+  EXPECT_NE(r.err.find("/nonexistent/photo.tif"), std::string::npos) << r.err;
 }

@@ -293,6 +293,25 @@ TEST(TerrainTiles, LayeredWorldStreamsAFinerGlobalMaskAndAWaitingFrameIsComplete
   const world::WorldData data = world::loadLayeredWorld({{world::LayerKind::Mask, fine, "", 0}}, true);
   ASSERT_TRUE(data.waterSource);
   EXPECT_EQ(data.waterSource->path(), fine);
+  // Its CPU water grid is the pyramid's 5' level, as the ocean's
+  // (OceanWorld), not a classification through the stack: each cell the
+  // mean water of the 4 x 4 mask cells under it, read here from the mask.
+  ASSERT_EQ(data.water.width, 4320);
+  ASSERT_EQ(data.water.height, 2160);
+  ASSERT_EQ(data.waterSource->width(), 4 * 4320);
+  const world::MaskEncoding enc;
+  int coastCells = 0;
+  for (int k = 0; k < 2000; ++k) {
+    // Cells along 36 N (the Strait) and spread over the globe.
+    const int i = (k * 2161) % 4320, j = k < 1000 ? 648 + k % 8 : (k * 977) % 2160;
+    double sum = 0.0;
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x) sum += enc.isWater(data.waterSource->pixel(4 * i + x, 4 * j + y)) ? 1.0 : 0.0;
+    const float v = data.water.values[std::size_t(j) * 4320 + i];
+    EXPECT_NEAR(v, sum / 16.0, 1e-6) << i << "," << j;
+    coastCells += sum > 0.0 && sum < 16.0;
+  }
+  EXPECT_GT(coastCells, 10);  // the test saw partial cells, not only open sea and inland
   auto tiled = std::make_shared<render::WorldTextures>(data);
   ASSERT_TRUE(tiled->waterTiles());
   EXPECT_TRUE(fs::exists(t.path / "cache"));  // the pyramid's cache went where it was told
@@ -313,5 +332,93 @@ TEST(TerrainTiles, LayeredWorldStreamsAFinerGlobalMaskAndAWaitingFrameIsComplete
   }
   const Diff d = compare(converged, waited);
   EXPECT_EQ(d.mean, 0.0);  // the same tiles drawn: the same bits
+  unsetenv("GEOCEAN_TILE_CACHE");
+}
+
+// A user's global elevation wider than one GL texture (21600 x 10800, 1',
+// nodata but for 1 x 1 degree: a 3,000 m Gaussian peak of sigma 0.03
+// degrees at (20.25 N, 10.25 E) on a 400 m plateau in the Sahara, land in
+// every mask) is drawn from its tiles (issue 12 item 2). Seen from 1,000 m,
+// 0.5 degrees of longitude (D = 52.2 km) west, looking east level: the
+// raster's top texel (2633 m, below) stands atan((2633 - 1000 - D^2 / 2R) /
+// D) above the horizontal (D^2 / 2R = 214 m: the Earth's curvature), 15.4
+// px above the centre row of a 200 px, 20 degree frame. Drawn from the CPU
+// grid alone (means of 4' cells) it would stand lower than a third of that. The
+// silhouette is where the frame differs from the one without the layer (the
+// sky does not depend on the relief). Tolerance 3 px: the terrain's
+// vertices sample the peak about every 8 px at that range.
+TEST(TerrainTiles, ElevationWiderThanOneTextureIsDrawnFromItsTiles) {
+  context();
+  TempDir t;
+  setenv("GEOCEAN_TILE_CACHE", (t.path / "cache").c_str(), 1);
+  const std::string tif = (t.path / "peak_1m.tif").string();
+  constexpr int W = 21600, H = 10800;
+  {
+    raster::GeoTiffWriteOptions wo;
+    wo.transform = {-180.0, 90.0, 360.0 / W, -180.0 / H, true};
+    wo.nodata = -32768.0;
+    // Not sparse (tiles of byte count 0): OpenImageIO's cache, through which
+    // the layer stack samples a raster this big, refuses them.
+    raster::writeGeoTiffTiles(tif, W, H, 1, raster::SampleType::F32, wo, [](int x0, int y0, void* tile) {
+      float* v = static_cast<float*>(tile);
+      for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x) {
+          const double lon = -180.0 + (x0 + x + 0.5) * 360.0 / W, lat = 90.0 - (y0 + y + 0.5) * 180.0 / H;
+          const double r2 = ((lon - 10.25) * (lon - 10.25) + (lat - 20.25) * (lat - 20.25)) / (0.03 * 0.03);
+          v[y * 256 + x] = std::abs(lon - 10.25) < 0.5 && std::abs(lat - 20.25) < 0.5
+                               ? float(400.0 + 2600.0 * std::exp(-r2))
+                               : -32768.0f;
+        }
+    });
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const world::WorldData data = world::loadLayeredWorld({{world::LayerKind::Elevation, tif, "", 0}}, true);
+  std::printf("load %.1f s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  ASSERT_TRUE(data.elevationTiles);
+  EXPECT_EQ(data.elevationTiles->source().width(), W);
+  // The CPU grid: the pyramid's 4' level, the default relief where the layer has none.
+  EXPECT_EQ(data.elevation.width, 5400);
+  const world::WorldData base = world::loadLayeredWorld({}, true);
+  const camera::ViewPose pose{20.25, 9.75, 1000.0, 90.0, 0.0, 0.0, 20.0, 200, 200};
+  const auto draw = [&](const world::WorldData& d) {
+    auto w = std::make_shared<render::WorldTextures>(d);
+    render::TerrainOptions o;
+    o.waitForTiles = true;
+    render::GlobeRenderer r(w, o);
+    gl::Framebuffer fb(pose.width, pose.height);
+    fb.bind();
+    render::FrameSettings s;
+    s.sunEcef = render::sunFromLocal(pose.latDeg, pose.lonDeg, 135.0, 35.0);
+    r.render(pose, s);
+    if (w->elevationTiles()) {
+      // Bounds independent of the raster's size: the pool's fixed slots.
+      EXPECT_EQ(w->elevationTiles()->gpuBytes(), std::size_t(w->elevationTiles()->slots()) * 258 * 258 * 4);
+      EXPECT_GE(w->elevationTiles()->stats().uploads, 1u);
+    }
+    return fb.readColor();
+  };
+  const gl::Image peak = draw(data), flat = draw(base);
+  std::printf("load + 2 frames %.1f s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  gl::writePng(outDir() + "/tiles-elevation-peak.png", peak);
+  gl::writePng(outDir() + "/tiles-elevation-flat.png", flat);
+  int top = pose.height;
+  for (int y = 0; y < pose.height && top == pose.height; ++y)
+    for (int x = 90; x < 110; ++x) {
+      const std::size_t i = (std::size_t(y) * pose.width + x) * 4;
+      int m = 0;
+      for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(int(peak.rgba[i + c]) - int(flat.rgba[i + c])));
+      if (m > 8) {
+        top = y;
+        break;
+      }
+    }
+  // The top of the drawn (bilinear) surface is the raster's highest texel:
+  // the peak falls on a texel corner, its 4 texels are half a texel (1/120
+  // degree) away on both axes: 400 + 2600 exp(-2 (1/120)^2 / 0.03^2) =
+  // 2633 m. Rows count down from the top: the centre row 100 is the horizontal.
+  const double hTop = 400.0 + 2600.0 * std::exp(-2.0 * (1.0 / 120.0) * (1.0 / 120.0) / (0.03 * 0.03));
+  const double D = 0.5 * 111320.0 * std::cos(20.25 * M_PI / 180.0);
+  const double expected = 100.0 - 100.0 / std::tan(10.0 * M_PI / 180.0) * ((hTop - 1000.0 - D * D / 12742000.0) / D);
+  EXPECT_NEAR(top, expected, 3.0);
   unsetenv("GEOCEAN_TILE_CACHE");
 }
