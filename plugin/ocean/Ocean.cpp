@@ -366,7 +366,8 @@ void Ocean::update(const std::function<void(Snapshot&)>& edit) {
                                                       next->coastRegion->nodes == prev->coastRegion->nodes &&
                                                       next->coastRegion->margin == prev->coastRegion->margin &&
                                                       next->coastRegion->islandRadiusM ==
-                                                          prev->coastRegion->islandRadiusM)));
+                                                          prev->coastRegion->islandRadiusM &&
+                                                      next->coastRegion->breaking == prev->coastRegion->breaking)));
   if (next->waves && next->model == waves::Model::Gerstner &&
       (rastersChanged || coastChanged || next->waves != prev->waves)) {
     // The coast field from this snapshot's water depth (as the query's:

@@ -268,7 +268,8 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
       const double wgt = smooth01(double(edge) / r.margin);
       const double notSurging = 1.0 - glm::smoothstep(1.8, 2.2, xi);
       const double curl = glm::smoothstep(0.3, 0.5, xi) * notSurging;
-      slab[at(i, j)] = glm::dvec4(xi, wgt * curl, wgt * notSurging, tanBeta);
+      const double on = r.breaking ? wgt : 0.0;
+      slab[at(i, j)] = glm::dvec4(xi, on * curl, on * notSurging, tanBeta);
     }
   return cf;
 }

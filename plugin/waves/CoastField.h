@@ -67,6 +67,7 @@ class CoastField {
     int nodes = 201;                    // N: nodes per side (odd: the centre is a node)
     int margin = 8;                     // edge nodes blended to 0
     double islandRadiusM = 0.0;         // occlusion radius (<= 64 nodes); 0: 6 deep-water wavelengths of the longest
+    bool breaking = true;               // curl and collapse (eq. 5-6); false: their weights 0 (the slab's xi stays)
   };
   // What the island table is built from (the same for CPU and GPU).
   struct IslandInputs {
