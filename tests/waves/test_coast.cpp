@@ -456,6 +456,17 @@ TEST(Coast, IribarrenNumberClassifiesPlanarBeaches) {
       EXPECT_EQ(b.curlWeight > 0.0, want.type == CoastField::Breaker::Plunging) << "slope " << want.slope;
       EXPECT_EQ(b.breakWeight > 0.0, want.type != CoastField::Breaker::Surging) << "slope " << want.slope;
     }
+    if (want.type == CoastField::Breaker::Plunging) {  // Region::breaking = false: the weights 0, xi kept
+      CoastField::Region r = c->region();
+      r.breaking = false;
+      std::string err;
+      const CoastField off = CoastField::build(w, r, planarBeach(want.slope, 150.0), err);
+      ASSERT_FALSE(off.empty()) << err;
+      const CoastField::Beach b = off.beachAt(0.0, 30.0);
+      EXPECT_EQ(b.iribarren, c->beachAt(0.0, 30.0).iribarren);
+      EXPECT_EQ(b.curlWeight, 0.0);
+      EXPECT_EQ(b.breakWeight, 0.0);
+    }
     std::printf("slope %.2f: xi %.3f (theory %.3f), %s\n", want.slope, c->beachAt(0.0, 30.0).iribarren, xi,
                 CoastField::breakerName(c->beachAt(0.0, 30.0).type));
   }
