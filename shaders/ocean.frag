@@ -21,6 +21,10 @@ in float vCoverage;
 #ifdef GEOCEAN_FAR_SHADED
 in vec3 vColor;  // far open water: shaded per vertex (OceanRenderer)
 #endif
+#if WV_MODEL == 1 && defined(WV_COAST) && !defined(GEOCEAN_BARE)
+in float vBreakFoam;  // issue 15 hook (ocean.vert): breaking foam, added to the crest foam below
+#define GEOCEAN_BREAK_FOAM 1
+#endif
 #ifdef FOAM_TIMES
 // Whitecaps from the Jacobian per fragment (Gerstner, FFT): the rest point
 // (offset from the wave patch origin: linear across a cell, so exact) and
@@ -81,6 +85,13 @@ void main() {
   float far = smoothstep(0.25, 0.75, vFar);
   float crest = far < 1.0 ? whitecapFoam(vRest, wvFrames[0], vWaveDepthM) : 0.0;
   crest = mix(crest, uWhitecapCover, far);
+#ifdef GEOCEAN_BREAK_FOAM
+  crest = max(crest, vBreakFoam);
+#endif
+  outColor = vec4(oceanColorCrest(vEyeRel, vNormal, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, crest, w), alpha);
+#elif defined(GEOCEAN_BREAK_FOAM)
+  // Issue 15 hook: oceanColor's crest foam, and the breaking waves' on top.
+  float crest = max(mix(smoothstep(vFoamM - uFoamSoftM, vFoamM + uFoamSoftM, vHeightM), uWhitecapCover, vFar), vBreakFoam);
   outColor = vec4(oceanColorCrest(vEyeRel, vNormal, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, crest, w), alpha);
 #else
   outColor = vec4(oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, vFoamM, w), alpha);

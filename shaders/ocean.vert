@@ -61,6 +61,9 @@ out float vDepthM;
 out float vFar;
 out float vMss;
 out float vFoamM;
+#if WV_MODEL == 1 && defined(WV_COAST)
+out float vBreakFoam;  // issue 15 hook: the breaking waves' foam (wv_breakingFoam) for ocean.frag
+#endif
 #ifdef FOAM_TIMES
 out vec3 vRest;  // ocean.frag's whitecaps (foam.glsl)
 out float vWaveDepthM;
@@ -110,6 +113,7 @@ void main() {
 #endif
 #ifdef WV_COAST
   WvResult r = wv_gerstnerCoast(0, uWaveCount, d, fr, depth, wvCoasts[0]);
+  vBreakFoam = wv_breakingFoam(r);
 #else
   WvResult r = wv_gerstner(0, uWaveCount, d, fr, depth);
 #endif

@@ -187,7 +187,23 @@ WR4 wv_coastSample(WvCoast co, int comp, WR3 d) {
 // orbits, breaking limit H/h <= 0.78).
 // With a coast field (co.cell.z > 0) the phase, direction and amplitude
 // take the field's corrections (depth-dependent dispersion and refraction,
-// plugin/waves/CoastField.h) and the orbit's wave number is the local one.
+// plugin/waves/CoastField.h) and the orbit's wave number is the local one;
+// and the waves curl and break (paper 003 eq. 5-6) by the breaker type the
+// field's beach slope gives (Iribarren number, the slab after the components):
+// - eq. 5, the phase stretch: the horizontal motion takes the phase
+//   psi - lc c^2, c = (1 + cos psi) / 2 (the crest, c = 1, runs ahead of the
+//   trough, c = 0), lc = WV_CURL_RAD min(1, (1 - T) / T), T = tanh k h, times
+//   the plunging weight: 0 in deep water, growing as depth decreases (about
+//   as 1 / kh in shallow water, as the waves' asymmetry does with the Ursell
+//   number; full from k h = 0.55), so crests lean forward. The map stays one-to-one (the Jacobian cap below), so the
+//   surface is a height field the query inverts: a lean, not an overhang.
+// - eq. 6, the collapse: where the breaking cap acts (b from 1 - sB, the
+//   share of the crest the 0.78 h limit removes), z above A (the local
+//   significant amplitude) falls by S (z - A)^2 b with S = 1 / (2 (zc - A)),
+//   zc the highest crest there (S ~ 1/A as in the paper; b plays the
+//   paper's time factor: it grows as the wave runs into shallower water).
+//   Monotone in z (slope >= 1 - b), and only lowers: H <= 0.78 h holds.
+// The breaking foam (wv_breakingFoam) is returned in hvel.w.
 WvResult wv_gerstnerCoast(int first, int count, WR3 d, WvFrame fr, WR depthM, WvCoast co) {
   WR depth = max(depthM, WR(0.05));
   WR invR = fr.radial.w;
@@ -200,7 +216,10 @@ WvResult wv_gerstnerCoast(int first, int count, WR3 d, WvFrame fr, WR depthM, Wv
   WR3 t2 = cross(up, t1);
   WR en = dot(d, n0) * invR;
 
-  WR z = WR(0), dzdt = WR(0), sumAz = WR(0), sumKAx = WR(0);
+  // (iribarren, curl weight, break weight, tan beta) of the beach here.
+  WR4 brk = WR4(0);
+  if (co.cell.z > 0) brk = wv_coastSample(co, count, d);
+  WR z = WR(0), dzdt = WR(0), sumAz = WR(0), sumAz2 = WR(0), sumKAx = WR(0);
   WR3 hor = WR3(0), hvel = WR3(0), gradZ = WR3(0);
   WR jxx = WR(0), jxy = WR(0), jyy = WR(0);
   for (int i = 0; i < count; ++i) {
@@ -243,14 +262,26 @@ WvResult wv_gerstnerCoast(int first, int count, WR3 d, WvFrame fr, WR depthM, Wv
     if (co.cell.z > 0) az = min(az, WR(0.071 * 2.0 * WV_PI) / kP * th);
     WR ax = w.extra.y * az / th;
     WR cs = cos(psi), sn = sin(psi);
+    // Eq. 5: the horizontal phase psx and d(psx)/d(psi) (exactly psi and 1 without curl).
+    WR lc = WR(WV_CURL_RAD) * brk.y * min(WR(1), (WR(1) - th) / th);
+    WR csx = cs, snx = sn, dsx = WR(1);
+    if (lc > WR(0)) {
+      WR cr = WR(0.5) * (WR(1) + cs);
+      WR psx = psi - lc * cr * cr;
+      csx = cos(psx);
+      snx = sin(psx);
+      dsx = WR(1) + lc * cr * sn;
+    }
     sumAz += az;
-    sumKAx += ax * kP;
+    sumAz2 += az * az;
+    // |dsx| <= 1 + 0.65 lc (max of c sin(psi) is 0.6495): the fold bound.
+    sumKAx += ax * kP * (WR(1) + WR(0.65) * lc);
     z += az * cs;
     dzdt += az * omega * sn;
     gradZ -= (az * kP * sn) * dir;
-    hor -= (ax * sn) * dir;
-    hvel += (ax * omega * cs) * dir;
-    WR gx = dot(dir, t1), gy = dot(dir, t2), cj = ax * kP * cs;
+    hor -= (ax * snx) * dir;
+    hvel += (ax * omega * csx * dsx) * dir;
+    WR gx = dot(dir, t1), gy = dot(dir, t2), cj = ax * kP * csx * dsx;
     jxx += cj * gx * gx;
     jxy += cj * gx * gy;
     jyy += cj * gy * gy;
@@ -262,6 +293,21 @@ WvResult wv_gerstnerCoast(int first, int count, WR3 d, WvFrame fr, WR depthM, Wv
   z *= sB;
   dzdt *= sB;
   gradZ *= sB;
+  // Eq. 6: the collapse above A where the waves break, and their foam.
+  WR foam = WR(0);
+  WR b = brk.z * smoothstep(WR(0), WR(0.5), WR(1) - sB);
+  if (b > WR(0)) {
+    WR zc = sB * sumAz;
+    WR A = min(WR(1.4142135623730951) * sqrt(sumAz2) * sB, WR(0.8) * zc);
+    if (z > A) {
+      WR S = WR(0.5) / (zc - A);
+      WR m = WR(1) - WR(2) * S * b * (z - A);
+      z -= S * b * (z - A) * (z - A);
+      dzdt *= m;
+      gradZ *= m;
+    }
+    foam = b * smoothstep(WR(0), A, z);
+  }
   hor *= lam;
   hvel *= lam;
   WR a11 = WR(1) - lam * jxx, a12 = -lam * jxy, a22 = WR(1) - lam * jyy;
@@ -269,8 +315,13 @@ WvResult wv_gerstnerCoast(int first, int count, WR3 d, WvFrame fr, WR depthM, Wv
   WR gzx = dot(gradZ, t1), gzy = dot(gradZ, t2);
   WR sx = (a22 * gzx - a12 * gzy) / det, sy = (a11 * gzy - a12 * gzx) / det;
   WR3 nrm = normalize(up - t1 * sx - t2 * sy);
-  return WvResult(WR4(hor + up * z, z), WR4(nrm, dzdt), WR4(hvel, WR(0)), WR4(a11, a12, a22, det));
+  return WvResult(WR4(hor + up * z, z), WR4(nrm, dzdt), WR4(hvel, foam), WR4(a11, a12, a22, det));
 }
+
+// Breaking foam of a wv_gerstnerCoast result, 0 .. 1: the breaking
+// intensity b on the crests above the still water, full above A (0 without
+// a coast field, and for the other models).
+WR wv_breakingFoam(WvResult r) { return r.hvel.w; }
 
 // Without a coast field: each component's wave number is the reference
 // depth's (the renderer's call; the query's too where no field is set).

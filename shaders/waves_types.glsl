@@ -26,6 +26,8 @@
 // and antipode, where wave fronts shrink to points.
 #define WV_TAPER_RAD 0.0078480615
 #define WV_DEEP_KH 12.0
+// Paper 003 eq. 5: the crest's phase lead over the trough (rad) at k h -> 0 on a plunging beach.
+#define WV_CURL_RAD 1.2
 
 // Patch frame at origin O (ECEF).
 struct WvFrame {
@@ -72,7 +74,8 @@ struct WvFftPlane {
 // The near-shore phase field (plugin/waves/CoastField.h) seen from a patch
 // origin: an N x N grid of nodes on the tangent plane at the region's centre,
 // per Gerstner component and node one WR4 (phase offset from the reference
-// phase (rad), sin and 1 - cos of the turning angle, Kr - 1), all exactly 0
+// phase (rad), sin and 1 - cos of the turning angle, Kr - 1), then one more
+// slab per node: (Iribarren number, curl weight, break weight, tan beta); all exactly 0
 // where the waves do not feel the coast, so deep water is unchanged bit for
 // bit. cell.z == 0: no field (wv_gerstner).
 struct WvCoast {
@@ -93,7 +96,7 @@ struct WvCoast {
 struct WvResult {
   WR4 disp;      // xyz: displacement (ECEF, m), w: vertical part (m, along the geodetic up)
   WR4 normal;    // xyz: unit surface normal (ECEF), w: vertical particle velocity (m/s)
-  WR4 hvel;      // xyz: horizontal particle velocity (ECEF, m/s), w: 0
+  WR4 hvel;      // xyz: horizontal particle velocity (ECEF, m/s), w: breaking foam (0 .. 1; wv_gerstnerCoast)
   // Jacobian of the horizontal map x -> x + H(x) in the tangent frame
   // (t1, t2) of wv_tangentFrame: (a11, a12, a22, det); identity for the
   // noise model. The CPU uses it for Newton steps of the sea-height query.

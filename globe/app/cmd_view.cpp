@@ -4,6 +4,7 @@
 // runs a scripted number of frames and exits (tests under Xvfb, memory).
 #include "globe/app/Command.h"
 #include "globe/app/BoatOptions.h"
+#include "globe/app/CoastOption.h"
 #include "globe/app/LayerOptions.h"
 #include "globe/host/OceanLayer.h"
 #include "globe/render/CliParse.h"
@@ -43,6 +44,9 @@ struct ViewArgs {
   bool noReflections = false, noRefraction = false;
   LayerOptions layers;
   BoatOptions boats;
+  std::string waves = "noise";  // as render and fly
+  double windMps = 10.0, windFromDeg = 270.0;
+  std::string coastRegion;  // LAT,LON[,SIZE_M] (CoastOption.h)
 };
 
 // Height of the drawn sea surface above the ellipsoid exactly under the
@@ -204,12 +208,18 @@ int runView(const ViewArgs& a) {
     render::GlobeRenderer renderer(world);
     // The ocean through the plugin's C ABI, as any host engine loads it.
     std::shared_ptr<host::PluginOceanLayer> ocean;
-    if (const std::string oceanErr = host::addPluginOcean(renderer, "noise", 10.0, 270.0, &ocean, sources,
+    if (const std::string oceanErr = host::addPluginOcean(renderer, a.waves, a.windMps, a.windFromDeg, &ocean, sources,
                                                                     !a.layers.noDefaultWorld);
         !oceanErr.empty()) {
       std::fprintf(stderr, "geocean view: %s\n", oceanErr.c_str());
       rc = kExitBadInput;
       glfwSetWindowShouldClose(win, GLFW_TRUE);  // leave through the normal cleanup, context still current
+    }
+    if (rc == kExitOk) {
+      if (const int crc = applyCoastRegion("view", a.coastRegion, ocean.get()); crc != kExitOk) {
+        rc = crc;
+        glfwSetWindowShouldClose(win, GLFW_TRUE);
+      }
     }
     // Boats around the --fly-to point (else under the first view); F cycles
     // the boat the camera chases (none, 1, .., N).
@@ -363,6 +373,10 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                                    "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
                       sub.add_flag("--no-refraction", a->noRefraction,
                                    "no bottom seen through the water (the depth tint alone)");
+                      sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
+                      sub.add_option("--wind", a->windMps, "wind speed, m/s (default 10)");
+                      sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees (default 270)");
+                      addCoastOption(sub, a->coastRegion);
                       addLayerOptions(sub, a->layers);
                       addImageryOption(sub, a->layers);
                       addBoatOptions(sub, a->boats);

@@ -364,7 +364,10 @@ void Ocean::update(const std::function<void(Snapshot&)>& edit) {
                                                       next->coastRegion->lonDeg == prev->coastRegion->lonDeg &&
                                                       next->coastRegion->cellM == prev->coastRegion->cellM &&
                                                       next->coastRegion->nodes == prev->coastRegion->nodes &&
-                                                      next->coastRegion->margin == prev->coastRegion->margin)));
+                                                      next->coastRegion->margin == prev->coastRegion->margin &&
+                                                      next->coastRegion->islandRadiusM ==
+                                                          prev->coastRegion->islandRadiusM &&
+                                                      next->coastRegion->breaking == prev->coastRegion->breaking)));
   if (next->waves && next->model == waves::Model::Gerstner &&
       (rastersChanged || coastChanged || next->waves != prev->waves)) {
     // The coast field from this snapshot's water depth (as the query's:

@@ -83,7 +83,7 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
 
   const auto& comps = field.components();
   cf.components_ = int(comps.size());
-  cf.texels_.assign(comps.size() * std::size_t(n) * n, glm::dvec4(0.0));
+  cf.texels_.assign((comps.size() + 1) * std::size_t(n) * n, glm::dvec4(0.0));
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<double> kLoc(depth.size()), s(depth.size()), q(depth.size()), sx(depth.size()), sy(depth.size()),
       div(depth.size());
@@ -245,7 +245,61 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
             glm::dvec4(wgt * delta, std::sin(b), 1.0 - std::cos(b), wgt * (kr - 1.0));
       }
   }
+  // The beach slab (wv_gerstnerCoast's curl and collapse): slope over +-L0/4.
+  const double l0 = field.peakWavelengthM(), h0 = field.spectrumHsM();
+  const int m = std::clamp(int(std::lround(0.25 * l0 / r.cellM)), 1, 8);
+  const double steep = h0 > 0.0 && l0 > 0.0 ? std::sqrt(h0 / l0) : 0.0;
+  glm::dvec4* slab = &cf.texels_[comps.size() * std::size_t(n) * n];
+  // Water nodes only (land is not the beach's slope): the span shrinks toward the node.
+  auto wet = [&](int i, int j) { return isl.elevation[at(i, j)] < 0.0; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      int i0 = std::max(i - m, 0), i1 = std::min(i + m, n - 1);
+      int j0 = std::max(j - m, 0), j1 = std::min(j + m, n - 1);
+      while (i0 < i && !wet(i0, j)) ++i0;
+      while (i1 > i && !wet(i1, j)) --i1;
+      while (j0 < j && !wet(i, j0)) ++j0;
+      while (j1 > j && !wet(i, j1)) --j1;
+      const double gx = i1 > i0 ? (depth[at(i1, j)] - depth[at(i0, j)]) / ((i1 - i0) * r.cellM) : 0.0;
+      const double gy = j1 > j0 ? (depth[at(i, j1)] - depth[at(i, j0)]) / ((j1 - j0) * r.cellM) : 0.0;
+      const double tanBeta = std::hypot(gx, gy);
+      const double xi = steep > 0.0 ? tanBeta / steep : 0.0;
+      const int edge = std::min(std::min(i, j), std::min(n - 1 - i, n - 1 - j));
+      const double wgt = smooth01(double(edge) / r.margin);
+      const double notSurging = 1.0 - glm::smoothstep(1.8, 2.2, xi);
+      const double curl = glm::smoothstep(0.3, 0.5, xi) * notSurging;
+      const double on = r.breaking ? wgt : 0.0;
+      slab[at(i, j)] = glm::dvec4(xi, on * curl, on * notSurging, tanBeta);
+    }
   return cf;
+}
+
+CoastField::Breaker CoastField::breakerType(double xi) {
+  return xi < 0.4 ? Breaker::Spilling : (xi <= 2.0 ? Breaker::Plunging : Breaker::Surging);
+}
+
+const char* CoastField::breakerName(Breaker b) {
+  switch (b) {
+    case Breaker::Spilling: return "spilling";
+    case Breaker::Plunging: return "plunging";
+    case Breaker::Surging: return "surging";
+  }
+  return "?";
+}
+
+CoastField::Beach CoastField::beachAt(double eastM, double northM) const {
+  Beach b;
+  if (n_ == 0) return b;
+  const double half = 0.5 * (n_ - 1);
+  const long i = std::lround(eastM / region_.cellM + half), j = std::lround(northM / region_.cellM + half);
+  if (i < 0 || j < 0 || i >= n_ || j >= n_) return b;
+  const glm::dvec4 t = texels_[(std::size_t(components_) * n_ + std::size_t(j)) * n_ + std::size_t(i)];
+  b.iribarren = t.x;
+  b.curlWeight = t.y;
+  b.breakWeight = t.z;
+  b.tanBeta = t.w;
+  b.type = breakerType(t.x);
+  return b;
 }
 
 std::vector<glm::dvec4> CoastField::islandTable(const IslandInputs& in, std::vector<double>* shadowOut) {

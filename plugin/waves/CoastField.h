@@ -33,6 +33,17 @@
 // The diffracted wave keeps the eikonal's phase (only its height and
 // direction change, as in the paper); rebuilt with the field, i.e. when the
 // wind direction changes.
+//
+// Curl and breaking (paper 003 eq. 5-6, in wv_gerstnerCoast): the beach
+// slope tan(beta) = |grad h| per node (central differences over +-L0/4, the
+// surf zone's scale, clamped to the grid), the Iribarren number
+// xi = tan(beta) / sqrt(H0 / L0) with the sea's deep-water Hs and peak
+// wavelength (Battjes 1974), and from it the breaker type: spilling below
+// 0.4 (no curl), plunging 0.4 .. 2 (curl), surging above 2 (neither curl
+// nor collapse). Stored as one more slab after the components' texels:
+// (xi, curl weight, break weight, tan beta), the weights smoothed over
+// xi 0.3 .. 0.5 and 1.8 .. 2.2 (no seam in the picture) and blended to 0
+// over the margin like the rest.
 #pragma once
 
 #include "plugin/waves/WaveKernel.h"
@@ -56,6 +67,7 @@ class CoastField {
     int nodes = 201;                    // N: nodes per side (odd: the centre is a node)
     int margin = 8;                     // edge nodes blended to 0
     double islandRadiusM = 0.0;         // occlusion radius (<= 64 nodes); 0: 6 deep-water wavelengths of the longest
+    bool breaking = true;               // curl and collapse (eq. 5-6); false: their weights 0 (the slab's xi stays)
   };
   // What the island table is built from (the same for CPU and GPU).
   struct IslandInputs {
@@ -77,6 +89,18 @@ class CoastField {
   static CoastField build(const WaveField& field, const Region& region,
                           const std::function<double(double eastM, double northM)>& depthAt, std::string& error);
 
+  enum class Breaker { Spilling, Plunging, Surging };
+  // Battjes (1974)'s classes by the Iribarren number (bounds 0.4 and 2).
+  static Breaker breakerType(double iribarren);
+  static const char* breakerName(Breaker b);
+  struct Beach {
+    double tanBeta = 0.0, iribarren = 0.0;  // at the nearest node
+    double curlWeight = 0.0, breakWeight = 0.0;
+    Breaker type = Breaker::Spilling;
+  };
+  // The beach at (east, north) m from the centre; all 0 outside the grid.
+  Beach beachAt(double eastM, double northM) const;
+
   bool empty() const { return n_ == 0; }
   const Region& region() const { return region_; }
   int components() const { return components_; }
@@ -84,7 +108,7 @@ class CoastField {
   // The struct for a patch at origin O (ECEF): double (CPU) and float (GPU).
   kd::WvCoast at(const glm::dvec3& originEcef) const;
   kf::WvCoast gpuAt(const glm::dvec3& originEcef) const;
-  // Per component, per node (row-major, y then x): for wvCoastTexels[].
+  // Per component, per node (row-major, y then x), then the beach slab: for wvCoastTexels[].
   const std::vector<glm::dvec4>& texels() const { return texels_; }
   std::vector<glm::vec4> gpuTexels() const;
   // The island table (D_blo, theta_blo, D_obs, theta_def) the texels were folded with, and its inputs.

@@ -476,6 +476,7 @@ WaveSample toEnu(const kd::WvResult& r, const Enu& f) {
   s.verticalVelocityMps = r.normal.w;
   const glm::dvec3 hv(r.hvel);
   s.horizontalVelocityEnuMps = {glm::dot(hv, f.e), glm::dot(hv, f.n), glm::dot(hv, f.u)};
+  s.breakingFoam = r.hvel.w;
   return s;
 }
 }  // namespace

@@ -88,6 +88,7 @@ struct WaveSample {
   glm::dvec3 normalEnu{0.0, 0.0, 1.0};  // unit normal of the displaced surface
   double verticalVelocityMps = 0.0;     // of the water particle
   glm::dvec3 horizontalVelocityEnuMps{0.0};
+  double breakingFoam = 0.0;            // 0 .. 1 (wv_breakingFoam; Gerstner with a coast field)
 };
 
 // The surface exactly above a point (horizontal displacement inverted).

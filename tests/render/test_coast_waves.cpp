@@ -50,10 +50,11 @@ struct Drawn {
   gl::Image image;
 };
 
+// world: the host's (terrain, imagery); null: the session's default world.
 Drawn draw(const std::shared_ptr<ocean_render::OceanRenderer>& ocean, const ViewPose& p, double timeS,
-           const std::string& name) {
+           const std::string& name, const std::shared_ptr<const WorldTextures>& world = nullptr) {
   Session& s = session();
-  GlobeRenderer renderer(s.world);
+  GlobeRenderer renderer(world ? world : s.world);
   renderer.addLayer(std::make_shared<DirectOceanLayer>(ocean));
   ocean->setWriteData(true);
   Framebuffer fb(p.width, p.height, true);
@@ -158,6 +159,94 @@ TEST(OceanCoast, DrawnSurfaceIsTheQueryOverAShelf) {
   EXPECT_LT(minDepth, 15.0);  // the view is over water the field changes
   EXPECT_LT(worst, 0.01) << "over " << checked << " pixels";
   EXPECT_GT(differ, checked / 4) << "the view without the field is not another surface";
+}
+
+// Issue 15 item 3: breakers on a plunging beach (slope 0.1, the 10 m/s sea's
+// Iribarren number 0.62: curl and collapse), 0.0001-degree rasters with the
+// shoreline at lon 0.005, drawn with the coast field at 30 m and 300 m and
+// looked at (golden images, the margins of test_render.cpp's). The breaking
+// foam (wv_breakingFoam) makes the surf zone white: more foam-white pixels
+// than the same view drawn without the field (no breaking foam there).
+namespace {
+constexpr int kBw = 400, kBh = 400;
+const raster::GeoTransform kBeachPlace{-0.02, 0.32, 0.0001, -0.0001, false};
+double beachLon(int x) { return -0.02 + (x + 0.5) * 0.0001; }
+constexpr double kBeachShoreLon = 0.005;
+int foamPixels(const gl::Image& img) {
+  int n = 0;
+  for (std::size_t i = 0; i < img.rgba.size(); i += 4) {
+    const int r = img.rgba[i], g = img.rgba[i + 1], b = img.rgba[i + 2];
+    n += r > 170 && g > 170 && b > 170 && b - r < 40;
+  }
+  return n;
+}
+}  // namespace
+
+TEST(OceanCoast, BreakersOnAPlungingBeachAt30mAnd300m) {
+  session();
+  std::vector<float> elev(std::size_t(kBw) * kBh), land(std::size_t(kBw) * kBh);
+  for (int y = 0; y < kBh; ++y)
+    for (int x = 0; x < kBw; ++x) {
+      const double eastOfShoreM = (beachLon(x) - kBeachShoreLon) * 111320.0;
+      elev[std::size_t(y) * kBw + x] = float(std::max(-200.0, 0.1 * eastOfShoreM));
+      land[std::size_t(y) * kBw + x] = eastOfShoreM > 0.0 ? 1.0f : 0.0f;
+    }
+  const auto elevation = raster::Raster::fromPixels(elev, kBw, kBh, 1, kBeachPlace, std::nullopt, "beach");
+  const auto mask = raster::Raster::fromPixels(land, kBw, kBh, 1, kBeachPlace, std::nullopt, "beach_mask");
+  ocean::Ocean o;
+  o.setRasters(mask, elevation);
+  waves::SeaState sea;
+  sea.windSpeedMps = 10.0;
+  sea.windFromDeg = 270.0;  // onto the shore
+  sea.anchorLatDeg = 0.3;
+  o.setSeaState(waves::Model::Gerstner, sea);
+  waves::CoastField::Region r;  // 1.5 km of 5 m cells, the shoreline 557 m east of its centre
+  r.latDeg = 0.3;
+  r.lonDeg = 0.0;
+  r.cellM = 5.0;
+  r.nodes = 301;
+  r.islandRadiusM = 50.0;  // a straight shore casts no shadow
+  o.setCoastRegion(r);
+  const auto snap = o.current();
+  ASSERT_NE(snap->waves->coastField(), nullptr);
+  const waves::CoastField::Beach beach = snap->waves->coastField()->beachAt(450.0, 0.0);
+  std::printf("beach 107 m off the shore: tan(beta) %.3f, Iribarren %.2f (%s)\n", beach.tanBeta, beach.iribarren,
+              waves::CoastField::breakerName(beach.type));
+  ASSERT_EQ(beach.type, waves::CoastField::Breaker::Plunging);
+
+  auto grids = std::make_shared<const world::WorldGrids>(world::layerOf(*elevation, 0), world::waterLayerOf(*mask));
+  // The host draws the beach's relief and water, and sand for imagery (the
+  // default's there is the Gulf of Guinea's deep blue).
+  std::vector<float> sand(std::size_t(kBw) * kBh * 3);
+  for (std::size_t i = 0; i < sand.size(); i += 3) sand[i] = 194.0f, sand[i + 1] = 178.0f, sand[i + 2] = 128.0f;
+  world::WorldData wd = world::loadDefaultWorld();
+  wd.imagery = world::layerOf(*raster::Raster::fromPixels(sand, kBw, kBh, 3, kBeachPlace, std::nullopt, "sand"));
+  wd.elevation = world::layerOf(*elevation, 0);
+  wd.water = world::waterLayerOf(*mask);
+  const auto beachWorld = std::make_shared<const WorldTextures>(wd);
+  ocean_render::OceanOptions oo;
+  oo.model = waves::Model::Gerstner;
+  oo.sea = snap->seaState;
+  oo.coast = snap->waves->coastFieldShared();
+  auto withCoast = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  oo.coast = nullptr;
+  auto deepOnly = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  struct View {
+    const char* name;
+    double lonDeg, altM, headingDeg, pitchDeg;
+  };
+  for (const View& v : {View{"beach_breakers_30m", 0.0040, 30.0, 75.0, -22.0},
+                        View{"beach_breakers_300m", 0.0005, 300.0, 80.0, -40.0}}) {
+    ViewPose p;
+    p.latDeg = 0.3, p.lonDeg = v.lonDeg, p.altM = v.altM, p.headingDeg = v.headingDeg, p.pitchDeg = v.pitchDeg;
+    p.width = 256, p.height = 192;
+    const Drawn a = draw(withCoast, p, 30.0, v.name, beachWorld);
+    const Drawn b = draw(deepOnly, p, 30.0, std::string(v.name) + "_no_field", beachWorld);
+    const int fa = foamPixels(a.image), fb = foamPixels(b.image);
+    std::printf("%s: foam-white pixels %d with the field, %d without\n", v.name, fa, fb);
+    EXPECT_GT(fa, fb + 200) << v.name;
+    expectMatchesGolden(a.image, v.name, 2.0, 0.005);
+  }
 }
 
 }  // namespace

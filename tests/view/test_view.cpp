@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -219,3 +220,42 @@ TEST(ViewWindow, WithoutADisplaySaysSoAndSuggestsRender) {
 }
 
 }  // namespace
+
+// Issue 15: `view --coast-region` as render and fly have it: the sea under
+// the camera at the end of a --fly-to (the viewer's own query through the
+// plugin) is the CLI query's with the same region, and another surface
+// than without it (off the Dutch coast, 20 to 30 m deep); a bad use exits 2
+// naming it.
+TEST(ViewWindow, CoastRegionMakesTheViewedSeaTheQueriedOne) {
+  REQUIRE_XVFB();
+  const std::string sea = " --waves gerstner --wind 12 --wind-dir 270";
+  const int frames = 3;
+  auto lastSea = [&](const std::string& extra, const std::string& name) {
+    const std::string stats = tempPath(name + ".csv");
+    const auto r = view("--size 96x54 --no-hud --fly-to 52.6,4.45 --frames " + std::to_string(frames) + sea + extra +
+                        " --stats " + stats);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    const auto rows = readStats(stats);
+    return rows.empty() ? std::nan("") : rows.back().seaM;
+  };
+  const double with = lastSea(" --coast-region 52.6,4.45,20000", "coast"), without = lastSea("", "no_coast");
+  ASSERT_TRUE(std::isfinite(with) && std::isfinite(without));
+  const std::string t = std::to_string((frames - 1) / 30.0);
+  const auto q = geocean::test::run(kGeocean + " query" + sea + " --coast-region 52.6,4.45,20000 --time " + t +
+                                    " 52.6 4.45");
+  ASSERT_EQ(q.exitCode, 0) << q.err;
+  std::stringstream qs(q.out);
+  std::string line;
+  std::getline(qs, line);
+  std::getline(qs, line);
+  std::vector<std::string> f;
+  std::stringstream ls(line);
+  for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+  ASSERT_GE(f.size(), 6u) << q.out;
+  std::printf("sea under the camera: %.4f m with the region (query %s m), %.4f m without\n", with, f[5].c_str(), without);
+  EXPECT_NEAR(with, std::stod(f[5]), 5.1e-5) << q.out;  // the CSV's 4 decimals
+  EXPECT_GT(std::abs(with - without), 0.01) << "the coast region changes the sea there";
+  const auto bad = view("--frames 2 --coast-region 52.6,4.45");
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("GEOCEAN_WAVES_GERSTNER"), std::string::npos) << bad.err;
+}

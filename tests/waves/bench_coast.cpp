@@ -100,6 +100,48 @@ void BM_DeepQuery(benchmark::State& state) {
 }
 BENCHMARK(BM_DeepQuery)->Arg(0)->Arg(1);
 
+// Curl and breaking (paper 003 eq. 5-6): 4096 points 3 .. 8 m deep on a
+// plunging beach (slope 0.1, Iribarren 0.62: curl on every shallow
+// component, collapse and foam where the cap acts), field 201^2 nodes of
+// 2 m. Arg 0: the field built with Region::breaking = false (the same
+// field, curl and collapse weights 0: the terms skipped), 1: with them, 2:
+// no field (reference-depth phase + local shoaling). Counter evals: kernel
+// evaluations per query (the inversion's).
+void BM_BreakingQuery(benchmark::State& state) {
+  std::string err;
+  WaveField w = *WaveField::create(Model::Gerstner, sea(), err);
+  const double slope = 0.1;
+  auto beach = [slope](double e, double) { return slope * (150.0 - e); };
+  CoastField::Region r = region(201);
+  r.cellM = 2.0;
+  r.islandRadiusM = 8.0;
+  r.breaking = state.range(0) != 0;
+  auto coast = std::make_shared<const CoastField>(CoastField::build(w, r, beach, err));
+  if (state.range(0) != 2) w.setCoast(coast);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> h(3.0, 8.0), n(-150.0, 150.0);
+  Points p;
+  for (int i = 0; i < 4096; ++i) {
+    const double d = h(rng), x = 150.0 - d / slope;
+    const geo::Geodetic g = geo::fromEcef(coast->centreEcef() + coast->east() * x + coast->north() * n(rng));
+    p.lat.push_back(g.latDeg);
+    p.lon.push_back(g.lonDeg);
+    p.depth.push_back(d);
+  }
+  std::size_t i = 0;
+  double sum = 0.0, evals = 0.0;
+  for (auto _ : state) {
+    const SurfacePoint sp = w.surfaceAt(p.lat[i], p.lon[i], 3.5, p.depth[i]);
+    sum += sp.heightM;
+    evals += sp.iterations + 1;  // the first evaluation and one per step
+    i = (i + 1) & 4095;
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(state.iterations());
+  state.counters["evals"] = evals / double(state.iterations());
+}
+BENCHMARK(BM_BreakingQuery)->Arg(0)->Arg(1)->Arg(2);
+
 // Building the field on the CPU: 16 components, N^2 nodes over 10 km.
 void BM_CoastBuild(benchmark::State& state) {
   std::string err;

@@ -18,6 +18,7 @@
 #include <functional>
 #include <cstdio>
 #include <random>
+#include <string>
 
 using namespace geocean::waves;
 namespace geo = geocean::geo;
@@ -189,15 +190,21 @@ CoastField::Region coastRegion() {
   return region;
 }
 
+// Where the patches' origins lie (e, n from the region's centre, m) and how
+// far their points spread about them.
+struct PatchBox {
+  double e0 = -6000.0, e1 = 2500.0, n0 = -6000.0, n1 = 6000.0, spreadM = 4000.0;
+};
+
 // maxEastM: points east of it are skipped (the shelf's land beyond its shoreline).
-void runCoastParity(const std::function<double(double, double)>& depthAt, double maxEastM, const char* name) {
+void runCoastParity(const std::function<double(double, double)>& depthAt, double maxEastM, const char* name,
+                    const CoastField::Region& region = coastRegion(), const PatchBox& box = PatchBox{}) {
   std::string err;
   auto ctx = geocean::gl::HeadlessContext::create(err);
   ASSERT_TRUE(ctx) << err;
   const SeaState sea = coastSea();
   auto field = WaveField::create(Model::Gerstner, sea, err);
   ASSERT_TRUE(field) << err;
-  const CoastField::Region region = coastRegion();
   auto coast = std::make_shared<const CoastField>(CoastField::build(*field, region, depthAt, err));
   ASSERT_FALSE(coast->empty()) << err;
   field->setCoast(coast);
@@ -213,7 +220,7 @@ void runCoastParity(const std::function<double(double, double)>& depthAt, double
   std::vector<double> eastOf;
   for (int p = 0; p < 30; ++p) {
     // Origins over the shelf and up to 1 km beyond the grid (10 km square).
-    const double eo = -6000.0 + 8500.0 * u01(rng), no = -6000.0 + 12000.0 * u01(rng);
+    const double eo = box.e0 + (box.e1 - box.e0) * u01(rng), no = box.n0 + (box.n1 - box.n0) * u01(rng);
     const geo::Geodetic go = geo::fromEcef(c0 + ex * eo + nx * no);
     const glm::dvec3 origin = geo::toEcef({go.latDeg, go.lonDeg, 0.0});
     const double t = 1e5 * u01(rng);
@@ -224,7 +231,7 @@ void runCoastParity(const std::function<double(double, double)>& depthAt, double
     const int first = int(waves.size()), count = int(gp.waves.size());
     waves.insert(waves.end(), gp.waves.begin(), gp.waves.end());
     for (int i = 0; i < 100; ++i) {
-      const double e = eo + (u01(rng) - 0.5) * 4000.0, n = no + (u01(rng) - 0.5) * 4000.0;
+      const double e = eo + (u01(rng) - 0.5) * box.spreadM, n = no + (u01(rng) - 0.5) * box.spreadM;
       const double depth = depthAt(e, n);
       if (depth <= 0.0 || e > maxEastM) continue;  // land
       const geo::Geodetic g = geo::fromEcef(c0 + ex * e + nx * n);
@@ -252,8 +259,8 @@ void runCoastParity(const std::function<double(double, double)>& depthAt, double
 
   SeaState plainSea = sea;
   auto plain = WaveField::create(Model::Gerstner, plainSea, err);
-  double worstDisp = 0, worstNormal = 0, worstShallow = 0;
-  int feltTheCoast = 0;
+  double worstDisp = 0, worstNormal = 0, worstShallow = 0, worstFoam = 0;
+  int feltTheCoast = 0, foaming = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const Case& c = cases[i];
     const WaveSample s = field->sample(c.latDeg, c.lonDeg, c.tS, c.depthM);
@@ -267,14 +274,22 @@ void runCoastParity(const std::function<double(double, double)>& depthAt, double
     ASSERT_LT(dd, 1e-3) << "point " << i << " east " << eastOf[i] << " m, depth " << c.depthM << " cpu "
                         << dispCpu.x << " gpu " << results[i].disp.x;
     ASSERT_LT(dn, 1e-4) << "point " << i;
+    // The breaking foam (wv_breakingFoam, 0 .. 1) alike: 1e-3 of its range.
+    const double df = std::abs(s.breakingFoam - double(results[i].hvel.w));
+    worstFoam = std::max(worstFoam, df);
+    ASSERT_LT(df, 1e-3) << "point " << i << " depth " << c.depthM;
+    foaming += s.breakingFoam > 0.1;
     const WaveSample s0 = plain->sample(c.latDeg, c.lonDeg, c.tS, c.depthM);
     if (glm::length(s0.displacementEnuM - s.displacementEnuM) > 0.05) ++feltTheCoast;
   }
   // The comparison covers a sea the coast changes.
   EXPECT_GT(feltTheCoast, int(cases.size()) / 4);
-  std::printf("gerstner+coast (%s): %zu points (%d changed by the coast), |gpu - cpu| max %.3g m (depth < 20 m: %.3g m); "
-              "normal max %.3g\n",
-              name, cases.size(), feltTheCoast, worstDisp, worstShallow, worstNormal);
+  std::printf("gerstner+coast (%s): %zu points (%d changed by the coast, %d foaming), |gpu - cpu| max %.3g m (depth < 20 m: "
+              "%.3g m); normal max %.3g, foam max %.3g\n",
+              name, cases.size(), feltTheCoast, foaming, worstDisp, worstShallow, worstNormal, worstFoam);
+  if (std::string(name) == "breaking beach") {
+    EXPECT_GT(foaming, int(cases.size()) / 10) << "the comparison covers breaking waves";
+  }
   GLuint bufs[] = {b0, b1, b2, b3, b4, b5, b6, b7, b8};
   glDeleteBuffers(9, bufs);
 }
@@ -287,6 +302,16 @@ TEST(WavesGpuParity, GerstnerOverAShelfAgreesWithinOneMillimetre) {
 }
 // Behind an island (the island table's shadow and wrap-around in the texels).
 TEST(WavesGpuParity, GerstnerBehindAnIslandAgreesWithinOneMillimetre) { runCoastParity(islandDepth, 1e30, "island"); }
+// A breaking beach (paper 003 eq. 5-6): slope 0.1 to a shoreline 300 m east
+// of the centre of a 1 km region of 5 m cells, the 15 m/s sea's Iribarren
+// number 0.62 (plunging: curl and collapse); points over the surf zone.
+TEST(WavesGpuParity, GerstnerOnABreakingBeachAgreesWithinOneMillimetre) {
+  CoastField::Region region = coastRegion();
+  region.cellM = 5.0;
+  region.islandRadiusM = 20.0;  // a straight shore casts no shadow: a short reach
+  runCoastParity([](double e, double) { return std::clamp(0.1 * (300.0 - e), 0.5, 200.0); }, 295.0, "breaking beach",
+                 region, PatchBox{0.0, 290.0, -300.0, 300.0, 200.0});
+}
 
 // The island table built on the GPU (compute shader) from the field's inputs
 // equals the CPU build of the same function: D_blo, theta_blo, D_obs and
