@@ -19,6 +19,26 @@ bool globalInMemory(const raster::Raster& r) {
 }
 
 
+// f(first, lat, lon, n) over the cell centres of l in whole rows of about
+// 1 M cells: the batch calls copy their points, so the full grid's
+// coordinates (and copies) are never held at once.
+template <class F>
+void forCellChunks(const WorldLayer& l, F f) {
+  const int rows = std::max(1, (1 << 20) / std::max(1, l.width));
+  std::vector<double> lat, lon;
+  for (int y0 = 0; y0 < l.height; y0 += rows) {
+    const int y1 = std::min(l.height, y0 + rows);
+    const std::size_t n = std::size_t(y1 - y0) * l.width;
+    lat.resize(n), lon.resize(n);
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < l.width; ++x) {
+        lat[std::size_t(y - y0) * l.width + x] = l.originLatDeg + (y + 0.5) * l.latStepDeg;
+        lon[std::size_t(y - y0) * l.width + x] = l.originLonDeg + (x + 0.5) * l.lonStepDeg;
+      }
+    f(std::size_t(y0) * l.width, lat.data(), lon.data(), n);
+  }
+}
+
 }  // namespace
 
 const char* toString(LayerKind k) {
@@ -138,9 +158,9 @@ WorldLayer elevationLayerOf(const LayerStack& stack) {
     l = layerOf(*e, 0);
   } else if (e) {
     l = globalGridFor(e.get());
-    std::vector<double> lat, lon;
-    cellCentres(l, lat, lon);
-    stack.elevationBatch(lat.data(), lon.data(), lat.size(), l.values.data());
+    forCellChunks(l, [&](std::size_t first, const double* lat, const double* lon, std::size_t n) {
+      stack.elevationBatch(lat, lon, n, l.values.data() + first);
+    });
   } else {
     l.width = 360, l.height = 180;
     // No relief: deep water everywhere, as the queries assume.
@@ -158,11 +178,12 @@ WorldLayer waterLayerOf(const LayerStack& stack) {
   }
   const auto grid = m ? m : stack.drawingElevation();
   WorldLayer l = globalGridFor(grid.get());
-  std::vector<double> lat, lon;
-  cellCentres(l, lat, lon);
-  std::vector<Surface> cls(lat.size());
-  stack.classifyBatch(lat.data(), lon.data(), lat.size(), cls.data());
-  for (std::size_t i = 0; i < cls.size(); ++i) l.values[i] = cls[i] == Surface::Land ? 0.0f : 1.0f;
+  std::vector<Surface> cls;
+  forCellChunks(l, [&](std::size_t first, const double* lat, const double* lon, std::size_t n) {
+    cls.resize(n);
+    stack.classifyBatch(lat, lon, n, cls.data());
+    for (std::size_t i = 0; i < n; ++i) l.values[first + i] = cls[i] == Surface::Land ? 0.0f : 1.0f;
+  });
   return l;
 }
 
