@@ -247,6 +247,51 @@ TEST(OceanCoast, BreakersOnAPlungingBeachAt30mAnd300m) {
     EXPECT_GT(fa, fb + 200) << v.name;
     expectMatchesGolden(a.image, v.name, 2.0, 0.005);
   }
+
+  // Drawn = queried in the surf zone too (curl and collapse in both): 10 m
+  // above 4 m of water looking steeply down, every wave drawn (cellPx 2, as
+  // DrawnSurfaceIsTheQueryOverAShelf and its 1 cm bound).
+  oo.coast = snap->waves->coastFieldShared();
+  oo.cellPx = 2.0;
+  auto fine = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  ViewPose p;
+  p.latDeg = 0.3, p.lonDeg = kBeachShoreLon - 40.0 / 111320.0, p.altM = 10.0, p.headingDeg = 70.0, p.pitchDeg = -60.0;
+  p.width = p.height = 128;
+  const double t = 30.0;
+  const Drawn a = draw(fine, p, t, "beach_surf_steep", beachWorld);
+  int checked = 0, foaming = 0;
+  double worst = 0.0, maxDepth = 0.0;
+  for (int y = 4; y < p.height; y += 6)
+    for (int x = 4; x < p.width; x += 6) {
+      const float* q = &a.data[(std::size_t(y) * p.width + x) * 4];
+      if (q[3] != 1.0f) continue;
+      const glm::dvec3 rel(q[0], q[1], q[2]);
+      const auto ndc = a.cam.projectEyeRelative(rel);
+      if (!ndc || std::abs((ndc->x * 0.5 + 0.5) * p.width - (x + 0.5)) > 1.0 ||
+          std::abs((0.5 - ndc->y * 0.5) * p.height - (y + 0.5)) > 1.0)
+        continue;
+      const geo::Geodetic g = geo::fromEcef(a.cam.eyeEcef() + rel);
+      double h = 0.0;
+      float elevM = 0.0f;
+      ocean::SurfaceOutputs out;
+      out.heightM = &h;
+      out.elevationM = &elevM;
+      snap->querySurface({&g.latDeg, &g.lonDeg, 1, &t, false}, out);
+      if (std::isnan(h)) continue;  // the shoreline's fringe
+      worst = std::max(worst, std::abs(g.heightM - h));
+      maxDepth = std::max(maxDepth, -double(elevM));
+      const auto cf = snap->waves->coastField();
+      const glm::dvec3 off = geo::toEcef({g.latDeg, g.lonDeg, 0.0}) - cf->centreEcef();
+      foaming += snap->waves->sample(g.latDeg, g.lonDeg, t, std::max(-double(elevM), 1.0)).breakingFoam > 0.1 &&
+                 cf->beachAt(glm::dot(off, cf->east()), glm::dot(off, cf->north())).curlWeight > 0.0;
+      ++checked;
+    }
+  std::printf("surf zone: worst |rendered - query| = %.5f m over %d pixels (depth <= %.1f m, %d foaming on curl)\n",
+              worst, checked, maxDepth, foaming);
+  EXPECT_GT(checked, 150);
+  EXPECT_LT(maxDepth, 10.0);  // the view is over the surf zone
+  EXPECT_GT(foaming, checked / 10) << "breaking waves in the comparison";
+  EXPECT_LT(worst, 0.01) << "over " << checked << " pixels";
 }
 
 }  // namespace
