@@ -49,9 +49,8 @@ struct OceanOptions {
   std::shared_ptr<const raster::TilePyramid> waterTiles;
   // Gerstner and FFT whitecaps from the Jacobian's folds per fragment
   // (shaders/foam.glsl), their decaying trail interpolated between the
-  // time samples; off, these models take the height-quantile crests. Off
-  // by default until the goldens with it are redrawn and looked at.
-  bool jacobianFoam = false;
+  // time samples; off, these models take the height-quantile crests.
+  bool jacobianFoam = true;
 };
 
 // Reorders a grid frame's compacted cell indices (6 per cell) into three
