@@ -421,6 +421,54 @@ WvResult wv_fft(int first, int planes, int cascades, WR3 d, WvFrame fr) {
                   WR4(a11, js, a22, a11 * a22 - js * js));
 }
 
+// The choppy map's Jacobian determinant det(I + dD/dx) for whitecaps
+// (shaders/foam.glsl; WaveField::foldJacobian). wv_fft's exact derivatives
+// of the bilinear tables jump at every texel edge, so a fold threshold drew
+// the coarse cascade's texels as blocks; here the derivatives are central
+// differences at the texels, interpolated bilinearly: continuous.
+WR2 wv_fftChop(ivec4 cell, int x, int y) {
+  WR4 t = wv_fftTexel(cell, x, y, 0);
+  return WR2(t.y, t.z);
+}
+
+WR wv_fftFold(int first, int planes, int cascades, WR3 d, WvFrame fr) {
+  WR3 up = wv_upAt(fr, d);
+  WR3 wgt = WR3(wv_fftWeight(up.x), wv_fftWeight(up.y), wv_fftWeight(up.z));
+  WR norm = WR(1) / sqrt(dot(wgt, wgt));
+  WR3 e1 = wv_fftTangent1(up), e2 = cross(up, e1);
+  WR j11 = WR(0), j12 = WR(0), j21 = WR(0), j22 = WR(0);
+  for (int p = 0; p < planes; ++p) {
+    WvFftPlane p0 = wvFftPlanes[first + p * cascades];
+    WR w = dot(wgt, WR3(p0.axis)) * norm;
+    if (w <= WR(0)) continue;
+    WR2 du = WR2(0), dv = WR2(0);  // d(Dx, Dy)/du and /dv, per m
+    for (int c = 0; c < cascades; ++c) {
+      WvFftPlane q = wvFftPlanes[first + p * cascades + c];
+      WR tu = q.uAxis.w + dot(WR3(q.uAxis), d), tv = q.vAxis.w + dot(WR3(q.vAxis), d);
+      WR fu = floor(tu), fv = floor(tv);
+      int ix = q.cell.x + int(fu), iy = q.cell.y + int(fv);
+      WR fx = tu - fu, fy = tv - fv, halfPerM = WR(0.5) / q.axis.w;
+      WR2 a = wv_fftChop(q.cell, ix, iy), b = wv_fftChop(q.cell, ix + 1, iy);
+      WR2 cc = wv_fftChop(q.cell, ix, iy + 1), e = wv_fftChop(q.cell, ix + 1, iy + 1);
+      WR2 du00 = b - wv_fftChop(q.cell, ix - 1, iy), du10 = wv_fftChop(q.cell, ix + 2, iy) - a;
+      WR2 du01 = e - wv_fftChop(q.cell, ix - 1, iy + 1), du11 = wv_fftChop(q.cell, ix + 2, iy + 1) - cc;
+      WR2 dv00 = cc - wv_fftChop(q.cell, ix, iy - 1), dv10 = e - wv_fftChop(q.cell, ix + 1, iy - 1);
+      WR2 dv01 = wv_fftChop(q.cell, ix, iy + 2) - a, dv11 = wv_fftChop(q.cell, ix + 1, iy + 2) - b;
+      du += ((du00 * (WR(1) - fx) + du10 * fx) * (WR(1) - fy) + (du01 * (WR(1) - fx) + du11 * fx) * fy) * halfPerM;
+      dv += ((dv00 * (WR(1) - fx) + dv10 * fx) * (WR(1) - fy) + (dv01 * (WR(1) - fx) + dv11 * fx) * fy) * halfPerM;
+    }
+    WR3 ua = WR3(p0.uAxis) * p0.axis.w, va3 = WR3(p0.vAxis) * p0.axis.w;
+    WR m11 = dot(ua, e1), m12 = dot(va3, e1), m21 = dot(ua, e2), m22 = dot(va3, e2);
+    WR b11 = du.x * m11 + dv.x * m12, b12 = du.x * m21 + dv.x * m22;
+    WR b21 = du.y * m11 + dv.y * m12, b22 = du.y * m21 + dv.y * m22;
+    j11 += w * (m11 * b11 + m12 * b21);
+    j12 += w * (m11 * b12 + m12 * b22);
+    j21 += w * (m21 * b11 + m22 * b21);
+    j22 += w * (m21 * b12 + m22 * b22);
+  }
+  return (WR(1) + j11) * (WR(1) + j22) - j12 * j21;
+}
+
 #endif  // WV_FFT
 
 #endif

@@ -394,6 +394,7 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
         o.model = snap->model;
         o.sea = snap->seaState;
         o.coast = snap->waves->coastFieldShared();  // Ocean::setCoastRegion: the query's near-shore field
+        o.waves = snap->waves;  // the query's field: its FFT tables are built once for both
         o.waterTiles = ds.world.waterTiles;
         gl.renderer.reset();
         gl.renderer = std::make_unique<geocean::ocean_render::OceanRenderer>(ds.world.grids, snap->landSea, o);

@@ -32,10 +32,17 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   elevationTex_ = gl::redGeoTexture(e.values.data(), e.channels, e.width, e.height, GL_R32F, false);
   const auto& w = world_->water();
   waterTex_ = gl::redGeoTexture(w.values.data(), w.channels, w.width, w.height, GL_R8, true);
-  std::string err;
-  waves_ = waves::WaveField::create(options_.model, options_.sea, err);
-  if (!waves_) throw std::invalid_argument("sea state: " + err);
-  waves_->setCoast(options_.coast);  // kept only for Gerstner
+  if (options_.waves) {
+    // The caller's field (the façade snapshot's): its model and sea state rule.
+    waves_ = options_.waves;
+    options_.model = waves_->model(), options_.sea = waves_->seaState(), options_.coast = waves_->coastFieldShared();
+  } else {
+    std::string err;
+    auto made = waves::WaveField::create(options_.model, options_.sea, err);
+    if (!made) throw std::invalid_argument("sea state: " + err);
+    made->setCoast(options_.coast);  // kept only for Gerstner
+    waves_ = std::make_shared<const waves::WaveField>(std::move(*made));
+  }
   const bool coast = waves_->coastField() != nullptr;
   if (options_.model == waves::Model::NoisePaper)
     throw std::invalid_argument("--waves noise-paper has no GPU form; render with noise, gerstner or fft");
@@ -62,7 +69,10 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   // Gerstner and FFT whitecaps per fragment from the Jacobian (foam.glsl);
   // the far per-vertex group has faded to the mean cover.
   std::vector<std::string> shaded = model;
-  if (jacobianFoam()) shaded.push_back("FOAM_TIMES " + std::to_string(kFoamTimes));
+  if (jacobianFoam()) {
+    shaded.push_back("FOAM_TIMES " + std::to_string(kFoamTimes));
+    shaded.push_back("FOAM_SUB " + std::to_string(kFoamSub));
+  }
   if (options_.waterTiles) {
     pages_ = std::make_unique<WaterPages>(options_.waterTiles);
     auto paged = shaded;
@@ -195,12 +205,34 @@ std::array<double, OceanRenderer::kFoamTimes> OceanRenderer::foamTimes(double tS
 }
 
 double OceanRenderer::foamOf(const double* det, const double* ageS) const {
-  // foam.glsl's whitecapFoam in double.
+  // foam.glsl's whitecapFoam in double: the samples, then the cubic Hermite
+  // between them at kFoamSub points and its minimum in each step.
+  const double e0 = foamJacobian_ - foamJacobianSoft_, e1 = foamJacobian_ + foamJacobianSoft_;
+  const auto fold = [&](double j) {
+    const double x = std::clamp((j - e0) / (e1 - e0), 0.0, 1.0);
+    return 1.0 - x * x * (3.0 - 2.0 * x);
+  };
   double foam = 0.0;
-  for (int k = 0; k < kFoamTimes; ++k) {
-    const double e0 = foamJacobian_ - foamJacobianSoft_, e1 = foamJacobian_ + foamJacobianSoft_;
-    const double x = std::clamp((det[k] - e0) / (e1 - e0), 0.0, 1.0);
-    foam = std::max(foam, (1.0 - x * x * (3.0 - 2.0 * x)) * std::exp(-ageS[k] / kFoamDecayS));
+  for (int k = 0; k < kFoamTimes; ++k) foam = std::max(foam, fold(det[k]) * std::exp(-ageS[k] / kFoamDecayS));
+  for (int k = 0; k + 1 < kFoamTimes; ++k) {
+    const double a0 = ageS[k], a1 = ageS[k + 1], h = a1 - a0;
+    const double m0 = k > 0 ? (det[k + 1] - det[k - 1]) / (a1 - ageS[k - 1]) : (det[k + 1] - det[k]) / h;
+    const double m1 = k + 2 < kFoamTimes ? (det[k + 2] - det[k]) / (ageS[k + 2] - a0) : (det[k + 1] - det[k]) / h;
+    const double p0 = det[k], p1 = det[k + 1], c1 = h * m0;
+    const double c3 = 2.0 * p0 + h * m0 - 2.0 * p1 + h * m1, c2 = 3.0 * (p1 - p0) - 2.0 * h * m0 - h * m1;
+    for (int i = 1; i < kFoamSub; ++i) {
+      const double x = double(i) / kFoamSub;
+      foam = std::max(foam, fold(((c3 * x + c2) * x + c1) * x + p0) * std::exp(-(a0 + x * h) / kFoamDecayS));
+    }
+    const double disc = c2 * c2 - 3.0 * c3 * c1;
+    if (disc < 0.0) continue;
+    const double sq = std::sqrt(disc);
+    const double q = std::abs(c2) > 1e-6 ? -c1 / (2.0 * c2) : -1.0;  // a quadratic's
+    const bool cubic = std::abs(c3) > 1e-6;
+    const double u[2] = {cubic ? (-c2 - sq) / (3.0 * c3) : q, cubic ? (-c2 + sq) / (3.0 * c3) : q};
+    for (double x : u)
+      if (x > 0.0 && x < 1.0)
+        foam = std::max(foam, fold(((c3 * x + c2) * x + c1) * x + p0) * std::exp(-(a0 + x * h) / kFoamDecayS));
   }
   return foam;
 }
@@ -235,7 +267,7 @@ void OceanRenderer::calibrateJacobianFoam(double latDeg, double lonDeg) {
       for (std::size_t i = 0; i < kP; ++i) {
         waves_->cpuPatch(at[i], times[std::size_t(k)], patch);
         const std::size_t j = (std::size_t(b) * kP + i) * kFoamTimes + std::size_t(k);
-        det[j] = waves_->evaluate(patch, glm::dvec3(0.0), 1e30).jac.w;
+        det[j] = waves_->foldJacobian(patch, glm::dvec3(0.0), 1e30);
         age[j] = tS - times[std::size_t(k)];
         if (k == 0) area[std::size_t(b) * kP + i] = std::max(det[j], 0.0);
       }
@@ -443,7 +475,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   cull.tanX = cull.tanY * cam.widthPx() / cam.heightPx();
   cull.cellRadians = 2.0 * cull.tanY / cam.heightPx() * options_.cellPx;
   cull.maxDisplacementM = maxDisplacementM_;
-  cull.waves = &*waves_;
+  cull.waves = waves_.get();
   if (options_.farVertexShading && !octaveWavelengthM_.empty())
     cull.farFootprintM = 0.5 * double(octaveWavelengthM_[0]);
   // The planar reflection is sampled per pixel out to its reach

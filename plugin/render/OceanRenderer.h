@@ -28,6 +28,10 @@ struct OceanOptions {
   // after Ocean::setCoastRegion): drawn with wv_gerstnerCoast, so the
   // picture is the query's surface there. Null: the shaders as without it.
   std::shared_ptr<const waves::CoastField> coast;
+  // A wave field to draw (the façade snapshot's, so the FFT tables are built
+  // once for query and drawing): model, sea and coast are then its own.
+  // Null: made here from model, sea and coast.
+  std::shared_ptr<const waves::WaveField> waves;
   // Open water (WaterIndex) and cells far smaller than a water texel with
   // shader variants that skip the per-pixel coverage (partitionCells).
   bool cheapCoverage = true;
@@ -44,10 +48,9 @@ struct OceanOptions {
   // grid's, coarser than the mask) and coversOpaquely is false.
   std::shared_ptr<const raster::TilePyramid> waterTiles;
   // Gerstner and FFT whitecaps from the Jacobian's folds per fragment
-  // (shaders/foam.glsl). Off by default for now: near the eye at a grazing
-  // view the decaying trail still shows its 0.5 s copies as stripes
-  // (boats_chase); off, these models keep the height-quantile crests.
-  bool jacobianFoam = false;
+  // (shaders/foam.glsl), their decaying trail interpolated between the
+  // time samples; off, these models take the height-quantile crests.
+  bool jacobianFoam = true;
 };
 
 // Reorders a grid frame's compacted cell indices (6 per cell) into three
@@ -142,11 +145,14 @@ class OceanRenderer {
   // so coarser steps leave the trail as separate copies of the fold.
   static constexpr double kFoamStepS = 0.5;
   static constexpr int kFoamTimes = 6;
+  // Points a step where foam.glsl also takes the interpolated foam (FOAM_SUB).
+  static constexpr int kFoamSub = 4;
   // Foam counted as sea covered (Monahan's W is bright foam in photographs):
   // over the navy water (red 27/255) under full foam's 221/255, the tone
   // curve puts red 170 (SeaOptics' foam pixel) at 0.40 foam.
   static constexpr double kFoamCounted = 0.40;
   double foamJacobian() const { return foamJacobian_; }
+  double foamJacobianSoft() const { return foamJacobianSoft_; }  // its smoothstep's half width
   // Calibrates foamJacobian() around a place (draw() does it at its nadir,
   // again after moving kFoamCalibrationM; 0 before).
   void calibrateJacobianFoam(double latDeg, double lonDeg);
@@ -168,7 +174,7 @@ class OceanRenderer {
   GLuint elevationTex_ = 0, waterTex_ = 0;
   OceanOptions options_;
   double maxDisplacementM_ = 0.0;  // the grid's and the cull's bound on wave displacement
-  std::optional<waves::WaveField> waves_;
+  std::shared_ptr<const waves::WaveField> waves_;
   std::unique_ptr<grid::ScreenGrid> grid_;
   grid::GridFrame frame_;
   waves::GpuPatch patch_;

@@ -466,6 +466,16 @@ kd::WvResult WaveField::evaluate(const CpuPatch& p, const glm::dvec3& d, double 
   return k.wv_solidNoise(0, int(p.octaves.size()), d, p.frame);
 }
 
+double WaveField::foldJacobian(const CpuPatch& p, const glm::dvec3& d, double depthM) const {
+  if (model_ == Model::Fft) {
+    kd::Kernel k{p.octaves.data(), p.waves.data(), p.fftPlanes.data(), p.fftTexels ? p.fftTexels->data() : nullptr,
+                 p.coastTexels};
+    return k.wv_fftFold(0, FftOcean::kPlanes, FftOcean::kCascades, d, p.frame);
+  }
+  if (model_ == Model::Gerstner) return evaluate(p, d, depthM).jac.w;
+  return 1.0;
+}
+
 namespace {
 WaveSample toEnu(const kd::WvResult& r, const Enu& f) {
   WaveSample s;

@@ -192,6 +192,10 @@ class WaveField {
   // Evaluate a patch at offset d (ECEF, m) from its origin: the double twin
   // of the shader call.
   kd::WvResult evaluate(const CpuPatch& patch, const glm::dvec3& d, double depthM) const;
+  // The choppy map's Jacobian determinant that whitecaps fold on
+  // (shaders/foam.glsl): Gerstner, evaluate()'s jac.w; FFT, wv_fftFold
+  // (continuous across texels, unlike wv_fft's); noise: 1 (no fold).
+  double foldJacobian(const CpuPatch& patch, const glm::dvec3& d, double depthM) const;
 
   // The near-shore phase field (model Gerstner; see CoastField.h): every
   // query, sample and patch of this field then takes depth-dependent phase,

@@ -5,7 +5,8 @@
 // surface geocean_query_sea_surface gives there). Golden, looked at:
 // tests/render/golden/boats_chase.png (the chased boat, blue, from behind
 // and above, its hull under the waterline hidden by the sea; the other
-// boats further off, white, green, blue, on a 12 m/s Gerstner sea).
+// boats further off, white, green, blue, on a 12 m/s Gerstner sea with
+// its Jacobian whitecaps and their decaying trails, shaders/foam.glsl).
 #include "globe/gl/Framebuffer.h"
 #include "globe/host/Boats.h"
 #include "globe/render/Session.h"

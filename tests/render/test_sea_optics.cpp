@@ -20,8 +20,10 @@ constexpr double kPi = 3.14159265358979;
 
 // Our sea states give the wind at 19.5 m (PM's height); the papers' laws
 // are for about 10 m (Cox-Munk's anemometer was at 12.5 m): U19.5 = 1.026 U10.
-std::shared_ptr<ocean_render::OceanRenderer> oceanAt(double u10, waves::Model model = waves::Model::Noise) {
+std::shared_ptr<ocean_render::OceanRenderer> oceanAt(double u10, waves::Model model = waves::Model::Noise,
+                                                     double cellPx = 8.0) {
   ocean_render::OceanOptions oo;
+  oo.cellPx = cellPx;
   oo.model = model;
   oo.jacobianFoam = model != waves::Model::Noise;
   oo.sea.windSpeedMps = 1.026 * u10;
@@ -194,29 +196,47 @@ TEST(SeaOptics, GlitterIsCentredOnTheSpecularPointAndSpreadsWithTheWindAsCoxMunk
   EXPECT_GE(g5.peak, 200.0);
 }
 
-// Top-down from 60 m: the fraction of foam pixels against Monahan &
+// Top-down: the fraction of foam pixels against Monahan &
 // O'Muircheartaigh (1980), W = 3.84e-6 U10^3.41, within a factor 1.5. The
-// crests are hundreds of metres apart at a gale (a view is 120 m across),
-// so the fraction is counted over 144 views 5.5 km apart (at U = 8, about
-// 100 crests foam in them: +-10 % from counting alone). The sun is low
-// and behind (no glitter in view); a foam pixel is one whose red channel is
-// over 170, what half foam over the dark water gives. Noise: crests above a
-// height quantile; Gerstner and FFT: the Jacobian's folds per fragment with
-// their decaying history (shaders/foam.glsl).
-void expectMonahanCover(waves::Model model, const char* name) {
+// crests are hundreds of metres apart at a gale, so the fraction is counted
+// over many views 5.5 km or more apart (at U = 8, about 100 crests foam in them:
+// +-10 % from counting alone): 144 views of 120 m (128 px from 60 m). The
+// sun is low and behind (no glitter in view); a foam pixel is one whose red
+// channel is over 170, what half foam over the dark water gives. Noise:
+// crests above a height quantile; Gerstner and FFT: the Jacobian's folds per
+// fragment with their decaying history (shaders/foam.glsl).
+struct CoverViews {
+  int views = 144, perRow = 12, px = 128;
+  double altM = 60.0, cellPx = 8.0, stepDeg = 0.05, stepS = 10.0;
+  bool passes = true;  // the reflection and refraction passes
+};
+// Gerstner and FFT: per fragment foam.glsl evaluates the kernel 6 times
+// (82 % of this test's CPU in llvmpipe's shaders), so the same sea area is
+// seen in 36 views of 240 m at 1.9 m a pixel (128 px from 120 m; cells of
+// 4 px keep the grid footprint, hence the waves' and foam's distance fades,
+// of 8 px cells from 60 m). A pixel is a point sample of the per-fragment
+// foam, so the covered fraction is unbiased at either pixel size; the
+// noise's broad crests keep the 144 views (cheap without foam.glsl). No
+// reflection or refraction pass: top-down they add the sky's mirror and the
+// 4 km deep bottom, not foam.
+constexpr CoverViews kJacobianViews{36, 6, 128, 120.0, 4.0, 0.1, 40.0, false};
+
+void expectMonahanCover(waves::Model model, const char* name, const CoverViews& cv = {}) {
   Session& s = session();
   OceanGuard guard;
   for (double u10 : {8.0, 12.0, 16.0}) {
-    const auto ocean = oceanAt(u10, model);
+    const auto ocean = oceanAt(u10, model, cv.cellPx);
     useOcean(ocean);
     std::size_t foam = 0, total = 0;
-    for (int v = 0; v < 144; ++v) {
+    for (int v = 0; v < cv.views; ++v) {
       ViewPose p;
-      p.latDeg = -0.3 + 0.05 * (v % 12), p.lonDeg = -150.0 + 0.05 * (v / 12), p.altM = 60.0;
-      p.headingDeg = 0.0, p.pitchDeg = -90.0, p.width = p.height = 128, p.fovYDeg = 90.0;
+      p.latDeg = -0.3 + cv.stepDeg * (v % cv.perRow), p.lonDeg = -150.0 + cv.stepDeg * (v / cv.perRow);
+      p.altM = cv.altM;
+      p.headingDeg = 0.0, p.pitchDeg = -90.0, p.width = p.height = cv.px, p.fovYDeg = 90.0;
       FrameSettings fs;
       fs.sunEcef = sunFromLocal(p.latDeg, p.lonDeg, 200.0, 15.0);
-      fs.timeS = 10.0 * v + 0.37;
+      fs.reflections = fs.refraction = cv.passes;
+      fs.timeS = cv.stepS * v + 0.37;
       s.render(p, fs);
       const Image img = s.image();
       if (v == 0) dump(img, std::string("foam_") + name + "_u" + std::to_string(int(u10)));
@@ -231,13 +251,15 @@ void expectMonahanCover(waves::Model model, const char* name) {
 }
 
 TEST(SeaOptics, WhitecapCoverFollowsMonahan) { expectMonahanCover(waves::Model::Noise, "noise"); }
-TEST(SeaOptics, GerstnerWhitecapCoverFollowsMonahan) { expectMonahanCover(waves::Model::Gerstner, "gerstner"); }
-TEST(SeaOptics, FftWhitecapCoverFollowsMonahan) { expectMonahanCover(waves::Model::Fft, "fft"); }
+TEST(SeaOptics, GerstnerWhitecapCoverFollowsMonahan) {
+  expectMonahanCover(waves::Model::Gerstner, "gerstner", kJacobianViews);
+}
+TEST(SeaOptics, FftWhitecapCoverFollowsMonahan) { expectMonahanCover(waves::Model::Fft, "fft", kJacobianViews); }
 
-// The whitecaps' foam stays with the water and decays: a particle whose
-// Jacobian folded 1 s ago carries exp(-1 / tau) of full foam, and none once
-// every sample is unfolded; the sample times fall on the 0.5 s grid before t.
-TEST(SeaOptics, JacobianFoamDecaysExponentially) {
+// The whitecaps' foam: full where the Jacobian folds now, none once every
+// sample is unfolded; the sample times fall on the 0.5 s grid before t
+// (the decay between: JacobianFoamFollowsAFoldBetweenItsSamples).
+TEST(SeaOptics, JacobianFoamSamplesThePresentAndThePast) {
   const auto ocean = oceanAt(12.0, waves::Model::Gerstner);
   ocean->calibrateJacobianFoam(0.0, 0.0);
   const double thr = ocean->foamJacobian();
@@ -248,14 +270,49 @@ TEST(SeaOptics, JacobianFoamDecaysExponentially) {
   EXPECT_DOUBLE_EQ(t[0], 10.25);
   EXPECT_DOUBLE_EQ(t[1], 10.0);
   EXPECT_DOUBLE_EQ(t[5], 8.0);
-  const double tau = ocean_render::OceanRenderer::kFoamDecayS;
   const double folded = 0.0, open = 1.0;
   const double age[6] = {0.0, 1.0, 2.0, 3.0, 4.0, 5.0};
-  const double now[6] = {folded, open, open, open, open, open}, past[6] = {open, folded, open, open, open, open},
-               none[6] = {open, open, open, open, open, open};
+  const double now[6] = {folded, open, open, open, open, open}, none[6] = {open, open, open, open, open, open};
   EXPECT_DOUBLE_EQ(ocean->foamOf(now, age), 1.0);
-  EXPECT_NEAR(ocean->foamOf(past, age), std::exp(-1.0 / tau), 1e-12);
   EXPECT_DOUBLE_EQ(ocean->foamOf(none, age), 0.0);
+}
+
+// Between its samples 0.5 s apart the foam follows a fold that passes a
+// particle: the determinant of a component of period P at a particle is
+// 1 - A cos(2 pi (t - tf) / P) (A: full foam at the trough). The foam.glsl
+// result (OceanRenderer::foamOf, its double copy) against the continuous
+// history (the same threshold and decay on the exact curve at 1 ms steps),
+// for folds at every time between the samples: within 0.07 for P >= 1.8 s,
+// the shortest Gerstner component's period from U = 10 m/s (4 peak
+// frequencies) and 3.6 samples a period. The samples alone miss a fold
+// between them (0.29 off at 1.8 s: what drew the trail as stripes).
+TEST(SeaOptics, JacobianFoamFollowsAFoldBetweenItsSamples) {
+  const auto ocean = oceanAt(12.0, waves::Model::Gerstner);
+  ocean->calibrateJacobianFoam(0.0, 0.0);
+  const double thr = ocean->foamJacobian(), soft = ocean->foamJacobianSoft();
+  const double tau = ocean_render::OceanRenderer::kFoamDecayS;
+  const auto times = ocean_render::OceanRenderer::foamTimes(10.25);
+  double age[6];
+  for (int k = 0; k < 6; ++k) age[k] = 10.25 - times[std::size_t(k)];
+  const auto fold = [&](double j) {
+    const double x = std::clamp((j - (thr - soft)) / (2.0 * soft), 0.0, 1.0);
+    return 1.0 - x * x * (3.0 - 2.0 * x);
+  };
+  for (double period : {1.8, 2.5, 4.0}) {
+    const double a = 1.0 - 0.8 * thr;
+    double worst = 0.0, worstNodes = 0.0;
+    for (double tf = age[1]; tf <= age[5]; tf += 0.05) {
+      const auto det = [&](double ageS) { return 1.0 - a * std::cos(2.0 * kPi * (ageS - tf) / period); };
+      double d[6], nodes = 0.0, truth = 0.0;
+      for (int k = 0; k < 6; ++k) d[k] = det(age[k]), nodes = std::max(nodes, fold(d[k]) * std::exp(-age[k] / tau));
+      for (double s = 0.0; s <= age[5]; s += 0.001) truth = std::max(truth, fold(det(s)) * std::exp(-s / tau));
+      worst = std::max(worst, std::abs(ocean->foamOf(d, age) - truth));
+      worstNodes = std::max(worstNodes, std::abs(nodes - truth));
+    }
+    std::printf("fold of period %.1f s: foam within %.3f of the continuous history (samples alone: %.3f)\n", period,
+                worst, worstNodes);
+    EXPECT_LT(worst, 0.07) << period;
+  }
 }
 
 }  // namespace
