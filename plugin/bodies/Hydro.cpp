@@ -370,8 +370,12 @@ HullEvaluation HullForce::evaluate(const BodyState& state, const MassProperties&
   }
   // Radiation damping (linear, fractions of critical).
   if (awp > 0.0 && vol > 0.0) {
-    const double keel = std::max(out.keelDepthM, 0.0);
-    const double vzRel = vCom.z - vWater0.z * std::exp(-k * keel);
+    // A hull across a coast can have its centre over land: no surface there
+    // (keelDepthM NaN, and std::max(NaN, 0) is NaN), so the water is still
+    // (vWater0 = 0) and its decay with depth is not needed; 0 * exp(NaN) was NaN.
+    const double vzWater =
+        std::isnan(c[0].heightM) ? 0.0 : vWater0.z * std::exp(-k * std::max(out.keelDepthM, 0.0));
+    const double vzRel = vCom.z - vzWater;
     F.z -= 2.0 * options_.heaveDampingRatio * std::sqrt((mass.massKg() + a33) * rhoG * awp) * vzRel;
     // GM about the centre of mass: z_B + I_wp / V, I_wp about the waterplane's centroid.
     const double Ixx = -(wpYY - wpY * wpY / -areaUp), Iyy = -(wpXX - wpX * wpX / -areaUp);

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <vector>
@@ -482,4 +483,56 @@ TEST(BodyWaves, SeaGridUnderTheHullGivesTheForcesOfEveryVertexQueried) {
   EXPECT_LT(nodes, int(hull->vertices().size()) / 2);
   EXPECT_LT(worstF, 2e-3);
   EXPECT_LT(worstT, 4e-4);
+}
+
+namespace {
+
+// Still water (height 0) west of a meridian, land (NaN) east of it, under a
+// wavy sea's decay wave number (as the façade's near Tarifa): the coast.
+class CoastSea final : public SeaSurface {
+ public:
+  CoastSea(double coastLonDeg, double decayPerM) : coast_(coastLonDeg), k_(decayPerM) {}
+  void sample(const double*, const double* lon, const double*, std::size_t n, bool, SeaSample* out) const override {
+    for (std::size_t i = 0; i < n; ++i)
+      out[i] = SeaSample{lon[i] < coast_ ? 0.0 : std::numeric_limits<double>::quiet_NaN(), 0.0, {0.0, 0.0}};
+  }
+  double decayWaveNumberPerM() const override { return k_; }
+  void sampleSlopes(const double* lat, const double* lon, const double* t, std::size_t n, SeaSample* out) const override {
+    sample(lat, lon, t, n, false, out);
+  }
+
+ private:
+  double coast_, k_;
+};
+
+}  // namespace
+
+// Issue 14 soak: a boat driven onto the Tarifa shore (`geocean view --fly-to
+// 36.0,-5.6 --boats 20`, frame 362) had its centre over land and its stern
+// afloat; the heave damping's exp(-k keel) of the centre's NaN keel depth
+// made the force NaN (the step then failed). A box at rest with its centre
+// 0.75 m east of the coast: only the hull west of it carries pressure.
+TEST(BodyBuoyancy, HullAcrossACoastWithItsCentreOverLandFeelsTheWaterUnderItsWetPart) {
+  const glm::dvec3 size(6.0, 3.0, 2.0);
+  const HullMesh box = HullMesh::box(size, 4);  // vertex columns at x = -3, -1.5, 0, 1.5, 3
+  const geo::Geodetic at{36.0, -5.6, 0.2};       // bottom 0.8 m under the still water
+  const geo::EnuFrame enu = geo::enuFrame(at);
+  const double coastLon = geo::fromEcef(enu.originEcef + enu.toEcef(glm::dvec3(-0.75, 0.0, 0.0))).lonDeg;
+  auto sea = std::make_shared<CoastSea>(coastLon, 2.0 * kPi / 50.0);
+  Floater f = makeFloater(box, 500.0, sea, at);
+  const StepContext ctx = f.sim->context(f.state());
+  const HullEvaluation e = f.force->evaluate(f.state(), f.sim->body(f.id).mass, ctx);
+  EXPECT_TRUE(std::isnan(e.seaHeightM));  // the centre is on land
+  const glm::dvec3 F = ctx.enu.toLocal(e.wrench.force());
+  // At rest in still water only the hydrostatic pressure acts: on the wet
+  // bottom (the column x in [-3, -1.5] of the mesh: triangles that reach a
+  // vertex over land clip to nothing) rho g d A, and on the west end face
+  // rho g B d^2 / 2 eastwards. 1e-4: the ellipsoid's curvature under the
+  // 6 m box, (3 m)^2 / 2R ~ 1e-6 m on a 0.8 m depth.
+  const double g = ctx.gravityMps2, d = 0.8;
+  const double up = kRho * g * d * 1.5 * size.y, east = kRho * g * size.y * d * d / 2.0;
+  EXPECT_NEAR(F.z, up, 1e-4 * up);
+  EXPECT_NEAR(F.x, east, 1e-4 * east);
+  EXPECT_NEAR(F.y, 0.0, 1e-4 * up);
+  EXPECT_NO_THROW(f.sim->step());  // it failed with "force on body 0.x = nan N"
 }
