@@ -157,33 +157,16 @@ void appendNumber(std::string& s, double v) {
   s.append(b, r.ptr);
 }
 
-// The terrain under a body for its contact (TerrainContact on the hull's
-// vertices): a patch of the snapshot's elevation 400 m square at 2 m cells
-// centred on the body, re-centred once the body is within 100 m of its
-// edge (checked every simulated second: a body faster than 100 m/s could
-// leave it between checks).
-constexpr int kPatchN = 201;
-constexpr double kPatchCellM = 2.0, kPatchHalfM = 200.0, kPatchMarginM = 100.0;
-// Wet sand on a hull (TerrainContact's note, Engineering ToolBox 0.4-0.6).
-constexpr double kGroundFriction = 0.5;
 // grounded: the lowest hull vertex within this of the terrain (the contact
 // leaves a touching vertex 1e-9 m above it; a floating hull clears it by
 // the water under its keel).
 constexpr double kGroundedClearanceM = 0.01;
 
+// The terrain under a body for its contact, on the hull's vertices
+// (bodies::terrainContactAround: 400 m patch, re-centred near its edge).
 std::shared_ptr<bodies::TerrainContact> contactAround(const ocean::Snapshot& snap, const bodies::BodyState& s,
                                                      const bodies::HullMesh& hull) {
-  const geo::EnuFrame f = geo::enuFrame(geo::fromEcef(s.positionEcef));
-  geo::Geodetic sw = geo::fromEcef(f.originEcef + f.toEcef(glm::dvec3(-kPatchHalfM, -kPatchHalfM, 0.0)));
-  sw.heightM = 0.0;
-  return std::make_shared<bodies::TerrainContact>(bodies::terrainPatch(snap, sw, kPatchN, kPatchCellM),
-                                                  hull.vertices(), kGroundFriction);
-}
-
-bool nearPatchEdge(const bodies::TerrainContact& c, const bodies::BodyState& s) {
-  const glm::dvec3 p = c.terrain().toPatch(s.positionEcef);
-  const double size = (kPatchN - 1) * kPatchCellM;
-  return !(p.x > kPatchMarginM && p.y > kPatchMarginM && p.x < size - kPatchMarginM && p.y < size - kPatchMarginM);
+  return bodies::terrainContactAround(snap, s, hull.vertices(), bodies::kWetSandFriction);
 }
 
 int runFloat(const FloatOptions& o) {
@@ -311,7 +294,7 @@ int runFloat(const FloatOptions& o) {
       while (true) {
         for (std::size_t i = 0; i < ids.size(); ++i) {
           bodies::Body& b = sim.body(ids[i]);
-          if (!contacts[i] || !nearPatchEdge(*contacts[i], b.state)) continue;
+          if (!contacts[i] || !bodies::nearPatchEdge(*contacts[i], b.state)) continue;
           auto c = contactAround(*snap, b.state, specs[i].hull);
           std::replace(b.constraints.begin(), b.constraints.end(),
                        std::shared_ptr<const bodies::StepConstraint>(contacts[i]),

@@ -110,4 +110,23 @@ std::shared_ptr<HeightField> terrainPatch(const ocean::Snapshot& snap, const geo
                                        std::move(h));
 }
 
+namespace {
+constexpr int kPatchN = 201;
+constexpr double kPatchCellM = 2.0, kPatchHalfM = 200.0, kPatchMarginM = 100.0;
+}  // namespace
+
+std::shared_ptr<TerrainContact> terrainContactAround(const ocean::Snapshot& snap, const BodyState& s,
+                                                     std::vector<glm::dvec3> points, double friction) {
+  const geo::EnuFrame f = geo::enuFrame(geo::fromEcef(s.positionEcef));
+  geo::Geodetic sw = geo::fromEcef(f.originEcef + f.toEcef(glm::dvec3(-kPatchHalfM, -kPatchHalfM, 0.0)));
+  sw.heightM = 0.0;
+  return std::make_shared<TerrainContact>(terrainPatch(snap, sw, kPatchN, kPatchCellM), std::move(points), friction);
+}
+
+bool nearPatchEdge(const TerrainContact& c, const BodyState& s) {
+  const glm::dvec3 p = c.terrain().toPatch(s.positionEcef);
+  const double size = (kPatchN - 1) * kPatchCellM;
+  return !(p.x > kPatchMarginM && p.y > kPatchMarginM && p.x < size - kPatchMarginM && p.y < size - kPatchMarginM);
+}
+
 }  // namespace geocean::bodies

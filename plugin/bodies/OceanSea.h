@@ -51,4 +51,17 @@ class OceanSea final : public SeaSurface {
 std::shared_ptr<HeightField> terrainPatch(const ocean::Snapshot& snapshot, const geo::Geodetic& southWest, int n,
                                           double spacingM);
 
+// Terrain contact that follows a body (geocean float and the C ABI's
+// bodies): a patch of the snapshot's elevation 400 m square at 2 m cells
+// centred on the body. The caller re-centres it (a new contact) once
+// nearPatchEdge says the body is within 100 m of the edge, checking at
+// least every simulated second: a body faster than 100 m/s could leave the
+// patch between checks. Throws as terrainPatch does.
+std::shared_ptr<TerrainContact> terrainContactAround(const ocean::Snapshot& snapshot, const BodyState& state,
+                                                     std::vector<glm::dvec3> contactPointsBody,
+                                                     double frictionCoefficient);
+bool nearPatchEdge(const TerrainContact& contact, const BodyState& state);
+// Wet sand on a hull (TerrainContact's note, Engineering ToolBox 0.4-0.6).
+constexpr double kWetSandFriction = 0.5;
+
 }  // namespace geocean::bodies

@@ -9,6 +9,7 @@
 #include "plugin/bodies/OceanSea.h"
 #include "plugin/bodies/Simulation.h"
 #include "plugin/bodies/Spawn.h"
+#include "plugin/bodies/Terrain.h"
 #include "plugin/capi/CapiSupport.h"
 
 #include <algorithm>
@@ -93,6 +94,11 @@ struct geocean_bodies {
   // ABI 1.6 contact-point models, one per proxy size: bodies that share one
   // have their centres queried together each step (ContactPointForce::beginStep).
   std::map<std::pair<double, double>, std::shared_ptr<const bodies::ContactPointForce>> proxies;
+  // Terrain contact on each body's hull vertices, from the ocean's
+  // elevation (bodies::terrainContactAround: a patch that follows the body),
+  // as `geocean float` does; `contactElevation` is the elevation they were cut from.
+  std::map<bodies::BodyId, std::shared_ptr<const bodies::TerrainContact>> contacts;
+  const void* contactElevation = nullptr;
 
   geocean_bodies(geocean_ocean* o, const bodies::SimulationConfig& c, double rhoW, double repulsionNpm)
       : ocean(o), waterDensity(rhoW), sim(c) {
@@ -106,6 +112,26 @@ struct geocean_bodies {
 };
 
 namespace {
+
+// (Re)cuts body id's terrain contact around its pose; none where the
+// snapshot has no elevation, or no data under the patch (the body then
+// floats without touching anything, as on the open sea).
+void placeContact(geocean_bodies& b, bodies::BodyId id) {
+  bodies::Body& body = b.sim.body(id);
+  auto& cs = body.constraints;
+  if (auto old = b.contacts.find(id); old != b.contacts.end()) {
+    cs.erase(std::remove(cs.begin(), cs.end(), std::shared_ptr<const bodies::StepConstraint>(old->second)), cs.end());
+    b.contacts.erase(old);
+  }
+  const Snapshot& snap = b.sea->snapshot();
+  if (!snap.elevation) return;
+  try {
+    auto c = bodies::terrainContactAround(snap, body.state, b.hulls.at(id)->vertices(), bodies::kWetSandFriction);
+    b.contacts[id] = c;
+    b.sim.addBodyConstraint(id, c);
+  } catch (const std::invalid_argument&) {
+  }
+}
 
 geocean_body_pose poseOf(bodies::BodyId id, const bodies::BodyState& s) {
   geocean_body_pose p{};
@@ -250,6 +276,8 @@ GEOCEAN_API geocean_status geocean_bodies_add(geocean_bodies* b, const geocean_b
     if (d.thrust_n != 0.0) b->sim.addBodyForce(id, std::make_shared<bodies::Thrust>(d.thrust_n));
     if (b->repulsion) b->repulsion->setSpheres(id, bodies::Repulsion::spheresAlongHull(*hull));
     b->hulls[id] = hull;
+    b->contactElevation = snap.elevation.get();
+    placeContact(*b, id);
     if (out_id) *out_id = id;
   });
 }
@@ -261,6 +289,7 @@ GEOCEAN_API geocean_status geocean_bodies_remove(geocean_bodies* b, geocean_body
     if (!b->hulls.count(id)) fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "body id " + std::to_string(id) + ": no such body");
     b->sim.removeBody(id);
     b->hulls.erase(id);
+    b->contacts.erase(id);
     if (b->repulsion) b->repulsion->forgetBody(id);
   });
 }
@@ -284,7 +313,22 @@ GEOCEAN_API geocean_status geocean_bodies_advance_to(geocean_bodies* b, double t
       fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
            "time_s " + num(time_s) + " is before the simulation time " + num(b->sim.time()));
     b->sea->refresh(b->ocean->current());
-    const std::int64_t n = b->sim.advanceTo(time_s);
+    if (b->sea->snapshot().elevation.get() != b->contactElevation) {  // new rasters: cut every contact anew
+      b->contactElevation = b->sea->snapshot().elevation.get();
+      for (const auto& [hid, hull] : b->hulls) placeContact(*b, hid);
+    }
+    std::int64_t n = 0;
+    // At most a second at a time while any body touches terrain, so each
+    // patch can follow its body (the fixed step gives the same steps
+    // whatever the chunks).
+    while (!b->contacts.empty()) {
+      for (const auto& [hid, hull] : b->hulls)
+        if (auto c = b->contacts.find(hid); c != b->contacts.end() && bodies::nearPatchEdge(*c->second, b->sim.body(hid).state))
+          placeContact(*b, hid);
+      if (b->sim.time() + 1.0 >= time_s) break;
+      n += b->sim.advanceTo(b->sim.time() + 1.0);
+    }
+    n += b->sim.advanceTo(time_s);
     if (out_steps) *out_steps = n;
   });
 }

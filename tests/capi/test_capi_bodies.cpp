@@ -10,9 +10,13 @@
 #include "plugin/bodies/Simulation.h"
 #include "plugin/bodies/Spawn.h"
 #include "plugin/ocean/Ocean.h"
+#include "globe/geo/Ellipsoid.h"
+
+#include <glm/gtc/quaternion.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -481,3 +485,64 @@ TEST(CapiBodies, ContactPointBodiesAreTheFacadeProxysBitsAndAShortDescIsAHull) {
 }
 
 }  // namespace
+
+// Terrain contact through the ABI (issue 14 item 3 for the viewer's boats):
+// the beach of BodyBeach (tests/bodies/test_beach.cpp) given as elevation
+// pixels — sea to the west, the ground rising 1 in 10 through the waterline
+// at longitude 0 — and a box driven east by its engine. The bodies take
+// their terrain patch from the ocean's elevation, so the box grounds in
+// about 1 m of water and stops; no hull vertex goes below the ground
+// (checked against the closed-form beach, not the patch). Without the
+// contact it drives up the beach and over the land.
+TEST(CapiBodies, ABoxDrivenAtABeachStopsAtTheShoreWithNoVertexBelowTheGround) {
+  constexpr double kMPerDegLon = 111319.49;  // WGS84 equator: a * pi / 180
+  const int w = 1000, h = 500;
+  const double step = 2e-5;
+  std::vector<float> px(std::size_t(w) * h);
+  auto ground = [](double eastM) { return std::clamp(eastM / 10.0, -20.0, 10.0); };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) px[std::size_t(y) * w + x] = float(ground((-0.01 + (x + 0.5) * step) * kMPerDegLon));
+  geocean_grid_placement pl{};
+  pl.origin_lon_deg = -0.01, pl.origin_lat_deg = 0.005, pl.lon_step_deg = step, pl.lat_step_deg = -step;
+  Ocean oc;
+  ASSERT_EQ(api().setElevationPixels(oc.h, px.data(), w, h, &pl), GEOCEAN_OK) << lastError();
+  Bodies b(oc.h);
+  geocean_body_desc d;
+  api().bodyDescInit(&d);
+  d.hull = GEOCEAN_HULL_BOX;
+  d.size_m[0] = 8.0, d.size_m[1] = 3.0, d.size_m[2] = 2.0;
+  d.density_kg_m3 = 500.0, d.lat_deg = 0.0, d.lon_deg = -150.0 / kMPerDegLon, d.heading_deg = 90.0;
+  d.thrust_n = 3000.0;
+  geocean_body_id id = 0;
+  ASSERT_EQ(api().bodiesAdd(b.h, &d, &id), GEOCEAN_OK) << lastError();
+  size_t nv = 0, ni = 0;
+  ASSERT_EQ(api().bodiesGetHull(b.h, id, nullptr, 0, nullptr, 0, &nv, &ni), GEOCEAN_OK) << lastError();
+  std::vector<double> v(3 * nv);
+  std::vector<uint32_t> idx(ni);
+  ASSERT_EQ(api().bodiesGetHull(b.h, id, v.data(), nv, idx.data(), ni, &nv, &ni), GEOCEAN_OK) << lastError();
+
+  double worstDepth = -1e9, eastmostM = -1e9;
+  geocean_body_pose p{};
+  for (int k = 1; k <= 320; ++k) {  // 160 s in frames of 0.5 s
+    ASSERT_EQ(api().bodiesAdvanceTo(b.h, 0.5 * k, nullptr), GEOCEAN_OK) << lastError();
+    size_t n = 0;
+    ASSERT_EQ(api().bodiesGetPoses(b.h, 0, &p, 1, &n), GEOCEAN_OK) << lastError();
+    const glm::dquat q(p.orientation_wxyz[0], p.orientation_wxyz[1], p.orientation_wxyz[2], p.orientation_wxyz[3]);
+    const glm::dvec3 c(p.position_ecef_m[0], p.position_ecef_m[1], p.position_ecef_m[2]);
+    for (size_t i = 0; i < nv; ++i) {
+      const auto g = geocean::geo::fromEcef(c + q * glm::dvec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]));
+      const double east = g.lonDeg * kMPerDegLon;
+      worstDepth = std::max(worstDepth, ground(east) - g.heightM);
+      eastmostM = std::max(eastmostM, east);
+    }
+  }
+  const double speed = std::sqrt(p.velocity_ecef_mps[0] * p.velocity_ecef_mps[0] +
+                                 p.velocity_ecef_mps[1] * p.velocity_ecef_mps[1] +
+                                 p.velocity_ecef_mps[2] * p.velocity_ecef_mps[2]);
+  // 1 cm: the patch's ENU heights vs geodetic ones (the ellipsoid's drop is
+  // kept; the horizontal shift of a point 10 m up is under 1 mm at 500 m).
+  EXPECT_LT(worstDepth, 0.01);
+  EXPECT_LT(eastmostM, 0.0) << "the box reached the dry beach";   // stopped in the water
+  EXPECT_GT(eastmostM, -30.0) << "the box never reached the shallows";
+  EXPECT_LT(speed, 0.05);
+}
