@@ -201,6 +201,9 @@ int runView(const ViewArgs& a) {
   }
   glfwMakeContextCurrent(win);
   glfwSwapInterval(a.frames > 0 ? 0 : 1);  // scripted runs go as fast as they can
+  // A key tapped between two polls still reads as pressed once: at a few
+  // frames per second (llvmpipe, big windows) a quick H or F was lost.
+  glfwSetInputMode(win, GLFW_STICKY_KEYS, GLFW_TRUE);
   gl::enableGlDebug();
   int rc = kExitOk;
   {

@@ -258,4 +258,45 @@ TEST(RenderBoats, FlyAndViewFollowKeepTheChasedBoatAtThePictureCentre) {
   EXPECT_NEAR(b.y, 60.0, 12.0);
 }
 
+// The F key (issue 14 item 5: "key and option"): a user in the window taps
+// F three times (xdotool, as a user would) and the camera chases boat 3
+// (F cycles off, 1, 2, 3). The view flies down from orbit over 100,000
+// frames, so without the key the camera is still kilometres up when Escape
+// ends the run; with it, the last frames sit 1.2 L above boat 3.
+TEST(RenderBoats, TheFKeyInTheWindowStartsTheChase) {
+  if (!geocean::test::haveTool("xvfb-run") || !geocean::test::haveTool("xdotool")) {
+    std::printf("F key not checked: needs xvfb-run and xdotool (Debian xvfb, xauth, xdotool)\n");
+    return;
+  }
+  Scene& sc = scene();  // the same spawn as the view: boat 3's length
+  ASSERT_NE(sc.boats, nullptr);
+  const double L = sc.boats->lengthM(2);
+  const std::string dir = ::testing::TempDir() + "/boats_fkey";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  // Keys after the window is up and drawing (search --sync waits for it);
+  // sticky keys keep each tap for the next poll.
+  const std::string script =
+      std::string(GEOCEAN_EXE) + " view --fly-to 30,-40 --boats 3 --frames 100000 --size 200x120 --no-hud --stats " +
+      dir + "/stats.csv & v=$!; "
+      "xdotool search --sync --onlyvisible --name Geocean >/dev/null; sleep 2; "
+      "for k in 1 2 3; do xdotool key f; sleep 0.5; done; sleep 2; xdotool key Escape; wait $v";
+  const auto r = geocean::test::run("xvfb-run -a -s '-screen 0 640x480x24' sh -c '" + script + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::ifstream csv(dir + "/stats.csv");
+  std::string line;
+  std::getline(csv, line);  // frame,wall_s,lat,lon,alt_m,...
+  std::vector<double> alt;
+  while (std::getline(csv, line)) {
+    std::stringstream ss(line);
+    std::string f[5];
+    for (auto& x : f) std::getline(ss, x, ',');
+    alt.push_back(std::stod(f[4]));
+  }
+  ASSERT_GT(alt.size(), 10u);
+  EXPECT_GT(alt.front(), 1e5) << "the flight starts in orbit";
+  // The last frame chases boat 3 as --follow 3 does (the test above).
+  EXPECT_NEAR(alt.back(), 1.2 * L, 2.0) << alt.size() << " frames";
+}
+
 }  // namespace
