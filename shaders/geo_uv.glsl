@@ -69,6 +69,35 @@ vec4 bsplineWeights4(float f) {
               (1.0 + 3.0 * f + 3.0 * f2 - 3.0 * f3) / 6.0, f3 / 6.0);
 }
 
+#if defined(GEOCEAN_WATER_TILES) || defined(GEOCEAN_ELEVATION_TILES)
+// Texel g of a streamed level (host tiles: water or elevation) in its 2 x 2
+// block of pool layers: (x, y) in the tile with its border, and the layer.
+// g comes back wrapped or clamped into the level.
+ivec3 blockTexel(inout ivec2 g, ivec3 level, ivec4 block, ivec4 slots) {
+  int w = level.x;
+  g.x = level.z != 0 ? ((g.x % w) + w) % w : clamp(g.x, 0, w - 1);
+  g.y = clamp(g.y, 0, level.y - 1);
+  int T = block.w;
+  ivec2 t = g / T;
+  int dx = t.x - block.x;
+  if (dx < 0) dx += block.z;  // wrapped past the antimeridian
+  int dy = t.y - block.y;
+  // Outside the block (not reached: the level is chosen so the tile and the
+  // filter's reach fit in it): its nearest edge texel, from the border.
+  ivec2 local = clamp(g - t * T, ivec2(0), ivec2(T - 1));
+  if (dx < 0 || dx > 1) {
+    local.x = dx < 0 ? -1 : T;
+    dx = clamp(dx, 0, 1);
+  }
+  if (dy < 0 || dy > 1) {
+    local.y = dy < 0 ? -1 : T;
+    dy = clamp(dy, 0, 1);
+  }
+  int layer = dy == 0 ? (dx == 0 ? slots.x : slots.y) : (dx == 0 ? slots.z : slots.w);
+  return ivec3(local + 1, layer);  // + 1: the tile's border
+}
+#endif
+
 #ifdef GEOCEAN_WATER_TILES
 // Water coverage streamed as pyramid tiles (globe/render/TilePool): the
 // terrain tile being drawn lies inside a 2 x 2 block of tiles of one level,
@@ -81,27 +110,7 @@ uniform ivec3 uWaterLevel;    // level width and height in texels; 1 if longitud
 uniform vec4 uWaterLevelGeo;  // origin lon, origin lat, lon step, lat step of a level texel
 
 float waterTexel(ivec2 g) {
-  int w = uWaterLevel.x;
-  g.x = uWaterLevel.z != 0 ? ((g.x % w) + w) % w : clamp(g.x, 0, w - 1);
-  g.y = clamp(g.y, 0, uWaterLevel.y - 1);
-  int T = uWaterBlock.w;
-  ivec2 t = g / T;
-  int dx = t.x - uWaterBlock.x;
-  if (dx < 0) dx += uWaterBlock.z;  // wrapped past the antimeridian
-  int dy = t.y - uWaterBlock.y;
-  // Outside the block (not reached: the level is chosen so the tile and the
-  // filter's reach fit in it): its nearest edge texel, from the border.
-  ivec2 local = clamp(g - t * T, ivec2(0), ivec2(T - 1));
-  if (dx < 0 || dx > 1) {
-    local.x = dx < 0 ? -1 : T;
-    dx = clamp(dx, 0, 1);
-  }
-  if (dy < 0 || dy > 1) {
-    local.y = dy < 0 ? -1 : T;
-    dy = clamp(dy, 0, 1);
-  }
-  int layer = dy == 0 ? (dx == 0 ? uWaterSlots.x : uWaterSlots.y) : (dx == 0 ? uWaterSlots.z : uWaterSlots.w);
-  return texelFetch(uWaterPool, ivec3(local + 1, layer), 0).r;  // + 1: the tile's border
+  return texelFetch(uWaterPool, blockTexel(g, uWaterLevel, uWaterBlock, uWaterSlots), 0).r;
 }
 
 // Continuous level texel coordinates with texel centres at integers.
@@ -155,25 +164,7 @@ uniform ivec3 uElevLevel;
 uniform vec4 uElevLevelGeo;
 
 float elevTexel(ivec2 g, sampler2D grid, vec4 gridGeo) {
-  int w = uElevLevel.x;
-  g.x = uElevLevel.z != 0 ? ((g.x % w) + w) % w : clamp(g.x, 0, w - 1);
-  g.y = clamp(g.y, 0, uElevLevel.y - 1);
-  int T = uElevBlock.w;
-  ivec2 t = g / T;
-  int dx = t.x - uElevBlock.x;
-  if (dx < 0) dx += uElevBlock.z;
-  int dy = t.y - uElevBlock.y;
-  ivec2 local = clamp(g - t * T, ivec2(0), ivec2(T - 1));
-  if (dx < 0 || dx > 1) {
-    local.x = dx < 0 ? -1 : T;
-    dx = clamp(dx, 0, 1);
-  }
-  if (dy < 0 || dy > 1) {
-    local.y = dy < 0 ? -1 : T;
-    dy = clamp(dy, 0, 1);
-  }
-  int layer = dy == 0 ? (dx == 0 ? uElevSlots.x : uElevSlots.y) : (dx == 0 ? uElevSlots.z : uElevSlots.w);
-  float v = texelFetch(uElevPool, ivec3(local + 1, layer), 0).r;
+  float v = texelFetch(uElevPool, blockTexel(g, uElevLevel, uElevBlock, uElevSlots), 0).r;
   if (isnan(v)) {
     vec2 c = vec2(uElevLevelGeo.x + (float(g.x) + 0.5) * uElevLevelGeo.z, uElevLevelGeo.y + (float(g.y) + 0.5) * uElevLevelGeo.w);
     v = textureLod(grid, geoUv(c, gridGeo), 0.0).r;
