@@ -21,25 +21,26 @@ std::shared_ptr<const raster::TilePyramid> waterPyramid(std::shared_ptr<const ra
   return raster::TilePyramid::open(std::move(mask), std::move(options));
 }
 
-const RasterLayer* streamedMaskLayer(const LayerStack& stack, double gridLonStepDeg) {
-  if (!stack.drawingMask()) return nullptr;
+namespace {
+// The first layer of `kind` when it is global (north up, pole to pole) and
+// finer than the drawn grid; else none.
+const RasterLayer* firstIfStreamed(const LayerStack& stack, LayerKind kind, double gridLonStepDeg) {
   for (const RasterLayer& l : stack.layers()) {
-    if (l.kind != LayerKind::Mask) continue;
+    if (l.kind != kind) continue;
     const raster::GeoTransform& t = l.raster->transform();
     const bool global = t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * l.raster->height() + 180.0) < 1e-6;
     return global && t.lonStepDeg < 0.999 * gridLonStepDeg ? &l : nullptr;
   }
   return nullptr;
 }
+}  // namespace
+
+const RasterLayer* streamedMaskLayer(const LayerStack& stack, double gridLonStepDeg) {
+  return stack.drawingMask() ? firstIfStreamed(stack, LayerKind::Mask, gridLonStepDeg) : nullptr;
+}
 
 const RasterLayer* streamedElevationLayer(const LayerStack& stack, double gridLonStepDeg) {
-  for (const RasterLayer& l : stack.layers()) {
-    if (l.kind != LayerKind::Elevation) continue;
-    const raster::GeoTransform& t = l.raster->transform();
-    const bool global = t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * l.raster->height() + 180.0) < 1e-6;
-    return global && t.lonStepDeg < 0.999 * gridLonStepDeg ? &l : nullptr;
-  }
-  return nullptr;
+  return firstIfStreamed(stack, LayerKind::Elevation, gridLonStepDeg);
 }
 
 WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg) {
