@@ -54,6 +54,16 @@ geocean_sea_state capiSea() {
   return s;
 }
 
+// capiSea() on the façade side.
+void setFacadeSea(geocean::ocean::Ocean& core) {
+  geocean::waves::SeaState ws;
+  ws.windSpeedMps = 12.0;
+  ws.seed = 7;
+  ws.anchorLatDeg = kLat;
+  ws.anchorLonDeg = kLon;
+  core.setSeaState(geocean::waves::Model::Gerstner, ws);
+}
+
 struct Spec {
   int32_t hull;
   double size[3];
@@ -95,12 +105,7 @@ TEST(CapiBodies, PosesAreTheFacadeSimulationsBits) {
 
   // The façade side, built as the ABI documents it.
   geocean::ocean::Ocean core;
-  geocean::waves::SeaState ws;
-  ws.windSpeedMps = 12.0;
-  ws.seed = 7;
-  ws.anchorLatDeg = kLat;
-  ws.anchorLonDeg = kLon;
-  core.setSeaState(geocean::waves::Model::Gerstner, ws);
+  setFacadeSea(core);
   auto oceanSea = std::make_shared<bodies::OceanSea>(core.current());
   bodies::Simulation sim({.stepS = 1.0 / 60.0});
   for (const Spec& s : kSpecs) {
@@ -435,12 +440,7 @@ TEST(CapiBodies, ContactPointBodiesAreTheFacadeProxysBitsAndAShortDescIsAHull) {
 
   // The façade, as the header documents it.
   geocean::ocean::Ocean core;
-  geocean::waves::SeaState ws;
-  ws.windSpeedMps = 12.0;
-  ws.seed = 7;
-  ws.anchorLatDeg = kLat;
-  ws.anchorLonDeg = kLon;
-  core.setSeaState(geocean::waves::Model::Gerstner, ws);
+  setFacadeSea(core);
   auto oceanSea = std::make_shared<bodies::OceanSea>(core.current());
   bodies::Simulation sim({.stepS = 1.0 / 60.0});
   auto hull = std::make_shared<const bodies::HullMesh>(bodies::HullMesh::boat(20.0));
