@@ -197,11 +197,22 @@ double piersonMoskowitz(double omega, double windSpeedMps) {
   return 0.0081 * kG * kG / std::pow(omega, 5.0) * std::exp(-1.25 * std::pow(wp / omega, 4.0));
 }
 
+double fullyDevelopedFetchM(double windSpeedMps) {
+  // JONSWAP's peak 22 (g^2 / (U X))^(1/3) meets Pierson-Moskowitz's
+  // 0.877 g / U at gX/U^2 = (22 / 0.877)^3 = 15,786.
+  const double r = 22.0 / 0.877;
+  return r * r * r * windSpeedMps * windSpeedMps / kG;
+}
+
 double jonswap(double omega, double windSpeedMps, double fetchM) {
   if (omega <= 0.0) return 0.0;
   const double u = windSpeedMps;
-  const double wp = 22.0 * std::cbrt(kG * kG / (u * fetchM));
-  const double alpha = 0.076 * std::pow(u * u / (fetchM * kG), 0.22);
+  // The growth laws hold up to full development only: past it Hs grew
+  // without bound (142 m at 1e12 m) and u * 8e307 overflowed to NaN heights
+  // (fuzz_capi_sea_state finding 8).
+  const double x = std::min(fetchM, fullyDevelopedFetchM(u));
+  const double wp = 22.0 * std::cbrt(kG * kG / (u * x));
+  const double alpha = 0.076 * std::pow(u * u / (x * kG), 0.22);
   const double sigma = omega <= wp ? 0.07 : 0.09;
   const double r = std::exp(-(omega - wp) * (omega - wp) / (2.0 * sigma * sigma * wp * wp));
   return alpha * kG * kG / std::pow(omega, 5.0) * std::exp(-1.25 * std::pow(wp / omega, 4.0)) * std::pow(3.3, r);
@@ -211,7 +222,8 @@ double peakOmega(const SeaState& sea) {
   const double wpPm = 0.877 * kG / sea.windSpeedMps;
   if (sea.fetchM <= 0.0) return wpPm;
   // A fetch longer than the fully developed one changes nothing.
-  return std::max(wpPm, 22.0 * std::cbrt(kG * kG / (sea.windSpeedMps * sea.fetchM)));
+  const double x = std::min(sea.fetchM, fullyDevelopedFetchM(sea.windSpeedMps));
+  return std::max(wpPm, 22.0 * std::cbrt(kG * kG / (sea.windSpeedMps * x)));
 }
 
 double waveNumberExact(double omega, double depthM) {

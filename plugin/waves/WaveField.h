@@ -250,6 +250,9 @@ class WaveField {
 
 // Sea spectra (omega in rad/s, S in m^2 s).
 double piersonMoskowitz(double omega, double windSpeedMps);
+// Fetch (m) at which the JONSWAP sea is fully developed: its peak is
+// Pierson-Moskowitz's. A longer fetch gives the same sea.
+double fullyDevelopedFetchM(double windSpeedMps);
 // JONSWAP for a fetch (m); gamma = 3.3.
 double jonswap(double omega, double windSpeedMps, double fetchM);
 // Peak angular frequency of the sea state's spectrum.

@@ -268,3 +268,66 @@ TEST(SeaState, FftAtTimesBeyondThePhaseRangeIsFinite) {
     EXPECT_TRUE(std::isfinite(b.heightM)) << t;
   }
 }
+
+namespace {
+// Hs = 4 sqrt(m0) of the textbook JONSWAP spectrum (Hasselmann et al. 1973,
+// gamma 3.3, sigma 0.07 / 0.09), Simpson over 0.3 .. 30 w_p.
+double textbookJonswapHs(double u, double fetchM) {
+  const double alpha = 0.076 * std::pow(u * u / (fetchM * kG), 0.22), wp = 22.0 * std::cbrt(kG * kG / (u * fetchM));
+  auto s = [&](double w) {
+    const double sigma = w <= wp ? 0.07 : 0.09;
+    return alpha * kG * kG / std::pow(w, 5) * std::exp(-1.25 * std::pow(wp / w, 4)) *
+           std::pow(3.3, std::exp(-(w - wp) * (w - wp) / (2 * sigma * sigma * wp * wp)));
+  };
+  const int n = 20000;
+  const double a = 0.3 * wp, h = (30.0 * wp - a) / n;
+  double sum = s(a) + s(a + n * h);
+  for (int i = 1; i < n; ++i) sum += s(a + i * h) * (i % 2 ? 4 : 2);
+  return 4.0 * std::sqrt(sum * h / 3.0);
+}
+}  // namespace
+
+// Fuzz finding 8 (tests/fuzz/regressions/fuzz_capi_sea_state/): the growth
+// laws kept growing past full development (Hs 142 m at U 31 m/s, fetch 1e12
+// m) and overflowed to NaN heights at 8e307 m. Full development is where
+// JONSWAP's peak reaches Pierson-Moskowitz's 0.877 g/U: gX/U^2 =
+// (22/0.877)^3. Any longer fetch is that sea: the same heights to the bit,
+// whose Hs is the textbook JONSWAP's at that fetch (10 %: as
+// SignificantWaveHeightMatchesPiersonMoskowitz, sampling ~1 %).
+TEST(SeaState, AFetchBeyondFullDevelopmentIsTheFullyDevelopedSea) {
+  for (const double u : {8.0, 31.3443}) {
+    const double full = std::pow(22.0 / 0.877, 3) * u * u / kG;
+    EXPECT_NEAR(fullyDevelopedFetchM(u), full, 1e-9 * full);
+    SeaState s;
+    s.windSpeedMps = u;
+    s.fetchM = full;
+    EXPECT_NEAR(peakOmega(s), 0.877 * kG / u, 1e-9);
+    for (const Model m : {Model::Gerstner, Model::Fft, Model::Noise}) {
+      std::string err;
+      s.fetchM = full;
+      const auto atFull = WaveField::create(m, s, err);
+      ASSERT_TRUE(atFull) << err;
+      Sampler pts;
+      double sum = 0, sum2 = 0;
+      const int n = 20000;
+      std::vector<double> lat(n), lon(n), t(n);
+      for (int i = 0; i < n; ++i) {
+        lat[i] = pts.lat(), lon[i] = pts.lon();
+        t[i] = m == Model::Fft ? 450.0 * (i % 8) + 0.25 : pts.uni(0, 3600);
+        const double h = atFull->surfaceAt(lat[i], lon[i], t[i]).heightM;
+        sum += h, sum2 += h * h;
+      }
+      const double hs = 4.0 * std::sqrt(sum2 / n - (sum / n) * (sum / n)), want = textbookJonswapHs(u, full);
+      EXPECT_NEAR(hs, want, 0.10 * want) << toString(m) << " U=" << u;
+      for (const double fetch : {1e12, 8.0e307}) {
+        s.fetchM = fetch;
+        const auto beyond = WaveField::create(m, s, err);
+        ASSERT_TRUE(beyond) << err;
+        EXPECT_EQ(peakOmega(s), peakOmega(atFull->seaState())) << fetch;
+        for (int i = 0; i < n; i += 97)
+          ASSERT_EQ(beyond->surfaceAt(lat[i], lon[i], t[i]).heightM, atFull->surfaceAt(lat[i], lon[i], t[i]).heightM)
+              << toString(m) << " U=" << u << " fetch " << fetch << " at " << lat[i] << ", " << lon[i];
+      }
+    }
+  }
+}
