@@ -58,6 +58,9 @@ layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outData;
 
 #include "ocean_shading.glsl"
+#ifndef GEOCEAN_FAR_SHADED
+#include "wake.glsl"
+#endif
 
 void main() {
   // Coverage: B-spline magnified (a smooth shoreline, no 5' steps), the
@@ -78,7 +81,10 @@ void main() {
 
 #ifdef GEOCEAN_FAR_SHADED
   outColor = vec4(vColor, alpha);
-#elif defined(FOAM_TIMES)
+#else
+  // The floating bodies' foam (wake.glsl) joins the crests' foam.
+  float wake = wakeFoam(vEyeRel, normalize(vUp));
+#if defined(FOAM_TIMES)
   // The kernel is evaluated per fragment, so the folds stay resolved while
   // a pixel (1/8 of the cell's footprint) is under half the shortest wave
   // (peak / 16: vFar ~0.25); the mean cover takes over by vFar 0.75.
@@ -88,13 +94,14 @@ void main() {
 #ifdef GEOCEAN_BREAK_FOAM
   crest = max(crest, vBreakFoam);
 #endif
-  outColor = vec4(oceanColorCrest(vEyeRel, vNormal, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, crest, w), alpha);
 #elif defined(GEOCEAN_BREAK_FOAM)
   // Issue 15 hook: oceanColor's crest foam, and the breaking waves' on top.
   float crest = max(mix(smoothstep(vFoamM - uFoamSoftM, vFoamM + uFoamSoftM, vHeightM), uWhitecapCover, vFar), vBreakFoam);
-  outColor = vec4(oceanColorCrest(vEyeRel, vNormal, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, crest, w), alpha);
 #else
-  outColor = vec4(oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, vFoamM, w), alpha);
+  // oceanColor's crest foam.
+  float crest = mix(smoothstep(vFoamM - uFoamSoftM, vFoamM + uFoamSoftM, vHeightM), uWhitecapCover, vFar);
+#endif
+  outColor = vec4(oceanColorCrest(vEyeRel, vNormal, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, max(crest, wake), w), alpha);
 #endif
   outData = uWriteData != 0 ? vec4(vEyeRel, 1.0) : vec4(0.0);
 }

@@ -10,10 +10,16 @@
 
 #include <charconv>
 #include <memory>
+#include <mutex>
 #include <new>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
+
+namespace geocean::ocean_render {
+struct Wake;
+}
 
 namespace geocean::capi {
 
@@ -122,6 +128,10 @@ struct DrawStateDeleter {
 // CPU side always.
 void releaseDrawState(std::unique_ptr<DrawState, DrawStateDeleter>& d);
 
+// The bodies of one set as the draw foams around them (geocean_bodies.cpp):
+// their interpolated poses, hull extents and speed through the water.
+void appendWakes(const geocean_bodies& bodies, std::vector<geocean::ocean_render::Wake>& out);
+
 }  // namespace geocean::capi
 
 struct geocean_ocean {
@@ -131,4 +141,9 @@ struct geocean_ocean {
   std::unique_ptr<geocean::capi::DrawState, geocean::capi::DrawStateDeleter> draw;
   // The draw half reads the state through this.
   std::shared_ptr<const Snapshot> current() const { return core.current(); }
+  // The body sets on this ocean (geocean_bodies_create adds, _destroy
+  // removes): the draw foams around their bodies. Lock order: this mutex,
+  // then a set's own.
+  std::mutex bodySetsMutex;
+  std::vector<const geocean_bodies*> bodySets;
 };

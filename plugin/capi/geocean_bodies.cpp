@@ -11,6 +11,7 @@
 #include "plugin/bodies/Spawn.h"
 #include "plugin/bodies/Terrain.h"
 #include "plugin/capi/CapiSupport.h"
+#include "plugin/render/OceanRenderer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -108,8 +109,55 @@ struct geocean_bodies {
       repulsion = std::make_shared<bodies::Repulsion>(sim, 1.0, repulsionNpm);
       sim.addForceModel(repulsion);
     }
+    std::lock_guard lock(o->bodySetsMutex);
+    o->bodySets.push_back(this);
   }
+  ~geocean_bodies() {
+    std::lock_guard lock(ocean->bodySetsMutex);
+    std::erase(ocean->bodySets, this);
+  }
+  geocean_bodies(const geocean_bodies&) = delete;
+  geocean_bodies& operator=(const geocean_bodies&) = delete;
 };
+
+namespace geocean::capi {
+
+void appendWakes(const geocean_bodies& b, std::vector<ocean_render::Wake>& out) {
+  std::lock_guard lock(b.mutex);
+  const auto& all = b.sim.bodies();
+  if (all.empty()) return;
+  std::vector<double> lat(all.size()), lon(all.size()), t(all.size(), b.sim.time());
+  std::vector<bodies::BodyState> states;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    states.push_back(b.sim.drawState(all[i].id));
+    states.back().velocityEcef = all[i].state.velocityEcef;
+    const geocean::geo::Geodetic g = geocean::geo::fromEcef(states.back().positionEcef);
+    lat[i] = g.latDeg, lon[i] = g.lonDeg;
+  }
+  // Speed through the water: the surface particle's own velocity off (a
+  // boat heaving and surging with the waves makes no wake).
+  std::vector<bodies::SeaSample> water(all.size());
+  b.sea->sample(lat.data(), lon.data(), t.data(), all.size(), true, water.data());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const auto hull = b.hulls.find(all[i].id);
+    if (hull == b.hulls.end() || hull->second->vertices().empty()) continue;
+    glm::dvec2 lo(hull->second->vertices()[0]), hi = lo;
+    for (const glm::dvec3& v : hull->second->vertices()) lo = glm::min(lo, glm::dvec2(v)), hi = glm::max(hi, glm::dvec2(v));
+    const bodies::BodyState& s = states[i];
+    const geocean::geo::EnuFrame f = geocean::geo::enuFrame({lat[i], lon[i], 0.0});
+    glm::dvec3 waterV(0.0);
+    if (std::isfinite(water[i].heightM))  // no water velocity on land
+      waterV = f.toEcef({water[i].horizontalVelocityEnMps.x, water[i].horizontalVelocityEnMps.y, 0.0});
+    ocean_render::Wake w;
+    w.centreEcef = s.positionEcef + s.orientation * glm::dvec3(0.5 * (lo + hi), 0.0);
+    w.bowEcef = s.orientation * glm::dvec3(1.0, 0.0, 0.0);
+    w.velocityEcef = s.velocityEcef - waterV;
+    w.halfLengthM = 0.5 * (hi.x - lo.x), w.halfBeamM = 0.5 * (hi.y - lo.y);
+    out.push_back(w);
+  }
+}
+
+}  // namespace geocean::capi
 
 namespace {
 

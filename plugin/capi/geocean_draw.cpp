@@ -407,6 +407,12 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
       }
       oi.refraction = ds.view->refraction;
       gl.renderer->setInputs(oi);
+      std::vector<geocean::ocean_render::Wake> wakes;
+      {
+        std::lock_guard lock(ocean->bodySetsMutex);
+        for (const geocean_bodies* b : ocean->bodySets) appendWakes(*b, wakes);
+      }
+      gl.renderer->setWakes(std::move(wakes));
       gl.renderer->setCompleteTiles(ds.view->completeTiles);
       gl.renderer->draw(ds.view->cam, ds.view->light, ds.view->reference);
     } catch (const geocean::gl::ShaderError& e) {

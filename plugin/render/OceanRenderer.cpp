@@ -553,6 +553,33 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     }
   }
 
+  // The bodies' foam (wake.glsl): the kMaxWakes nearest the eye of those
+  // fast enough to make any (the others would add exactly nothing).
+  struct WakeUniform {
+    glm::vec4 centre, bow, track;
+    double eyeDistance2;
+  };
+  std::vector<WakeUniform> wakes;
+  if (!bare)
+    for (const Wake& w : wakes_) {
+      if (!(w.halfLengthM > 0.0 && w.halfBeamM > 0.0)) continue;
+      const geo::Geodetic at = geo::fromEcef(w.centreEcef);
+      const glm::dvec3 up = geo::surfaceNormal(at.latDeg, at.lonDeg);
+      const glm::dvec3 v = w.velocityEcef - glm::dot(w.velocityEcef, up) * up;
+      const double u = glm::length(v), froude = u / std::sqrt(9.81 * 2.0 * w.halfLengthM);
+      if (!(u > kWakeStirredMps[0] || froude > kWakeBreakingFroude[0])) continue;
+      const glm::dvec3 rel = w.centreEcef - cam.eyeEcef();
+      wakes.push_back({glm::vec4(glm::vec3(rel), float(w.halfLengthM)), glm::vec4(glm::vec3(w.bowEcef), float(w.halfBeamM)),
+                       glm::vec4(glm::vec3(v / u), float(u)), glm::dot(rel, rel)});
+    }
+  if (wakes.size() > std::size_t(kMaxWakes)) {
+    std::partial_sort(wakes.begin(), wakes.begin() + kMaxWakes, wakes.end(),
+                      [](const WakeUniform& a, const WakeUniform& b) { return a.eyeDistance2 < b.eyeDistance2; });
+    wakes.resize(kMaxWakes);
+  }
+  std::vector<glm::vec4> wakeCentre, wakeBow, wakeTrack;
+  for (const WakeUniform& w : wakes) wakeCentre.push_back(w.centre), wakeBow.push_back(w.bow), wakeTrack.push_back(w.track);
+
   const glm::vec4 elevationGeo = world_->elevation().geo(), waterGeo = world_->water().geo();
   const auto setUniforms = [&](const gl::GlProgram& p) {
     glUniformMatrix4fv(p.uniform("uViewProj"), 1, GL_FALSE, &cam.gpu().viewProj[0][0]);
@@ -585,6 +612,14 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glUniform1f(p.uniform("uRefLonDeg"), float(g.lonDeg));
     glUniform1f(p.uniform("uTimeS"), float(std::fmod(light.timeS, 3600.0)));
     glUniform1i(p.uniform("uWriteData"), writeData_ ? 1 : 0);
+    glUniform1i(p.uniform("uWakeCount"), GLint(wakes.size()));
+    if (!wakes.empty()) {
+      glUniform4fv(p.uniform("uWakeCentre"), GLsizei(wakes.size()), &wakeCentre[0][0]);
+      glUniform4fv(p.uniform("uWakeBow"), GLsizei(wakes.size()), &wakeBow[0][0]);
+      glUniform4fv(p.uniform("uWakeTrack"), GLsizei(wakes.size()), &wakeTrack[0][0]);
+      glUniform4f(p.uniform("uWakeEdges"), float(kWakeBreakingFroude[0]), float(kWakeBreakingFroude[1]),
+                  float(kWakeStirredMps[0]), float(kWakeStirredMps[1]));
+    }
     glUniform1i(p.uniform("uRefraction"), inputs_.refraction ? 1 : 0);
     glUniform1i(p.uniform("uReflection"), reflect ? 1 : 0);
     if (reflect) {

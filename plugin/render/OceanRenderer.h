@@ -17,6 +17,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <vector>
 
 namespace geocean::ocean_render {
 
@@ -92,6 +93,15 @@ struct OceanInputs {
   bool refraction = true;  // the bottom through the water (Snell, Beer-Lambert)
 };
 
+// A floating body at the waterline, for the foam it makes on the sea
+// (shaders/wake.glsl): the plugin's bodies (plugin/capi) give these each draw.
+struct Wake {
+  glm::dvec3 centreEcef{0.0};    // the hull's centre at the waterline
+  glm::dvec3 bowEcef{0.0};       // the bow's direction (unit; its horizontal part is used)
+  glm::dvec3 velocityEcef{0.0};  // through the water (m/s; its horizontal part is used)
+  double halfLengthM = 0.0, halfBeamM = 0.0;
+};
+
 // Draws into the current context's bound framebuffer; the host decides
 // when (plugin/capi's geocean_draw, or a test's layer).
 class OceanRenderer {
@@ -112,6 +122,15 @@ class OceanRenderer {
   // For the next draws (kept until changed).
   void setInputs(OceanInputs inputs) { inputs_ = std::move(inputs); }
   const OceanInputs& inputs() const { return inputs_; }
+  // The bodies on the sea for the next draws (kept until changed): the
+  // kMaxWakes nearest the eye that move fast enough to foam are drawn.
+  void setWakes(std::vector<Wake> wakes) { wakes_ = std::move(wakes); }
+  static constexpr int kMaxWakes = 16;  // wake.glsl's GEOCEAN_MAX_WAKES
+  // Where wake.glsl's foam sets in (smoothstep edges): the bow wave breaks
+  // from a length Froude number U / sqrt(g L) of 0.2, fully by 0.35; the
+  // stern's turbulent wake foams from 0.5 m/s through the water, fully by 3.
+  static constexpr double kWakeBreakingFroude[2] = {0.2, 0.35};
+  static constexpr double kWakeStirredMps[2] = {0.5, 3.0};
   // The host/layer contract: whether every pixel over the rectangle is
   // drawn opaque for pixels of this footprint (metres), and the cell size.
   bool coversOpaquely(double lat0Deg, double lat1Deg, double lon0Deg, double lon1Deg, double pixelFootprintM) const;
@@ -189,6 +208,7 @@ class OceanRenderer {
   waves::GpuPatch pastPatch_;
   glm::dvec3 foamCalibratedAt_{0.0};  // the origin: never a nadir, so the first draw calibrates
   OceanInputs inputs_;
+  std::vector<Wake> wakes_;
   bool writeData_ = false;
   bool glAbandoned_ = false;
   std::unique_ptr<WaterPages> pages_;
