@@ -237,7 +237,7 @@ void TerrainContact::afterStep(Body& body, const BodyState& before) const {
   for (const auto& p : points_) {
     const glm::dvec3 a = T.toPatch(before.positionEcef + before.bodyToEcef(p));
     const glm::dvec3 b = T.toPatch(s.positionEcef + s.bodyToEcef(p));
-    if (auto h = T.sweep(a, b); h && (!first || h->t < first->t)) first = h;
+    if (auto h = bruteForce_ ? T.sweepBruteForce(a, b) : T.sweep(a, b); h && (!first || h->t < first->t)) first = h;
   }
   if (first) {
     s.positionEcef = before.positionEcef + first->t * (s.positionEcef - before.positionEcef);

@@ -102,9 +102,13 @@ class TerrainContact final : public StepConstraint {
   // outside the patch. `geocean float` reports grounded when <= 1 cm.
   double clearanceM(const BodyState& state) const;
   const HeightField& terrain() const { return *terrain_; }
+  // The reference (benchmark): every sweep tests every triangle of the
+  // field (HeightField::sweepBruteForce); the same hits, far slower.
+  void setBruteForce(bool on) { bruteForce_ = on; }
 
  private:
   std::shared_ptr<const HeightField> terrain_;
+  bool bruteForce_ = false;
   void friction(glm::dvec3& velocityEcef, const glm::dvec3& normalEcef, double removedNormalMps) const;
   std::vector<glm::dvec3> points_;
   double mu_ = 0.0;
