@@ -438,20 +438,27 @@ void ContactPointForce::accumulate(const Body& body, const StepContext& ctx, Wre
   S.resize(n);
   const glm::dmat3 R = bodyToEnu(body.state, ctx);
   for (std::size_t i = 0; i < n; ++i) S.off[i] = R * points_[i];
-  offsetsToGeodetic(ctx, S.off.data(), n, S.lat.data(), S.lon.data(), S.h.data());
-  std::fill(S.t.begin(), S.t.begin() + n, ctx.timeS);
   const bool each = options_.waterVelocityAtEachPoint;
-  sea_->sample(S.lat.data(), S.lon.data(), S.t.data(), n, each, S.sea.data());
+  // beginStep's queries when they were for this state and time.
+  const SeaSample* sea = nullptr;
   SeaSample centre{};
   if (!each) {
-    // From beginStep's one query for all centres when it was for this state.
     const auto it = std::lower_bound(centres_.begin(), centres_.end(), body.id,
                                      [](const Centre& c, BodyId v) { return c.id < v; });
     if (it != centres_.end() && it->id == body.id && it->positionEcef == body.state.positionEcef &&
-        centreTimeS_ == ctx.timeS)
-      centre = centreSea_[std::size_t(it - centres_.begin())];
-    else
-      sea_->sample(&ctx.geodetic.latDeg, &ctx.geodetic.lonDeg, &ctx.timeS, 1, true, &centre);
+        centreTimeS_ == ctx.timeS) {
+      const std::size_t j = std::size_t(it - centres_.begin());
+      centre = centreSea_[j];
+      sea = &pointSea_[j * n];
+      std::copy_n(&pointH_[j * n], n, S.h.begin());
+    }
+  }
+  if (!sea) {
+    offsetsToGeodetic(ctx, S.off.data(), n, S.lat.data(), S.lon.data(), S.h.data());
+    std::fill(S.t.begin(), S.t.begin() + n, ctx.timeS);
+    sea_->sample(S.lat.data(), S.lon.data(), S.t.data(), n, each, S.sea.data());
+    sea = S.sea.data();
+    if (!each) sea_->sample(&ctx.geodetic.latDeg, &ctx.geodetic.lonDeg, &ctx.timeS, 1, true, &centre);
   }
   const glm::dvec3 vCentre = std::isnan(centre.heightM)
                                  ? glm::dvec3(0.0)
@@ -462,7 +469,7 @@ void ContactPointForce::accumulate(const Body& body, const StepContext& ctx, Wre
   const glm::dvec3 wEnu = ctx.enu.toLocal(body.state.angularVelocityEcef());
   glm::dvec3 F(0.0), T(0.0);
   for (std::size_t i = 0; i < n; ++i) {
-    const SeaSample& s = S.sea[i];
+    const SeaSample& s = sea[i];
     if (std::isnan(s.heightM)) continue;
     const double d = s.heightM - S.h[i];
     const double frac = std::clamp(d / column_ + 0.5, 0.0, 1.0);
@@ -483,20 +490,31 @@ void ContactPointForce::beginStep(const Simulation& sim) const {
   centres_.clear();
   centreSea_.clear();
   if (options_.waterVelocityAtEachPoint) return;
+  const std::size_t n = points_.size();
   std::vector<double> lat, lon, t;
+  pointLat_.clear(), pointLon_.clear(), pointH_.clear();
+  std::vector<glm::dvec3> off(n);
   for (const Body& b : sim.bodies()) {
     bool mine = false;
     for (const auto& m : b.forces) mine |= m.get() == this;
     if (!mine) continue;
-    // As Simulation::context computes it, so accumulate's centre is this point.
-    const geo::Geodetic g = geo::fromEcef(b.state.positionEcef);
+    // As Simulation::context computes it for accumulate: the same centre and points.
+    const StepContext ctx = sim.context(b.state);
     centres_.push_back({b.id, b.state.positionEcef});
-    lat.push_back(g.latDeg), lon.push_back(g.lonDeg);
+    lat.push_back(ctx.geodetic.latDeg), lon.push_back(ctx.geodetic.lonDeg);
+    const glm::dmat3 R = bodyToEnu(b.state, ctx);
+    for (std::size_t i = 0; i < n; ++i) off[i] = R * points_[i];
+    const std::size_t k = pointLat_.size();
+    pointLat_.resize(k + n), pointLon_.resize(k + n), pointH_.resize(k + n);
+    offsetsToGeodetic(ctx, off.data(), n, &pointLat_[k], &pointLon_[k], &pointH_[k]);
   }
   centreTimeS_ = sim.time();
   t.assign(lat.size(), centreTimeS_);
   centreSea_.resize(lat.size());
   sea_->sample(lat.data(), lon.data(), t.data(), lat.size(), true, centreSea_.data());
+  pointT_.assign(pointLat_.size(), centreTimeS_);
+  pointSea_.resize(pointLat_.size());
+  sea_->sample(pointLat_.data(), pointLon_.data(), pointT_.data(), pointLat_.size(), false, pointSea_.data());
 }
 
 // ---- Thrust, Repulsion -----------------------------------------------------------

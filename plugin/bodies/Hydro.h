@@ -178,9 +178,10 @@ class ContactPointForce final : public ForceModel {
                                                                 std::shared_ptr<const SeaSurface> sea,
                                                                 ContactPointOptions options = {});
 
-  // The water's velocity at every centre of mass of this model's bodies in
-  // one sea query (a SIMD batch fills its vectors; per body a 1-point query
-  // would cost a whole vector); accumulate uses it for the same state and time.
+  // The water's velocity at every centre of mass of this model's bodies,
+  // and the sea at all their points, in one sea query each (a SIMD batch
+  // fills its vectors; per body a 1-point query would cost a whole vector);
+  // accumulate uses them for the same state and time.
   void beginStep(const Simulation& sim) const override;
   void accumulate(const Body& body, const StepContext& ctx, Wrench& wrench) const override;
   const std::vector<glm::dvec3>& points() const { return points_; }
@@ -198,6 +199,11 @@ class ContactPointForce final : public ForceModel {
   mutable std::vector<Centre> centres_;  // ids ascending
   mutable std::vector<SeaSample> centreSea_;
   mutable double centreTimeS_ = 0.0;
+  // And every body's points in one query too (a body's 8 points are 2
+  // AVX2 vectors: per body the query's set-up cost more than its kernel):
+  // points_.size() per centre, their sea and their heights above the ellipsoid.
+  mutable std::vector<SeaSample> pointSea_;
+  mutable std::vector<double> pointLat_, pointLon_, pointH_, pointT_;
 };
 
 // Engine force along the body's x axis (bow) at the centre of mass (N).
