@@ -1,5 +1,6 @@
 // `geocean query` end to end: argument forms, JSON, streaming CSV, and
 // every kind of bad input (message naming row and value, non-zero exit).
+#include "tests/support/Jonswap.h"
 #include "tests/support/Subprocess.h"
 
 #include <gtest/gtest.h>
@@ -47,23 +48,6 @@ std::vector<Row> query(const std::string& args, const std::string& csv) {
 
 // Random points in the open central Pacific (deep water, few islands) at
 // random times: far enough apart to be independent samples of the sea.
-// Hs = 4 sqrt(m0) of the textbook JONSWAP spectrum (Hasselmann et al.
-// 1973): alpha = 0.076 (U^2 / (F g))^0.22, w_p = 22 (g^2 / (U F))^(1/3),
-// gamma 3.3, sigma 0.07 / 0.09; Simpson over 0.3 .. 30 w_p.
-double jonswapHs(double u, double fetchM) {
-  const double alpha = 0.076 * std::pow(u * u / (fetchM * kG), 0.22), wp = 22.0 * std::cbrt(kG * kG / (u * fetchM));
-  auto s = [&](double w) {
-    const double sigma = w <= wp ? 0.07 : 0.09;
-    return alpha * kG * kG / std::pow(w, 5) * std::exp(-1.25 * std::pow(wp / w, 4)) *
-           std::pow(3.3, std::exp(-(w - wp) * (w - wp) / (2 * sigma * sigma * wp * wp)));
-  };
-  const int n = 20000;
-  const double a = 0.3 * wp, h = (30.0 * wp - a) / n;
-  double sum = s(a) + s(a + n * h);
-  for (int i = 1; i < n; ++i) sum += s(a + i * h) * (i % 2 ? 4 : 2);
-  return 4.0 * std::sqrt(sum * h / 3.0);
-}
-
 // timeSlots > 0: times from that many values only (the FFT model builds one
 // table per distinct time).
 std::string pacificRows(int n, std::uint64_t seed, int timeSlots = 0) {
@@ -193,7 +177,7 @@ TEST(QueryCli, SignificantWaveHeightOfEveryModelMatchesPiersonMoskowitz) {
     }
     ASSERT_GT(n, 2700) << c.args;  // the box is > 90% open ocean
     const double hs = 4.0 * std::sqrt(sum2 / n - (sum / n) * (sum / n));
-    const double hsPm = c.windMps > 0 ? 0.21 * c.windMps * c.windMps / kG : jonswapHs(6.0, 50000.0);
+    const double hsPm = c.windMps > 0 ? 0.21 * c.windMps * c.windMps / kG : geocean::test::textbookJonswapHs(6.0, 50000.0);
     EXPECT_NEAR(hs, hsPm, 0.10 * hsPm) << c.args;
   }
 }

@@ -3,6 +3,7 @@
 // behaviour, continuity across the antimeridian and at the poles, and the
 // horizontal inversion checked through GeographicLib.
 #include "globe/geo/Ellipsoid.h"
+#include "tests/support/Jonswap.h"
 #include "tests/waves/MakeField.h"
 #include "plugin/waves/WaveField.h"
 
@@ -269,23 +270,6 @@ TEST(SeaState, FftAtTimesBeyondThePhaseRangeIsFinite) {
   }
 }
 
-namespace {
-// Hs = 4 sqrt(m0) of the textbook JONSWAP spectrum (Hasselmann et al. 1973,
-// gamma 3.3, sigma 0.07 / 0.09), Simpson over 0.3 .. 30 w_p.
-double textbookJonswapHs(double u, double fetchM) {
-  const double alpha = 0.076 * std::pow(u * u / (fetchM * kG), 0.22), wp = 22.0 * std::cbrt(kG * kG / (u * fetchM));
-  auto s = [&](double w) {
-    const double sigma = w <= wp ? 0.07 : 0.09;
-    return alpha * kG * kG / std::pow(w, 5) * std::exp(-1.25 * std::pow(wp / w, 4)) *
-           std::pow(3.3, std::exp(-(w - wp) * (w - wp) / (2 * sigma * sigma * wp * wp)));
-  };
-  const int n = 20000;
-  const double a = 0.3 * wp, h = (30.0 * wp - a) / n;
-  double sum = s(a) + s(a + n * h);
-  for (int i = 1; i < n; ++i) sum += s(a + i * h) * (i % 2 ? 4 : 2);
-  return 4.0 * std::sqrt(sum * h / 3.0);
-}
-}  // namespace
 
 // Fuzz finding 8 (tests/fuzz/regressions/fuzz_capi_sea_state/): the growth
 // laws kept growing past full development (Hs 142 m at U 31 m/s, fetch 1e12
@@ -317,7 +301,7 @@ TEST(SeaState, AFetchBeyondFullDevelopmentIsTheFullyDevelopedSea) {
         const double h = atFull->surfaceAt(lat[i], lon[i], t[i]).heightM;
         sum += h, sum2 += h * h;
       }
-      const double hs = 4.0 * std::sqrt(sum2 / n - (sum / n) * (sum / n)), want = textbookJonswapHs(u, full);
+      const double hs = 4.0 * std::sqrt(sum2 / n - (sum / n) * (sum / n)), want = geocean::test::textbookJonswapHs(u, full);
       EXPECT_NEAR(hs, want, 0.10 * want) << toString(m) << " U=" << u;
       for (const double fetch : {1e12, 8.0e307}) {
         s.fetchM = fetch;
