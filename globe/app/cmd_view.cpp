@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,7 @@ struct ViewArgs {
   std::string screenshot;  // PNG of the last of --frames
   std::string statsCsv;    // per-frame CSV (position, sea, fps, resident memory)
   bool noHud = false;
+  bool panel = false;  // the control panel open from the start (P toggles it)
   bool noReflections = false, noRefraction = false;
   LayerOptions layers;
   BoatOptions boats;
@@ -58,6 +60,22 @@ bool seaHeightUnder(const host::PluginOceanLayer& ocean, double latDeg, double l
       GEOCEAN_OK)
     return false;
   return true;
+}
+
+// The HUD's sea-state line: the panel's model and wind (with its Beaufort
+// force) and, where the camera is over the ocean, the plugin's significant
+// wave height and peak period there.
+std::string seaStateLine(const host::PluginOceanLayer& ocean, const gl::PanelState& p, double latDeg, double lonDeg) {
+  // Short lines, as the HUD's others: the panel stays in a corner of small windows.
+  char b[160];
+  int n = std::snprintf(b, sizeof b, "%s  Bft %d\nwind %4.1f from %03.0f\xC2\xB0", gl::kPanelWaveModels[p.waveModel],
+                        gl::beaufortOf(p.windMps), p.windMps, p.windFromDeg);
+  const auto& api = ocean.plugin().api();
+  double hs = std::nan(""), tp = std::nan("");
+  if (api.querySeaState && api.querySeaState(ocean.ocean(), 1, &latDeg, &lonDeg, &hs, &tp, nullptr, nullptr) == GEOCEAN_OK &&
+      std::isfinite(hs) && n > 0 && n < int(sizeof b))
+    std::snprintf(b + n, sizeof b - size_t(n), "\nHs %.2f m Tp %.1f s", hs, tp);
+  return b;
 }
 
 // Google Earth / Cesium style navigation: left-drag turns the globe under the
@@ -244,6 +262,13 @@ int runView(const ViewArgs& a) {
       if (!hud) std::fprintf(stderr, "geocean view: %s; going on without it\n", hudErr.c_str());
     }
     bool showHud = true, hKeyWasDown = false;
+    // The control panel: the sea state and the light, live (P toggles it).
+    gl::PanelState panel;
+    for (int i = 0; i < int(std::size(gl::kPanelWaveModels)); ++i)
+      if (a.waves == gl::kPanelWaveModels[i]) panel.waveModel = i;
+    panel.windMps = float(a.windMps), panel.windFromDeg = float(a.windFromDeg);
+    panel.reflections = !a.noReflections, panel.refraction = !a.noRefraction;
+    bool showPanel = a.panel && hud, pKeyWasDown = false;
     glfwSetWindowUserPointer(win, &c);
     glfwSetScrollCallback(win, [](GLFWwindow* w, double, double dy) {
       static_cast<Controller*>(glfwGetWindowUserPointer(w))->wheel += dy;
@@ -266,10 +291,13 @@ int runView(const ViewArgs& a) {
       glfwGetCursorPos(win, &x, &y);
       const bool l = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
       const bool r = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-      if (l && c.left) c.drag(x - c.lastX, y - c.lastY), flying = false;
-      if (r && c.right) c.look(x - c.lastX, y - c.lastY), flying = false;
+      // The panel's controls take the mouse over it (last frame's layout): the globe stays.
+      const bool panelMouse = showPanel && hud->wantsMouse();
+      if (l && c.left && !panelMouse) c.drag(x - c.lastX, y - c.lastY), flying = false;
+      if (r && c.right && !panelMouse) c.look(x - c.lastX, y - c.lastY), flying = false;
       c.left = l, c.right = r, c.lastX = x, c.lastY = y;
-      if (c.wheel != 0.0) c.zoom(c.wheel), c.wheel = 0.0, flying = false;
+      if (c.wheel != 0.0 && !panelMouse) c.zoom(c.wheel), flying = false;
+      c.wheel = 0.0;
       auto key = [&](int k) { return glfwGetKey(win, k) == GLFW_PRESS; };
       c.move((key(GLFW_KEY_W) ? 1 : 0) - (key(GLFW_KEY_S) ? 1 : 0), (key(GLFW_KEY_D) ? 1 : 0) - (key(GLFW_KEY_A) ? 1 : 0), dt);
       c.look((key(GLFW_KEY_RIGHT) ? 200 : 0) * dt - (key(GLFW_KEY_LEFT) ? 200 : 0) * dt,
@@ -279,6 +307,9 @@ int runView(const ViewArgs& a) {
       const bool hKey = key(GLFW_KEY_H);
       if (hKey && !hKeyWasDown) showHud = !showHud;  // H toggles the HUD
       hKeyWasDown = hKey;
+      const bool pKey = key(GLFW_KEY_P);
+      if (pKey && !pKeyWasDown && hud) showPanel = !showPanel;  // P toggles the control panel
+      pKeyWasDown = pKey;
       const bool fKey = key(GLFW_KEY_F);
       if (fKey && !fKeyWasDown && boats) follow = (follow + 1) % (int(boats->count()) + 1);
       fKeyWasDown = fKey;
@@ -302,9 +333,9 @@ int runView(const ViewArgs& a) {
       fb->bind();
       render::FrameSettings fs;
       fs.timeS = simT;
-      fs.sunEcef = render::sunFromLocal(c.pose.latDeg, c.pose.lonDeg, 135.0, 40.0);
-      fs.reflections = !a.noReflections;
-      fs.refraction = !a.noRefraction;
+      fs.sunEcef = render::sunFromLocal(c.pose.latDeg, c.pose.lonDeg, panel.sunAzimuthDeg, panel.sunElevationDeg);
+      fs.reflections = panel.reflections;
+      fs.refraction = panel.refraction;
       const render::FrameTimes times = renderer.render(c.pose, fs);
       tilesBuilt += times.terrain.tilesBuilt;
       // The float-depth target is blitted to the window (its own depth is fixed point).
@@ -315,8 +346,23 @@ int runView(const ViewArgs& a) {
         fpsSmoothed = fpsSmoothed == 0.0 ? 1.0 / dt : 0.9 * fpsSmoothed + 0.1 / dt;
       gl::HudValues hv;
       hv.latDeg = c.pose.latDeg, hv.lonDeg = c.pose.lonDeg, hv.altM = c.pose.altM, hv.fps = fpsSmoothed;
-      if (ocean) hv.seaKnown = seaHeightUnder(*ocean, c.pose.latDeg, c.pose.lonDeg, simT, hv.seaHeightM);
-      if (hud && showHud) {
+      if (ocean) {
+        hv.seaKnown = seaHeightUnder(*ocean, c.pose.latDeg, c.pose.lonDeg, simT, hv.seaHeightM);
+        hv.seaState = seaStateLine(*ocean, panel, c.pose.latDeg, c.pose.lonDeg);
+      }
+      if (hud && showPanel) {
+        glViewport(0, 0, w, h);
+        int ww = 0, wh = 0;  // the cursor is in window coordinates, the panel in framebuffer pixels
+        glfwGetWindowSize(win, &ww, &wh);
+        gl::HudInput in;
+        in.x = ww > 0 ? x * w / ww : x, in.y = wh > 0 ? y * h / wh : y, in.left = l;
+        const gl::PanelChange change = hud->draw(w, h, dt, hv, in, panel);
+        if (change.sea && ocean) {
+          const std::string err = host::setPluginSeaState(*ocean, gl::kPanelWaveModels[panel.waveModel], panel.windMps,
+                                                          panel.windFromDeg);
+          if (!err.empty()) std::fprintf(stderr, "geocean view: %s\n", err.c_str());
+        }
+      } else if (hud && showHud) {
         glViewport(0, 0, w, h);
         hud->draw(w, h, dt, hv);
       }
@@ -372,6 +418,9 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                                      "heap_held_kb,tiles,tiles_built (resident set; malloc'd bytes in use and held "
                                      "from the system, kB; terrain tiles drawn, tiles made so far)");
                       sub.add_flag("--no-hud", a->noHud, "no HUD panel (H toggles it in the window)");
+                      sub.add_flag("--panel", a->panel,
+                                   "open the control panel (P toggles it): wave model, wind, sun, reflections and "
+                                   "refraction, changed live");
                       sub.add_flag("--no-reflections", a->noReflections,
                                    "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
                       sub.add_flag("--no-refraction", a->noRefraction,

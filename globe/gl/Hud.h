@@ -2,7 +2,8 @@
 // corner with the camera's lat, lon, altitude, the frame rate and the sea
 // height under the camera, drawn with Dear ImGui (Debian's libimgui, OpenGL 3
 // backend) into whatever framebuffer is bound. Works in a GLFW window and in
-// a headless EGL context alike; takes no input (it only shows).
+// a headless EGL context alike. The control panel (PanelState) takes the
+// mouse the viewer passes in (HudInput), so it works headless too (tests).
 #pragma once
 
 #include <memory>
@@ -20,6 +21,40 @@ struct HudValues {
   // lakes); from the ocean plugin's query, the same surface that is drawn.
   double seaHeightM = 0.0;
   bool seaKnown = false;  // false: no ocean (nothing to show)
+  // The sea state in a line or two (the viewer: model, wind, Hs, peak period); empty: not shown.
+  std::string seaState;
+};
+
+// The viewer's control panel (P toggles it): the sea state and the light,
+// changed live. The viewer applies what changed.
+struct PanelState {
+  int waveModel = 0;  // index into kPanelWaveModels
+  float windMps = 10.0f, windFromDeg = 270.0f;
+  float sunAzimuthDeg = 135.0f, sunElevationDeg = 40.0f;  // at the camera's nadir
+  bool reflections = true, refraction = true;
+};
+inline constexpr const char* kPanelWaveModels[] = {"noise", "gerstner", "fft"};
+// Beaufort force of a wind speed at 10 m (m/s; WMO No. 8's class limits).
+int beaufortOf(double windMps);
+// What the panel changed in one frame: the sea state only when a control
+// is released (a new sea state rebuilds the waves), the rest at once.
+struct PanelChange {
+  bool sea = false, light = false;
+};
+// Where the panel's controls were last drawn (window pixels, y down): tests
+// click them.
+struct PanelLayout {
+  struct Rect {
+    float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  };
+  Rect window;  // the whole panel
+  Rect waveModel, wind, windFrom, sunAzimuth, sunElevation, reflections, refraction;  // sliders: their frames
+  bool shown = false;
+};
+// The mouse as the window sees it this frame (pixels, y down).
+struct HudInput {
+  double x = -1.0, y = -1.0;
+  bool left = false;
 };
 
 class Hud {
@@ -36,6 +71,13 @@ class Hud {
   // pixels). `dtS` is the time since the previous frame. GL state is
   // restored by the backend.
   void draw(int widthPx, int heightPx, double dtS, const HudValues& v);
+  // The same with the control panel at the top right, taking the mouse;
+  // `panel` is changed in place by the controls. wantsMouse(): the mouse
+  // was over the panel or dragging one of its controls (the globe must not
+  // move with it).
+  PanelChange draw(int widthPx, int heightPx, double dtS, const HudValues& v, const HudInput& in, PanelState& panel);
+  bool wantsMouse() const { return wantsMouse_; }
+  const PanelLayout& panelLayout() const { return layout_; }
 
   // The panel text, one line per value (also what the panel shows).
   static std::string text(const HudValues& v);
@@ -44,6 +86,9 @@ class Hud {
   Hud() = default;
   ImGuiContext* ctx_ = nullptr;
   int fontPx_ = 0;  // size of the font atlas now built
+  bool wantsMouse_ = false;
+  PanelLayout layout_;
+  PanelChange frame(int widthPx, int heightPx, double dtS, const HudValues& v, const HudInput* in, PanelState* panel);
 };
 
 }  // namespace geocean::gl

@@ -74,14 +74,11 @@ void PluginOceanLayer::draw(const camera::Camera& cam, const camera::Lighting& l
     throw std::runtime_error(std::string("ocean plugin: ") + a.lastError());
 }
 
-std::string addPluginOcean(render::GlobeRenderer& renderer, const std::string& modelName, double windMps,
-                           double windFromDeg, std::shared_ptr<PluginOceanLayer>* created,
-                           const std::vector<world::LayerSource>& layers, bool defaultWorld) {
-  std::string error;
-  std::shared_ptr<const OceanPlugin> plugin = OceanPlugin::loadForExecutable(error);
-  if (!plugin) return error;
-  const OceanApi& a = plugin->api();
-  geocean_sea_state s;
+namespace {
+// The ABI's sea state for a model by CLI name and a wind; an error names
+// the model when it has no GPU form.
+std::string seaStateOf(const OceanApi& a, const std::string& modelName, double windMps, double windFromDeg,
+                       geocean_sea_state& s) {
   a.seaStateInit(&s);
   if (modelName == "noise")
     s.model = GEOCEAN_WAVES_NOISE;
@@ -93,6 +90,28 @@ std::string addPluginOcean(render::GlobeRenderer& renderer, const std::string& m
     return "--waves '" + modelName + "' is not a GPU wave model (noise, gerstner, fft)";
   s.wind_speed_mps = windMps;
   s.wind_from_deg = windFromDeg;
+  return {};
+}
+}  // namespace
+
+std::string setPluginSeaState(PluginOceanLayer& ocean, const std::string& modelName, double windMps,
+                              double windFromDeg) {
+  const OceanApi& a = ocean.plugin().api();
+  geocean_sea_state s;
+  if (std::string err = seaStateOf(a, modelName, windMps, windFromDeg, s); !err.empty()) return err;
+  if (a.setSeaState(ocean.ocean(), &s) != GEOCEAN_OK) return a.lastError();
+  return {};
+}
+
+std::string addPluginOcean(render::GlobeRenderer& renderer, const std::string& modelName, double windMps,
+                           double windFromDeg, std::shared_ptr<PluginOceanLayer>* created,
+                           const std::vector<world::LayerSource>& layers, bool defaultWorld) {
+  std::string error;
+  std::shared_ptr<const OceanPlugin> plugin = OceanPlugin::loadForExecutable(error);
+  if (!plugin) return error;
+  const OceanApi& a = plugin->api();
+  geocean_sea_state s;
+  if (std::string err = seaStateOf(a, modelName, windMps, windFromDeg, s); !err.empty()) return err;
   geocean_ocean* ocean = nullptr;
   if (a.create(GEOCEAN_ABI_VERSION, &ocean) != GEOCEAN_OK) return a.lastError();
   auto layer = std::make_shared<PluginOceanLayer>(plugin, ocean);  // owns the ocean from here

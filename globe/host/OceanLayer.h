@@ -60,5 +60,10 @@ geocean_view hostView(const geocean_view& defaults, const camera::Camera& cam, c
 std::string addPluginOcean(render::GlobeRenderer& renderer, const std::string& modelName, double windMps,
                            double windFromDeg, std::shared_ptr<PluginOceanLayer>* created = nullptr,
                            const std::vector<world::LayerSource>& layers = {}, bool defaultWorld = true);
+// A new sea state for a running ocean (the viewer's panel): the model by CLI
+// name and the wind, as addPluginOcean takes them. Returns the error (empty
+// on success).
+std::string setPluginSeaState(PluginOceanLayer& ocean, const std::string& modelName, double windMps,
+                              double windFromDeg);
 
 }  // namespace geocean::host

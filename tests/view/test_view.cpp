@@ -177,6 +177,32 @@ TEST(ViewWindow, FlyToEndsTwoMetresAboveTheSeaWithTheQueriedSeaHeight) {
       << "sky " << sky.r << "," << sky.g << "," << sky.b << " sea " << sea.r << "," << sea.g << "," << sea.b;
 }
 
+// --panel opens the control panel (issue 13 item 8; P toggles it): in the
+// window's top right, the globe below as without it (the panel's
+// clicks are HudPanel.*, headless).
+TEST(ViewWindow, ThePanelOpensAtTheTopRightAndLeavesTheGlobeBelowAsItWas) {
+  REQUIRE_XVFB();
+  const std::string withPanel = tempPath("orbit_panel.png"), without = tempPath("orbit_nopanel.png");
+  const std::string common = " --size 640x360 --frames 3 --screenshot ";
+  auto r = view(common + withPanel + " --panel");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  r = view(common + without);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto a = geocean::raster::readImage8(withPanel), b = geocean::raster::readImage8(without);
+  ASSERT_EQ(a.width, b.width);
+  int topRight = 0, elsewhere = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      const Rgb p = at(a, x, y), q = at(b, x, y);
+      const bool d = std::max({std::abs(p.r - q.r), std::abs(p.g - q.g), std::abs(p.b - q.b)}) > 0;
+      // The HUD's fps line differs from run to run: the top left is not compared.
+      if (x >= a.width / 2 && y < a.height * 6 / 10) topRight += d;
+      else if (y >= a.height * 6 / 10) elsewhere += d;
+    }
+  EXPECT_GT(topRight, 10000) << "the panel fills a good part of the top right";
+  EXPECT_EQ(elsewhere, 0) << "the globe below is as without it";
+}
+
 TEST(ViewWindow, BadOptionsExit2NamingTheOption) {
   REQUIRE_XVFB();
   auto r = view("--frames 2 --fly-to 95,0");
