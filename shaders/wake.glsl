@@ -14,7 +14,7 @@
 // - the turbulent wake behind the stern: half width b (1 + s / L)^(1/3)
 //   at s behind it (an axisymmetric turbulent wake's x^(1/3) growth,
 //   Tennekes & Lumley 1972 sec. 4.2).
-// Both age as exp(-age / kWakeDecayS). Foam needs speed through the water
+// Both age as exp(-age / OceanRenderer::kWakeDecayS). Foam needs speed through the water
 // (uWakeEdges, OceanRenderer::kWakeBreakingFroude and kWakeStirredMps,
 // chosen for the picture: the bow wave breaking with the length Froude
 // number U / sqrt(g L), the stern's wake stirred with U). A body at rest,
@@ -30,10 +30,8 @@ uniform vec4 uWakeTrack[GEOCEAN_MAX_WAKES];   // xyz: horizontal direction of mo
 uniform vec4 uWakeEdges;  // breaking from / fully at Froude xy; stirred from / fully at zw (m/s)
 
 const float kKelvinTan = 0.35355339;  // tan(asin(1/3)) = 1 / sqrt(8)
-// The upper end of Callaghan et al. (2012)'s 0.5-8 s for whitecaps: the
-// propeller and the hull keep stirring the wake, and the bow wave's
-// divergent crests go on spilling along the arms while they are steep.
-const float kWakeDecayS = 8.0;
+// OceanRenderer::kWakeDecayS (8 s, why there).
+uniform float uWakeDecayS;
 
 // Value noise over the water (2 octaves of smooth lattice noise): foam
 // breaks up into patches as it fades, instead of fading as a band.
@@ -67,7 +65,7 @@ float wakeFoam(vec3 eyeRel, vec3 up) {
     vec3 d = eyeRel - uWakeCentre[i].xyz;
     d -= dot(d, up) * up;
     // Past 4 decay times of the wake behind the body: nothing left.
-    float reach = a + 4.0 * kWakeDecayS * u + b;
+    float reach = a + 4.0 * uWakeDecayS * u + b;
     if (dot(d, d) > reach * reach) continue;
     float fr = u / sqrt(9.81 * 2.0 * a);
     float breaking = smoothstep(uWakeEdges.x, uWakeEdges.y, fr);
@@ -91,13 +89,13 @@ float wakeFoam(vec3 eyeRel, vec3 up) {
       float arm = behindBow * kKelvinTan;
       float armHalfWidth = 0.25 * band + 0.01 * behindBow;
       float onArm = 1.0 - smoothstep(armHalfWidth, 2.0 * armHalfWidth, abs(ty - arm));
-      foam = max(foam, wakePatches(breaking * onArm * exp(-behindBow / (u * kWakeDecayS)), water));
+      foam = max(foam, wakePatches(breaking * onArm * exp(-behindBow / (u * uWakeDecayS)), water));
     }
     float behindStern = -a - tx;
     if (behindStern > 0.0 && u > 0.0) {
       float halfWidth = b * pow(1.0 + behindStern / (2.0 * a), 1.0 / 3.0);
       float inWake = 1.0 - smoothstep(0.6 * halfWidth, halfWidth, ty);
-      foam = max(foam, wakePatches(stirred * inWake * exp(-behindStern / (u * kWakeDecayS)), water));
+      foam = max(foam, wakePatches(stirred * inWake * exp(-behindStern / (u * uWakeDecayS)), water));
     }
   }
   return foam;

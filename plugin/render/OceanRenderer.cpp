@@ -440,6 +440,14 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
           far = std::sqrt(double(e[0]) * e[0] + double(e[1]) * e[1] + double(e[2]) * e[2]) * view.cellRadians >=
                 1.01 * view.farFootprintM;
         }
+        // A wake's foam is drawn per fragment: its cells are not far (the
+        // cell's first vertex within the reach widened by the cell's size).
+        for (std::size_t w = 0; w < view.wakeReach.size() && far; ++w) {
+          const float* e = f.vertices[idx[c]].eyeRelM;
+          const glm::dvec3 d = glm::dvec3(e[0], e[1], e[2]) - glm::dvec3(view.wakeReach[w]);
+          const double r = view.wakeReach[w].w + 2.0 * glm::length(glm::dvec3(e[0], e[1], e[2])) * view.cellRadians;
+          far = glm::dot(d, d) > r * r;
+        }
         to = far ? &farOpen : &open;
       }
       else if (extent <= kSmoothTexels)
@@ -484,6 +492,36 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   const bool reflect = !bare && inputs_.reflectionColor != 0 && inputs_.reflectionCamera;
   if (reflect && cull.farFootprintM > 0.0) cull.farFootprintM = std::max(cull.farFootprintM, 40000.0 * cull.cellRadians);
   cull.timeS = light.timeS;
+  // The bodies' foam (wake.glsl): the kMaxWakes nearest the eye of those
+  // fast enough to make any (the others would add exactly nothing).
+  struct WakeUniform {
+    glm::vec4 centre, bow, track;
+    double eyeDistance2;
+  };
+  std::vector<WakeUniform> wakes;
+  if (!bare)
+    for (const Wake& w : wakes_) {
+      if (!(w.halfLengthM > 0.0 && w.halfBeamM > 0.0)) continue;
+      const geo::Geodetic at = geo::fromEcef(w.centreEcef);
+      const glm::dvec3 up = geo::surfaceNormal(at.latDeg, at.lonDeg);
+      const glm::dvec3 v = w.velocityEcef - glm::dot(w.velocityEcef, up) * up;
+      const double u = glm::length(v), froude = u / std::sqrt(9.81 * 2.0 * w.halfLengthM);
+      if (!(u > kWakeStirredMps[0] || froude > kWakeBreakingFroude[0])) continue;
+      const glm::dvec3 rel = w.centreEcef - cam.eyeEcef();
+      wakes.push_back({glm::vec4(glm::vec3(rel), float(w.halfLengthM)), glm::vec4(glm::vec3(w.bowEcef), float(w.halfBeamM)),
+                       glm::vec4(glm::vec3(v / u), float(u)), glm::dot(rel, rel)});
+    }
+  if (wakes.size() > std::size_t(kMaxWakes)) {
+    std::partial_sort(wakes.begin(), wakes.begin() + kMaxWakes, wakes.end(),
+                      [](const WakeUniform& a, const WakeUniform& b) { return a.eyeDistance2 < b.eyeDistance2; });
+    wakes.resize(kMaxWakes);
+  }
+  std::vector<glm::vec4> wakeCentre, wakeBow, wakeTrack;
+  for (const WakeUniform& w : wakes) {
+    wakeCentre.push_back(w.centre), wakeBow.push_back(w.bow), wakeTrack.push_back(w.track);
+    cull.wakeReach.emplace_back(glm::dvec3(w.centre),
+                                double(w.centre.w) + 4.0 * kWakeDecayS * double(w.track.w) + double(w.bow.w));
+  }
   const CellGroups groups =
       partitionCells(frame_, world_->waterIndex(), options_.cellPx, cull, options_.cullOffscreen,
                      !bare && options_.cheapCoverage && !pages_, idx);
@@ -553,32 +591,6 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     }
   }
 
-  // The bodies' foam (wake.glsl): the kMaxWakes nearest the eye of those
-  // fast enough to make any (the others would add exactly nothing).
-  struct WakeUniform {
-    glm::vec4 centre, bow, track;
-    double eyeDistance2;
-  };
-  std::vector<WakeUniform> wakes;
-  if (!bare)
-    for (const Wake& w : wakes_) {
-      if (!(w.halfLengthM > 0.0 && w.halfBeamM > 0.0)) continue;
-      const geo::Geodetic at = geo::fromEcef(w.centreEcef);
-      const glm::dvec3 up = geo::surfaceNormal(at.latDeg, at.lonDeg);
-      const glm::dvec3 v = w.velocityEcef - glm::dot(w.velocityEcef, up) * up;
-      const double u = glm::length(v), froude = u / std::sqrt(9.81 * 2.0 * w.halfLengthM);
-      if (!(u > kWakeStirredMps[0] || froude > kWakeBreakingFroude[0])) continue;
-      const glm::dvec3 rel = w.centreEcef - cam.eyeEcef();
-      wakes.push_back({glm::vec4(glm::vec3(rel), float(w.halfLengthM)), glm::vec4(glm::vec3(w.bowEcef), float(w.halfBeamM)),
-                       glm::vec4(glm::vec3(v / u), float(u)), glm::dot(rel, rel)});
-    }
-  if (wakes.size() > std::size_t(kMaxWakes)) {
-    std::partial_sort(wakes.begin(), wakes.begin() + kMaxWakes, wakes.end(),
-                      [](const WakeUniform& a, const WakeUniform& b) { return a.eyeDistance2 < b.eyeDistance2; });
-    wakes.resize(kMaxWakes);
-  }
-  std::vector<glm::vec4> wakeCentre, wakeBow, wakeTrack;
-  for (const WakeUniform& w : wakes) wakeCentre.push_back(w.centre), wakeBow.push_back(w.bow), wakeTrack.push_back(w.track);
 
   const glm::vec4 elevationGeo = world_->elevation().geo(), waterGeo = world_->water().geo();
   const auto setUniforms = [&](const gl::GlProgram& p) {
@@ -617,6 +629,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
       glUniform4fv(p.uniform("uWakeCentre"), GLsizei(wakes.size()), &wakeCentre[0][0]);
       glUniform4fv(p.uniform("uWakeBow"), GLsizei(wakes.size()), &wakeBow[0][0]);
       glUniform4fv(p.uniform("uWakeTrack"), GLsizei(wakes.size()), &wakeTrack[0][0]);
+      glUniform1f(p.uniform("uWakeDecayS"), float(kWakeDecayS));
       glUniform4f(p.uniform("uWakeEdges"), float(kWakeBreakingFroude[0]), float(kWakeBreakingFroude[1]),
                   float(kWakeStirredMps[0]), float(kWakeStirredMps[1]));
     }

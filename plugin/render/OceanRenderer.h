@@ -75,6 +75,9 @@ struct ScreenCull {
   // Grid footprint (|eye-relative| x cellRadians) from which ocean.vert's
   // distance fade is complete; 0: no far group.
   double farFootprintM = 0.0;
+  // Bodies' foam (wake.glsl, per fragment): eye-relative centre and reach
+  // (m); cells within reach stay out of the per-vertex far group.
+  std::vector<glm::dvec4> wakeReach;
 };
 // Per grid vertex, the screen sides it stays beyond (bits 1 left, 2 right,
 // 4 bottom, 8 top) under any wave displacement.
@@ -131,6 +134,12 @@ class OceanRenderer {
   // stern's turbulent wake foams from 0.5 m/s through the water, fully by 3.
   static constexpr double kWakeBreakingFroude[2] = {0.2, 0.35};
   static constexpr double kWakeStirredMps[2] = {0.5, 3.0};
+  // The wake's foam decays as exp(-age / kWakeDecayS): the upper end of
+  // Callaghan et al. (2012)'s 0.5-8 s for whitecaps, as the propeller and
+  // the hull keep stirring the wake and the bow wave's divergent crests go
+  // on spilling along the arms while they are steep. It reaches a + 4
+  // kWakeDecayS U + b from the body's centre (a, b its half length and beam).
+  static constexpr double kWakeDecayS = 8.0;
   // The host/layer contract: whether every pixel over the rectangle is
   // drawn opaque for pixels of this footprint (metres), and the cell size.
   bool coversOpaquely(double lat0Deg, double lat1Deg, double lon0Deg, double lon1Deg, double pixelFootprintM) const;
