@@ -67,28 +67,17 @@ std::string islandTif() {
 
 }  // namespace
 
-// Flat calm water (1 m/s) is a mirror: from 10 m above it, 83 km west of
-// the peak and looking level towards it, each column's reflected island ends
-// (lowest row) at the mirror image of its top row about the centre row (the
-// level camera's horizontal). The relief is exaggerated 3 times (a 4.5 km
-// peak 83 km away, 36 px high). The law of reflection puts it 2 f h / D
-// lower (0.2 px here, f = 761 px, h = 10 m, D > 59 km); the tolerance, 2 px, is
-// the silhouette's threshold on both sides (one pixel each: the terrain's
-// haze-blended edge, the map's bilinear tap) and the calm sea's ripples.
-// Elsewhere the sea is the sky BRDF's within 2/255 (no seam at the map's edge).
-TEST(SeaLight, CalmWaterMirrorsTheIslandAtTheMirroredRow) {
-  const std::string view =
-      " --camera 0.25,-0.5,10,90,0 --size 480x160 --fov 12 --sun 200,35 --wind 1 --exaggeration 3";
-  const auto with = render(view + " --elevation " + islandTif(), "reflection_island_calm");
-  const auto without = render(view + " --elevation " + islandTif() + " --no-reflections", "reflection_island_off");
-  const auto sea = render(view, "reflection_open_sea");  // the same sky, no island
-  const int W = 480, H = 160;
-  ASSERT_EQ(with.width, W);
-  ASSERT_EQ(without.width, W);
-  ASSERT_EQ(sea.width, W);
+namespace {
+struct Mirrored {
   int columns = 0, worst = 0, tallest = 0;
-  double seamSum = 0.0;
+  double seam = 0.0;  // mean difference where the map shows sky
   int seamN = 0;
+};
+// The island's top row per column against its reflection's lowest row.
+Mirrored mirrored(const geocean::gl::Image& with, const geocean::gl::Image& without, const geocean::gl::Image& sea) {
+  const int W = with.width, H = with.height;
+  Mirrored m;
+  double seamSum = 0.0;
   for (int x = 0; x < W; ++x) {
     // The island's top in this column: the first row (from the top) whose
     // colour leaves the open sea's sky by more than 6/255.
@@ -102,21 +91,99 @@ TEST(SeaLight, CalmWaterMirrorsTheIslandAtTheMirroredRow) {
       if (maxDiff(with, without, x, y) > 6) bottom = y;
     if (top < 0) {
       // No island above: the mirrored sky equals the sky BRDF.
-      for (int y = H / 2 + 2; y < H; ++y) seamSum += maxDiff(with, without, x, y), ++seamN;
+      for (int y = H / 2 + 2; y < H; ++y) seamSum += maxDiff(with, without, x, y), ++m.seamN;
       continue;
     }
     if (H / 2 - top < 4) continue;  // too low to locate
-    ASSERT_GE(bottom, 0) << "column " << x << ": the island (top row " << top << ") is not reflected";
-    const int mirrored = H - 1 - top;
-    worst = std::max(worst, std::abs(bottom - mirrored));
-    tallest = std::max(tallest, H / 2 - top);
-    ++columns;
+    EXPECT_GE(bottom, 0) << "column " << x << ": the island (top row " << top << ") is not reflected";
+    const int mirroredRow = H - 1 - top;
+    m.worst = std::max(m.worst, std::abs(bottom - mirroredRow));
+    m.tallest = std::max(m.tallest, H / 2 - top);
+    ++m.columns;
   }
-  EXPECT_GT(columns, 40);  // the island spans a good part of the view
-  EXPECT_GT(tallest, 10);
-  EXPECT_LE(worst, 2);
-  ASSERT_GT(seamN, 1000);
-  EXPECT_LE(seamSum / seamN, 2.0);
+  m.seam = m.seamN > 0 ? seamSum / m.seamN : 0.0;
+  return m;
+}
+const std::string kIslandView =
+    " --camera 0.25,-0.5,10,90,0 --size 480x160 --fov 12 --sun 200,35 --wind 1 --exaggeration 3";
+}  // namespace
+
+// Flat calm water (1 m/s) is a mirror: from 10 m above it, 83 km west of
+// the peak and looking level towards it, each column's reflected island ends
+// (lowest row) at the mirror image of its top row about the centre row (the
+// level camera's horizontal). The relief is exaggerated 3 times (a 4.5 km
+// peak 83 km away, 36 px high). The law of reflection puts it 2 f h / D
+// lower (0.2 px here, f = 761 px, h = 10 m, D > 59 km); the tolerance, 2 px, is
+// the silhouette's threshold on both sides (one pixel each: the terrain's
+// haze-blended edge, the map's bilinear tap) and the calm sea's ripples.
+// Elsewhere the sea is the sky BRDF's within 2/255 (no seam at the map's edge).
+TEST(SeaLight, CalmWaterMirrorsTheIslandAtTheMirroredRow) {
+  const std::string& view = kIslandView;
+  const auto with = render(view + " --elevation " + islandTif(), "reflection_island_calm");
+  const auto without = render(view + " --elevation " + islandTif() + " --no-reflections", "reflection_island_off");
+  const auto sea = render(view, "reflection_open_sea");  // the same sky, no island
+  const int W = 480;
+  ASSERT_EQ(with.width, W);
+  ASSERT_EQ(without.width, W);
+  ASSERT_EQ(sea.width, W);
+  const Mirrored m = mirrored(with, without, sea);
+  EXPECT_GT(m.columns, 40);  // the island spans a good part of the view
+  EXPECT_GT(m.tallest, 10);
+  EXPECT_LE(m.worst, 2);
+  ASSERT_GT(m.seamN, 1000);
+  EXPECT_LE(m.seam, 2.0);
+}
+
+// --reflection-size (issue 13 item 7): the mirrored pass drawn into a map of
+// 240 x 80 (half the viewport; the ABI's reflection_view carries its size)
+// mirrors the island at the same row: the tolerance grows by one texel of
+// the map (2 px of the picture, +-1 px on the row), and the sky seam stays
+// within 2/255. 2048 (larger than the viewport) mirrors it within 2 px.
+TEST(SeaLight, AReflectionMapOfAnotherSizeMirrorsTheIslandAtTheSameRow) {
+  const std::string& view = kIslandView;
+  const auto without = render(view + " --elevation " + islandTif() + " --no-reflections", "reflection_island_off");
+  const auto sea = render(view, "reflection_open_sea");
+  for (const int size : {240, 2048}) {
+    const auto with = render(view + " --elevation " + islandTif() + " --reflection-size " + std::to_string(size),
+                             "reflection_island_calm_" + std::to_string(size));
+    ASSERT_EQ(with.width, 480);
+    const Mirrored m = mirrored(with, without, sea);
+    std::printf("--reflection-size %d: %d columns, worst %d px, seam %.2f / 255\n", size, m.columns, m.worst, m.seam);
+    EXPECT_GT(m.columns, 40) << size;
+    EXPECT_LE(m.worst, size < 480 ? 3 : 2) << size;
+    ASSERT_GT(m.seamN, 1000) << size;
+    EXPECT_LE(m.seam, 2.0) << size;
+  }
+}
+
+// --beaufort N (render, fly) is --wind at the middle of the WMO class at
+// 10 m times 1.026 (to 19.5 m), the query's and the C ABI's: Beaufort 7
+// (13.9 .. 17.1 m/s, middle 15.5) draws the same bits as that --wind, and
+// Beaufort 3 another sea.
+TEST(SeaLight, BeaufortDrawsTheSeaOfItsClassWind) {
+  char wind[64];
+  std::snprintf(wind, sizeof wind, "%.17g", 15.5 * 1.026);
+  const std::string view = " --camera 36,-10,300,90,-30 --size 96x64 --sun 270,40";
+  const auto b7 = render(view + " --beaufort 7", "beaufort7");
+  const auto w = render(view + " --wind " + wind, "beaufort7_wind");
+  const auto b3 = render(view + " --beaufort 3", "beaufort3");
+  ASSERT_EQ(b7.width, 96);
+  ASSERT_EQ(w.width, 96);
+  ASSERT_EQ(b3.width, 96);
+  EXPECT_EQ(b7.rgba, w.rgba);
+  int changed = 0;
+  for (int y = 32; y < 64; ++y)
+    for (int x = 0; x < 96; ++x) changed += maxDiff(b7, b3, x, y) > 4;
+  EXPECT_GT(changed, 300);  // the sea below the horizon (3072 px) is another sea
+  // fly: the same frames.
+  const std::string dir = ::testing::TempDir() + "/beaufort_fly";
+  const std::string fly = kExe + " fly --frames 2 --size 64x48 --to 36,-10 ";
+  auto r = geocean::test::run(fly + "--beaufort 7 --out " + dir + "_b");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  r = geocean::test::run(fly + "--wind " + wind + " --out " + dir + "_w");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (const char* f : {"/frame_00000.png", "/frame_00001.png"})
+    EXPECT_EQ(geocean::gl::readImage(dir + "_b" + f).rgba, geocean::gl::readImage(dir + "_w" + f).rgba) << f;
 }
 
 namespace {
