@@ -13,6 +13,9 @@ uniform float uTimeS;
 // waves have faded into roughness, that mean cover W itself.
 uniform float uFoamSoftM;
 uniform float uWhitecapCover;
+// The wind (OceanRenderer): U10 (m/s) and the direction it blows from
+// (radians from north): the glitter's Cox-Munk axes.
+uniform vec2 uWind;
 
 // Optics (OceanRenderer): the refracted bottom on or off, and the host's
 // planar reflection (issue 13 item 4): sky and terrain seen by the eye
@@ -94,7 +97,12 @@ vec3 oceanColorCrest(vec3 eyeRel, vec3 normal, vec3 upIn, vec3 sun, vec3 hazeTr,
   // coverage's 60 m floor above would hide every shelf); the coverage's only
   // where the relief puts the water on land.
   float seen = uRefraction != 0 && reliefDepthM > 0.0 ? reliefDepthM : depth;
-  vec3 c = seaColorOptics(n, v, up, uSunDir, sun, seen, mss, foam, refl, uRefraction != 0);
+  vec3 east = cross(vec3(0.0, 0.0, 1.0), up);
+  east = dot(east, east) > 1e-12 ? normalize(east) : vec3(0.0, 1.0, 0.0);  // at a pole any axis
+  vec3 north = cross(up, east);
+  vec3 windAxis = sin(uWind.y) * east + cos(uWind.y) * north;  // the sign does not matter
+  vec3 c = seaColorOptics(n, v, up, uSunDir, sun, seen, mss, foam, refl, uRefraction != 0, windAxis,
+                          coxMunkUpwindShare(uWind.x));
   return toDisplay(c * hazeTr + hazeIn);
 }
 

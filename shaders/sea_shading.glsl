@@ -58,11 +58,31 @@ vec3 waterPathTransmittance(vec3 n, vec3 v, vec3 up, vec3 sunDir, float depthM) 
   return exp(-kWaterAttenuation * max(depthM, 0.0) * (1.0 / muS + 1.0 / muV));
 }
 
+// Cox & Munk (1954)'s slopes are wider along the wind than across it:
+// upwind variance 3.16e-3 U, crosswind 0.003 + 1.92e-3 U (U at ~10 m). The
+// upwind share of the mean square slope, 0.5 without a wind axis.
+float coxMunkUpwindShare(float u10) {
+  float up = 3.16e-3 * u10, cross = 0.003 + 1.92e-3 * u10;
+  return up / (up + cross);
+}
+
+// The Beckmann mean square slope (alpha^2, the isotropic form's mss) seen
+// along the tangent direction d, for slope variances alphaU^2 / 2 and
+// alphaC^2 / 2 along tu and tc.
+float mssAlong(vec3 d, vec3 n, vec3 tu, vec3 tc, float aU, float aC) {
+  vec2 t = vec2(dot(d, tu), dot(d, tc));
+  float l2 = dot(t, t);
+  if (l2 < 1e-12) return 0.5 * (aU + aC);
+  return (aU * t.x * t.x + aC * t.y * t.y) / l2;
+}
+
 // sky: the reflected radiance (skyLow along the reflected ray, or the
 // planar reflection where the ocean has one); refraction: the bottom through
 // the water (else the old depth tint, the terrain's distant sea keeps it).
+// windAxis: the wind's direction in the tangent plane and upShare its
+// share of mss (coxMunkUpwindShare); upShare 0.5: isotropic.
 vec3 seaColorOptics(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM, float mss, float foam,
-                    vec4 reflected, bool refraction) {
+                    vec4 reflected, bool refraction, vec3 windAxis, float upShare) {
   float ndv = max(dot(n, v), 1e-3);
   vec3 r = reflect(-v, n);
   // Reflections from below the horizon see the sea, not the sky.
@@ -94,8 +114,24 @@ vec3 seaColorOptics(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM
   vec3 h = normalize(sunDir + v);
   float ndh = max(dot(n, h), 1e-3), ndl = dot(n, sunDir);
   float ndh2 = ndh * ndh;
-  float D = exp((ndh2 - 1.0) / (ndh2 * m)) / (3.14159265 * m * ndh2 * ndh2);
-  float G = 1.0 / (1.0 + smithLambda(ndv, m) + smithLambda(max(ndl, 1e-3), m));
+  float D, G;
+  if (upShare == 0.5) {
+    D = exp((ndh2 - 1.0) / (ndh2 * m)) / (3.14159265 * m * ndh2 * ndh2);
+    G = 1.0 / (1.0 + smithLambda(ndv, m) + smithLambda(max(ndl, 1e-3), m));
+  } else {
+    // Anisotropic Beckmann: alpha^2 = 2 x the slope variance along each
+    // axis (the sun's disc widens both alike), Smith's Lambda with the
+    // alpha^2 along the view's and the sun's azimuths.
+    vec3 tu = windAxis - n * dot(windAxis, n);
+    tu = dot(tu, tu) > 1e-12 ? normalize(tu) : normalize(cross(n, abs(n.z) < 0.9 ? vec3(0, 0, 1) : vec3(1, 0, 0)));
+    vec3 tc = cross(n, tu);
+    float m0 = max(mss, 1e-4);
+    float aU = 2.0 * m0 * upShare + kSunDiscMss, aC = 2.0 * m0 * (1.0 - upShare) + kSunDiscMss;
+    float su = dot(h, tu) / ndh, sc = dot(h, tc) / ndh;
+    D = exp(-(su * su / aU + sc * sc / aC)) / (3.14159265 * sqrt(aU * aC) * ndh2 * ndh2);
+    G = 1.0 / (1.0 + smithLambda(ndv, mssAlong(v, n, tu, tc, aU, aC)) +
+               smithLambda(max(ndl, 1e-3), mssAlong(sunDir, n, tu, tc, aU, aC)));
+  }
   c += kSunIrradiance * sun * (fresnelWater(dot(v, h)) * D * G / (4.0 * ndv)) * step(0.0, ndl);
   vec3 foamColor = vec3(0.85, 0.9, 0.92) * (light * 0.9 + 0.1);
   return mix(c, foamColor, clamp(foam, 0.0, 1.0));
@@ -108,7 +144,7 @@ vec3 seaColorOptics(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM
 // about n). The reflected sky is the one seen from near the sea (the view
 // from orbit reflects the same dome).
 vec3 seaColorMss(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM, float mss, float foam) {
-  return seaColorOptics(n, v, up, sunDir, sun, depthM, mss, foam, vec4(0.0), false);
+  return seaColorOptics(n, v, up, sunDir, sun, depthM, mss, foam, vec4(0.0), false, vec3(0.0), 0.5);
 }
 
 // The terrain's distant sea gives a roughness; its mean square slope is

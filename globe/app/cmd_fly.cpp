@@ -4,6 +4,7 @@
 #include "globe/app/BoatOptions.h"
 #include "globe/app/CoastOption.h"
 #include "globe/app/LayerOptions.h"
+#include "globe/app/SeaOptions.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
 #include "globe/render/Session.h"
@@ -36,8 +37,9 @@ struct FlyArgs {
   bool noOcean = false;
   bool noReflections = false, noRefraction = false;
   std::string waves = "noise";
-  double windMps = 10.0;
+  WindOptions wind;
   double windFromDeg = 270.0;
+  int reflectionSize = 0;
   std::string coastRegion;
   bool reference = false;
   bool hud = false;
@@ -72,10 +74,13 @@ int runFly(const FlyArgs& a) {
       throw render::ArgError(b);
     }
     if (!a.sun.empty()) sunAzEl = render::parseNumbers(a.sun, 2, "--sun AZ,EL");
+    render::checkReflectionSize(a.reflectionSize);
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean fly: %s\n", e.what());
     return kExitBadInput;
   }
+  double windMps = 0.0;
+  if (const int rc = resolveWind("fly", a.wind, windMps); rc != kExitOk) return rc;
   plan.headingDeg = a.heading;
   std::error_code ec;
   std::filesystem::create_directories(a.out, ec);
@@ -103,7 +108,7 @@ int runFly(const FlyArgs& a) {
   }
   std::shared_ptr<host::PluginOceanLayer> ocean;
   if (!a.noOcean) {
-    const std::string err = host::addPluginOcean(*s.renderer, a.waves, a.windMps, a.windFromDeg, &ocean, sources,
+    const std::string err = host::addPluginOcean(*s.renderer, a.waves, windMps, a.windFromDeg, &ocean, sources,
                                                  !a.layers.noDefaultWorld);
     if (!err.empty()) {
       std::fprintf(stderr, "geocean fly: %s\n", err.c_str());
@@ -148,6 +153,7 @@ int runFly(const FlyArgs& a) {
     fs.timed = true;
     fs.reflections = !a.noReflections;
     fs.refraction = !a.noRefraction;
+    fs.reflectionSize = a.reflectionSize;
     const auto t = s.render(pose, fs);
 #if GEOCEAN_WITH_HUD
     if (hud) {  // drawn after the timed passes, so timings.csv is the same with or without it
@@ -207,7 +213,8 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                       sub.add_flag("--no-refraction", a->noRefraction,
                                    "no bottom seen through the water (the depth tint alone)");
                       sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
-                      sub.add_option("--wind", a->windMps, "wind speed, m/s");
+                      addWindOptions(sub, a->wind);
+                      addReflectionSizeOption(sub, a->reflectionSize);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
                       addCoastOption(sub, a->coastRegion);
                       addLayerOptions(sub, a->layers);

@@ -4,6 +4,7 @@
 #include "globe/app/CoastOption.h"
 #include "globe/app/LayerOptions.h"
 #include "globe/app/QueryIo.h"
+#include "globe/app/SeaOptions.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Session.h"
 #include "globe/host/OceanLayer.h"
@@ -26,8 +27,9 @@ struct RenderArgs {
   bool noOcean = false;
   bool noReflections = false, noRefraction = false;
   std::string waves = "noise";
-  double windMps = 10.0;
+  WindOptions wind;
   double windFromDeg = 270.0;
+  int reflectionSize = 0;
   std::string coastRegion;
   LayerOptions layers;
   BoatOptions boats;
@@ -45,6 +47,7 @@ int runRender(const RenderArgs& a) {
       throw render::ArgError("--exaggeration: " + std::to_string(a.exaggeration) + " must be in [0, 100]");
     if (!std::isfinite(a.timeS)) throw render::ArgError("--time " + std::to_string(a.timeS) + " is not a finite number");
     if (auto e = checkTime(a.timeS, "--time"); !e.empty()) throw render::ArgError(e);
+    render::checkReflectionSize(a.reflectionSize);
     pose.fovYDeg = a.fovDeg;
     sun = render::sunForView(pose);
     if (!a.sun.empty()) {
@@ -55,6 +58,8 @@ int runRender(const RenderArgs& a) {
     std::fprintf(stderr, "geocean render: %s\n", e.what());
     return kExitBadInput;
   }
+  double windMps = 0.0;
+  if (const int rc = resolveWind("render", a.wind, windMps); rc != kExitOk) return rc;
   std::vector<world::LayerSource> sources;
   world::WorldData data;
   if (const int rc = loadDrawnWorld("render", a.layers, sources, data); rc != kExitOk) return rc;
@@ -73,7 +78,7 @@ int runRender(const RenderArgs& a) {
   std::shared_ptr<host::PluginOceanLayer> ocean;
   if (!a.noOcean) {
     const std::string err =
-        host::addPluginOcean(*s.renderer, a.waves, a.windMps, a.windFromDeg, &ocean, sources,
+        host::addPluginOcean(*s.renderer, a.waves, windMps, a.windFromDeg, &ocean, sources,
                              !a.layers.noDefaultWorld);
     if (!err.empty()) {
       std::fprintf(stderr, "geocean render: %s\n", err.c_str());
@@ -96,6 +101,7 @@ int runRender(const RenderArgs& a) {
   fs.sunEcef = sun;
   fs.reflections = !a.noReflections;
   fs.refraction = !a.noRefraction;
+  fs.reflectionSize = a.reflectionSize;
   const auto t = s.render(pose, fs);
   gl::writePng(a.out, s.image());
   std::fprintf(stderr, "geocean render: wrote %s (%dx%d, %d terrain tiles, %.1f ms)\n", a.out.c_str(), pose.width,
@@ -122,7 +128,8 @@ const Register reg{{"render", "Render one frame headless to a PNG",
                       sub.add_flag("--no-refraction", a->noRefraction,
                                    "no bottom seen through the water (the depth tint alone)");
                       sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
-                      sub.add_option("--wind", a->windMps, "wind speed, m/s");
+                      addWindOptions(sub, a->wind);
+                      addReflectionSizeOption(sub, a->reflectionSize);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
                       addCoastOption(sub, a->coastRegion);
                       addLayerOptions(sub, a->layers);

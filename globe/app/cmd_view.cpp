@@ -6,6 +6,8 @@
 #include "globe/app/BoatOptions.h"
 #include "globe/app/CoastOption.h"
 #include "globe/app/LayerOptions.h"
+#include "globe/app/QueryIo.h"
+#include "globe/app/SeaOptions.h"
 #include "globe/host/OceanLayer.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
@@ -47,7 +49,11 @@ struct ViewArgs {
   LayerOptions layers;
   BoatOptions boats;
   std::string waves = "noise";  // as render and fly
-  double windMps = 10.0, windFromDeg = 270.0;
+  WindOptions wind;
+  double windFromDeg = 270.0;
+  std::string sun;     // AZ,EL at the camera's nadir (default 135,40)
+  double timeS = 0.0;  // simulation time of the first frame
+  int reflectionSize = 0;
   std::string coastRegion;  // LAT,LON[,SIZE_M] (CoastOption.h)
 };
 
@@ -167,6 +173,7 @@ int runView(const ViewArgs& a) {
   Controller c;
   render::FlightPlan plan;
   bool flying = false;
+  std::vector<double> sunAzEl = {135.0, 40.0};
   try {
     render::parseSize(a.size, c.pose);
     c.pose.latDeg = 20.0, c.pose.lonDeg = -30.0, c.pose.altM = 2.0e7;
@@ -186,10 +193,17 @@ int runView(const ViewArgs& a) {
     if (a.flightFrames < 0 || a.flightFrames == 1 || (a.flightFrames > 0 && a.frames == 0))
       throw render::ArgError("--flight-frames: " + std::to_string(a.flightFrames) +
                              " must be >= 2 and needs --frames N (0: the flight takes all N frames)");
+    if (!a.sun.empty()) sunAzEl = render::parseNumbers(a.sun, 2, "--sun AZ,EL");
+    if (auto e = checkTime(a.timeS, "--time"); !e.empty()) throw render::ArgError(e);
+    // The last scripted frame's time too (1/30 s per frame).
+    if (auto e = checkTime(a.timeS + a.frames / 30.0, "--time + --frames / 30"); !e.empty()) throw render::ArgError(e);
+    render::checkReflectionSize(a.reflectionSize);
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean view: %s\n", e.what());
     return kExitBadInput;
   }
+  double windMps = 0.0;
+  if (const int rc = resolveWind("view", a.wind, windMps); rc != kExitOk) return rc;
   std::ofstream stats;
   if (!a.statsCsv.empty()) {
     stats.open(a.statsCsv);
@@ -229,7 +243,7 @@ int runView(const ViewArgs& a) {
     render::GlobeRenderer renderer(world);
     // The ocean through the plugin's C ABI, as any host engine loads it.
     std::shared_ptr<host::PluginOceanLayer> ocean;
-    if (const std::string oceanErr = host::addPluginOcean(renderer, a.waves, a.windMps, a.windFromDeg, &ocean, sources,
+    if (const std::string oceanErr = host::addPluginOcean(renderer, a.waves, windMps, a.windFromDeg, &ocean, sources,
                                                                     !a.layers.noDefaultWorld);
         !oceanErr.empty()) {
       std::fprintf(stderr, "geocean view: %s\n", oceanErr.c_str());
@@ -266,7 +280,8 @@ int runView(const ViewArgs& a) {
     gl::PanelState panel;
     for (int i = 0; i < int(std::size(gl::kPanelWaveModels)); ++i)
       if (a.waves == gl::kPanelWaveModels[i]) panel.waveModel = i;
-    panel.windMps = float(a.windMps), panel.windFromDeg = float(a.windFromDeg);
+    panel.windMps = float(windMps), panel.windFromDeg = float(a.windFromDeg);
+    panel.sunAzimuthDeg = float(sunAzEl[0]), panel.sunElevationDeg = float(sunAzEl[1]);
     panel.reflections = !a.noReflections, panel.refraction = !a.noRefraction;
     bool showPanel = a.panel && hud, pKeyWasDown = false;
     glfwSetWindowUserPointer(win, &c);
@@ -286,7 +301,7 @@ int runView(const ViewArgs& a) {
       last = now;
       // Scripted runs (--frames) step time and flight per frame, so they do
       // not depend on how fast the machine draws; interactive runs use the clock.
-      const double simT = a.frames > 0 ? frame / 30.0 : std::chrono::duration<double>(now - t0).count();
+      const double simT = a.timeS + (a.frames > 0 ? frame / 30.0 : std::chrono::duration<double>(now - t0).count());
       double x, y;
       glfwGetCursorPos(win, &x, &y);
       const bool l = glfwGetMouseButton(win, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
@@ -336,6 +351,7 @@ int runView(const ViewArgs& a) {
       fs.sunEcef = render::sunFromLocal(c.pose.latDeg, c.pose.lonDeg, panel.sunAzimuthDeg, panel.sunElevationDeg);
       fs.reflections = panel.reflections;
       fs.refraction = panel.refraction;
+      fs.reflectionSize = a.reflectionSize;
       const render::FrameTimes times = renderer.render(c.pose, fs);
       tilesBuilt += times.terrain.tilesBuilt;
       // The float-depth target is blitted to the window (its own depth is fixed point).
@@ -426,7 +442,12 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                       sub.add_flag("--no-refraction", a->noRefraction,
                                    "no bottom seen through the water (the depth tint alone)");
                       sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
-                      sub.add_option("--wind", a->windMps, "wind speed, m/s (default 10)");
+                      addWindOptions(sub, a->wind);
+                      sub.add_option("--sun", a->sun,
+                                     "AZ,EL of the sun at the camera's nadir, degrees (default 135,40; it follows "
+                                     "the camera)");
+                      sub.add_option("--time", a->timeS, "simulation time of the first frame, seconds");
+                      addReflectionSizeOption(sub, a->reflectionSize);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees (default 270)");
                       addCoastOption(sub, a->coastRegion);
                       addLayerOptions(sub, a->layers);

@@ -56,4 +56,9 @@ void parseSize(const std::string& text, camera::ViewPose& pose) {
   pose.height = h;
 }
 
+void checkReflectionSize(int size) {
+  if (size != 0 && (size < 16 || size > 8192))
+    throw ArgError("--reflection-size: " + std::to_string(size) + " must be in 16..8192 pixels (0: the viewport's size)");
+}
+
 }  // namespace geocean::render

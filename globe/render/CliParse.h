@@ -21,5 +21,7 @@ std::vector<double> parseNumbers(const std::string& text, std::size_t count, con
 void parseCamera(const std::string& text, camera::ViewPose& pose);
 // "WxH" (1..16384 each).
 void parseSize(const std::string& text, camera::ViewPose& pose);
+// --reflection-size: 0 (the viewport's size) or 16..8192 pixels.
+void checkReflectionSize(int size);
 
 }  // namespace geocean::render

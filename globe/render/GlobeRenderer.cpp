@@ -119,13 +119,30 @@ void GlobeRenderer::makeLayerInputs(const camera::Camera& cam, const camera::Lig
     const glm::dvec3 n = geo::surfaceNormal(cam.latDeg(), cam.lonDeg());
     const auto mirror = [&](const glm::dvec3& v) { return v - 2.0 * glm::dot(v, n) * n; };
     const glm::dvec3 eye = cam.eyeEcef() - 2.0 * cam.heightM() * n;
-    in.reflectionCamera = camera::Camera::fromEcef(eye, mirror(cam.forward()), mirror(cam.up()), cam.vfovDeg(), w, h,
+    int rw = w, rh = h;
+    if (settings.reflectionSize > 0) {
+      // The same field of view at another resolution (layers project with
+      // this camera's own matrices, so its size is all they need).
+      const double scale = double(settings.reflectionSize) / double(std::max(w, h));
+      rw = std::max(1, int(std::lround(w * scale)));
+      rh = std::max(1, int(std::lround(h * scale)));
+    }
+    in.reflectionCamera = camera::Camera::fromEcef(eye, mirror(cam.forward()), mirror(cam.up()), cam.vfovDeg(), rw, rh,
                                                    cam.heightM());
-    reflection_.ensure(w, h);
+    reflection_.ensure(rw, rh);
+    // At the viewport's size the map is read about 1:1 (nearest, as it
+    // always was); resized, it is resampled: bilinear, not blocks.
+    const GLint filter = settings.reflectionSize > 0 ? GL_LINEAR : GL_NEAREST;
+    glTextureParameteri(reflection_.color(), GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(reflection_.color(), GL_TEXTURE_MAG_FILTER, filter);
+    GLint viewport[4] = {};
+    glGetIntegerv(GL_VIEWPORT, viewport);
     glBindFramebuffer(GL_FRAMEBUFFER, reflection_.fbo());
+    glViewport(0, 0, rw, rh);
     FrameTimes scratch;
     drawScene(in.reflectionCamera, light, settings, scratch, nullptr, SeaShading::None, &cam);
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     in.reflectionColor = reflection_.color();
   }
 }

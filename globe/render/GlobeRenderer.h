@@ -35,6 +35,9 @@ struct FrameSettings {
   // (--no-reflections: none made), and the view through the water.
   bool reflections = true;
   bool refraction = true;
+  // The mirrored pass's map: its longer side in pixels, the viewport's
+  // aspect kept (paper 001's 512, 1024, 2048); 0: the viewport's size.
+  int reflectionSize = 0;
 };
 
 class GlobeRenderer {

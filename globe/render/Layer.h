@@ -25,7 +25,7 @@ struct LayerInfo {
 
 // Filled by the host for the inputs a layer asked for (0 where not asked).
 struct LayerInputs {
-  GLuint reflectionColor = 0;  // RGBA8, the viewport's size
+  GLuint reflectionColor = 0;  // RGBA8, reflectionCamera's size (FrameSettings::reflectionSize)
   GLuint sceneColor = 0;       // RGBA8 copy of the colour attachment 0 after the terrain
   GLuint sceneDepth = 0;       // DEPTH32F copy (reversed Z: 0 far, 1 at the near plane)
   // The mirrored camera the reflection was drawn with (valid with

@@ -143,6 +143,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   // lowers the crests): the same sea with c octaves has the first c octaves
   // of this one, scaled to the full Hs by sqrt(sum_all 4^-i / sum_c 4^-i).
   whitecap_ = whitecapCover(sea.windSpeedMps);
+  windMps_ = sea.windSpeedMps, windFromRad_ = sea.windFromDeg * kTwoPi / 360.0;  // the glitter's axes
   foamHeightM_.assign(17, 0.0f);
   const auto quantile = [&](const waves::WaveField& field) {
     const double spanDeg = 40.0 * field.peakWavelengthM() / 111320.0;
@@ -607,6 +608,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glUniform1fv(p.uniform("uFoamHeightM"), 17, foamHeightM_.data());
     glUniform1f(p.uniform("uFoamSoftM"), float(foamSoftM_));
     glUniform1f(p.uniform("uWhitecapCover"), float(whitecap_));
+    glUniform2f(p.uniform("uWind"), float(windMps_ / 1.026), float(windFromRad_));  // U10, from (radians)
     if (jacobianFoam()) {
       float ages[kFoamTimes];
       for (int k = 0; k < kFoamTimes; ++k) ages[k] = float(light.timeS - foamT[std::size_t(k)]);

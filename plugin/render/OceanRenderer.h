@@ -213,6 +213,7 @@ class OceanRenderer {
   std::vector<float> mssAbove_;
   std::vector<float> foamHeightM_;
   double foamSoftM_ = 0.0, whitecap_ = 0.0;
+  double windMps_ = 0.0, windFromRad_ = 0.0;
   double foamJacobian_ = 0.0, foamJacobianSoft_ = 0.0;
   waves::GpuPatch pastPatch_;
   glm::dvec3 foamCalibratedAt_{0.0};  // the origin: never a nadir, so the first draw calibrates

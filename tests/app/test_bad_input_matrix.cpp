@@ -66,6 +66,10 @@ const Row kRows[] = {
     {"render --out x.png --time abc", "--time"},
     {"render", "--out is required"},
     {"render --out x.png --elevation ''", "--elevation: the file name is empty"},
+    {"render --out x.png --beaufort 13", "--beaufort 13 is not a Beaufort number 0..12"},
+    {"render --out x.png --beaufort nan", "--beaufort: 'nan' is not a number"},
+    {"render --out x.png --wind 5 --beaufort 3", "give either --wind or --beaufort, not both"},
+    {"render --out x.png --reflection-size 8", "--reflection-size: 8 must be in 16..8192 pixels"},
     // fly
     {"fly --out o --frames 1", "--frames: 1 must be in 2..1000000"},
     {"fly --out o --frames 1e9", "--frames"},
@@ -74,6 +78,8 @@ const Row kRows[] = {
     {"fly --out o --fps 1e-300", "--fps 1e-300: the last frame's time"},
     {"fly --out o --to 0,inf", "--to LAT,LON: 'inf' is not a number"},
     {"fly --out o --from 95,0,1000", "--from: latitude must be in [-90, 90]"},
+    {"fly --out o --beaufort 2.5", "--beaufort 2.5 is not a Beaufort number 0..12"},
+    {"fly --out o --reflection-size 99999", "--reflection-size: 99999 must be in 16..8192 pixels"},
     // pick
     {"pick --ray nan,0,0,1,0,0", "--ray: 'nan' in 'nan,0,0,1,0,0' is not a finite number"},
     {"pick --ray 0,0,0,0,0,0", "--ray direction 0,0,0 is zero"},

@@ -21,13 +21,13 @@ constexpr double kPi = 3.14159265358979;
 // Our sea states give the wind at 19.5 m (PM's height); the papers' laws
 // are for about 10 m (Cox-Munk's anemometer was at 12.5 m): U19.5 = 1.026 U10.
 std::shared_ptr<ocean_render::OceanRenderer> oceanAt(double u10, waves::Model model = waves::Model::Noise,
-                                                     double cellPx = 8.0) {
+                                                     double cellPx = 8.0, double windFromDeg = 270.0) {
   ocean_render::OceanOptions oo;
   oo.cellPx = cellPx;
   oo.model = model;
   oo.jacobianFoam = model != waves::Model::Noise;
   oo.sea.windSpeedMps = 1.026 * u10;
-  oo.sea.windFromDeg = 270.0;
+  oo.sea.windFromDeg = windFromDeg;
   return std::make_shared<ocean_render::OceanRenderer>(session().world->grids(), ocean_render::defaultLandSea(), oo);
 }
 
@@ -70,6 +70,7 @@ double shadowing(double cosV, double cosS, double u10) {
 struct Glitter {
   double slopeE = 0, slopeN = 0;  // centre of the facet slopes that mirror the sun
   double mss = 0;                 // their mean square slope (both axes)
+  double varE = 0, varN = 0;      // the slope variance along east and along north
   double peak = 0;                // brightest display value
   int pixels = 0;                 // used in the fit
 };
@@ -84,10 +85,10 @@ struct Glitter {
 // Gaussian in the slopes gives the distribution's centre and mean square
 // slope. Pixels: not saturated (< 250), view above grazing (cos > 0.25,
 // where shadowing takes under 10 %), glitter over 5 % of its largest.
-Glitter glitterAt(double u10, int size, double fovDeg) {
+Glitter glitterAt(double u10, int size, double fovDeg, double windFromDeg = 270.0) {
   Session& s = session();
   OceanGuard guard;
-  useOcean(oceanAt(u10));
+  useOcean(oceanAt(u10, waves::Model::Noise, 8.0, windFromDeg));
   Glitter g;
   struct Sample {
     double e, n, lnP;
@@ -108,7 +109,7 @@ Glitter glitterAt(double u10, int size, double fovDeg) {
   s.render(p, fs);
   const Image behind = s.image();
   char name[64];
-  std::snprintf(name, sizeof name, "glitter_u%02d", int(u10));
+  std::snprintf(name, sizeof name, "glitter_u%02d_from%03d", int(u10), int(windFromDeg));
   if (view == 0) dump(lit, name);
   const camera::Camera cam = s.renderer->camera(p);
   const glm::dvec3 up = geo::surfaceNormal(p.latDeg, p.lonDeg);
@@ -140,30 +141,37 @@ Glitter glitterAt(double u10, int size, double fovDeg) {
       samples.push_back({-glm::dot(h, eastV) / cosB, -glm::dot(h, north) / cosB, std::log(pDensity)});
     }
   }
-  // ln p = a + b_e z_e + b_n z_n + c (z_e^2 + z_n^2): normal equations (4 x 4).
-  double m[4][5] = {};
+  // ln p = a + b_e z_e + b_n z_n + c_e z_e^2 + c_n z_n^2: normal equations
+  // (5 x 5); Cox & Munk fitted the two axes separately too.
+  constexpr int K = 5;
+  double m[K][K + 1] = {};
   for (const Sample& q : samples) {
-    const double f[4] = {1.0, q.e, q.n, q.e * q.e + q.n * q.n};
-    for (int i = 0; i < 4; ++i) {
-      for (int j = 0; j < 4; ++j) m[i][j] += f[i] * f[j];
-      m[i][4] += f[i] * q.lnP;
+    const double f[K] = {1.0, q.e, q.n, q.e * q.e, q.n * q.n};
+    for (int i = 0; i < K; ++i) {
+      for (int j = 0; j < K; ++j) m[i][j] += f[i] * f[j];
+      m[i][K] += f[i] * q.lnP;
     }
   }
-  for (int i = 0; i < 4; ++i)  // Gauss-Jordan (the matrix is SPD: no pivoting needed)
-    for (int r = 0; r < 4; ++r) {
+  for (int i = 0; i < K; ++i)  // Gauss-Jordan (the matrix is SPD: no pivoting needed)
+    for (int r = 0; r < K; ++r) {
       if (r == i) continue;
       const double k = m[r][i] / m[i][i];
-      for (int c = 0; c < 5; ++c) m[r][c] -= k * m[i][c];
+      for (int c = 0; c < K + 1; ++c) m[r][c] -= k * m[i][c];
     }
-  const double be = m[1][4] / m[1][1], bn = m[2][4] / m[2][2], c = m[3][4] / m[3][3];
-  // p proportional to exp(-z^2 / mss) for an isotropic Gaussian of mean square slope mss.
-  g.mss = -1.0 / c;
-  g.slopeE = -be / (2.0 * c), g.slopeN = -bn / (2.0 * c);
+  const double be = m[1][K] / m[1][1], bn = m[2][K] / m[2][2], ce = m[3][K] / m[3][3], cn = m[4][K] / m[4][4];
+  // p proportional to exp(-z_e^2 / (2 var_e) - z_n^2 / (2 var_n)); the mean
+  // square slope (an isotropic Gaussian's exp(-z^2 / mss)) is their sum.
+  g.varE = -0.5 / ce, g.varN = -0.5 / cn;
+  g.mss = g.varE + g.varN;
+  g.slopeE = -be / (2.0 * ce), g.slopeN = -bn / (2.0 * cn);
   g.pixels = int(samples.size());
   return g;
 }
 
 double coxMunkMss(double u10) { return 0.003 + 5.12e-3 * u10; }
+// Cox & Munk (1954)'s clean-surface slope variances along and across the wind.
+double coxMunkUpwind(double u10) { return 3.16e-3 * u10; }
+double coxMunkCrosswind(double u10) { return 0.003 + 1.92e-3 * u10; }
 
 TEST(SeaOptics, GlitterIsCentredOnTheSpecularPointAndSpreadsWithTheWindAsCoxMunk) {
   const Glitter g5 = glitterAt(5.0, 256, 100.0), g15 = glitterAt(15.0, 256, 100.0);
@@ -173,8 +181,10 @@ TEST(SeaOptics, GlitterIsCentredOnTheSpecularPointAndSpreadsWithTheWindAsCoxMunk
               o5->mssAbove()[0], o15->mssAbove()[0], o5->mssAbove()[8], o15->mssAbove()[8], coxMunkMss(5.0),
               coxMunkMss(15.0));
   for (const auto& [u, g] : {std::pair{5.0, g5}, std::pair{15.0, g15}})
-    std::printf("glitter U10=%.0f: %d px, slope centre (%.4f E, %.4f N), mss %.4f (Cox-Munk %.4f), peak %.0f\n", u,
-                g.pixels, g.slopeE, g.slopeN, g.mss, coxMunkMss(u), g.peak);
+    std::printf("glitter U10=%.0f: %d px, slope centre (%.4f E, %.4f N), mss %.4f (Cox-Munk %.4f), upwind (E) %.4f "
+                "(Cox-Munk %.4f), crosswind (N) %.4f (Cox-Munk %.4f), peak %.0f\n",
+                u, g.pixels, g.slopeE, g.slopeN, g.mss, coxMunkMss(u), g.varE, coxMunkUpwind(u), g.varN,
+                coxMunkCrosswind(u), g.peak);
   const double ratio = std::sqrt(g15.mss / g5.mss), ratioCm = std::sqrt(coxMunkMss(15.0) / coxMunkMss(5.0));
   std::printf("slope std ratio 15/5: %.3f (Cox-Munk %.3f)\n", ratio, ratioCm);
   for (const auto& [u, g] : {std::pair{5.0, g5}, std::pair{15.0, g15}}) {
@@ -189,7 +199,24 @@ TEST(SeaOptics, GlitterIsCentredOnTheSpecularPointAndSpreadsWithTheWindAsCoxMunk
     // adds a few % (measured 0.034 and 0.088).
     EXPECT_NEAR(g.mss, coxMunkMss(u), 0.25 * coxMunkMss(u)) << u;
     EXPECT_GT(g.pixels, 500) << u;
+    // Each axis (the wind blows from the west: upwind is east): Cox-Munk's
+    // line within their own scatter about it, +-0.004 per axis, plus 20 %
+    // (the spectrum's mss 6-11 % above their line, and the waves drawn near
+    // the eye, isotropic noise, carry 0.023-0.026 of it in equal shares).
+    EXPECT_NEAR(g.varE, coxMunkUpwind(u), 0.004 + 0.2 * coxMunkUpwind(u)) << u;
+    EXPECT_NEAR(g.varN, coxMunkCrosswind(u), 0.004 + 0.2 * coxMunkCrosswind(u)) << u;
+    // Wider along the wind: at least half of Cox-Munk's anisotropy (1.25
+    // at U10 = 5, 1.49 at 15) shows; the isotropic waves drawn near the eye
+    // dilute the rest.
+    const double cm = coxMunkUpwind(u) / coxMunkCrosswind(u);
+    EXPECT_GT(g.varE / g.varN, 1.0 + 0.5 * (cm - 1.0)) << u;
   }
+  // Oriented by the wind: from the north the wide axis turns to north-south.
+  const Glitter g15n = glitterAt(15.0, 256, 100.0, 0.0);
+  std::printf("glitter U10=15 from the north: upwind (N) %.4f, crosswind (E) %.4f\n", g15n.varN, g15n.varE);
+  EXPECT_NEAR(g15n.varN, coxMunkUpwind(15.0), 0.004 + 0.2 * coxMunkUpwind(15.0));
+  EXPECT_NEAR(g15n.varE, coxMunkCrosswind(15.0), 0.004 + 0.2 * coxMunkCrosswind(15.0));
+  EXPECT_GT(g15n.varN / g15n.varE, 1.0 + 0.5 * (coxMunkUpwind(15.0) / coxMunkCrosswind(15.0) - 1.0));
   // The spread grows as the slope standard deviation: Cox-Munk's 1.67 within 10 %.
   EXPECT_NEAR(ratio, ratioCm, 0.1 * ratioCm);
   // The glitter outshines the sky: near white at its centre.

@@ -216,6 +216,68 @@ TEST(ViewWindow, BadOptionsExit2NamingTheOption) {
   EXPECT_NE(r.err.find("/nonexistent-dir/s.csv"), std::string::npos) << r.err;
 }
 
+// The sea-state and light options `render` and `fly` take (issue 13 item
+// 8), scripted from orbit over the Atlantic (20 N, 30 W, the sea height
+// under the camera in --stats). --beaufort 5 is --wind at the middle of the
+// WMO class (9.35 m/s at 10 m) times 1.026 (to 19.5 m): the same bits and
+// sea; Beaufort 9 another sea. --sun 135,-30 puts the night under the
+// camera: the globe goes dark. --time T starts the clock at T: frame 0 of
+// --time 10 + 2/30 is frame 2 of the run from 10 s (1/30 s per scripted
+// frame), and 10 s later the sea under the camera is another.
+// Bad values exit 2 naming the option.
+TEST(ViewWindow, SeaStateAndLightOptionsAreThoseOfRenderAndFly) {
+  REQUIRE_XVFB();
+  const auto run = [](const std::string& name, const std::string& args, int frames) {
+    const std::string png = tempPath(name + ".png"), csv = tempPath(name + ".csv");
+    const auto r = view("--size 160x90 --no-hud --frames " + std::to_string(frames) + " --screenshot " + png +
+                        " --stats " + csv + " " + args);
+    EXPECT_EQ(r.exitCode, 0) << args << "\n" << r.err;
+    return std::pair{geocean::raster::readImage8(png), readStats(csv)};
+  };
+  char wind[64];
+  std::snprintf(wind, sizeof wind, "%.17g", 9.35 * 1.026);
+  char later[64];
+  std::snprintf(later, sizeof later, "%.17g", 10.0 + 2.0 / 30.0);
+  const auto [img0, rows0] = run("opts_default", "", 3);
+  const auto [imgB5, rowsB5] = run("opts_b5", "--beaufort 5", 3);
+  const auto [imgW, rowsW] = run("opts_wind", std::string("--wind ") + wind, 3);
+  const auto [imgB9, rowsB9] = run("opts_b9", "--beaufort 9", 3);
+  const auto [imgNight, rowsNight] = run("opts_night", "--sun 135,-30", 3);
+  const auto [img10, rows10] = run("opts_time10", "--time 10", 3);
+  const auto [imgT, rowsT] = run("opts_time_later", std::string("--time ") + later, 1);
+  ASSERT_EQ(rows0.size(), 3u);
+  ASSERT_EQ(rowsB5.size(), 3u);
+  ASSERT_EQ(rowsW.size(), 3u);
+  ASSERT_EQ(rowsB9.size(), 3u);
+  ASSERT_EQ(rowsT.size(), 1u);
+  EXPECT_EQ(imgB5.pixels, imgW.pixels);
+  for (int f = 0; f < 3; ++f) EXPECT_EQ(rowsB5[f].seaM, rowsW[f].seaM) << f;
+  EXPECT_GT(std::abs(rowsB9[0].seaM - rowsB5[0].seaM), 1e-3);  // another sea under the camera
+  ASSERT_EQ(rows10.size(), 3u);
+  EXPECT_EQ(rowsT[0].seaM, rows10[2].seaM);
+  EXPECT_GT(std::abs(rows10[0].seaM - rows0[0].seaM), 1e-3);  // 10 s later: another sea height
+  const auto brightness = [](const geocean::raster::Image8& im) {
+    double sum = 0.0;
+    for (int y = 0; y < im.height; ++y)
+      for (int x = 0; x < im.width; ++x) {
+        const Rgb c = at(im, x, y);
+        sum += c.r + c.g + c.b;
+      }
+    return sum / (3.0 * im.width * im.height);
+  };
+  std::printf("mean brightness: sun 40 degrees high %.1f, 30 degrees below %.1f\n", brightness(img0),
+              brightness(imgNight));
+  EXPECT_LT(brightness(imgNight), 0.5 * brightness(img0));
+  for (const auto& [args, says] : {std::pair{"--frames 2 --beaufort 13", "--beaufort 13 is not a Beaufort number"},
+                                   std::pair{"--frames 2 --sun 0,nan", "--sun AZ,EL: 'nan' is not a number"},
+                                   std::pair{"--frames 2 --time 1e13", "--time 1e+13 s is outside"},
+                                   std::pair{"--frames 2 --reflection-size 1", "--reflection-size: 1"}}) {
+    const auto r = view(args);
+    EXPECT_EQ(r.exitCode, 2) << args;
+    EXPECT_NE(r.err.find(says), std::string::npos) << args << ": " << r.err;
+  }
+}
+
 // `geocean fly --hud` (headless EGL, no X server): the same HUD in the PNGs.
 // Frames are deterministic, so away from the panel the pictures with and
 // without it are the same, and the panel's text changes many pixels.

@@ -475,7 +475,7 @@ GEOCEAN_API geocean_status geocean_covers_opaquely(geocean_ocean* ocean, double 
  * project mirrored points with its matrices). */
 typedef struct geocean_layer_inputs {
   uint32_t struct_size;              /* sizeof(geocean_layer_inputs) */
-  uint32_t reflection_color_texture; /* RGBA8, viewport size */
+  uint32_t reflection_color_texture; /* RGBA8, reflection_view's size */
   uint32_t scene_color_texture;      /* RGBA8 copy of the scene before the ocean */
   uint32_t scene_depth_texture;      /* DEPTH32F copy, reversed Z */
   geocean_view reflection_view;      /* valid with reflection_color_texture */
