@@ -19,7 +19,8 @@ GLuint buffer(GLuint binding, const T* data, std::size_t count) {
 }
 }  // namespace
 
-std::vector<glm::vec4> buildIslandTableGpu(const waves::CoastField::IslandInputs& in, std::string& error) {
+std::vector<glm::vec4> buildIslandTableGpu(const waves::CoastField::IslandInputs& in, std::string& error,
+                                           std::vector<float>* shadow) {
   std::vector<glm::vec4> table;
   const int n = in.nodes;
   if (n <= 0 || in.components <= 0) return table;
@@ -46,13 +47,27 @@ std::vector<glm::vec4> buildIslandTableGpu(const waves::CoastField::IslandInputs
   glDispatchCompute(GLuint((n + 7) / 8), GLuint((n + 7) / 8), 1);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   glGetNamedBufferSubData(bufs[2], 0, GLsizeiptr(table.size() * sizeof(glm::vec4)), table.data());
+  if (shadow) {
+    shadow->assign(table.size(), 0.0f);
+    glGetNamedBufferSubData(bufs[6], 0, GLsizeiptr(shadow->size() * sizeof(float)), shadow->data());
+  }
   glUseProgram(0);
   glDeleteBuffers(7, bufs);
   if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
     error = "island table (GPU): GL error " + std::to_string(e);
     table.clear();
+    if (shadow) shadow->clear();
   }
   return table;
+}
+
+std::vector<glm::vec4> coastTexelsGpuIslands(const waves::CoastField& field, std::string& error) {
+  std::vector<float> shadow;
+  const std::vector<glm::vec4> table = buildIslandTableGpu(field.islandInputs(), error, &shadow);
+  if (table.empty()) return {};
+  std::vector<glm::vec4> texels = field.gpuTexelsWith(table, shadow);
+  if (texels.empty()) error = "island table (GPU): its size is not the coast field's";
+  return texels;
 }
 
 }  // namespace geocean::ocean_render

@@ -1,5 +1,6 @@
 #include "plugin/render/OceanRenderer.h"
 
+#include "plugin/render/CoastIslandsGpu.h"
 #include "plugin/waves/CoastField.h"
 #include "plugin/waves/FftOcean.h"
 #include "plugin/render/OceanWorld.h"
@@ -99,7 +100,16 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   glCreateBuffers(5, ssbo_);
   // The coast field's texels are the field's, not the frame's: uploaded once.
   if (coast) {
-    const std::vector<glm::vec4> texels = waves_->coastField()->gpuTexels();
+    // The island table built here on the GPU (paper 003: the GPU's table for
+    // the picture, the CPU's for queries; WavesGpuParity bounds the two);
+    // the CPU-built texels if the compute build fails.
+    std::string islandError;
+    std::vector<glm::vec4> texels;
+    if (options_.gpuIslandTable) texels = coastTexelsGpuIslands(*waves_->coastField(), islandError);
+    if (texels.empty()) {
+      if (!islandError.empty()) std::fprintf(stderr, "geocean: %s; drawing the CPU-built table\n", islandError.c_str());
+      texels = waves_->coastField()->gpuTexels();
+    }
     glNamedBufferData(ssbo_[4], GLsizeiptr(texels.size() * sizeof(glm::vec4)), texels.data(), GL_STATIC_DRAW);
   }
   // GridVertex: vec3 eyeRel, uint class|flags << 8, dvec2 lat/lon (32 bytes).

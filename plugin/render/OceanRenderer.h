@@ -29,6 +29,9 @@ struct OceanOptions {
   // after Ocean::setCoastRegion): drawn with wv_gerstnerCoast, so the
   // picture is the query's surface there. Null: the shaders as without it.
   std::shared_ptr<const waves::CoastField> coast;
+  // The coast field's island table for the picture built on the GPU
+  // (plugin/render/CoastIslandsGpu) at the first draw; false: the CPU's.
+  bool gpuIslandTable = true;
   // A wave field to draw (the façade snapshot's, so the FFT tables are built
   // once for query and drawing): model, sea and coast are then its own.
   // Null: made here from model, sea and coast.

@@ -84,6 +84,8 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
   const auto& comps = field.components();
   cf.components_ = int(comps.size());
   cf.texels_.assign((comps.size() + 1) * std::size_t(n) * n, glm::dvec4(0.0));
+  // NaN: the component does not reach the node (or has no travel here); its texel stays 0.
+  cf.eikonal_.assign(comps.size() * std::size_t(n) * n, glm::dvec3(std::numeric_limits<double>::quiet_NaN()));
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<double> kLoc(depth.size()), s(depth.size()), q(depth.size()), sx(depth.size()), sy(depth.size()),
       div(depth.size());
@@ -226,25 +228,18 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
             q[p] = (div[p] * r.cellM + ax * qx + ay * qy) / std::max(ax + ay, 1e-30);
           }
       }
+    // The eikonal's phase offset, turning and Kr per node, before the island table is folded in.
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
         const std::size_t p = at(i, j);
         if (!std::isfinite(s[p]) || !std::isfinite(q[p])) continue;  // not reached from the inflow edges
-        const double delta = s[p] - k0 * (s0x * x(i) + s0y * x(j));
-        // The island table: D_obs on the height, theta_def on the direction.
-        const glm::dvec4 isle = cf.islands_[c * std::size_t(n) * n + p];
-        const double lit = 1.0 - cf.shadow_[c * std::size_t(n) * n + p];
-        const double beta = lit * std::atan2(s0x * sy[p] - s0y * sx[p], s0x * sx[p] + s0y * sy[p]) + isle.w;
-        const double kr = (1.0 + lit * (std::clamp(std::exp(-0.5 * q[p]), kKrMin, kKrMax) - 1.0)) * isle.z;
-        if (std::abs(delta) < kPhaseEps && std::abs(beta) < kAngleEps && std::abs(kr - 1.0) < kKrEps) continue;
-        const int edge = std::min(std::min(i, j), std::min(n - 1 - i, n - 1 - j));
-        const double wgt = smooth01(double(edge) / r.margin);
-        if (wgt == 0.0) continue;
-        const double b = wgt * beta;
-        cf.texels_[c * std::size_t(n) * n + p] =
-            glm::dvec4(wgt * delta, std::sin(b), 1.0 - std::cos(b), wgt * (kr - 1.0));
+        cf.eikonal_[c * std::size_t(n) * n + p] =
+            glm::dvec3(s[p] - k0 * (s0x * x(i) + s0y * x(j)),
+                       std::atan2(s0x * sy[p] - s0y * sx[p], s0x * sx[p] + s0y * sy[p]),
+                       std::clamp(std::exp(-0.5 * q[p]), kKrMin, kKrMax));
       }
   }
+  cf.fold(cf.islands_, cf.shadow_, cf.texels_);
   // The beach slab (wv_gerstnerCoast's curl and collapse): slope over +-L0/4.
   const double l0 = field.peakWavelengthM(), h0 = field.spectrumHsM();
   const int m = std::clamp(int(std::lround(0.25 * l0 / r.cellM)), 1, 8);
@@ -319,6 +314,48 @@ std::vector<glm::dvec4> CoastField::islandTable(const IslandInputs& in, std::vec
     for (int i = 0; i < n; ++i) k.wv_islandNode(n, i, j, in.components, in.cellM, in.radiusCells);
   });
   return out;
+}
+
+void CoastField::fold(const std::vector<glm::dvec4>& islands, const std::vector<double>& shadow,
+                      std::vector<glm::dvec4>& texels) const {
+  const int n = n_;
+  const Region& r = region_;
+  for (int c = 0; c < components_; ++c)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const std::size_t e = (std::size_t(c) * n + std::size_t(j)) * n + std::size_t(i);
+        glm::dvec4& out = texels[e];
+        out = glm::dvec4(0.0);
+        const glm::dvec3 eik = eikonal_[e];
+        if (std::isnan(eik.x)) continue;
+        const double delta = eik.x;
+        // The island table: D_obs on the height, theta_def on the direction.
+        const glm::dvec4 isle = islands[e];
+        const double lit = 1.0 - shadow[e];
+        const double beta = lit * eik.y + isle.w;
+        const double kr = (1.0 + lit * (eik.z - 1.0)) * isle.z;
+        if (std::abs(delta) < kPhaseEps && std::abs(beta) < kAngleEps && std::abs(kr - 1.0) < kKrEps) continue;
+        const int edge = std::min(std::min(i, j), std::min(n - 1 - i, n - 1 - j));
+        const double wgt = smooth01(double(edge) / r.margin);
+        if (wgt == 0.0) continue;
+        const double b = wgt * beta;
+        out = glm::dvec4(wgt * delta, std::sin(b), 1.0 - std::cos(b), wgt * (kr - 1.0));
+      }
+}
+
+std::vector<glm::vec4> CoastField::gpuTexelsWith(const std::vector<glm::vec4>& islands,
+                                                 const std::vector<float>& shadow) const {
+  const std::size_t m = std::size_t(components_) * n_ * n_;
+  if (islands.size() != m || shadow.size() != m) return {};
+  std::vector<glm::dvec4> t(texels_.size()), isl(m);
+  std::vector<double> sh(m);
+  for (std::size_t i = 0; i < m; ++i) isl[i] = glm::dvec4(islands[i]), sh[i] = shadow[i];
+  fold(isl, sh, t);
+  std::copy(texels_.begin() + std::ptrdiff_t(m), texels_.end(), t.begin() + std::ptrdiff_t(m));  // the beach slab
+  std::vector<glm::vec4> v;
+  v.reserve(t.size());
+  for (const auto& x : t) v.push_back(glm::vec4(x));
+  return v;
 }
 
 kd::WvCoast CoastField::at(const glm::dvec3& o) const {

@@ -114,6 +114,10 @@ class CoastField {
   // The island table (D_blo, theta_blo, D_obs, theta_def) the texels were folded with, and its inputs.
   const std::vector<glm::dvec4>& islands() const { return islands_; }
   const IslandInputs& islandInputs() const { return islandInputs_; }
+  // The texels (as gpuTexels) folded with another build of the island
+  // table and its shadow weights (component-major: the GPU's,
+  // plugin/render/CoastIslandsGpu); empty if their sizes are not the field's.
+  std::vector<glm::vec4> gpuTexelsWith(const std::vector<glm::vec4>& islands, const std::vector<float>& shadow) const;
 
   // The grid's frame: centre (ECEF) and unit east / north there.
   const glm::dvec3& centreEcef() const { return centre_; }
@@ -129,6 +133,12 @@ class CoastField {
   std::vector<glm::dvec4> islands_;
   std::vector<double> shadow_;
   IslandInputs islandInputs_;
+  // Per component and node: the eikonal's phase offset, turning angle and
+  // clamped Kr before the island table (NaN: not reached), for fold().
+  std::vector<glm::dvec3> eikonal_;
+  // The components' texels from eikonal_ and an island table (the beach slab untouched).
+  void fold(const std::vector<glm::dvec4>& islands, const std::vector<double>& shadow,
+            std::vector<glm::dvec4>& texels) const;
 };
 
 }  // namespace geocean::waves

@@ -1,0 +1,152 @@
+// bench_coast_frame (issue 15 item 8): the per-frame cost of the near-shore
+// terms on this machine's GL (llvmpipe here). A round island (radius 100 m,
+// a 1:4 beach down to 20 m of flat bottom, as OceanCoast.ARoundIsland-
+// ShelterIsDrawnAt30mAnd300m), a 10 m/s Gerstner sea from the west, a
+// coast field of 161^2 nodes of 10 m (`--coast-region` equivalent). Each
+// view is drawn alternately by an OceanRenderer with the field
+// (wv_gerstnerCoast: texel reads, local dispersion, curl and collapse) and
+// one without (the deep-water phase with local shoaling: the reference), so
+// load from other processes hits both alike. Reports the ocean pass's
+// median process-CPU and wall time per frame (FrameTimes, glFinish between
+// passes) and the ratio. Not run by ctest; figures in docs/PERFORMANCE.md.
+//   bench_coast_frame [--frames N] [--size WxH]
+#include "globe/geo/Ellipsoid.h"
+#include "globe/raster/Raster.h"
+#include "globe/render/CliParse.h"
+#include "globe/render/Session.h"
+#include "globe/render/Terrain.h"
+#include "globe/world/WorldData.h"
+#include "plugin/ocean/Ocean.h"
+#include "tests/render/DirectOcean.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+using namespace geocean;
+
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+constexpr int kW = 400, kH = 400;
+// On a tile corner (lat 0, lon 0), as the test: the host terrain sees the island.
+constexpr double kLat = 0.0, kLon = 0.0, kRadiusM = 100.0;
+const raster::GeoTransform kPlace{-0.02, 0.02, 0.0001, -0.0001, false};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int frames = 15;
+  std::string size = "960x540";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (i + 1 >= argc) {
+      std::fprintf(stderr, "bench_coast_frame: %s needs a value\n", a.c_str());
+      return 2;
+    }
+    if (a == "--frames") frames = std::atoi(argv[++i]);
+    else if (a == "--size") size = argv[++i];
+    else {
+      std::fprintf(stderr, "bench_coast_frame: unknown option '%s'\n", a.c_str());
+      return 2;
+    }
+  }
+  if (frames < 3) {
+    std::fprintf(stderr, "bench_coast_frame: --frames %d must be at least 3\n", frames);
+    return 2;
+  }
+  camera::ViewPose base;
+  try {
+    render::parseSize(size, base);
+  } catch (const render::ArgError& e) {
+    std::fprintf(stderr, "bench_coast_frame: %s\n", e.what());
+    return 2;
+  }
+
+  const geo::EnuFrame enu = geo::enuFrame({kLat, kLon, 0.0});
+  std::vector<float> elev(std::size_t(kW) * kH), land(std::size_t(kW) * kH), grass(std::size_t(kW) * kH * 3);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const glm::dvec3 off = geo::toEcef({0.02 - (y + 0.5) * 0.0001, -0.02 + (x + 0.5) * 0.0001, 0.0}) - enu.originEcef;
+      const double h = std::clamp(0.25 * (kRadiusM - std::hypot(glm::dot(off, enu.east), glm::dot(off, enu.north))),
+                                  -20.0, 12.0);
+      elev[std::size_t(y) * kW + x] = float(h);
+      land[std::size_t(y) * kW + x] = h > 0.0 ? 1.0f : 0.0f;
+    }
+  for (std::size_t i = 0; i < grass.size(); i += 3) grass[i] = 194.0f, grass[i + 1] = 178.0f, grass[i + 2] = 128.0f;
+  const auto elevation = raster::Raster::fromPixels(elev, kW, kH, 1, kPlace, std::nullopt, "island");
+  const auto mask = raster::Raster::fromPixels(land, kW, kH, 1, kPlace, std::nullopt, "island_mask");
+
+  ocean::Ocean o;
+  o.setRasters(mask, elevation);
+  waves::SeaState sea;
+  sea.windSpeedMps = 10.0;
+  sea.windFromDeg = 270.0;
+  sea.anchorLatDeg = kLat;
+  o.setSeaState(waves::Model::Gerstner, sea);
+  waves::CoastField::Region r;
+  r.latDeg = kLat, r.lonDeg = kLon, r.cellM = 10.0, r.nodes = 161;
+  o.setCoastRegion(r);
+  const auto snap = o.current();
+  if (!snap->waves->coastField()) {
+    std::fprintf(stderr, "bench_coast_frame: no coast field was built\n");
+    return 1;
+  }
+
+  world::WorldData wd = world::loadDefaultWorld();
+  wd.imagery = world::layerOf(*raster::Raster::fromPixels(grass, kW, kH, 3, kPlace, std::nullopt, "grass"));
+  wd.elevation = world::layerOf(*elevation, 0);
+  wd.water = world::waterLayerOf(*mask);
+  render::Session s = render::Session::headless(wd, base.width, base.height);
+  auto grids = std::make_shared<const world::WorldGrids>(world::layerOf(*elevation, 0), world::waterLayerOf(*mask));
+  ocean_render::OceanOptions oo;
+  oo.model = waves::Model::Gerstner;
+  oo.sea = snap->seaState;
+  oo.coast = snap->waves->coastFieldShared();
+  auto withCoast = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  oo.coast = nullptr;
+  auto deepOnly = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  auto layer = std::make_shared<render::test::DirectOceanLayer>(withCoast);
+  s.renderer->addLayer(layer);
+
+  // The test's two views (from the north, looking south across the island) and one straight down.
+  struct View {
+    const char* name;
+    double northM, altM, pitchDeg;
+  };
+  std::printf("bench_coast_frame %dx%d, %d frames per view and renderer (the first of each dropped)\n", base.width,
+              base.height, frames);
+  std::printf("%-22s | ocean pass cpu ms: field    none  ratio | wall ms: field   none  ratio\n", "view");
+  for (const View& v : {View{"island 30 m", 350.0, 30.0, -12.0}, View{"island 300 m", 900.0, 300.0, -35.0},
+                        View{"island 1 km, down", 0.0, 1000.0, -89.0}}) {
+    camera::ViewPose p = base;
+    p.latDeg = kLat + v.northM / 110574.0, p.lonDeg = kLon, p.altM = v.altM;
+    p.headingDeg = 180.0, p.pitchDeg = v.pitchDeg;
+    std::vector<double> cpu[2], wall[2];
+    for (int f = 0; f < frames; ++f)
+      for (int k = 0; k < 2; ++k) {
+        layer->setOcean(k == 0 ? withCoast : deepOnly);
+        render::FrameSettings fs;
+        fs.timeS = 30.0 + f / 30.0;
+        fs.sunEcef = render::sunFromLocal(kLat, kLon, 150.0, 40.0);
+        fs.timed = true;
+        const render::FrameTimes t = s.render(p, fs);
+        if (f == 0) continue;  // shader compiles, first uploads
+        cpu[k].push_back(t.layersCpuMs);
+        wall[k].push_back(t.layersMs);
+      }
+    const double c0 = median(cpu[0]), c1 = median(cpu[1]), w0 = median(wall[0]), w1 = median(wall[1]);
+    std::printf("%-22s |                 %7.1f %7.1f  %5.2f |        %6.1f %6.1f  %5.2f\n", v.name, c0, c1,
+                c0 / c1, w0, w1, w0 / w1);
+  }
+  return 0;
+}
