@@ -12,17 +12,20 @@ void addBoatOptions(CLI::App& sub, BoatOptions& o) {
   sub.add_option("--follow", o.follow, "the camera chases boat I (1..N of --boats)");
 }
 
+std::string checkBoatOptions(const BoatOptions& o) {
+  if (o.boats < 0 || o.boats > 10000) return "--boats " + std::to_string(o.boats) + " is not in 0..10000";
+  if (o.follow < 0 || o.follow > o.boats)
+    return "--follow " + std::to_string(o.follow) + " is not a boat of --boats " + std::to_string(o.boats) + " (1.." +
+           std::to_string(o.boats) + ")";
+  return {};
+}
+
 int addBoats(const char* command, const BoatOptions& o, render::GlobeRenderer& renderer,
              std::shared_ptr<host::PluginOceanLayer> ocean, double latDeg, double lonDeg,
              std::shared_ptr<host::PluginBoats>& boats) {
   boats.reset();
-  if (o.boats < 0 || o.boats > 10000) {
-    std::fprintf(stderr, "geocean %s: --boats %d is not in 0..10000\n", command, o.boats);
-    return kExitBadInput;
-  }
-  if (o.follow < 0 || o.follow > o.boats) {
-    std::fprintf(stderr, "geocean %s: --follow %d is not a boat of --boats %d (1..%d)\n", command, o.follow,
-                 o.boats, o.boats);
+  if (const std::string e = checkBoatOptions(o); !e.empty()) {
+    std::fprintf(stderr, "geocean %s: %s\n", command, e.c_str());
     return kExitBadInput;
   }
   if (o.boats == 0) return kExitOk;

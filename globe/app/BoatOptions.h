@@ -20,6 +20,10 @@ struct BoatOptions {
 
 void addBoatOptions(CLI::App& sub, BoatOptions& o);
 
+// --boats 0..10000 and --follow 0..boats, before any GL context: the error
+// naming the option and value, or empty.
+std::string checkBoatOptions(const BoatOptions& o);
+
 // Spawns o.boats around (latDeg, lonDeg) and adds them to the renderer; null
 // boats when o.boats is 0. Prints "geocean <command>: ..." and returns
 // kExitBadInput on a bad option (a --follow beyond --boats, --boats

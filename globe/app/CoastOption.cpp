@@ -4,15 +4,47 @@
 #include "globe/app/QueryIo.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
 namespace geocean::app {
 
+const CLI::Validator nonEmpty(
+    [](std::string& v) { return v.empty() ? std::string("the value is empty") : std::string(); }, "NONEMPTY");
+
 void addCoastOption(CLI::App& sub, std::string& spec) {
   sub.add_option("--coast-region", spec,
                  "LAT,LON[,SIZE_M]: near-shore region (default 10000 m square, 500 .. 40000) where gerstner "
-                 "waves take the local depth's wavelength and refract (needs --waves gerstner)");
+                 "waves take the local depth's wavelength and refract (needs --waves gerstner)")
+      ->check(nonEmpty);
+}
+
+namespace {
+std::string g(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+}  // namespace
+
+std::string checkDrawnSea(const std::string& waves, double windMps, double windFromDeg) {
+  if (waves != "noise" && waves != "gerstner" && waves != "fft")
+    return "--waves '" + waves + "' is not a GPU wave model (noise, gerstner, fft)";
+  if (!(windMps >= 0.2 && windMps <= 60.0)) return "--wind " + g(windMps) + " m/s is outside 0.2 .. 60 m/s";
+  if (!std::isfinite(windFromDeg)) return "--wind-dir " + g(windFromDeg) + " is not a finite angle";
+  return {};
+}
+
+std::string checkCoastRegion(const std::string& spec) {
+  const std::size_t parts = std::size_t(std::count(spec.begin(), spec.end(), ',')) + 1;
+  if (parts != 2 && parts != 3) return "--coast-region '" + spec + "' is not LAT,LON[,SIZE_M]";
+  std::vector<double> v;
+  if (auto e = parseNumberList(spec, parts, "--coast-region", v); !e.empty()) return e;
+  if (auto e = checkLatLon(v[0], v[1], "--coast-region"); !e.empty()) return e;
+  if (parts == 3 && !(v[2] >= 500.0 && v[2] <= 40000.0))
+    return "--coast-region '" + spec + "': size " + g(v[2]) + " m is outside 500 .. 40000 m";
+  return {};
 }
 
 int applyCoastRegion(const char* command, const std::string& spec, const host::PluginOceanLayer* ocean) {
@@ -22,11 +54,10 @@ int applyCoastRegion(const char* command, const std::string& spec, const host::P
     return kExitBadInput;
   };
   if (!ocean) return bad("--coast-region needs the ocean (not --no-ocean)");
-  const std::size_t parts = std::size_t(std::count(spec.begin(), spec.end(), ',')) + 1;
-  if (parts != 2 && parts != 3) return bad("--coast-region '" + spec + "' is not LAT,LON[,SIZE_M]");
+  if (auto e = checkCoastRegion(spec); !e.empty()) return bad(e);
   std::vector<double> v;
-  if (auto e = parseNumberList(spec, parts, "--coast-region", v); !e.empty()) return bad(e);
-  if (auto e = checkLatLon(v[0], v[1], "--coast-region"); !e.empty()) return bad(e);
+  const std::size_t parts = std::size_t(std::count(spec.begin(), spec.end(), ',')) + 1;
+  parseNumberList(spec, parts, "--coast-region", v);  // checked above
   const auto& api = ocean->plugin().api();
   if (!api.setCoastRegion) return bad("--coast-region needs an ocean plugin of ABI 1.5 or later");
   if (api.setCoastRegion(ocean->ocean(), v[0], v[1], parts == 3 ? v[2] : 10000.0) != GEOCEAN_OK)

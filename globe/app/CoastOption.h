@@ -12,8 +12,21 @@
 
 namespace geocean::app {
 
-// Adds the option; `spec` stays empty without it.
+// A CLI11 check for options whose empty value would read as "not given"
+// (`--coast-region ''`, `view --fly-to ''`): exit 2 naming the option.
+extern const CLI::Validator nonEmpty;
+
+// Adds the option; `spec` stays empty without it (given empty: bad input).
 void addCoastOption(CLI::App& sub, std::string& spec);
+
+// The drawing commands' sea options checked before any window or GL
+// context (so a bad one exits 2 with or without a display): `--waves` one of
+// the GPU models, `--wind` 0.2 .. 60 m/s and a finite `--wind-dir` (the
+// plugin's ranges, geocean_set_sea_state), and `--coast-region` as below.
+// Each returns the error naming the option and the value, or empty.
+std::string checkDrawnSea(const std::string& waves, double windMps, double windFromDeg);
+// LAT,LON[,SIZE_M] with SIZE_M 500 .. 40000 m (geocean_set_coast_region's range).
+std::string checkCoastRegion(const std::string& spec);
 
 // Sets the region on `ocean` when spec is non-empty (ocean may be null only
 // then: --no-ocean with --coast-region is bad input). A failure is printed

@@ -54,6 +54,11 @@ int runRender(const RenderArgs& a) {
       const auto v = render::parseNumbers(a.sun, 2, "--sun AZ,EL");
       sun = render::sunForView(pose, v[0], v[1]);
     }
+    // The sea's options before the GL context (the plugin would say it by its field names).
+    for (const std::string& e : {checkDrawnSea(a.waves, a.wind.windMps, a.windFromDeg),
+                                 a.coastRegion.empty() ? std::string() : checkCoastRegion(a.coastRegion),
+                                 checkBoatOptions(a.boats)})
+      if (!e.empty()) throw render::ArgError(e);
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean render: %s\n", e.what());
     return kExitBadInput;

@@ -161,15 +161,6 @@ gl::Image readWindow(int w, int h) {
 }
 
 int runView(const ViewArgs& a) {
-  const char* display = std::getenv("DISPLAY");
-  const char* wayland = std::getenv("WAYLAND_DISPLAY");
-  if ((!display || !*display) && (!wayland || !*wayland)) {
-    std::fprintf(stderr,
-                 "geocean view: no display (DISPLAY is not set). Render headless instead:\n"
-                 "  geocean render --camera 0,-150,20000000,0,-90 --out earth.png\n"
-                 "  geocean fly --to 36,-5.6 --frames 120 --out out/flight\n");
-    return kExitNoDisplay;
-  }
   Controller c;
   render::FlightPlan plan;
   bool flying = false;
@@ -179,8 +170,7 @@ int runView(const ViewArgs& a) {
     c.pose.latDeg = 20.0, c.pose.lonDeg = -30.0, c.pose.altM = 2.0e7;
     if (!a.flyTo.empty()) {
       const auto v = render::parseNumbers(a.flyTo, 2, "--fly-to LAT,LON");
-      if (std::abs(v[0]) > 90.0)
-        throw render::ArgError("--fly-to: latitude " + std::to_string(v[0]) + " is outside [-90, 90]");
+      if (auto e = checkLatLon(v[0], v[1], "--fly-to"); !e.empty()) throw render::ArgError(e);
       plan.fromLatDeg = v[0], plan.fromLonDeg = v[1] - 40.0;
       plan.toLatDeg = v[0], plan.toLonDeg = v[1];
       plan.headingDeg = 90.0;
@@ -198,12 +188,27 @@ int runView(const ViewArgs& a) {
     // The last scripted frame's time too (1/30 s per frame).
     if (auto e = checkTime(a.timeS + a.frames / 30.0, "--time + --frames / 30"); !e.empty()) throw render::ArgError(e);
     render::checkReflectionSize(a.reflectionSize);
+    // Bad input is exit 2 with or without a display: every check that needs
+    // no window comes before the display's (--beaufort: resolveWind below).
+    for (const std::string& e : {checkDrawnSea(a.waves, a.wind.windMps, a.windFromDeg),
+                                 a.coastRegion.empty() ? std::string() : checkCoastRegion(a.coastRegion),
+                                 checkBoatOptions(a.boats)})
+      if (!e.empty()) throw render::ArgError(e);
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean view: %s\n", e.what());
     return kExitBadInput;
   }
   double windMps = 0.0;
   if (const int rc = resolveWind("view", a.wind, windMps); rc != kExitOk) return rc;
+  const char* display = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((!display || !*display) && (!wayland || !*wayland)) {
+    std::fprintf(stderr,
+                 "geocean view: no display (DISPLAY is not set). Render headless instead:\n"
+                 "  geocean render --camera 0,-150,20000000,0,-90 --out earth.png\n"
+                 "  geocean fly --to 36,-5.6 --frames 120 --out out/flight\n");
+    return kExitNoDisplay;
+  }
   std::ofstream stats;
   if (!a.statsCsv.empty()) {
     stats.open(a.statsCsv);
@@ -419,7 +424,8 @@ int runView(const ViewArgs& a) {
 const Register reg{{"view", "Interactive globe viewer (needs a display; otherwise use render/fly)",
                     [](CLI::App& sub) -> std::function<int()> {
                       auto a = std::make_shared<ViewArgs>();
-                      sub.add_option("--fly-to", a->flyTo, "LAT,LON: fly from orbit to 2 m above this sea point");
+                      sub.add_option("--fly-to", a->flyTo, "LAT,LON: fly from orbit to 2 m above this sea point")
+                          ->check(nonEmpty);
                       sub.add_option("--size", a->size, "window WIDTHxHEIGHT");
                       sub.add_option("--flight-seconds", a->flightS, "duration of the --fly-to flight (default 30)");
                       sub.add_option("--frames", a->frames,

@@ -3,7 +3,8 @@
 // values. The README's contract: exit 2 (3: a data file that cannot be
 // read), and a message naming the option (or row), the field and the value; nothing on stdout but what was answered
 // before a bad row. Rows here fail before any GL context or GMT run, so the
-// matrix needs neither. Each row's `mustSay` is what the user has to read.
+// matrix needs neither (nor a display: view checks its arguments first).
+// Each row's `mustSay` is what the user has to read.
 // The C ABI's rows are tests/capi (CapiMisuse.*, CapiTimes.*, CapiV12.*).
 #include "tests/support/Subprocess.h"
 
@@ -104,7 +105,54 @@ const Row kRows[] = {
     {"mask --region nan/1/0/1 --resolution 3s --out m.tif", "--region 'nan/1/0/1': 'nan' is not a number"},
     {"mask --region 0/1/0/1 --resolution 7q --out m.tif", "--resolution '7q': unit 'q' is not s, m or d"},
     {"mask --region 0/1/0/1 --resolution 3s", "--out is required"},
-    // demo, view, the top level
+    // the drawing commands' sea options, before the GL context (named by
+    // the option, not by the plugin's field)
+    {"render --out x.png --wind nan", "--wind nan m/s is outside 0.2 .. 60 m/s"},
+    {"render --out x.png --wind-dir inf", "--wind-dir inf is not a finite angle"},
+    {"render --out x.png --waves gerstner --coast-region 52.6,4.45,1e300",
+     "--coast-region '52.6,4.45,1e300': size 1e+300 m is outside 500 .. 40000 m"},
+    {"render --out x.png --coast-region ''", "--coast-region: the value is empty"},
+    {"render --out x.png --boats -1", "--boats -1 is not in 0..10000"},
+    {"fly --out o --wind 1e300", "--wind 1e+300 m/s is outside 0.2 .. 60 m/s"},
+    {"fly --out o --waves gerstner --coast-region 52.6,nan", "'nan' in '52.6,nan' is not a finite number"},
+    {"fly --out o --boats 2 --follow 3", "--follow 3 is not a boat of --boats 2"},
+    // view: every check comes before the display's, so these exit 2 with no
+    // display at all (the runner unsets DISPLAY; with one, ViewWindow.*)
+    {"view --fly-to nan,0", "--fly-to LAT,LON: 'nan' is not a number"},
+    {"view --fly-to 0,inf", "--fly-to LAT,LON: 'inf' is not a number"},
+    {"view --fly-to 95,0", "--fly-to: latitude 95 is outside [-90, 90]"},
+    {"view --fly-to 0,1e300", "--fly-to: longitude 1e+300 is outside [-180, 360]"},
+    {"view --fly-to ''", "--fly-to: the value is empty"},
+    {"view --fly-to 36", "--fly-to LAT,LON"},
+    {"view --frames -1", "--frames: -1 must be >= 0"},
+    {"view --frames nan", "--frames"},
+    {"view --frames 1e9", "--frames"},
+    {"view --frames 99999999999", "--frames"},
+    {"view --flight-seconds inf", "--flight-seconds: inf must be positive"},
+    {"view --flight-seconds nan", "--flight-seconds: nan must be positive"},
+    {"view --frames 10 --flight-frames 1", "--flight-frames: 1 must be >= 2"},
+    {"view --screenshot x.png", "--screenshot needs --frames N"},
+    {"view --size 0x0", "--size: '0x0' is not WIDTHxHEIGHT with each in 1..16384"},
+    {"view --size 99999999999x2", "is not WIDTHxHEIGHT"},
+    {"view --boats -1", "--boats -1 is not in 0..10000"},
+    {"view --boats 10001", "--boats 10001 is not in 0..10000"},
+    {"view --boats 1e9", "--boats"},
+    {"view --boats 2 --follow 3", "--follow 3 is not a boat of --boats 2"},
+    {"view --coast-region nan,0", "--coast-region: 'nan' in 'nan,0' is not a finite number"},
+    {"view --coast-region 95,0", "--coast-region: latitude 95 is outside [-90, 90]"},
+    {"view --waves gerstner --coast-region 52.6,4.45,1e300",
+     "--coast-region '52.6,4.45,1e300': size 1e+300 m is outside 500 .. 40000 m"},
+    {"view --waves gerstner --coast-region 52.6,4.45,0", "size 0 m is outside 500 .. 40000 m"},
+    {"view --coast-region ''", "--coast-region: the value is empty"},
+    {"view --coast-region 1,2,3,4", "--coast-region '1,2,3,4' is not LAT,LON[,SIZE_M]"},
+    {"view --wind nan", "--wind nan m/s is outside 0.2 .. 60 m/s"},
+    {"view --wind inf", "--wind inf m/s is outside 0.2 .. 60 m/s"},
+    {"view --wind -inf", "--wind -inf m/s is outside 0.2 .. 60 m/s"},
+    {"view --wind 1e300", "--wind 1e+300 m/s is outside 0.2 .. 60 m/s"},
+    {"view --wind 0", "--wind 0 m/s is outside 0.2 .. 60 m/s"},
+    {"view --wind-dir nan", "--wind-dir nan is not a finite angle"},
+    {"view --waves foam", "--waves 'foam' is not a GPU wave model"},
+    // demo, the top level
     {"demo --bogus", "--bogus"},
     {"bogus", "A subcommand is required"},
 };
@@ -116,14 +164,16 @@ TEST(BadInputMatrix, EverySubcommandExitsTwoNamingTheValue) {
   std::filesystem::create_directories(dir);
   int n = 0;
   for (const Row& r : kRows) {
-    const auto res = run("cd " + dir.string() + " && " + kGeocean + " " + r.args + " </dev/null");
+    // No display: a bad argument is exit 2 whether or not there is one.
+    const auto res = run("cd " + dir.string() + " && env -u DISPLAY -u WAYLAND_DISPLAY " + kGeocean + " " + r.args +
+                         " </dev/null");
     EXPECT_EQ(res.exitCode, r.exitCode) << r.args << "\n" << res.err;
     EXPECT_NE(res.err.find(r.mustSay), std::string::npos) << r.args << ": " << res.err;
     EXPECT_TRUE(res.out.empty()) << r.args << ": " << res.out;
     ++n;
   }
   std::filesystem::remove_all(dir);
-  std::printf("%d bad-input rows over demo, query, render, fly, pick, float, mask\n", n);
+  std::printf("%d bad-input rows over demo, query, render, fly, view, pick, float, mask\n", n);
 }
 
 // Batches: a bad row is named by its number and field; the rows before it

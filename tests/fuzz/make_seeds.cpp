@@ -1,9 +1,19 @@
 // Writes the GeoTIFF seeds of corpus/fuzz_geotiff/ with Geocean's own writer
 // (globe/raster/GeoTiffWriter), each a few hundred bytes: every sample type,
 // strips and tiles, each compression, pixel-is-point, nodata, global, and
-// the refused kinds (projected CRS, rotation, no GeoKeys). Regenerate with
-//   cmake --build build-fuzz --target fuzz_make_seeds && build-fuzz/tests/fuzz/fuzz_make_seeds tests/fuzz/corpus/fuzz_geotiff
+// the refused kinds (projected CRS, rotation, no GeoKeys); and, given a
+// second folder, the tile-cache indexes of corpus/fuzz_tile_index/ as
+// TilePyramid writes them for fuzz_tile_index's source. Regenerate with
+//   cmake --build build-fuzz --target fuzz_make_seeds && build-fuzz/tests/fuzz/fuzz_make_seeds \
+//       tests/fuzz/corpus/fuzz_geotiff tests/fuzz/corpus/fuzz_tile_index
 #include "globe/raster/GeoTiffWriter.h"
+#include "globe/raster/Raster.h"
+#include "globe/raster/TilePyramid.h"
+#include "tests/fuzz/TileIndexSource.h"
+
+#include <unistd.h>
+
+#include <filesystem>
 
 #include <cstdint>
 #include <cstdio>
@@ -13,8 +23,8 @@
 using namespace geocean::raster;
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: %s <output dir>\n", argv[0]);
+  if (argc != 2 && argc != 3) {
+    std::fprintf(stderr, "usage: %s <geotiff seed dir> [<tile index seed dir>]\n", argv[0]);
     return 2;
   }
   const std::string dir = argv[1];
@@ -82,6 +92,23 @@ int main(int argc, char** argv) {
     const std::string path = dir + "/" + s.name;
     writeGeoTiff(path, s.data, w, h, s.channels, s.type, s.o);
     std::printf("%s\n", path.c_str());
+  }
+  if (argc == 3) {
+    // The index the pyramid writes, for two tile sizes (8: the fuzzer's build; 16: another key).
+    namespace fs = std::filesystem;
+    const fs::path tmp = fs::temp_directory_path() / ("geocean_make_seeds_" + std::to_string(::getpid()));
+    fs::create_directories(tmp);
+    const std::string src = (tmp / "src.tif").string();
+    geocean::fuzz::writeTileIndexSource(src);
+    for (int tile : {8, 16}) {
+      auto o = geocean::fuzz::tileIndexPyramidOptions((tmp / "cache").string());
+      o.tileSize = tile;
+      auto p = TilePyramid::open(Raster::open(src), o);
+      const std::string out = std::string(argv[2]) + "/index_40x24_tile" + std::to_string(tile);
+      fs::copy_file(p->stats().cachePath + "/index", out, fs::copy_options::overwrite_existing);
+      std::printf("%s\n", out.c_str());
+    }
+    fs::remove_all(tmp);
   }
   return 0;
 }

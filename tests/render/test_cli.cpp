@@ -35,7 +35,7 @@ TEST(RenderCli, CoastRegionIsCheckedAndChangesTheWaves) {
   for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
            {" --coast-region 52.6,4.45", "needs GEOCEAN_WAVES_GERSTNER"},
            {" --waves gerstner --coast-region 52.6", "'52.6' is not LAT,LON[,SIZE_M]"},
-           {" --waves gerstner --coast-region 52.6,4.45,90000", "size_m 90000"},
+           {" --waves gerstner --coast-region 52.6,4.45,90000", "size 90000 m is outside 500 .. 40000 m"},
            {" --waves gerstner --coast-region nan,4", "'nan' in 'nan,4' is not a finite number"},
            {" --waves gerstner --no-ocean --coast-region 52.6,4.45", "needs the ocean"}}) {
     const auto r = geocean::test::run(base + args + " --out /tmp/x.png");
