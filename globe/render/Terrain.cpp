@@ -325,6 +325,16 @@ bool TerrainRenderer::bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, c
   const double ya = (lat0 - t0.originLatDeg) / t0.latStepDeg, yb = (lat1 - t0.originLatDeg) / t0.latStepDeg;
   const double y0 = std::min(ya, yb), y1 = std::max(ya, yb);
   constexpr double kReach = 3.0;
+  if (!wrap) {
+    // A regional layer: a terrain tile clear of it by the filter's reach at
+    // the coarsest level draws the grid alone (slots -1, geo_uv.glsl), so
+    // nothing is asked for and every level agrees with the grid there.
+    const double m = kReach * double(1 << top);
+    if (x1 + m < 0.0 || x0 - m > pyr.levelWidth(0) || y1 + m < 0.0 || y0 - m > pyr.levelHeight(0)) {
+      if (prog) glUniform4i(prog->uniform((std::string(prefix) + "Slots").c_str()), -1, -1, -1, -1);
+      return true;
+    }
+  }
   int want = 0;
   while (want < top && std::max(x1 - x0, y1 - y0) / double(1 << want) + 2.0 * kReach + 1.0 > T) ++want;
   int slots[4] = {0, 0, 0, 0};
