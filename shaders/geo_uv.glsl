@@ -117,22 +117,34 @@ uniform ivec4 uWaterBlock;    // first tile (x, y), tiles across the level, tile
 uniform ivec3 uWaterLevel;    // level width and height in texels; 1 if longitude wraps
 uniform vec4 uWaterLevelGeo;  // origin lon, origin lat, lon step, lat step of a level texel
 
-// A regional layer (uWaterLevel.z 0): a terrain tile clear of it draws the
-// water grid alone (TerrainRenderer::bindBlock sets no slots, -1), exactly
-// as without tiles; inside the block, texels past the layer's edge and its
-// nodata (NaN) take the grid's own B-spline coverage at the texel's centre,
-// so the coast runs on into the grid's without a seam.
-bool waterTilesDrawn() { return uWaterSlots.x >= 0; }
+// A regional layer (GEOCEAN_WATER_REGIONAL; a global one's programs are
+// exactly as before): a terrain tile clear of it draws the water grid
+// alone (TerrainRenderer::bindBlock sets no slots, -1), exactly as without
+// tiles; inside the block, texels past the layer's edge and its nodata
+// (NaN) take the grid's coverage at the texel's centre (one bilinear
+// fetch: only texels within the B-spline's reach of the edge, or nodata,
+// ever need it), so the coast runs on into the grid's without a gap.
+bool waterTilesDrawn() {
+#ifdef GEOCEAN_WATER_REGIONAL
+  return uWaterSlots.x >= 0;
+#else
+  return true;
+#endif
+}
 
 float waterTexel(ivec2 g, sampler2D grid, vec4 gridGeo) {
+#ifdef GEOCEAN_WATER_REGIONAL
   ivec2 g0 = g;
-  bool outside = uWaterLevel.z == 0 && (any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g, uWaterLevel.xy)));
+  bool outside = any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g, uWaterLevel.xy));
   float v = outside ? 0.0 : texelFetch(uWaterPool, blockTexel(g, uWaterLevel, uWaterBlock, uWaterSlots), 0).r;
   if (outside || isnan(v)) {
     vec2 c = uWaterLevelGeo.xy + (vec2(g0) + 0.5) * uWaterLevelGeo.zw;
-    v = textureBSplineGather(grid, geoUv(c, gridGeo));
+    v = textureLod(grid, geoUv(c, gridGeo), 0.0).r;
   }
   return v;
+#else
+  return texelFetch(uWaterPool, blockTexel(g, uWaterLevel, uWaterBlock, uWaterSlots), 0).r;
+#endif
 }
 
 // Continuous level texel coordinates with texel centres at integers.
@@ -140,7 +152,13 @@ vec2 waterTexelPos(vec2 lonLatDeg) {
   return vec2((lonLatDeg.x - uWaterLevelGeo.x) / uWaterLevelGeo.z, (lonLatDeg.y - uWaterLevelGeo.y) / uWaterLevelGeo.w) - 0.5;
 }
 
-bool waterTilesClear(vec2 p) { return uWaterLevel.z == 0 && levelClear(p, uWaterLevel.xy); }
+bool waterTilesClear(vec2 p) {
+#ifdef GEOCEAN_WATER_REGIONAL
+  return levelClear(p, uWaterLevel.xy);
+#else
+  return false;
+#endif
+}
 
 float waterTilesBilinear(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
   vec2 p = waterTexelPos(lonLatDeg);
@@ -174,7 +192,8 @@ float waterTilesBSpline(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
 float waterTilesAuto(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
   vec2 p = waterTexelPos(lonLatDeg);
   float texelsPerPixel = length(fwidth(p));
-  if (uWaterLevel.z == 0) {  // derivatives before the branch
+#ifdef GEOCEAN_WATER_REGIONAL
+  {  // derivatives before the branch
     vec2 uvW = geoUv(lonLatDeg, gridGeo);
     vec2 dx = dFdx(uvW), dy = dFdy(uvW);
     if (levelClear(p, uWaterLevel.xy)) {  // the grid as textureBSplineAuto draws it
@@ -182,6 +201,7 @@ float waterTilesAuto(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
       return gridTpp < 1.0 ? textureBSplineGather(grid, uvW) : textureGrad(grid, uvW, dx, dy).r;
     }
   }
+#endif
   return texelsPerPixel < 1.0 ? waterTilesBSpline(lonLatDeg, grid, gridGeo) : waterTilesBilinear(lonLatDeg, grid, gridGeo);
 }
 #endif
@@ -198,12 +218,23 @@ uniform ivec4 uElevBlock;
 uniform ivec3 uElevLevel;
 uniform vec4 uElevLevelGeo;
 
-// A regional layer (uElevLevel.z 0): texels past its edge are the grid's
-// too; a terrain tile clear of it draws the grid alone (no slots, -1).
-bool elevTilesDrawn() { return uElevSlots.x >= 0; }
+// A regional layer (GEOCEAN_ELEVATION_REGIONAL): texels past its edge are
+// the grid's too; a terrain tile clear of it draws the grid alone (no
+// slots, -1).
+bool elevTilesDrawn() {
+#ifdef GEOCEAN_ELEVATION_REGIONAL
+  return uElevSlots.x >= 0;
+#else
+  return true;
+#endif
+}
 
 float elevTexel(ivec2 g, sampler2D grid, vec4 gridGeo) {
-  bool outside = uElevLevel.z == 0 && (any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g, uElevLevel.xy)));
+#ifdef GEOCEAN_ELEVATION_REGIONAL
+  bool outside = any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g, uElevLevel.xy));
+#else
+  const bool outside = false;
+#endif
   float v = outside ? 0.0 : texelFetch(uElevPool, blockTexel(g, uElevLevel, uElevBlock, uElevSlots), 0).r;
   if (outside || isnan(v)) {
     vec2 c = vec2(uElevLevelGeo.x + (float(g.x) + 0.5) * uElevLevelGeo.z, uElevLevelGeo.y + (float(g.y) + 0.5) * uElevLevelGeo.w);
@@ -215,7 +246,9 @@ float elevTexel(ivec2 g, sampler2D grid, vec4 gridGeo) {
 // Bilinear elevation (m) at lon/lat from the streamed level.
 float elevTiles(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
   vec2 p = vec2((lonLatDeg.x - uElevLevelGeo.x) / uElevLevelGeo.z, (lonLatDeg.y - uElevLevelGeo.y) / uElevLevelGeo.w) - 0.5;
-  if (uElevLevel.z == 0 && levelClear(p, uElevLevel.xy)) return textureLod(grid, geoUv(lonLatDeg, gridGeo), 0.0).r;
+#ifdef GEOCEAN_ELEVATION_REGIONAL
+  if (levelClear(p, uElevLevel.xy)) return textureLod(grid, geoUv(lonLatDeg, gridGeo), 0.0).r;
+#endif
   vec2 i = floor(p);
   vec2 f = p - i;
   ivec2 g = ivec2(i);
@@ -253,20 +286,23 @@ int pageSlot(int level, ivec2 g) {  // g wrapped
 // A regional pyramid (uPageTile.y 0): past its edge and at its nodata
 // (NaN) the ocean's water grid answers, its B-spline at the texel's centre
 // (the layers below, as the query's).
-bool pageOutside(int level, ivec2 g) {
-  return uPageTile.y == 0 && (any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g, uPageLevel[level].xy)));
-}
-
+// (GEOCEAN_WATER_PAGES_REGIONAL; a global pyramid's program is as before.)
 float pageTexel(int level, ivec2 g, sampler2D grid, vec4 gridGeo) {
-  bool outside = pageOutside(level, g);
+#ifdef GEOCEAN_WATER_PAGES_REGIONAL
+  bool outside = any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g, uPageLevel[level].xy));
   ivec2 w = pageWrap(level, g);
   int T = uPageTile.x;
   float v = outside ? 0.0 : texelFetch(uPagePool, ivec3(w - (w / T) * T + 1, pageSlot(level, w)), 0).r;  // + 1: the tile's border
   if (outside || isnan(v)) {
     vec2 c = uPageGeo.xy + (vec2(g) + 0.5) * float(1 << level) * uPageGeo.zw;
-    v = textureBSplineGather(grid, geoUv(c, gridGeo));
+    v = textureLod(grid, geoUv(c, gridGeo), 0.0).r;  // one fetch: see waterTexel
   }
   return v;
+#else
+  g = pageWrap(level, g);
+  int T = uPageTile.x;
+  return texelFetch(uPagePool, ivec3(g - (g / T) * T + 1, pageSlot(level, g)), 0).r;  // + 1: the tile's border
+#endif
 }
 
 // Continuous texel coordinates of a level, texel centres at integers.
@@ -322,15 +358,17 @@ float pageBilinear(vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo) {
 // textureBSplineAuto draws it (derivatives taken before the branch).
 float waterPagesAuto(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
   float tpp = length(fwidth(pagePos(lonLatDeg, 0)));
+  int want = tpp < 1.0 ? 0 : min(int(floor(log2(tpp))), uPageTop);
+#ifdef GEOCEAN_WATER_PAGES_REGIONAL
   vec2 uvW = geoUv(lonLatDeg, gridGeo);
   vec2 dx = dFdx(uvW), dy = dFdy(uvW);
-  int want = tpp < 1.0 ? 0 : min(int(floor(log2(tpp))), uPageTop);
-  if (uPageTile.y == 0) {
+  {
     if (levelClear(pagePos(lonLatDeg, want), uPageLevel[want].xy)) {
       float texelsPerPixel = length((abs(dx) + abs(dy)) * vec2(textureSize(grid, 0)));
       return texelsPerPixel < 1.0 ? textureBSplineGather(grid, uvW) : textureGrad(grid, uvW, dx, dy).r;
     }
   }
+#endif
   int l = pageLevel(lonLatDeg, want);
   return tpp < 1.0 ? pageBSpline(lonLatDeg, l, grid, gridGeo) : pageBilinear(lonLatDeg, l, grid, gridGeo);
 }

@@ -41,6 +41,11 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
   const auto with = [&](std::vector<std::string> d) {
     if (world_.waterTiles()) d.push_back("GEOCEAN_WATER_TILES 1");
     if (world_.elevationTiles()) d.push_back("GEOCEAN_ELEVATION_TILES 1");
+    // A regional pyramid falls through to the grid (geo_uv.glsl).
+    if (world_.waterTiles() && !world_.waterTiles()->pyramid().source().transform().global)
+      d.push_back("GEOCEAN_WATER_REGIONAL 1");
+    if (world_.elevationTiles() && !world_.elevationTiles()->pyramid().source().transform().global)
+      d.push_back("GEOCEAN_ELEVATION_REGIONAL 1");
     return d;
   };
   // Under an ocean layer too: the ocean draws a streamed mask's coast from
@@ -381,8 +386,10 @@ TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const
   if (mirrored_.id() == 0)  // compiled on the first reflection a layer asks for
     mirrored_ = gl::GlProgram::graphics(
         "terrain.vert", "terrain.frag",
-        world_.elevationTiles() ? std::vector<std::string>{"GEOCEAN_CLIP_SEA 1", "GEOCEAN_ELEVATION_TILES 1"}
-                                : std::vector<std::string>{"GEOCEAN_CLIP_SEA 1"});
+        !world_.elevationTiles() ? std::vector<std::string>{"GEOCEAN_CLIP_SEA 1"}
+        : world_.elevationTiles()->pyramid().source().transform().global
+            ? std::vector<std::string>{"GEOCEAN_CLIP_SEA 1", "GEOCEAN_ELEVATION_TILES 1"}
+            : std::vector<std::string>{"GEOCEAN_CLIP_SEA 1", "GEOCEAN_ELEVATION_TILES 1", "GEOCEAN_ELEVATION_REGIONAL 1"});
   TerrainStats stats;
   std::vector<Key> tiles;
   std::vector<const Slot*> slots;
