@@ -69,6 +69,14 @@ vec4 bsplineWeights4(float f) {
               (1.0 + 3.0 * f + 3.0 * f2 - 3.0 * f3) / 6.0, f3 / 6.0);
 }
 
+// True when the 4 x 4 texels round p (a level's texel coordinates, centres
+// at integers) all lie past the edge of a regional level of size `size`:
+// no texel of the layer is within a filter's reach, the grid answers alone.
+bool levelClear(vec2 p, ivec2 size) {
+  ivec2 i = ivec2(floor(p));
+  return any(lessThan(i + 2, ivec2(0))) || any(greaterThanEqual(i - 1, size));
+}
+
 #if defined(GEOCEAN_WATER_TILES) || defined(GEOCEAN_ELEVATION_TILES)
 // Texel g of a streamed level (host tiles: water or elevation) in its 2 x 2
 // block of pool layers: (x, y) in the tile with its border, and the layer.
@@ -109,8 +117,34 @@ uniform ivec4 uWaterBlock;    // first tile (x, y), tiles across the level, tile
 uniform ivec3 uWaterLevel;    // level width and height in texels; 1 if longitude wraps
 uniform vec4 uWaterLevelGeo;  // origin lon, origin lat, lon step, lat step of a level texel
 
-float waterTexel(ivec2 g) {
+// A regional layer (GEOCEAN_WATER_REGIONAL; a global one's programs are
+// exactly as before): a terrain tile clear of it draws the water grid
+// alone (TerrainRenderer::bindBlock sets no slots, -1), exactly as without
+// tiles; inside the block, texels past the layer's edge and its nodata
+// (NaN) take the grid's coverage at the texel's centre (one bilinear
+// fetch: only texels within the B-spline's reach of the edge, or nodata,
+// ever need it), so the coast runs on into the grid's without a gap.
+bool waterTilesDrawn() {
+#ifdef GEOCEAN_WATER_REGIONAL
+  return uWaterSlots.x >= 0;
+#else
+  return true;
+#endif
+}
+
+float waterTexel(ivec2 g, sampler2D grid, vec4 gridGeo) {
+#ifdef GEOCEAN_WATER_REGIONAL
+  ivec2 g0 = g;
+  bool outside = any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g, uWaterLevel.xy));
+  float v = outside ? 0.0 : texelFetch(uWaterPool, blockTexel(g, uWaterLevel, uWaterBlock, uWaterSlots), 0).r;
+  if (outside || isnan(v)) {
+    vec2 c = uWaterLevelGeo.xy + (vec2(g0) + 0.5) * uWaterLevelGeo.zw;
+    v = textureLod(grid, geoUv(c, gridGeo), 0.0).r;
+  }
+  return v;
+#else
   return texelFetch(uWaterPool, blockTexel(g, uWaterLevel, uWaterBlock, uWaterSlots), 0).r;
+#endif
 }
 
 // Continuous level texel coordinates with texel centres at integers.
@@ -118,25 +152,35 @@ vec2 waterTexelPos(vec2 lonLatDeg) {
   return vec2((lonLatDeg.x - uWaterLevelGeo.x) / uWaterLevelGeo.z, (lonLatDeg.y - uWaterLevelGeo.y) / uWaterLevelGeo.w) - 0.5;
 }
 
-float waterTilesBilinear(vec2 lonLatDeg) {
+bool waterTilesClear(vec2 p) {
+#ifdef GEOCEAN_WATER_REGIONAL
+  return levelClear(p, uWaterLevel.xy);
+#else
+  return false;
+#endif
+}
+
+float waterTilesBilinear(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
   vec2 p = waterTexelPos(lonLatDeg);
+  if (waterTilesClear(p)) return textureLod(grid, geoUv(lonLatDeg, gridGeo), 0.0).r;
   vec2 i = floor(p);
   vec2 f = p - i;
   ivec2 g = ivec2(i);
-  return mix(mix(waterTexel(g), waterTexel(g + ivec2(1, 0)), f.x),
-             mix(waterTexel(g + ivec2(0, 1)), waterTexel(g + ivec2(1, 1)), f.x), f.y);
+  return mix(mix(waterTexel(g, grid, gridGeo), waterTexel(g + ivec2(1, 0), grid, gridGeo), f.x),
+             mix(waterTexel(g + ivec2(0, 1), grid, gridGeo), waterTexel(g + ivec2(1, 1), grid, gridGeo), f.x), f.y);
 }
 
-float waterTilesBSpline(vec2 lonLatDeg) {
+float waterTilesBSpline(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
   vec2 p = waterTexelPos(lonLatDeg);
+  if (waterTilesClear(p)) return textureBSplineGather(grid, geoUv(lonLatDeg, gridGeo));
   vec2 i = floor(p);
   vec2 f = p - i;
   vec4 wx = bsplineWeights4(f.x), wy = bsplineWeights4(f.y);
   ivec2 g = ivec2(i) - 1;
   float s = 0.0;
   for (int y = 0; y < 4; ++y) {
-    vec4 row = vec4(waterTexel(g + ivec2(0, y)), waterTexel(g + ivec2(1, y)), waterTexel(g + ivec2(2, y)),
-                    waterTexel(g + ivec2(3, y)));
+    vec4 row = vec4(waterTexel(g + ivec2(0, y), grid, gridGeo), waterTexel(g + ivec2(1, y), grid, gridGeo),
+                    waterTexel(g + ivec2(2, y), grid, gridGeo), waterTexel(g + ivec2(3, y), grid, gridGeo));
     s += wy[y] * dot(row, wx);
   }
   return s;
@@ -145,9 +189,20 @@ float waterTilesBSpline(vec2 lonLatDeg) {
 #ifdef GEOCEAN_FRAGMENT_STAGE
 // Magnified: the B-spline; minified: bilinear at the level the terrain tile
 // chose (its texels are at most about a pixel: the tile's cells are).
-float waterTilesAuto(vec2 lonLatDeg) {
-  float texelsPerPixel = length(fwidth(waterTexelPos(lonLatDeg)));
-  return texelsPerPixel < 1.0 ? waterTilesBSpline(lonLatDeg) : waterTilesBilinear(lonLatDeg);
+float waterTilesAuto(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
+  vec2 p = waterTexelPos(lonLatDeg);
+  float texelsPerPixel = length(fwidth(p));
+#ifdef GEOCEAN_WATER_REGIONAL
+  {  // derivatives before the branch
+    vec2 uvW = geoUv(lonLatDeg, gridGeo);
+    vec2 dx = dFdx(uvW), dy = dFdy(uvW);
+    if (levelClear(p, uWaterLevel.xy)) {  // the grid as textureBSplineAuto draws it
+      float gridTpp = length((abs(dx) + abs(dy)) * vec2(textureSize(grid, 0)));
+      return gridTpp < 1.0 ? textureBSplineGather(grid, uvW) : textureGrad(grid, uvW, dx, dy).r;
+    }
+  }
+#endif
+  return texelsPerPixel < 1.0 ? waterTilesBSpline(lonLatDeg, grid, gridGeo) : waterTilesBilinear(lonLatDeg, grid, gridGeo);
 }
 #endif
 #endif
@@ -163,9 +218,25 @@ uniform ivec4 uElevBlock;
 uniform ivec3 uElevLevel;
 uniform vec4 uElevLevelGeo;
 
+// A regional layer (GEOCEAN_ELEVATION_REGIONAL): texels past its edge are
+// the grid's too; a terrain tile clear of it draws the grid alone (no
+// slots, -1).
+bool elevTilesDrawn() {
+#ifdef GEOCEAN_ELEVATION_REGIONAL
+  return uElevSlots.x >= 0;
+#else
+  return true;
+#endif
+}
+
 float elevTexel(ivec2 g, sampler2D grid, vec4 gridGeo) {
-  float v = texelFetch(uElevPool, blockTexel(g, uElevLevel, uElevBlock, uElevSlots), 0).r;
-  if (isnan(v)) {
+#ifdef GEOCEAN_ELEVATION_REGIONAL
+  bool outside = any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g, uElevLevel.xy));
+#else
+  const bool outside = false;
+#endif
+  float v = outside ? 0.0 : texelFetch(uElevPool, blockTexel(g, uElevLevel, uElevBlock, uElevSlots), 0).r;
+  if (outside || isnan(v)) {
     vec2 c = vec2(uElevLevelGeo.x + (float(g.x) + 0.5) * uElevLevelGeo.z, uElevLevelGeo.y + (float(g.y) + 0.5) * uElevLevelGeo.w);
     v = textureLod(grid, geoUv(c, gridGeo), 0.0).r;
   }
@@ -175,6 +246,9 @@ float elevTexel(ivec2 g, sampler2D grid, vec4 gridGeo) {
 // Bilinear elevation (m) at lon/lat from the streamed level.
 float elevTiles(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
   vec2 p = vec2((lonLatDeg.x - uElevLevelGeo.x) / uElevLevelGeo.z, (lonLatDeg.y - uElevLevelGeo.y) / uElevLevelGeo.w) - 0.5;
+#ifdef GEOCEAN_ELEVATION_REGIONAL
+  if (levelClear(p, uElevLevel.xy)) return textureLod(grid, geoUv(lonLatDeg, gridGeo), 0.0).r;
+#endif
   vec2 i = floor(p);
   vec2 f = p - i;
   ivec2 g = ivec2(i);
@@ -209,10 +283,26 @@ int pageSlot(int level, ivec2 g) {  // g wrapped
   return texelFetch(uPageTable, ivec2(t.x, uPageLevel[level].w + t.y), 0).r;
 }
 
-float pageTexel(int level, ivec2 g) {
+// A regional pyramid (uPageTile.y 0): past its edge and at its nodata
+// (NaN) the ocean's water grid answers, its B-spline at the texel's centre
+// (the layers below, as the query's).
+// (GEOCEAN_WATER_PAGES_REGIONAL; a global pyramid's program is as before.)
+float pageTexel(int level, ivec2 g, sampler2D grid, vec4 gridGeo) {
+#ifdef GEOCEAN_WATER_PAGES_REGIONAL
+  bool outside = any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g, uPageLevel[level].xy));
+  ivec2 w = pageWrap(level, g);
+  int T = uPageTile.x;
+  float v = outside ? 0.0 : texelFetch(uPagePool, ivec3(w - (w / T) * T + 1, pageSlot(level, w)), 0).r;  // + 1: the tile's border
+  if (outside || isnan(v)) {
+    vec2 c = uPageGeo.xy + (vec2(g) + 0.5) * float(1 << level) * uPageGeo.zw;
+    v = textureLod(grid, geoUv(c, gridGeo), 0.0).r;  // one fetch: see waterTexel
+  }
+  return v;
+#else
   g = pageWrap(level, g);
   int T = uPageTile.x;
   return texelFetch(uPagePool, ivec3(g - (g / T) * T + 1, pageSlot(level, g)), 0).r;  // + 1: the tile's border
+#endif
 }
 
 // Continuous texel coordinates of a level, texel centres at integers.
@@ -234,7 +324,7 @@ int pageLevel(vec2 lonLatDeg, int want) {
   return uPageTop;
 }
 
-float pageBSpline(vec2 lonLatDeg, int level) {
+float pageBSpline(vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo) {
   vec2 p = pagePos(lonLatDeg, level);
   vec2 i = floor(p);
   vec2 f = p - i;
@@ -242,31 +332,45 @@ float pageBSpline(vec2 lonLatDeg, int level) {
   ivec2 g = ivec2(i) - 1;
   float s = 0.0;
   for (int y = 0; y < 4; ++y) {
-    vec4 row = vec4(pageTexel(level, g + ivec2(0, y)), pageTexel(level, g + ivec2(1, y)),
-                    pageTexel(level, g + ivec2(2, y)), pageTexel(level, g + ivec2(3, y)));
+    vec4 row = vec4(pageTexel(level, g + ivec2(0, y), grid, gridGeo), pageTexel(level, g + ivec2(1, y), grid, gridGeo),
+                    pageTexel(level, g + ivec2(2, y), grid, gridGeo), pageTexel(level, g + ivec2(3, y), grid, gridGeo));
     s += wy[y] * dot(row, wx);
   }
   return s;
 }
 
-float pageBilinear(vec2 lonLatDeg, int level) {
+float pageBilinear(vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo) {
   vec2 p = pagePos(lonLatDeg, level);
   vec2 i = floor(p);
   vec2 f = p - i;
   ivec2 g = ivec2(i);
-  return mix(mix(pageTexel(level, g), pageTexel(level, g + ivec2(1, 0)), f.x),
-             mix(pageTexel(level, g + ivec2(0, 1)), pageTexel(level, g + ivec2(1, 1)), f.x), f.y);
+  return mix(mix(pageTexel(level, g, grid, gridGeo), pageTexel(level, g + ivec2(1, 0), grid, gridGeo), f.x),
+             mix(pageTexel(level, g + ivec2(0, 1), grid, gridGeo), pageTexel(level, g + ivec2(1, 1), grid, gridGeo), f.x),
+             f.y);
 }
 
 #ifdef GEOCEAN_FRAGMENT_STAGE
 // Magnified: the B-spline of level 0 (or the finest resident); minified:
 // bilinear at the level whose texel is about the pixel (the pyramid's
 // levels are means of 2 x 2 texels: a mipmap), as textureBSplineAuto.
-float waterPagesAuto(vec2 lonLatDeg) {
+// grid (uWaterGeo): the ocean's water grid. Where no texel of a regional
+// pyramid's level is within the filter's reach, the grid alone, as
+// textureBSplineAuto draws it (derivatives taken before the branch).
+float waterPagesAuto(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
   float tpp = length(fwidth(pagePos(lonLatDeg, 0)));
   int want = tpp < 1.0 ? 0 : min(int(floor(log2(tpp))), uPageTop);
+#ifdef GEOCEAN_WATER_PAGES_REGIONAL
+  vec2 uvW = geoUv(lonLatDeg, gridGeo);
+  vec2 dx = dFdx(uvW), dy = dFdy(uvW);
+  {
+    if (levelClear(pagePos(lonLatDeg, want), uPageLevel[want].xy)) {
+      float texelsPerPixel = length((abs(dx) + abs(dy)) * vec2(textureSize(grid, 0)));
+      return texelsPerPixel < 1.0 ? textureBSplineGather(grid, uvW) : textureGrad(grid, uvW, dx, dy).r;
+    }
+  }
+#endif
   int l = pageLevel(lonLatDeg, want);
-  return tpp < 1.0 ? pageBSpline(lonLatDeg, l) : pageBilinear(lonLatDeg, l);
+  return tpp < 1.0 ? pageBSpline(lonLatDeg, l, grid, gridGeo) : pageBilinear(lonLatDeg, l, grid, gridGeo);
 }
 #endif
 #endif

@@ -71,7 +71,7 @@ void main() {
 #elif defined(GEOCEAN_VERTEX_COVERAGE)
   float w = vCoverage;
 #elif defined(GEOCEAN_WATER_PAGES)
-  float w = waterPagesAuto(vLonLat);  // a streamed mask (plugin/render/WaterPages)
+  float w = waterPagesAuto(vLonLat, uWater, uWaterGeo);  // a streamed mask (plugin/render/WaterPages)
 #else
   float w = textureBSplineAuto(uWater, geoUv(vLonLat, uWaterGeo));
 #endif

@@ -69,11 +69,13 @@ void main() {
   if (uSeaShading != 0) {
     // Water coverage: 0.5 is the shoreline; smooth over a pixel (B-spline
     // magnified, the mipmapped average minified).
+    float w;
 #ifdef GEOCEAN_WATER_TILES
-    float w = waterTilesAuto(vLonLat);
-#else
-    float w = textureBSplineAuto(uWater, geoUv(vLonLat, uWaterGeo));
+    // A uniform branch (per terrain tile): derivatives stay defined.
+    if (waterTilesDrawn()) w = waterTilesAuto(vLonLat, uWater, uWaterGeo);
+    else
 #endif
+    w = textureBSplineAuto(uWater, geoUv(vLonLat, uWaterGeo));
     float aa = clamp(fwidth(w) * 0.75, 1e-3, 0.5);
     float waterAmt = smoothstep(0.5 - aa, 0.5 + aa, w);
     // Distant sea (no wave geometry, slopes as roughness), shaded per vertex.

@@ -41,22 +41,27 @@ void main() {
   float h = -uSkirtM * aSkirt;
 #else
   vec2 uvE = geoUv(aLonLat, uElevationGeo);
+  float elev;
 #ifdef GEOCEAN_ELEVATION_TILES
-  float elev = elevTiles(aLonLat, uElevation, uElevationGeo);
-#else
-  float elev = textureLod(uElevation, uvE, 0.0).r;
+  if (elevTilesDrawn()) elev = elevTiles(aLonLat, uElevation, uElevationGeo);
+  else
 #endif
+  elev = textureLod(uElevation, uvE, 0.0).r;
   // The fragment shaders draw the shoreline at B-spline coverage 0.5; the
   // ground must already be under the sea wherever that can be water, or it
   // hides the wave grid (seen 2 m above the Strait of Gibraltar).
+  float waterBSpline, water;
 #ifdef GEOCEAN_WATER_TILES
-  float waterBSpline = waterTilesBSpline(aLonLat);
-  float water = max(waterTilesBilinear(aLonLat), waterBSpline);
-#else
-  vec2 uvW = geoUv(aLonLat, uWaterGeo);
-  float waterBSpline = textureBSpline(uWater, uvW);
-  float water = max(textureLod(uWater, uvW, 0.0).r, waterBSpline);
+  if (waterTilesDrawn()) {
+    waterBSpline = waterTilesBSpline(aLonLat, uWater, uWaterGeo);
+    water = max(waterTilesBilinear(aLonLat, uWater, uWaterGeo), waterBSpline);
+  } else
 #endif
+  {  // the grid alone (no tiles, or a terrain tile clear of a regional layer)
+    vec2 uvW = geoUv(aLonLat, uWaterGeo);
+    waterBSpline = textureBSpline(uWater, uvW);
+    water = max(textureLod(uWater, uvW, 0.0).r, waterBSpline);
+  }
   // Land never dips below the sea, water areas sit under the wave grid.
   float land = max(elev, 0.0) * uExaggeration;
   float h = mix(land, -uSeaDropM, smoothstep(0.3, 0.45, water)) - uSkirtM * aSkirt;
@@ -70,22 +75,26 @@ void main() {
   vRelief = aNormal, vSun = vec3(1.0), vHazeTr = vec3(1.0), vHazeIn = vec3(0.0), vDepthM = 0.0, vSeaColor = vec3(0.0), vWater = 0.0;
 #else
   // Relief: the elevation gradient tilts the normal (east/north tangents).
+  float hE, hW, hN, hS, cellNS, cellEW;
 #ifdef GEOCEAN_ELEVATION_TILES
-  // One texel of the streamed level either side.
-  vec2 st = abs(uElevLevelGeo.zw);
-  float hE = elevTiles(aLonLat + vec2(st.x, 0.0), uElevation, uElevationGeo);
-  float hW = elevTiles(aLonLat - vec2(st.x, 0.0), uElevation, uElevationGeo);
-  float hN = elevTiles(aLonLat + vec2(0.0, st.y), uElevation, uElevationGeo);
-  float hS = elevTiles(aLonLat - vec2(0.0, st.y), uElevation, uElevationGeo);
-  float cellNS = st.y * 111320.0;
-  float cellEW = max(st.x * 111320.0 * cos(radians(aLonLat.y)), 1.0);
-#else
-  vec2 texel = 1.0 / vec2(textureSize(uElevation, 0));
-  float hE = textureLod(uElevation, uvE + vec2(texel.x, 0), 0.0).r, hW = textureLod(uElevation, uvE - vec2(texel.x, 0), 0.0).r;
-  float hN = textureLod(uElevation, uvE - vec2(0, texel.y), 0.0).r, hS = textureLod(uElevation, uvE + vec2(0, texel.y), 0.0).r;
-  float cellNS = abs(uElevationGeo.w) * texel.y * 111320.0;
-  float cellEW = max(abs(uElevationGeo.z) * texel.x * 111320.0 * cos(radians(aLonLat.y)), 1.0);
+  if (elevTilesDrawn()) {
+    // One texel of the streamed level either side.
+    vec2 st = abs(uElevLevelGeo.zw);
+    hE = elevTiles(aLonLat + vec2(st.x, 0.0), uElevation, uElevationGeo);
+    hW = elevTiles(aLonLat - vec2(st.x, 0.0), uElevation, uElevationGeo);
+    hN = elevTiles(aLonLat + vec2(0.0, st.y), uElevation, uElevationGeo);
+    hS = elevTiles(aLonLat - vec2(0.0, st.y), uElevation, uElevationGeo);
+    cellNS = st.y * 111320.0;
+    cellEW = max(st.x * 111320.0 * cos(radians(aLonLat.y)), 1.0);
+  } else
 #endif
+  {
+    vec2 texel = 1.0 / vec2(textureSize(uElevation, 0));
+    hE = textureLod(uElevation, uvE + vec2(texel.x, 0), 0.0).r, hW = textureLod(uElevation, uvE - vec2(texel.x, 0), 0.0).r;
+    hN = textureLod(uElevation, uvE - vec2(0, texel.y), 0.0).r, hS = textureLod(uElevation, uvE + vec2(0, texel.y), 0.0).r;
+    cellNS = abs(uElevationGeo.w) * texel.y * 111320.0;
+    cellEW = max(abs(uElevationGeo.z) * texel.x * 111320.0 * cos(radians(aLonLat.y)), 1.0);
+  }
   vec3 up = aNormal;
   vec3 east = normalize(cross(vec3(0.0, 0.0, 1.0), up) + vec3(1e-6, 0.0, 0.0));
   vec3 north = cross(up, east);

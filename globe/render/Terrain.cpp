@@ -41,6 +41,11 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
   const auto with = [&](std::vector<std::string> d) {
     if (world_.waterTiles()) d.push_back("GEOCEAN_WATER_TILES 1");
     if (world_.elevationTiles()) d.push_back("GEOCEAN_ELEVATION_TILES 1");
+    // A regional pyramid falls through to the grid (geo_uv.glsl).
+    if (world_.waterTiles() && !world_.waterTiles()->pyramid().source().transform().global)
+      d.push_back("GEOCEAN_WATER_REGIONAL 1");
+    if (world_.elevationTiles() && !world_.elevationTiles()->pyramid().source().transform().global)
+      d.push_back("GEOCEAN_ELEVATION_REGIONAL 1");
     return d;
   };
   // Under an ocean layer too: the ocean draws a streamed mask's coast from
@@ -325,6 +330,16 @@ bool TerrainRenderer::bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, c
   const double ya = (lat0 - t0.originLatDeg) / t0.latStepDeg, yb = (lat1 - t0.originLatDeg) / t0.latStepDeg;
   const double y0 = std::min(ya, yb), y1 = std::max(ya, yb);
   constexpr double kReach = 3.0;
+  if (!wrap) {
+    // A regional layer: a terrain tile clear of it by the filter's reach at
+    // the coarsest level draws the grid alone (slots -1, geo_uv.glsl), so
+    // nothing is asked for and every level agrees with the grid there.
+    const double m = kReach * double(1 << top);
+    if (x1 + m < 0.0 || x0 - m > pyr.levelWidth(0) || y1 + m < 0.0 || y0 - m > pyr.levelHeight(0)) {
+      if (prog) glUniform4i(prog->uniform((std::string(prefix) + "Slots").c_str()), -1, -1, -1, -1);
+      return true;
+    }
+  }
   int want = 0;
   while (want < top && std::max(x1 - x0, y1 - y0) / double(1 << want) + 2.0 * kReach + 1.0 > T) ++want;
   int slots[4] = {0, 0, 0, 0};
@@ -371,8 +386,10 @@ TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const
   if (mirrored_.id() == 0)  // compiled on the first reflection a layer asks for
     mirrored_ = gl::GlProgram::graphics(
         "terrain.vert", "terrain.frag",
-        world_.elevationTiles() ? std::vector<std::string>{"GEOCEAN_CLIP_SEA 1", "GEOCEAN_ELEVATION_TILES 1"}
-                                : std::vector<std::string>{"GEOCEAN_CLIP_SEA 1"});
+        !world_.elevationTiles() ? std::vector<std::string>{"GEOCEAN_CLIP_SEA 1"}
+        : world_.elevationTiles()->pyramid().source().transform().global
+            ? std::vector<std::string>{"GEOCEAN_CLIP_SEA 1", "GEOCEAN_ELEVATION_TILES 1"}
+            : std::vector<std::string>{"GEOCEAN_CLIP_SEA 1", "GEOCEAN_ELEVATION_TILES 1", "GEOCEAN_ELEVATION_REGIONAL 1"});
   TerrainStats stats;
   std::vector<Key> tiles;
   std::vector<const Slot*> slots;

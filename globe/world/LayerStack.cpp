@@ -287,7 +287,15 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
   const auto e = stack.drawingElevation();
   const double elevationStep =
       e && globalInMemory(*e) ? e->transform().lonStepDeg : globalGridFor(e.get()).lonStepDeg;
-  if (const RasterLayer* l = streamedElevationLayer(stack, elevationStep)) {
+  const RasterLayer* streamedElevation = streamedElevationLayer(stack, elevationStep);
+  if (streamedElevation && isStreamedRegional(*streamedElevation->raster)) {
+    // A regional layer's tiles are drawn over the stack's resampled grid
+    // (geo_uv.glsl: outside the layer and at its nodata the grid answers;
+    // relief is continuous, and the grid keeps the layer's relief at 5' for
+    // the terrain's LOD bounds).
+    d.elevationTiles = raster::TilePyramid::open(streamedElevation->raster);
+    d.elevation = elevationLayerOf(stack);
+  } else if (const RasterLayer* l = streamedElevation) {
     // Its tiles are drawn; the CPU grid is the pyramid's coarse level (means
     // of its cells), cells without data from the layers below it.
     d.elevationTiles = raster::TilePyramid::open(l->raster);
@@ -332,7 +340,9 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
   if (const RasterLayer* l = streamedMaskLayer(stack, gridStep)) {
     d.waterSource = l->raster;
     d.waterEncoding = l->encoding;
-    d.water = waterLayerOf(*waterPyramid(l->raster, l->encoding), gridStep);
+    // A regional mask is drawn over the grid of the layers below it.
+    d.water = isStreamedRegional(*l->raster) ? waterLayerBelow(stack, *l->raster)
+                                             : waterLayerOf(*waterPyramid(l->raster, l->encoding), gridStep);
   } else {
     d.water = waterLayerOf(stack);
   }

@@ -1,5 +1,6 @@
 #include "globe/world/WaterPyramid.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -11,10 +12,14 @@ std::shared_ptr<const raster::TilePyramid> waterPyramid(std::shared_ptr<const ra
   // The map's id names the encoding's classes: another encoding, another cache.
   std::string classes;
   for (const Surface s : encoding.classOf) classes += char('0' + int(s));
-  options.valueMapId = "water-coverage:" + classes;
-  options.valueMap = [encoding](float* v, std::size_t n, int channels) {
+  // A regional mask keeps its nodata (NaN): there the layers below answer,
+  // and the drawing falls through to the water grid (geo_uv.glsl).
+  const bool keepNodata = !mask->transform().global;
+  options.valueMapId = (keepNodata ? "water-coverage-regional:" : "water-coverage:") + classes;
+  options.valueMap = [encoding, keepNodata](float* v, std::size_t n, int channels) {
     for (std::size_t i = 0; i < n; ++i) {
-      const float w = encoding.isWater(v[i * channels]) ? 1.0f : 0.0f;
+      const float x = v[i * channels];
+      const float w = keepNodata && std::isnan(x) ? NAN : encoding.isWater(x) ? 1.0f : 0.0f;
       for (int c = 0; c < channels; ++c) v[i * channels + c] = w;
     }
   };
@@ -22,18 +27,41 @@ std::shared_ptr<const raster::TilePyramid> waterPyramid(std::shared_ptr<const ra
 }
 
 namespace {
-// The first layer of `kind` when it is global (north up, pole to pole) and
-// finer than the drawn grid; else none.
+// The first layer of `kind` when it is north up and finer than the drawn
+// grid; else none. Global: pole to pole and wrapping; regional: any other
+// extent (not across the antimeridian), drawn over the grid, which answers
+// outside it and where it has no data (isStreamedRegional).
 const RasterLayer* firstIfStreamed(const LayerStack& stack, LayerKind kind, double gridLonStepDeg) {
   for (const RasterLayer& l : stack.layers()) {
     if (l.kind != kind) continue;
     const raster::GeoTransform& t = l.raster->transform();
     const bool global = t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * l.raster->height() + 180.0) < 1e-6;
-    return global && t.lonStepDeg < 0.999 * gridLonStepDeg ? &l : nullptr;
+    const bool regional = !t.global && t.latStepDeg < 0 && t.lonStepDeg > 0;
+    return (global || regional) && t.lonStepDeg < 0.999 * gridLonStepDeg ? &l : nullptr;
   }
   return nullptr;
 }
 }  // namespace
+
+bool isStreamedRegional(const raster::Raster& r) { return !r.transform().global; }
+
+namespace {
+// The stack without `streamed` (null when nothing is left).
+std::unique_ptr<LayerStack> without(const LayerStack& stack, const raster::Raster& streamed) {
+  std::vector<RasterLayer> rest;
+  for (const RasterLayer& l : stack.layers())
+    if (l.raster.get() != &streamed) rest.push_back(l);
+  return rest.empty() ? nullptr : std::make_unique<LayerStack>(std::move(rest));
+}
+}  // namespace
+
+WorldLayer waterLayerBelow(const LayerStack& stack, const raster::Raster& streamed) {
+  const auto rest = without(stack, streamed);
+  if (rest && (rest->has(LayerKind::Mask) || rest->has(LayerKind::Elevation))) return waterLayerOf(*rest);
+  WorldLayer l = globalGridFor(nullptr);
+  std::fill(l.values.begin(), l.values.end(), 0.0f);  // no layer answers: land, as classifyBatch
+  return l;
+}
 
 const RasterLayer* streamedMaskLayer(const LayerStack& stack, double gridLonStepDeg) {
   return stack.drawingMask() ? firstIfStreamed(stack, LayerKind::Mask, gridLonStepDeg) : nullptr;

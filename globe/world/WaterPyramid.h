@@ -11,16 +11,20 @@
 
 namespace geocean::world {
 
-// Coverage per texel: 1 water, 0 land by the encoding (nodata land, as
-// MaskEncoding::classify).
+// Coverage per texel: 1 water, 0 land by the encoding (a global mask's
+// nodata land, as MaskEncoding::classify; a regional mask's NaN, where the
+// layers below answer).
 std::shared_ptr<const raster::TilePyramid> waterPyramid(std::shared_ptr<const raster::Raster> mask,
                                                         const MaskEncoding& encoding = {},
                                                         raster::PyramidOptions options = {});
 
 // The mask layer drawn from its tiles: the first mask to answer, when it
-// covers the Earth and is finer than the drawn water grid's step
-// (gridLonStepDeg, at most 5'); null otherwise, and when an elevation layer
-// finer than every mask decides the coast (drawingMask() null).
+// is north up and finer than the drawn water grid's step (gridLonStepDeg,
+// at most 5'); null otherwise, and when an elevation layer finer than every
+// mask decides the coast (drawingMask() null). A global layer is drawn from
+// its tiles alone; a regional one (isStreamedRegional) over the water grid,
+// which is then the whole stack's resample and answers outside the layer's
+// extent and where it has no data, as the query's layers do.
 const RasterLayer* streamedMaskLayer(const LayerStack& stack, double gridLonStepDeg);
 
 // A global water grid read from a water pyramid's coarse level: the
@@ -35,8 +39,20 @@ WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg);
 WorldLayer levelLayerOf(const raster::TilePyramid& pyramid, double stepDeg);
 
 // The elevation layer drawn from its tiles (issue 12 item 2): the first
-// elevation layer to answer, when it covers the Earth and is finer than the
-// drawn elevation grid's step (gridLonStepDeg); null otherwise.
+// elevation layer to answer, when it is north up and finer than the drawn
+// elevation grid's step (gridLonStepDeg); null otherwise. Regional ones as
+// the mask's: over the stack's resampled grid.
 const RasterLayer* streamedElevationLayer(const LayerStack& stack, double gridLonStepDeg);
+// A streamed layer that does not cover the Earth (drawn over the grid).
+bool isStreamedRegional(const raster::Raster& r);
+
+// The grid a regional streamed mask is drawn over: the water grid
+// (waterLayerOf, the drawing rule) of the stack's other layers, the ones
+// that answer outside the mask and at its nodata. So outside its extent
+// the coast is theirs exactly (the default world's 5' mask copied cell for
+// cell, not a resample that mixes the region in), as the query's. Without
+// other layers: all land. (A regional relief is drawn over the whole
+// stack's resample: relief has no class to keep.)
+WorldLayer waterLayerBelow(const LayerStack& stack, const raster::Raster& streamed);
 
 }  // namespace geocean::world

@@ -111,12 +111,26 @@ world::CoverageClass LandSea::coverageClass(double latDeg, double lonDeg) const 
   });
 }
 
+bool LandSea::poleClass(double latDeg, Surface& out) const {
+  if (!mask_ || !(std::abs(latDeg) >= 90.0)) return false;
+  const auto& t = mask_->transform();
+  if (!t.global) return false;
+  // The row that ends at this pole (north is row 0 for a north-up raster).
+  const double edge = (latDeg > 0.0) == (t.latStepDeg < 0.0) ? 0.0 : double(mask_->height());
+  if (std::abs(std::abs(t.latOf(edge)) - 90.0) > 1e-9) return false;
+  const float v = mask_->sampleNearest(latDeg, 0.0);  // the row's one pole value
+  if (std::isnan(v)) return false;
+  out = classOfValue(v);
+  return true;
+}
+
 Surface LandSea::fromElevation(float elevationM) const {
   return (!std::isnan(elevationM) && elevationM < 0.0f) ? Surface::Ocean : Surface::Land;
 }
 
 Surface LandSea::classify(double latDeg, double lonDeg) const {
   if (!std::isfinite(latDeg) || !std::isfinite(lonDeg)) return Surface::Land;
+  if (Surface p; poleClass(latDeg, p)) return p;
   if (!classes_.empty()) {
     const int idx = fast_.index(latDeg, lonDeg);
     if (idx >= 0) {
@@ -228,6 +242,7 @@ void LandSea::classifyBatch(const double* lat, const double* lon, std::size_t n,
     // default world's coasts; open sea and inland stay a lookup).
     for (std::size_t i = 0; i < n; ++i)
       if (std::uint8_t(out[i]) & kCoast) out[i] = coverageClass(lat[i], lon[i]).surface;
+    fixPoles(lat, lon, n, out);
     if (allInside || !elevation_) return;
     for (std::size_t i = 0; i < n; ++i)
       if (fast_.index(lat[i], lon[i]) < 0 && std::isfinite(lat[i]) && std::isfinite(lon[i]))
@@ -239,6 +254,7 @@ void LandSea::classifyBatch(const double* lat, const double* lon, std::size_t n,
     mask_->sampleNearestBatch(lat, lon, n, v.data());
     for (std::size_t i = 0; i < n; ++i)
       out[i] = std::isnan(v[i]) ? Surface::Land : coverageClass(lat[i], lon[i]).surface;
+    fixPoles(lat, lon, n, out);
   } else {
     // Elevation only: points it cannot sample (non-finite) are land, as in
     // classify(); without this they kept whatever the caller's buffer held
@@ -297,7 +313,15 @@ void LandSea::classifyNearWaterBatch(const double* lat, const double* lon, std::
   for (std::size_t i = 0; i < n; ++i) {
     const int idx = fast_.index(lat[i], lon[i]);
     out[i] = (idx >= 0 && nearWater_[std::size_t(idx)]) ? Surface::Ocean : Surface::Land;
+    // A water pole is water at every longitude: never skipped there.
+    if (Surface p; out[i] == Surface::Land && std::isfinite(lon[i]) && poleClass(lat[i], p) && p != Surface::Land)
+      out[i] = Surface::Ocean;
   }
+}
+
+void LandSea::fixPoles(const double* lat, const double* lon, std::size_t n, Surface* out) const {
+  for (std::size_t i = 0; i < n; ++i)
+    if (std::abs(lat[i]) >= 90.0 && std::isfinite(lon[i])) poleClass(lat[i], out[i]);
 }
 
 float LandSea::waterCoverage(double latDeg, double lonDeg) const {
@@ -308,6 +332,8 @@ float LandSea::waterCoverage(double latDeg, double lonDeg) const {
     const float e = elevation_->sampleBilinear(latDeg, lonDeg);
     return std::isnan(e) ? 0.0f : std::clamp(0.5f - e / 100.0f, 0.0f, 1.0f);
   }
+  // A pole is one point: its one class (poleClass).
+  if (Surface p; poleClass(latDeg, p)) return p == Surface::Land ? 0.0f : 1.0f;
   // Outside a regional mask (no data there): the point's own class.
   if (!classes_.empty() ? fast_.index(latDeg, lonDeg) < 0 : std::isnan(mask_->sampleNearest(latDeg, lonDeg)))
     return classify(latDeg, lonDeg) == Surface::Land ? 0.0f : 1.0f;

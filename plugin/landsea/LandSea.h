@@ -72,6 +72,13 @@ class LandSea {
   void markCoast(bool global);
   static constexpr std::uint8_t kCoast = 0x80, kClassBits = 0x7F;
   Surface fromElevation(float elevationM) const;
+  // Poles are single points (issue 12 item 5): at a pole (|lat| >= 90) of a
+  // global mask whose polar row ends there, the class of the row's one pole
+  // value (raster::Raster::sampleNearest: the row's upper median, for two
+  // classes the majority) at every longitude, not the coverage rule's blend
+  // of the cells under that longitude. False elsewhere (out untouched).
+  bool poleClass(double latDeg, Surface& out) const;
+  void fixPoles(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out) const;
 
   // Nearest-cell index into classes_, or -1 outside the mask / for NaN.
   struct FastIndex {

@@ -78,6 +78,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     pages_ = std::make_unique<WaterPages>(options_.waterTiles);
     auto paged = shaded;
     paged.push_back("GEOCEAN_WATER_PAGES 1");
+    if (!options_.waterTiles->source().transform().global) paged.push_back("GEOCEAN_WATER_PAGES_REGIONAL 1");
     program_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", paged);
   } else {
     program_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", shaded);

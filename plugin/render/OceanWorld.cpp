@@ -42,7 +42,12 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
     std::fill(d.elevation.values.begin(), d.elevation.values.end(), -10000.0f);
   }
   world::nodataToSeaLevel(d.elevation);  // as the viewer does
-  if (waterTiles) {
+  const auto* layered = dynamic_cast<const ocean::LayeredLandSea*>(landSea);
+  if (waterTiles && world::isStreamedRegional(waterTiles->source()) && layered) {
+    // A regional pyramid is drawn over the grid of the layers below it,
+    // the host terrain's (world::loadLayeredWorld).
+    d.water = world::waterLayerBelow(layered->stack(), waterTiles->source());
+  } else if (waterTiles && !world::isStreamedRegional(waterTiles->source())) {
     d.water = world::waterLayerOf(*waterTiles, world::globalGridFor(mask.get()).lonStepDeg);
   } else if (mask && directly(mask)) {
     d.water = world::waterLayerOf(*mask, encoding);

@@ -61,6 +61,9 @@ std::size_t WaterPages::request(const grid::GridFrame& f, double cellPx) {
         const double s = double(1 << want);
         double x = (v->lonDeg - t.originLonDeg) / t.lonStepDeg / s, y = (v->latDeg - t.originLatDeg) / t.latStepDeg / s;
         const int W = p.levelWidth(want), H = p.levelHeight(want);
+        // A regional pyramid: past the filter's reach (2 texels) of its
+        // edge the grid answers (geo_uv.glsl levelClear), nothing to load.
+        if (!t.global && (x < -2.0 || y < -2.0 || x > W + 2.0 || y > H + 2.0)) continue;
         if (t.global) x = x - W * std::floor(x / W);
         x = std::clamp(x, 0.0, W - 1.0), y = std::clamp(y, 0.0, H - 1.0);
         const raster::TileId id{want, int(x) / T, int(y) / T};

@@ -6,7 +6,9 @@
 // vertices ask for the tile at the level whose texel is about their pixel;
 // until it arrives its nearest resident ancestor is drawn (never a hole,
 // never a wait), except in complete() frames (single pictures), which
-// wait until what the view asked for is resident.
+// wait until what the view asked for is resident. A regional mask's
+// pyramid (not global) is drawn over the ocean's water grid: past its edge
+// and at its nodata the grid's coverage answers (the layers below).
 // GL calls on the context's thread only.
 #pragma once
 

@@ -1,5 +1,6 @@
 // Land/sea/lake classification on the default world against known places
 // and against GMT's gmtselect (GSHHG polygons, an independent implementation).
+#include "globe/raster/GeoTiffWriter.h"
 #include "globe/raster/World.h"
 #include "plugin/landsea/LandSea.h"
 #include "tests/support/Subprocess.h"
@@ -10,6 +11,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+
+#include <unistd.h>
 #include <random>
 #include <sstream>
 
@@ -385,4 +389,63 @@ TEST(Poles, TheMaskAtAPoleIsOneClass) {
     EXPECT_EQ(mask->sampleNearest(-90.0, lon), 1.0f) << lon;  // Antarctica
     EXPECT_EQ(mask->sampleNearest(90.0, lon), 0.0f) << lon;   // the Arctic Ocean
   }
+}
+
+// A polar row of mixed classes: the classifier (its nearest cell and its
+// 4 x 4 coverage rule) gives one class at the pole at every longitude, the
+// class of the ring's majority (counted here: 27 ocean cells against 9 land
+// at the north pole, 9 against 27 at the south), in memory (the
+// class-byte fast path) and through the ImageCache alike; single points,
+// batches, the near-water test and the coverage agree. Off the pole the
+// cells keep their own class. Before, a land cell's longitude answered land
+// at the north pole.
+TEST(Poles, ClassifyAtAPoleIsOneClassWhateverTheLongitude) {
+  constexpr int W = 36, H = 18;
+  std::vector<float> px(std::size_t(W) * H, 1.0f);  // 1 land, 0 ocean (the default encoding)
+  for (int x = 0; x < W; ++x) {
+    px[std::size_t(x)] = x < 9 ? 1.0f : 0.0f;                  // north ring: land from -180 to -90
+    px[std::size_t(H - 1) * W + x] = x < 9 ? 0.0f : 1.0f;      // south ring: ocean there
+  }
+  int northOcean = 0, southOcean = 0;
+  for (int x = 0; x < W; ++x) northOcean += px[std::size_t(x)] == 0.0f, southOcean += px[std::size_t(H - 1) * W + x] == 0.0f;
+  ASSERT_EQ(northOcean, 27);  // the ring's majority: ocean in the north, land in the south
+  ASSERT_EQ(southOcean, 9);
+  const raster::GeoTransform t{-180.0, 90.0, 10.0, -10.0, true};
+  const std::string tif = ::testing::TempDir() + "/poles_mixed." + std::to_string(::getpid()) + ".tif";
+  raster::GeoTiffWriteOptions wo;
+  wo.transform = t;
+  raster::writeGeoTiff(tif, px.data(), W, H, 1, raster::SampleType::F32, wo);
+  raster::OpenOptions cached;
+  cached.inMemoryLimitBytes = 0;
+  for (const auto& mask : {raster::Raster::fromPixels(px, W, H, 1, t), raster::Raster::open(tif, cached)}) {
+    const ocean::LandSea ls(mask, nullptr);
+    const char* how = mask->inMemory() ? "in memory" : "cached";
+    std::vector<double> lat, lon;
+    for (double l = -180.0; l < 180.0; l += 1.3) lat.push_back(90.0), lon.push_back(l);
+    for (double l = -180.0; l < 180.0; l += 1.3) lat.push_back(-90.0), lon.push_back(l);
+    std::vector<Surface> batch(lat.size()), near(lat.size());
+    ls.classifyBatch(lat.data(), lon.data(), lat.size(), batch.data());
+    ls.classifyNearWaterBatch(lat.data(), lon.data(), lat.size(), near.data());
+    int landCellsSeen = 0;
+    for (std::size_t i = 0; i < lat.size(); ++i) {
+      const Surface want = lat[i] > 0 ? Surface::Ocean : Surface::Land;
+      EXPECT_EQ(ls.classify(lat[i], lon[i]), want) << lat[i] << "," << lon[i] << " " << how;
+      EXPECT_EQ(batch[i], want) << lat[i] << "," << lon[i] << " " << how;
+      EXPECT_EQ(ls.waterCoverage(lat[i], lon[i]), want == Surface::Land ? 0.0f : 1.0f) << lat[i] << "," << lon[i];
+      if (want == Surface::Ocean) {
+        EXPECT_EQ(near[i], Surface::Ocean) << lon[i] << " " << how;
+      }
+      // The test crossed cells of the other class in the ring.
+      const int x = std::clamp(int((lon[i] + 180.0) / 10.0), 0, W - 1);
+      landCellsSeen += lat[i] > 0 && px[std::size_t(x)] == 1.0f;
+    }
+    EXPECT_GT(landCellsSeen, 20);
+    // Half a degree off the pole, in the middle of the rings' 9-cell runs
+    // (lon -135, cell 4), the cells' own class: the coverage there is at
+    // least 1 - 0.55^3 / 6 = 0.97 of that run's class (the one row of land
+    // above the south ring weighs w0(0.45)).
+    EXPECT_EQ(ls.classify(89.5, -135.0), Surface::Land) << how;
+    EXPECT_EQ(ls.classify(-89.5, -135.0), Surface::Ocean) << how;
+  }
+  std::filesystem::remove(tif);
 }

@@ -148,6 +148,49 @@ Streamed& streamed() {
   return s;
 }
 
+// The 3" Strait of Gibraltar mask as a regional layer over the default
+// world, built as `geocean render --mask gibraltar_3s.tif` builds it (issue
+// 12): the host's world by world::loadLayeredWorld (its terrain streams the
+// mask's tiles over the stack's 5' grid), the ocean's from the façade's
+// snapshot by oceanWorld/oceanWaterTiles as plugin/capi's draw does, both
+// waiting for their tiles as the CLI's single pictures do.
+struct Regional {
+  std::shared_ptr<WorldTextures> world;
+  std::unique_ptr<GlobeRenderer> renderer;
+  std::shared_ptr<ocean_render::OceanRenderer> ocean;
+  std::shared_ptr<const ocean::LandSea> landSea;  // the façade's layered land/sea
+};
+
+Regional& regional() {
+  static Regional s = [] {
+    scene();  // the session's context
+    Regional c;
+    const std::string cache = ::testing::TempDir() + "/coast_regional_tiles." + std::to_string(::getpid());
+    ::setenv("GEOCEAN_TILE_CACHE", cache.c_str(), 1);
+    world::WorldData d = world::loadLayeredWorld({{world::LayerKind::Mask, gibraltarMask(), "", 0}}, true);
+    EXPECT_TRUE(d.waterSource) << "the regional 3\" mask should be streamed";
+    TerrainOptions t;
+    t.waitForTiles = true;  // as geocean render
+    c.world = std::make_shared<WorldTextures>(d);
+    c.renderer = std::make_unique<GlobeRenderer>(c.world, t);
+    ocean::Ocean o;
+    o.setDefaultWorld(ocean::Ocean::defaultWorldDir());
+    o.addMaskLayerFile(gibraltarMask());
+    const auto snap = o.current();
+    ocean_render::OceanOptions oo;
+    oo.waterTiles = ocean_render::oceanWaterTiles(snap->landSea.get(), snap->mask);
+    EXPECT_TRUE(oo.waterTiles) << "the ocean should stream the regional 3\" mask";
+    const auto grids = ocean_render::oceanWorld(snap->mask, snap->elevation, snap->landSea.get(), snap->maskEncoding,
+                                                oo.waterTiles.get());
+    c.ocean = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+    c.ocean->setCompleteTiles(true);
+    c.renderer->addLayer(std::make_shared<DirectOceanLayer>(c.ocean));
+    c.landSea = snap->landSea;
+    return c;
+  }();
+  return s;
+}
+
 struct Frame {
   ViewPose pose;
   camera::Camera cam = camera::Camera::fromView(ViewPose{});
@@ -485,6 +528,87 @@ Crispness crispness(const Frame& f) {
   return c;
 }
 
+// The same from 500 m on the product path: the regional 3" mask streamed
+// on both sides over the default world (Regional), so the picture's
+// coastline is the mask's own isoline, not its 5' resample.
+TEST(Coast, CoastlineFrom500mLiesWithinAPixelAndAQuarterCellOfTheIsolineWithTheMaskStreamed) {
+  Regional& r = regional();
+  int coastline = 0;
+  for (const auto& [name, p] : {std::pair{std::string("tarifa_500m_down"), pose(36.0095, -5.6044, 500.0, 0.0, -90.0)},
+                                std::pair{std::string("tarifa_500m"), pose(36.012, -5.600, 500.0, 230.0, -45.0)}}) {
+    const Crispness c = crispness(render(p, *r.renderer, r.ocean.get(), "regional_crisp_" + name));
+    std::printf("streamed %s: %d pixels, %d on the drawn coastline, %d on the other side of the isoline, %d beyond "
+                "the tolerance, worst %.2f m\n",
+                name.c_str(), c.pixels, c.coastline, c.offSide, c.beyond, c.worstM);
+    EXPECT_EQ(c.beyond, 0) << name;
+    coastline += c.coastline;
+  }
+  EXPECT_GT(coastline, 300);
+  EXPECT_GT(r.ocean->waterPages()->pool().stats().uploads, 0u);
+  ASSERT_TRUE(r.world->waterTiles());
+  EXPECT_GT(r.world->waterTiles()->stats().uploads, 0u);
+}
+
+// The product path's query follows its picture (geocean query --mask, the
+// same stack) inside the region, and across its edges: near Cape Trafalgar
+// (the region's west edge, -6, runs through it) and on the Moroccan
+// Atlantic coast (its south edge, 35.75, crosses it), where outside the
+// region the default world's 5' coast answers and is drawn. Views where the
+// 3" texels are magnified (under a pixel: at most 10 km up here): minified,
+// the picture is the mipmap's bilinear coverage, not the query's B-spline
+// (from 20 km one pixel of 18086 on a sub-pixel creek disagreed).
+TEST(Coast, QueryFollowsThePictureWithTheRegionalMaskStreamed) {
+  Regional& r = regional();
+  int water = 0, land = 0;
+  for (const auto& [name, p] :
+       {std::pair{std::string("tarifa_5km"), pose(36.05, -5.62, 5000.0, 150.0, -50.0)},
+        std::pair{std::string("gibraltar_5km"), pose(36.10, -5.37, 5000.0, 20.0, -55.0)},
+        std::pair{std::string("trafalgar_10km"), pose(36.18, -6.0, 10000.0, 0.0, -80.0)},
+        std::pair{std::string("morocco_10km"), pose(35.75, -5.95, 10000.0, 0.0, -80.0)}}) {
+    const Frame f = render(p, *r.renderer, r.ocean.get(), "regional_" + name);
+    int w = 0, l = 0;
+    expectQueryFollowsPicture(f, " --mask " + gibraltarMask(), w, l);
+    std::printf("regional %s: %d water, %d land pixels agree\n", name.c_str(), w, l);
+    water += w, land += l;
+  }
+  EXPECT_GT(water, 4000);
+  EXPECT_GT(land, 4000);
+}
+
+// No seam at the region's edge: away from it (by the B-spline's reach, two
+// 3" texels, plus a pixel's footprint) the streamed picture draws water
+// exactly where the default world's does outside the region, and where the
+// 3" mask's coverage rule says inside it (within a pixel plus a quarter cell,
+// as crispness() measures; counted, not required, near the coast).
+TEST(Coast, OutsideTheRegionTheDefaultWorldsCoastIsDrawn) {
+  Regional& r = regional();
+  Scene& s = scene();
+  for (const auto& [name, p] : {std::pair{std::string("trafalgar_20km"), pose(36.18, -6.0, 20000.0, 0.0, -80.0)},
+                                std::pair{std::string("morocco_20km"), pose(35.75, -5.95, 20000.0, 0.0, -80.0)}}) {
+    const Frame a = render(p, *r.renderer, r.ocean.get(), "regional_edge_" + name);
+    const Frame b = render(p, *s.defaultRenderer, s.defaultOcean, "default_edge_" + name);
+    int outside = 0, differ = 0, inside = 0;
+    for (int y = 1; y + 1 < p.height; ++y)
+      for (int x = 1; x + 1 < p.width; ++x) {
+        geo::Geodetic g, gx;
+        if (!groundPoint(a, x, y, g) || !groundPoint(a, x + 1, y, gx)) continue;
+        // Margin: two 3" texels (the filter's reach) and a pixel's footprint.
+        const double m = 2.0 * kCellDeg + std::abs(gx.lonDeg - g.lonDeg) + std::abs(gx.latDeg - g.latDeg);
+        const bool out = g.lonDeg < -6.0 - m || g.lonDeg > -5.0 + m || g.latDeg < 35.75 - m || g.latDeg > 36.25 + m;
+        const bool in = g.lonDeg > -6.0 + m && g.lonDeg < -5.0 - m && g.latDeg > 35.75 + m && g.latDeg < 36.25 - m;
+        if (in) ++inside;
+        if (!out) continue;
+        ++outside;
+        differ += a.drawn(x, y) != b.drawn(x, y);
+      }
+    std::printf("%s: %d pixels outside the region, %d drawn otherwise than the default world; %d inside\n",
+                name.c_str(), outside, differ, inside);
+    EXPECT_GT(outside, 5000) << name;
+    EXPECT_GT(inside, 5000) << name;
+    EXPECT_EQ(differ, 0) << name;
+  }
+}
+
 // From 500 m with the 3" mask the drawn coastline lies within one pixel
 // plus a quarter mask cell of the mask's coverage-0.5 isoline. The same
 // views drawn from the default 5' world's water (a control) are not.
@@ -515,6 +639,16 @@ TEST(Coast, GoldenStraitOfGibraltarWithThe3sMask) {
   expectMatchesGolden(a.image, "gibraltar_3s_500m", 2.0, 0.005);
   const Frame b = render(pose(36.10, -5.37, 5000.0, 20.0, -55.0), true, "golden_5km");
   expectMatchesGolden(b.image, "gibraltar_3s_5km", 2.0, 0.005);
+}
+
+// The same views on the product path (Regional: the 3" mask streamed over
+// the default world on both sides), looked at; thresholds as above.
+TEST(Coast, GoldenStraitOfGibraltarWithThe3sMaskStreamed) {
+  Regional& r = regional();
+  const Frame a = render(pose(36.012, -5.600, 500.0, 230.0, -45.0), *r.renderer, r.ocean.get(), "golden_streamed_500m");
+  expectMatchesGolden(a.image, "gibraltar_3s_streamed_500m", 2.0, 0.005);
+  const Frame b = render(pose(36.10, -5.37, 5000.0, 20.0, -55.0), *r.renderer, r.ocean.get(), "golden_streamed_5km");
+  expectMatchesGolden(b.image, "gibraltar_3s_streamed_5km", 2.0, 0.005);
 }
 
 }  // namespace
