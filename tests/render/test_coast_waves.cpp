@@ -181,6 +181,36 @@ int foamPixels(const gl::Image& img) {
   }
   return n;
 }
+
+// A synthetic coast (kBw x kBh rasters at `place`) as the host and the ocean
+// draw it: its relief and water, sand for imagery (the default's there is
+// the Gulf of Guinea's deep blue), and the ocean with and without the
+// snapshot's coast field.
+struct SandCoast {
+  std::shared_ptr<const world::WorldGrids> grids;
+  std::shared_ptr<const WorldTextures> world;
+  std::shared_ptr<ocean_render::OceanRenderer> withCoast, deepOnly;
+};
+SandCoast sandCoast(const raster::Raster& elevation, const raster::Raster& mask, const raster::GeoTransform& place,
+                    const ocean::Snapshot& snap) {
+  SandCoast c;
+  c.grids = std::make_shared<const world::WorldGrids>(world::layerOf(elevation, 0), world::waterLayerOf(mask));
+  std::vector<float> sand(std::size_t(kBw) * kBh * 3);
+  for (std::size_t i = 0; i < sand.size(); i += 3) sand[i] = 194.0f, sand[i + 1] = 178.0f, sand[i + 2] = 128.0f;
+  world::WorldData wd = world::loadDefaultWorld();
+  wd.imagery = world::layerOf(*raster::Raster::fromPixels(sand, kBw, kBh, 3, place, std::nullopt, "sand"));
+  wd.elevation = world::layerOf(elevation, 0);
+  wd.water = world::waterLayerOf(mask);
+  c.world = std::make_shared<const WorldTextures>(wd);
+  ocean_render::OceanOptions oo;
+  oo.model = waves::Model::Gerstner;
+  oo.sea = snap.seaState;
+  oo.coast = snap.waves->coastFieldShared();
+  c.withCoast = std::make_shared<ocean_render::OceanRenderer>(c.grids, snap.landSea, oo);
+  oo.coast = nullptr;
+  c.deepOnly = std::make_shared<ocean_render::OceanRenderer>(c.grids, snap.landSea, oo);
+  return c;
+}
 }  // namespace
 
 TEST(OceanCoast, BreakersOnAPlungingBeachAt30mAnd300m) {
@@ -215,23 +245,11 @@ TEST(OceanCoast, BreakersOnAPlungingBeachAt30mAnd300m) {
               waves::CoastField::breakerName(beach.type));
   ASSERT_EQ(beach.type, waves::CoastField::Breaker::Plunging);
 
-  auto grids = std::make_shared<const world::WorldGrids>(world::layerOf(*elevation, 0), world::waterLayerOf(*mask));
-  // The host draws the beach's relief and water, and sand for imagery (the
-  // default's there is the Gulf of Guinea's deep blue).
-  std::vector<float> sand(std::size_t(kBw) * kBh * 3);
-  for (std::size_t i = 0; i < sand.size(); i += 3) sand[i] = 194.0f, sand[i + 1] = 178.0f, sand[i + 2] = 128.0f;
-  world::WorldData wd = world::loadDefaultWorld();
-  wd.imagery = world::layerOf(*raster::Raster::fromPixels(sand, kBw, kBh, 3, kBeachPlace, std::nullopt, "sand"));
-  wd.elevation = world::layerOf(*elevation, 0);
-  wd.water = world::waterLayerOf(*mask);
-  const auto beachWorld = std::make_shared<const WorldTextures>(wd);
-  ocean_render::OceanOptions oo;
-  oo.model = waves::Model::Gerstner;
-  oo.sea = snap->seaState;
-  oo.coast = snap->waves->coastFieldShared();
-  auto withCoast = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
-  oo.coast = nullptr;
-  auto deepOnly = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  const SandCoast beachCoast = sandCoast(*elevation, *mask, kBeachPlace, *snap);
+  const auto& grids = beachCoast.grids;
+  const auto& beachWorld = beachCoast.world;
+  const auto& withCoast = beachCoast.withCoast;
+  const auto& deepOnly = beachCoast.deepOnly;
   struct View {
     const char* name;
     double lonDeg, altM, headingDeg, pitchDeg;
@@ -252,6 +270,9 @@ TEST(OceanCoast, BreakersOnAPlungingBeachAt30mAnd300m) {
   // Drawn = queried in the surf zone too (curl and collapse in both): 10 m
   // above 4 m of water looking steeply down, every wave drawn (cellPx 2, as
   // DrawnSurfaceIsTheQueryOverAShelf and its 1 cm bound).
+  ocean_render::OceanOptions oo;
+  oo.model = waves::Model::Gerstner;
+  oo.sea = snap->seaState;
   oo.coast = snap->waves->coastFieldShared();
   oo.cellPx = 2.0;
   auto fine = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
@@ -384,21 +405,10 @@ TEST(OceanCoast, ARoundIslandShelterIsDrawnAt30mAnd300m) {
   const auto cf = snap->waves->coastField();
   ASSERT_NE(cf, nullptr);
 
-  auto grids = std::make_shared<const world::WorldGrids>(world::layerOf(*elevation, 0), world::waterLayerOf(*mask));
-  std::vector<float> sand(std::size_t(kBw) * kBh * 3);
-  for (std::size_t i = 0; i < sand.size(); i += 3) sand[i] = 194.0f, sand[i + 1] = 178.0f, sand[i + 2] = 128.0f;
-  world::WorldData wd = world::loadDefaultWorld();
-  wd.imagery = world::layerOf(*raster::Raster::fromPixels(sand, kBw, kBh, 3, kIslandPlace, std::nullopt, "sand"));
-  wd.elevation = world::layerOf(*elevation, 0);
-  wd.water = world::waterLayerOf(*mask);
-  const auto islandWorld = std::make_shared<const WorldTextures>(wd);
-  ocean_render::OceanOptions oo;
-  oo.model = waves::Model::Gerstner;
-  oo.sea = snap->seaState;
-  oo.coast = snap->waves->coastFieldShared();
-  auto withCoast = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
-  oo.coast = nullptr;
-  auto deepOnly = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  const SandCoast islandCoast = sandCoast(*elevation, *mask, kIslandPlace, *snap);
+  const auto& islandWorld = islandCoast.world;
+  const auto& withCoast = islandCoast.withCoast;
+  const auto& deepOnly = islandCoast.deepOnly;
 
   // From the north, looking south across the island: up-wave (west) on the
   // right, the lee on the left. 30 m: 350 m off its centre; 300 m: 900 m off.
