@@ -147,6 +147,13 @@ geocean_status setFile(const char* function, geocean_ocean* ocean, const char* p
   });
 }
 
+geocean::ocean::MaskEncoding encodingOf(const char* spec) {
+  return spec && *spec ? geocean::ocean::MaskEncoding::parse(spec) : geocean::ocean::MaskEncoding();
+}
+geocean::raster::OpenOptions layerOpenOptions(const geocean_raster_options* options) {
+  return options ? openOptions(options) : geocean::raster::OpenOptions{};
+}
+
 }  // namespace
 
 extern "C" {
@@ -273,15 +280,6 @@ GEOCEAN_API geocean_status geocean_set_mask_encoding(geocean_ocean* ocean, const
 }
 
 // ---- Layers (ABI 1.3) -------------------------------------------------------
-
-namespace {
-geocean::ocean::MaskEncoding encodingOf(const char* spec) {
-  return spec && *spec ? geocean::ocean::MaskEncoding::parse(spec) : geocean::ocean::MaskEncoding();
-}
-geocean::raster::OpenOptions layerOpenOptions(const geocean_raster_options* options) {
-  return options ? openOptions(options) : geocean::raster::OpenOptions{};
-}
-}  // namespace
 
 GEOCEAN_API geocean_status geocean_add_mask_layer_file(geocean_ocean* ocean, const char* path, int32_t priority,
                                                        const char* encoding, const geocean_raster_options* options) {
