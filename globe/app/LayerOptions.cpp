@@ -9,16 +9,20 @@
 
 namespace geocean::app {
 
+// allow_extra_args(false): a vector option otherwise swallows the words
+// after its file (`query --mask m.tif 36 -5.6` lost its LAT LON).
 void addLayerOptions(CLI::App& sub, LayerOptions& o, bool withEncoding) {
   sub.add_option("--mask", o.masks,
                  "land/sea/lake mask raster, repeatable: layers over the default world, the finest answers")
       ->take_all()
-      ->expected(1);
+      ->expected(1)
+      ->allow_extra_args(false);
   sub.add_option("--elevation", o.elevations,
                  "elevation raster, repeatable: layers over the default world; finer than every mask it decides "
                  "land (> 0 m) and sea")
       ->take_all()
-      ->expected(1);
+      ->expected(1)
+      ->allow_extra_args(false);
   if (withEncoding)
     sub.add_option("--mask-encoding", o.maskEncoding,
                    "mask values of the --mask files, e.g. 0=ocean,1=land,2=lake (the default)");
@@ -42,7 +46,8 @@ void addImageryOption(CLI::App& sub, LayerOptions& o) {
                  "imagery raster (RGB or RGBA, 8-bit), repeatable: drawn over the default imagery, the finest on "
                  "top; nodata or alpha 0 shows the layer below")
       ->take_all()
-      ->expected(1);
+      ->expected(1)
+      ->allow_extra_args(false);
 }
 
 void applyLayers(ocean::Ocean& ocean, const LayerOptions& o, const raster::OpenOptions& ro) {

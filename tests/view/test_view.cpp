@@ -2,6 +2,7 @@
 // Mesa llvmpipe through GLX. Scripted runs (--frames N) exit by themselves
 // and leave a screenshot of the window and a per-frame CSV.
 #include "globe/geo/Ellipsoid.h"
+#include "globe/raster/GeoTiffWriter.h"
 #include "globe/raster/ImageIo.h"
 #include "tests/support/Subprocess.h"
 #include "tests/view/ViewStats.h"
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -346,4 +348,81 @@ TEST(ViewWindow, CoastRegionMakesTheViewedSeaTheQueriedOne) {
   const auto bad = view("--frames 2 --coast-region 52.6,4.45");
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("GEOCEAN_WAVES_GERSTNER"), std::string::npos) << bad.err;
+}
+
+// The user's rasters in the window (issue 12 item 1): `view --mask` and
+// `view --elevation` put layers over the default world, and the sea under
+// the camera (what the HUD and --stats show, the plugin's query of the
+// drawn stack) follows them as `geocean query` with the same files does.
+// Two points the 5' default world calls open sea: one under a user's mask
+// patch of land (0.2 degrees square, 15" cells), one on the flank of a
+// user's relief island (the render test's: -200 + 490 exp(-r^2/0.15^2) m,
+// 31 m high 0.13 degrees east of its peak), where the relief, finer than
+// every mask, decides land. Without the layers both answer a sea height.
+TEST(ViewWindow, TheUsersMaskAndReliefDecideWhatIsSeaUnderTheCamera) {
+  REQUIRE_XVFB();
+  namespace gr = geocean::raster;
+  const std::string dir = tempPath("layers");
+  std::filesystem::create_directories(dir);
+  const double step = 1.0 / 240.0;
+  gr::GeoTiffWriteOptions wo;
+  const std::string mask = dir + "/land_patch.tif", relief = dir + "/island.tif";
+  {
+    std::vector<std::uint8_t> px(48 * 48, 1);  // 1 = land (the default encoding 0=ocean,1=land,2=lake)
+    wo.transform = {0.5, 0.1, step, -step, false};
+    gr::writeGeoTiff(mask, px.data(), 48, 48, 1, gr::SampleType::U8, wo);
+  }
+  {
+    constexpr int n = 360;
+    std::vector<float> px(std::size_t(n) * n);
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const double lat = 1.0 - (y + 0.5) * step, lon = -0.5 + (x + 0.5) * step;
+        const double r2 = ((lat - 0.25) * (lat - 0.25) + (lon - 0.25) * (lon - 0.25)) / (0.15 * 0.15);
+        px[std::size_t(y) * n + x] = float(-200.0 + 490.0 * std::exp(-r2));
+      }
+    wo.transform = {-0.5, 1.0, step, -step, false};
+    gr::writeGeoTiff(relief, px.data(), n, n, 1, gr::SampleType::F32, wo);
+  }
+  const int frames = 3;
+  const std::string t = std::to_string((frames - 1) / 30.0);
+  auto lastSea = [&](const std::string& at, const std::string& layers, const std::string& name) {
+    const std::string stats = tempPath(name + ".csv");
+    const auto r = view("--size 96x54 --no-hud --fly-to " + at + " --frames " + std::to_string(frames) + layers +
+                        " --stats " + stats);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    const auto rows = readStats(stats);
+    return rows.empty() ? -1e9 : rows.back().seaM;  // -1e9: no row (the failure is reported above)
+  };
+  // Surface class and sea height (fields 3 and 6) of `geocean query`.
+  auto query = [&](const std::string& lat, const std::string& lon, const std::string& layers) {
+    const auto q = geocean::test::run(kGeocean + " query --time " + t + layers + " " + lat + " " + lon);
+    EXPECT_EQ(q.exitCode, 0) << q.err;
+    std::stringstream qs(q.out);
+    std::string line;
+    std::getline(qs, line);
+    std::getline(qs, line);
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+    if (f.size() < 6) {
+      ADD_FAILURE() << q.out;
+      f.resize(6);
+    }
+    return f;
+  };
+  struct Case {
+    std::string lat, lon, layers, name;
+  };
+  for (const Case& c : {Case{"0.0", "0.6", " --mask " + mask, "mask"},
+                        Case{"0.25", "0.38", " --elevation " + relief, "relief"}}) {
+    SCOPED_TRACE(c.name);
+    const double with = lastSea(c.lat + "," + c.lon, c.layers, c.name), without = lastSea(c.lat + "," + c.lon, "", c.name + "_none");
+    const auto qWith = query(c.lat, c.lon, c.layers), qWithout = query(c.lat, c.lon, "");
+    EXPECT_EQ(qWith[2], "land");
+    EXPECT_TRUE(std::isnan(with)) << "the view shows a sea height " << with << " where the user's layer is land";
+    EXPECT_EQ(qWithout[2], "ocean");
+    ASSERT_TRUE(std::isfinite(without));
+    EXPECT_NEAR(without, std::stod(qWithout[5]), 5.1e-5);  // the CSV's 4 decimals
+  }
 }
