@@ -40,4 +40,11 @@ void addReflectionSizeOption(CLI::App& sub, int& size) {
                  "2048); default: the viewport's size");
 }
 
+void addGridOption(CLI::App& sub, std::string& grid) {
+  sub.add_option("--grid", grid,
+                 "ocean grid projector: direct (default: each vertex's ray meets the ellipsoid) or ispg (paper "
+                 "000's projected grid, for comparison)")
+      ->check(CLI::IsMember({"direct", "ispg"}));
+}
+
 }  // namespace geocean::app

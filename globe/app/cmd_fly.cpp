@@ -40,6 +40,7 @@ struct FlyArgs {
   WindOptions wind;
   double windFromDeg = 270.0;
   int reflectionSize = 0;
+  std::string grid = "direct";
   std::string coastRegion;
   bool reference = false;
   bool hud = false;
@@ -120,6 +121,7 @@ int runFly(const FlyArgs& a) {
       return kExitBadInput;
     }
   }
+  if (ocean) ocean->setGridIspg(a.grid == "ispg");
   if (const int rc = applyCoastRegion("fly", a.coastRegion, ocean.get()); rc != kExitOk) return rc;
   std::shared_ptr<host::PluginBoats> boats;
   if (const int rc = addBoats("fly", a.boats, *s.renderer, ocean, plan.toLatDeg, plan.toLonDeg, boats); rc != kExitOk)
@@ -220,6 +222,7 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                       sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
                       addWindOptions(sub, a->wind);
                       addReflectionSizeOption(sub, a->reflectionSize);
+                      addGridOption(sub, a->grid);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
                       addCoastOption(sub, a->coastRegion);
                       addLayerOptions(sub, a->layers);

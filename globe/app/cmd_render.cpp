@@ -30,6 +30,7 @@ struct RenderArgs {
   WindOptions wind;
   double windFromDeg = 270.0;
   int reflectionSize = 0;
+  std::string grid = "direct";
   std::string coastRegion;
   LayerOptions layers;
   BoatOptions boats;
@@ -91,6 +92,7 @@ int runRender(const RenderArgs& a) {
     }
   }
   if (ocean) ocean->setCompleteTiles(true);  // as terrain.waitForTiles
+  if (ocean) ocean->setGridIspg(a.grid == "ispg");
   if (const int rc = applyCoastRegion("render", a.coastRegion, ocean.get()); rc != kExitOk) return rc;
   std::shared_ptr<host::PluginBoats> boats;
   double targetLat = 0, targetLon = 0;
@@ -135,6 +137,7 @@ const Register reg{{"render", "Render one frame headless to a PNG",
                       sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
                       addWindOptions(sub, a->wind);
                       addReflectionSizeOption(sub, a->reflectionSize);
+                      addGridOption(sub, a->grid);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
                       addCoastOption(sub, a->coastRegion);
                       addLayerOptions(sub, a->layers);

@@ -54,6 +54,7 @@ struct ViewArgs {
   std::string sun;     // AZ,EL at the camera's nadir (default 135,40)
   double timeS = 0.0;  // simulation time of the first frame
   int reflectionSize = 0;
+  std::string grid = "direct";
   std::string coastRegion;  // LAT,LON[,SIZE_M] (CoastOption.h)
 };
 
@@ -256,6 +257,7 @@ int runView(const ViewArgs& a) {
       glfwSetWindowShouldClose(win, GLFW_TRUE);  // leave through the normal cleanup, context still current
     }
     if (rc == kExitOk) {
+      if (ocean) ocean->setGridIspg(a.grid == "ispg");
       if (const int crc = applyCoastRegion("view", a.coastRegion, ocean.get()); crc != kExitOk) {
         rc = crc;
         glfwSetWindowShouldClose(win, GLFW_TRUE);
@@ -454,6 +456,7 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                                      "the camera)");
                       sub.add_option("--time", a->timeS, "simulation time of the first frame, seconds");
                       addReflectionSizeOption(sub, a->reflectionSize);
+                      addGridOption(sub, a->grid);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees (default 270)");
                       addCoastOption(sub, a->coastRegion);
                       addLayerOptions(sub, a->layers);

@@ -38,6 +38,8 @@ class PluginOceanLayer : public render::Layer {
   // tiles each draw asks for (GEOCEAN_DRAW_COMPLETE_TILES), as the
   // terrain's TerrainOptions::waitForTiles.
   void setCompleteTiles(bool on) { completeTiles_ = on; }
+  // --grid ispg: the plugin's grid from paper 000's ISPG (GEOCEAN_DRAW_GRID_ISPG).
+  void setGridIspg(bool on) { gridIspg_ = on; }
   const OceanPlugin& plugin() const { return *plugin_; }
 
  private:
@@ -45,6 +47,7 @@ class PluginOceanLayer : public render::Layer {
   geocean_ocean* ocean_;
   render::LayerInfo info_;  // asked once: it does not change with the ocean's state
   bool completeTiles_ = false;
+  bool gridIspg_ = false;
 };
 
 // The host view for a camera: the same numbers the renderer draws its

@@ -137,8 +137,9 @@ std::unique_ptr<OceanPlugin> OceanPlugin::load(const std::string& path, std::str
                       resolve(handle, "geocean_clear_coast_region", a.clearCoastRegion, file, error);
     if (!ok15) return nullptr;
   }
-  // ABI 1.6 adds no symbols: geocean_bodies_config's repulsion field and the
-  // GEOCEAN_DRAW_COMPLETE_TILES flag (a 1.6 host gets no older plugin).
+  // ABI 1.6 and 1.7 add no symbols: geocean_bodies_config's repulsion field,
+  // the GEOCEAN_DRAW_COMPLETE_TILES and GEOCEAN_DRAW_GRID_ISPG flags (a 1.7
+  // host gets no older plugin).
   return p;
 }
 

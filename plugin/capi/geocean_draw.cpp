@@ -202,6 +202,7 @@ struct FrameView {
   bool reference = false;
   bool refraction = true;
   bool completeTiles = false;
+  bool ispg = false;
 };
 
 FrameView frameViewOf(const geocean_view* v) {
@@ -249,11 +250,13 @@ FrameView frameViewOf(const geocean_view* v) {
                                                  up, proj, w, h)};
   f.light.sunEcef = glm::normalize(sun);
   f.light.timeS = v->time_s;
-  if (v->draw_flags & ~(GEOCEAN_DRAW_REFERENCE | GEOCEAN_DRAW_NO_REFRACTION | GEOCEAN_DRAW_COMPLETE_TILES))
+  if (v->draw_flags &
+      ~(GEOCEAN_DRAW_REFERENCE | GEOCEAN_DRAW_NO_REFRACTION | GEOCEAN_DRAW_COMPLETE_TILES | GEOCEAN_DRAW_GRID_ISPG))
     bad("draw_flags " + std::to_string(v->draw_flags) + " has bits that are not GEOCEAN_DRAW_*");
   f.reference = (v->draw_flags & GEOCEAN_DRAW_REFERENCE) != 0;
   f.refraction = (v->draw_flags & GEOCEAN_DRAW_NO_REFRACTION) == 0;
   f.completeTiles = (v->draw_flags & GEOCEAN_DRAW_COMPLETE_TILES) != 0;
+  f.ispg = (v->draw_flags & GEOCEAN_DRAW_GRID_ISPG) != 0;
   return f;
 }
 
@@ -414,6 +417,7 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
       }
       gl.renderer->setWakes(std::move(wakes));
       gl.renderer->setCompleteTiles(ds.view->completeTiles);
+      gl.renderer->setGridMode(ds.view->ispg ? geocean::grid::GridMode::Ispg : geocean::grid::GridMode::Direct);
       gl.renderer->draw(ds.view->cam, ds.view->light, ds.view->reference);
     } catch (const geocean::gl::ShaderError& e) {
       fail(GEOCEAN_ERROR_GL, e.what());

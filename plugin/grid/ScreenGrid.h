@@ -116,6 +116,8 @@ class ScreenGrid {
   void build(const camera::Camera& cam, GridFrame& frame) const;
 
   const GridOptions& options() const { return options_; }
+  // The projector for the next builds (not during one).
+  void setMode(GridMode mode) { options_.mode = mode; }
 
  private:
   struct Impl;

@@ -476,6 +476,8 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
   return {sharp, smooth.size(), open.size(), farOpen.size()};
 }
 
+void OceanRenderer::setGridMode(grid::GridMode mode) { grid_->setMode(mode); }
+
 void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& light, bool bare) {
   const auto t0 = std::chrono::steady_clock::now();
   grid_->build(cam, frame_);

@@ -158,6 +158,9 @@ class OceanRenderer {
   // Single pictures: each draw first waits (bounded) for the streamed
   // tiles its view asks for, instead of drawing their ancestors.
   void setCompleteTiles(bool on) { completeTiles_ = on; }
+  // The screen grid's projector: Direct (default) or paper 000's ISPG,
+  // drawable for comparison (--grid ispg).
+  void setGridMode(grid::GridMode mode);
   const WaterPages* waterPages() const { return pages_.get(); }
   // The shading's sea statistics: mean square slope of the spectrum's waves
   // not drawn (ocean.vert's uMssAbove), and the whitecaps' crest height.

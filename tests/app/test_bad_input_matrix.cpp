@@ -71,6 +71,7 @@ const Row kRows[] = {
     {"render --out x.png --beaufort nan", "--beaufort: 'nan' is not a number"},
     {"render --out x.png --wind 5 --beaufort 3", "give either --wind or --beaufort, not both"},
     {"render --out x.png --reflection-size 8", "--reflection-size: 8 must be in 16..8192 pixels"},
+    {"render --out x.png --grid spherical", "--grid: spherical not in {direct,ispg}"},
     // fly
     {"fly --out o --frames 1", "--frames: 1 must be in 2..1000000"},
     {"fly --out o --frames 1e9", "--frames"},
@@ -81,6 +82,7 @@ const Row kRows[] = {
     {"fly --out o --from 95,0,1000", "--from: latitude must be in [-90, 90]"},
     {"fly --out o --beaufort 2.5", "--beaufort 2.5 is not a Beaufort number 0..12"},
     {"fly --out o --reflection-size 99999", "--reflection-size: 99999 must be in 16..8192 pixels"},
+    {"fly --out o --grid ''", "--grid:  not in {direct,ispg}"},
     // pick
     {"pick --ray nan,0,0,1,0,0", "--ray: 'nan' in 'nan,0,0,1,0,0' is not a finite number"},
     {"pick --ray 0,0,0,0,0,0", "--ray direction 0,0,0 is zero"},
@@ -123,6 +125,7 @@ const Row kRows[] = {
     {"view --fly-to 95,0", "--fly-to: latitude 95 is outside [-90, 90]"},
     {"view --fly-to 0,1e300", "--fly-to: longitude 1e+300 is outside [-180, 360]"},
     {"view --fly-to ''", "--fly-to: the value is empty"},
+    {"view --grid ISPG", "--grid: ISPG not in {direct,ispg}"},
     {"view --fly-to 36", "--fly-to LAT,LON"},
     {"view --frames -1", "--frames: -1 must be >= 0"},
     {"view --frames nan", "--frames"},

@@ -53,7 +53,7 @@ extern "C" {
  * A host built against MAJOR.MINOR runs with a plugin of the same MAJOR and
  * a MINOR at least as high. */
 #define GEOCEAN_ABI_VERSION_MAJOR 1
-#define GEOCEAN_ABI_VERSION_MINOR 6
+#define GEOCEAN_ABI_VERSION_MINOR 7
 #define GEOCEAN_ABI_VERSION ((uint32_t)((GEOCEAN_ABI_VERSION_MAJOR << 16) | GEOCEAN_ABI_VERSION_MINOR))
 
 /* Enums that cross the boundary as values have int32_t as their C++
@@ -404,6 +404,12 @@ typedef struct geocean_view {
  * ABI 1.6 (first shipped inside a 1.5 build; a 1.5 plugin rejects the
  * bit with INVALID_ARGUMENT naming draw_flags). */
 #define GEOCEAN_DRAW_COMPLETE_TILES 4u
+/* ABI 1.7: the ocean's screen grid from paper 000's improved spherical
+ * projected grid (ISPG: the tangent plane under the eye, mapped radially
+ * onto the ellipsoid) instead of the default direct projector (each vertex's
+ * ray meets the ellipsoid), for comparing the two; a 1.6 plugin rejects the
+ * bit (INVALID_ARGUMENT naming draw_flags). */
+#define GEOCEAN_DRAW_GRID_ISPG 8u
 
 /* Fills *view with defaults: struct_size, a 1280x720 view 10,000 km above
  * (0 N, 0 E) looking down, 45 deg field of view, reversed-Z projection,
