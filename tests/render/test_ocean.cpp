@@ -65,6 +65,66 @@ TEST(Ocean, SeaFrom2mAtLatitude80) {
   expectMatchesGolden(img, "sea_2m_lat80", kGoldenMean, kGoldenOver16);
 }
 
+// Coast z-fighting (issue 13's tests): where the drawn shoreline's coverage
+// is below 0.5 the terrain is drawn at its land height (0 m and up) beside
+// the sea at 0 m; above it the terrain is dropped 30 m (seaDropM) under the
+// water. Where their depths were too close, pixels would flip between land
+// and sea with any change of the camera. Two cameras 1/50 of a pixel's
+// footprint apart, straight down on and 30 degrees down towards a low coast
+// (the Dutch coast at 52.6 N, whose polders lie at 0 m; the shoreline found
+// by bisecting the drawn coverage, LandSea::waterCoverage), from 20,000 km
+// to 1 m, draw the same picture within the jitter test's tolerances. With
+// the terrain's water left at 0 m (seaDropM 0, tried) the calm sea's view
+// from 1 m fails them: 0.0024 of its pixels flip. The views are written to
+// the test's temp dir (zfight_*.png) to look at.
+TEST(Ocean, NoZFightingAtALowCoastFrom20000kmTo1m) {
+  // A calm sea (0.5 m/s: millimetre waves), where the water lies flattest
+  // on the terrain's 0 m, and the session's 10 m/s sea.
+  struct Guard {
+    ~Guard() { useOcean(nullptr); }
+  } guard;
+  ocean_render::OceanOptions calm;
+  calm.sea.windSpeedMps = 0.5;
+  const auto calmOcean =
+      std::make_shared<ocean_render::OceanRenderer>(session().world->grids(), ocean_render::defaultLandSea(), calm);
+  const auto landSea = ocean_render::defaultLandSea();
+  constexpr double lat = 52.6;
+  double sea = 4.2, land = 5.0;  // longitudes of open sea and of land
+  ASSERT_GT(landSea->waterCoverage(lat, sea), 0.5f);
+  ASSERT_LT(landSea->waterCoverage(lat, land), 0.5f);
+  for (int i = 0; i < 50; ++i) {
+    const double mid = 0.5 * (sea + land);
+    (landSea->waterCoverage(lat, mid) > 0.5f ? sea : land) = mid;
+  }
+  const double shore = 0.5 * (sea + land);
+  constexpr double kMPerDegLat = 111250.0, kSize = 128.0;
+  const double mPerDegLon = kMPerDegLat * std::cos(lat * M_PI / 180.0);
+  int views = 0;
+  for (const bool isCalm : {true, false})
+  for (const double alt : {2.0e7, 2.0e6, 2.0e5, 2.0e4, 2.0e3, 200.0, 20.0, 2.0, 1.0})
+    for (const double pitch : {-90.0, -30.0}) {
+      if (pitch > -90.0 && alt > 2.0e5) continue;  // the view would leave the Earth
+      // Looking east at the shoreline: the camera is offshore by alt / tan(30 deg) when tilted.
+      const double back = pitch > -90.0 ? alt / std::tan(30.0 * M_PI / 180.0) : 0.0;
+      ViewPose a = seaPose(lat, shore - back / mPerDegLon, alt, 90.0, pitch, int(kSize));
+      ViewPose b = a;
+      const double footprintM = alt * (a.fovYDeg * M_PI / 180.0) / kSize;
+      b.latDeg += footprintM / 50.0 / kMPerDegLat;
+      useOcean(isCalm ? calmOcean : nullptr);
+      const Image ia = renderAt(a, 10.0, 120.0, 40.0), ib = renderAt(b, 10.0, 120.0, 40.0);
+      const ImageDiff d = compare(ia, ib);
+      char name[96];  // to look at: the coast in each view
+      std::snprintf(name, sizeof name, "/zfight_%s_%.0fm_%.0f.png", isCalm ? "calm" : "10mps", alt, -pitch);
+      gl::writePng(::testing::TempDir() + name, ia);
+      std::printf("%s, %.0f m, pitch %.0f: mean %.3f, %.4f of pixels off by > 16\n", isCalm ? "calm" : "10 m/s", alt,
+                  pitch, d.mean, d.fractionOver16);
+      EXPECT_LE(d.mean, 0.5) << alt << " m, pitch " << pitch << (isCalm ? ", calm" : "");
+      EXPECT_LE(d.fractionOver16, 0.002) << alt << " m, pitch " << pitch << (isCalm ? ", calm" : "");
+      ++views;
+    }
+  EXPECT_EQ(views, 32);
+}
+
 TEST(Ocean, JitterFreeAt1mWithWaves) {
   // Two cameras 1 mm apart at 1 m above the sea, same time: waves, grid and
   // terrain all move by a hundredth of a pixel at most.
