@@ -281,12 +281,16 @@ TEST(RenderBoats, TheFKeyInTheWindowStartsTheChase) {
   std::filesystem::create_directories(dir);
   // Keys after the window is up and drawing (search --sync waits for it, at
   // most 2 minutes: a view that fails to open must not hang the test);
-  // sticky keys keep each tap for the next poll.
+  // sticky keys keep each tap for the next poll. Escape once the window's
+  // title (the HUD on one line) shows an altitude in metres: the flight is
+  // still above 10 km, so that frame is the chase's (a fixed 3 s wait was
+  // too short for one frame on a loaded machine).
   const std::string script =
       std::string(GEOCEAN_EXE) + " view --fly-to 30,-40 --boats 3 --frames 100000 --size 200x120 --no-hud --stats " +
       dir + "/stats.csv & v=$!; "
       "timeout 120 xdotool search --sync --onlyvisible --name Geocean >/dev/null; sleep 2; "
-      "xdotool key f; sleep 3; xdotool key Escape; wait $v";
+      "xdotool key f; timeout 120 xdotool search --sync --name \"alt +[0-9.]+ m \" >/dev/null; sleep 1; "
+      "xdotool key Escape; wait $v";
   const auto r = geocean::test::run("xvfb-run -a -s '-screen 0 640x480x24' sh -c '" + script + "'");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::ifstream csv(dir + "/stats.csv");
