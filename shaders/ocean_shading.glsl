@@ -28,6 +28,9 @@ uniform mat4 uReflViewProj;
 uniform vec3 uReflEyeOffset;
 uniform vec3 uNadirUp;
 uniform float uEyeHeightM;
+// How far the eye moved since the map was drawn (a reused map,
+// FrameSettings::reflectionEvery; 0 for a fresh one).
+uniform float uReflEyeMovedM;
 layout(binding = 3) uniform sampler2D uReflectionMap;
 // The single plane lies d^2/2R above the sea at distance d (31 m at 20 km):
 // the map is used out to kReflectionNearM and fades to the sky BRDF by
@@ -58,7 +61,10 @@ vec4 planarReflection(vec3 eyeRel, vec3 n, vec3 up, vec3 sunDir) {
   float dist = length(pPlane);
   vec3 nPert = normalize(uNadirUp + (normalize(n) - normalize(up)));
   vec3 r = reflect(pPlane / max(dist, 1e-3), nPert);
-  vec4 clip = uReflViewProj * vec4(pPlane + 3.0 * dist * r + uReflEyeOffset, 1.0);
+  // The looked-up point is taken far beyond the eye's move, so a reused
+  // map's parallax stays under a hundredth of a radian (distant terrain and
+  // sky exact; nearer objects m - 1 frames late).
+  vec4 clip = uReflViewProj * vec4(pPlane + max(3.0 * dist, 100.0 * uReflEyeMovedM) * r + uReflEyeOffset, 1.0);
   if (clip.w <= 0.0) return vec4(0.0);
   vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
   float edge = smoothstep(0.0, 0.03, min(min(uv.x, 1.0 - uv.x), min(uv.y, 1.0 - uv.y)));

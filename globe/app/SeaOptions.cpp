@@ -40,6 +40,12 @@ void addReflectionSizeOption(CLI::App& sub, int& size) {
                  "2048); default: the viewport's size");
 }
 
+void addReflectionEveryOption(CLI::App& sub, int& every) {
+  sub.add_option("--reflection-every", every,
+                 "M: the mirrored pass runs every M-th frame and the others reuse its map (paper 001), 1..1000; "
+                 "default 1");
+}
+
 void addGridOption(CLI::App& sub, std::string& grid) {
   sub.add_option("--grid", grid,
                  "ocean grid projector: direct (default: each vertex's ray meets the ellipsoid) or ispg (paper "

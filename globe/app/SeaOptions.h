@@ -27,6 +27,8 @@ int resolveWind(const char* command, const WindOptions& w, double& windMps);
 
 // Adds --reflection-size (0, the default: the viewport's size).
 void addReflectionSizeOption(CLI::App& sub, int& size);
+// Adds --reflection-every (1, the default: every frame) for flights and views.
+void addReflectionEveryOption(CLI::App& sub, int& every);
 
 // Adds --grid direct|ispg: the ocean's screen grid projector (issue 13
 // item 8: paper 000's ISPG drawable beside the default, for comparison).

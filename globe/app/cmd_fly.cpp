@@ -40,6 +40,7 @@ struct FlyArgs {
   WindOptions wind;
   double windFromDeg = 270.0;
   int reflectionSize = 0;
+  int reflectionEvery = 1;
   std::string grid = "direct";
   std::string coastRegion;
   bool reference = false;
@@ -76,6 +77,7 @@ int runFly(const FlyArgs& a) {
     }
     if (!a.sun.empty()) sunAzEl = render::parseNumbers(a.sun, 2, "--sun AZ,EL");
     render::checkReflectionSize(a.reflectionSize);
+    render::checkReflectionEvery(a.reflectionEvery);
     // The sea's options before the GL context (the plugin would say it by its field names).
     for (const std::string& e : {checkDrawnSea(a.waves, a.wind.windMps, a.windFromDeg),
                                  a.coastRegion.empty() ? std::string() : checkCoastRegion(a.coastRegion),
@@ -161,6 +163,7 @@ int runFly(const FlyArgs& a) {
     fs.reflections = !a.noReflections;
     fs.refraction = !a.noRefraction;
     fs.reflectionSize = a.reflectionSize;
+    fs.reflectionEvery = a.reflectionEvery;
     const auto t = s.render(pose, fs);
 #if GEOCEAN_WITH_HUD
     if (hud) {  // drawn after the timed passes, so timings.csv is the same with or without it
@@ -222,6 +225,7 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                       sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
                       addWindOptions(sub, a->wind);
                       addReflectionSizeOption(sub, a->reflectionSize);
+                      addReflectionEveryOption(sub, a->reflectionEvery);
                       addGridOption(sub, a->grid);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
                       addCoastOption(sub, a->coastRegion);

@@ -54,6 +54,7 @@ struct ViewArgs {
   std::string sun;     // AZ,EL at the camera's nadir (default 135,40)
   double timeS = 0.0;  // simulation time of the first frame
   int reflectionSize = 0;
+  int reflectionEvery = 1;
   std::string grid = "direct";
   std::string coastRegion;  // LAT,LON[,SIZE_M] (CoastOption.h)
 };
@@ -189,6 +190,7 @@ int runView(const ViewArgs& a) {
     // The last scripted frame's time too (1/30 s per frame).
     if (auto e = checkTime(a.timeS + a.frames / 30.0, "--time + --frames / 30"); !e.empty()) throw render::ArgError(e);
     render::checkReflectionSize(a.reflectionSize);
+    render::checkReflectionEvery(a.reflectionEvery);
     // Bad input is exit 2 with or without a display: every check that needs
     // no window comes before the display's (--beaufort: resolveWind below).
     for (const std::string& e : {checkDrawnSea(a.waves, a.wind.windMps, a.windFromDeg),
@@ -359,6 +361,7 @@ int runView(const ViewArgs& a) {
       fs.reflections = panel.reflections;
       fs.refraction = panel.refraction;
       fs.reflectionSize = a.reflectionSize;
+      fs.reflectionEvery = a.reflectionEvery;
       const render::FrameTimes times = renderer.render(c.pose, fs);
       tilesBuilt += times.terrain.tilesBuilt;
       // The float-depth target is blitted to the window (its own depth is fixed point).
@@ -456,6 +459,7 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                                      "the camera)");
                       sub.add_option("--time", a->timeS, "simulation time of the first frame, seconds");
                       addReflectionSizeOption(sub, a->reflectionSize);
+                      addReflectionEveryOption(sub, a->reflectionEvery);
                       addGridOption(sub, a->grid);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees (default 270)");
                       addCoastOption(sub, a->coastRegion);

@@ -61,4 +61,9 @@ void checkReflectionSize(int size) {
     throw ArgError("--reflection-size: " + std::to_string(size) + " must be in 16..8192 pixels (0: the viewport's size)");
 }
 
+void checkReflectionEvery(int every) {
+  if (every < 1 || every > 1000)
+    throw ArgError("--reflection-every: " + std::to_string(every) + " must be in 1..1000 frames");
+}
+
 }  // namespace geocean::render

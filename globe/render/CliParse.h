@@ -23,5 +23,7 @@ void parseCamera(const std::string& text, camera::ViewPose& pose);
 void parseSize(const std::string& text, camera::ViewPose& pose);
 // --reflection-size: 0 (the viewport's size) or 16..8192 pixels.
 void checkReflectionSize(int size);
+// --reflection-every M: 1..1000 frames.
+void checkReflectionEvery(int every);
 
 }  // namespace geocean::render

@@ -98,7 +98,8 @@ void GlobeRenderer::drawScene(const camera::Camera& cam, const camera::Lighting&
 }
 
 void GlobeRenderer::makeLayerInputs(const camera::Camera& cam, const camera::Lighting& light,
-                                    const FrameSettings& settings, unsigned wants, LayerInputs& in) {
+                                    const FrameSettings& settings, unsigned wants, LayerInputs& in,
+                                    FrameTimes& t) {
   const int w = cam.widthPx(), h = cam.heightPx();
   GLint target = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
@@ -127,8 +128,18 @@ void GlobeRenderer::makeLayerInputs(const camera::Camera& cam, const camera::Lig
       rw = std::max(1, int(std::lround(w * scale)));
       rh = std::max(1, int(std::lround(h * scale)));
     }
+    // Reused while younger than reflectionEvery frames and of the same size.
+    if (reflectionCamera_ && ++reflectionAge_ < std::max(settings.reflectionEvery, 1) && rw == reflectionW_ &&
+        rh == reflectionH_ && settings.reflectionEvery == reflectionEvery_) {
+      in.reflectionCamera = *reflectionCamera_;
+      in.reflectionColor = reflection_.color();
+      return;
+    }
     in.reflectionCamera = camera::Camera::fromEcef(eye, mirror(cam.forward()), mirror(cam.up()), cam.vfovDeg(), rw, rh,
                                                    cam.heightM());
+    reflectionCamera_ = in.reflectionCamera;
+    reflectionAge_ = 0, reflectionW_ = rw, reflectionH_ = rh, reflectionEvery_ = settings.reflectionEvery;
+    t.reflectionDrawn = true;
     reflection_.ensure(rw, rh);
     // At the viewport's size the map is read about 1:1 (nearest, as it
     // always was); resized, it is resampled: bilinear, not blocks.
@@ -172,7 +183,7 @@ FrameTimes GlobeRenderer::render(const camera::ViewPose& pose, const FrameSettin
   LayerInputs inputs;
   inputs.refraction = settings.refraction;
   if (!settings.reflections) wants &= ~kLayerWantsReflection;
-  if (wants && !settings.bare) makeLayerInputs(cam, light, settings, wants, inputs);
+  if (wants && !settings.bare) makeLayerInputs(cam, light, settings, wants, inputs, t);
   for (auto& l : layers_) l->draw(cam, light, settings.bare, inputs);
   if (settings.timed) glFinish();
   t.layersMs = msSince(ts);

@@ -13,6 +13,7 @@
 #include "globe/render/WorldTextures.h"
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace geocean::render {
@@ -24,6 +25,7 @@ struct FrameTimes {
   // it does not grow when other processes share the cores.
   double skyCpuMs = 0.0, terrainCpuMs = 0.0, layersCpuMs = 0.0, totalCpuMs = 0.0;
   TerrainStats terrain;
+  bool reflectionDrawn = false;  // the mirrored pass ran this frame (not reused)
 };
 
 struct FrameSettings {
@@ -38,6 +40,11 @@ struct FrameSettings {
   // The mirrored pass's map: its longer side in pixels, the viewport's
   // aspect kept (paper 001's 512, 1024, 2048); 0: the viewport's size.
   int reflectionSize = 0;
+  // Paper 001 reuses its reflection map for m frames: the mirrored pass runs
+  // on every reflectionEvery-th frame, the others read the last map through
+  // the camera it was drawn with (so it stays where it was in the world; what
+  // moved since is m - 1 frames late). 1: every frame.
+  int reflectionEvery = 1;
 };
 
 class GlobeRenderer {
@@ -72,12 +79,17 @@ class GlobeRenderer {
                  const camera::Camera* mirroredFrom = nullptr);
   // The inputs the layers asked for (LayerInfo::wants), made after the terrain.
   void makeLayerInputs(const camera::Camera& cam, const camera::Lighting& light, const FrameSettings& settings,
-                       unsigned wants, LayerInputs& in);
+                       unsigned wants, LayerInputs& in, FrameTimes& t);
 
   gl::GlProgram sky_;
   GLuint emptyVao_ = 0;
   // The layers' inputs (made on first need, per size).
   gl::TextureTarget sceneCopy_, reflection_;
+  // The last mirrored pass (FrameSettings::reflectionEvery): its camera,
+  // the frames since, and the map size it was drawn at.
+  std::optional<camera::Camera> reflectionCamera_;
+  // A change of reflectionEvery starts a new cycle (the next frame draws).
+  int reflectionAge_ = 0, reflectionW_ = 0, reflectionH_ = 0, reflectionEvery_ = 1;
   std::vector<std::shared_ptr<Layer>> layers_;
   std::vector<std::shared_ptr<SceneObject>> objects_;
 };

@@ -653,14 +653,23 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     if (reflect) {
       const camera::Camera& m = *inputs_.reflectionCamera;
       glUniformMatrix4fv(p.uniform("uReflViewProj"), 1, GL_FALSE, &m.gpu().viewProj[0][0]);
-      // The mirror plane from the two eyes: normal along their offset (the
-      // host mirrors in the tangent plane at the nadir), half of it under the eye.
+      // The mirror plane from the mirrored eye alone: the host mirrors in the
+      // tangent plane at the nadir of the eye it drew the map for, so that
+      // eye's image lies on the plane's normal line, as far under it as the
+      // eye was above: its geodetic height is minus the plane's distance.
+      // A map reused from an earlier frame (FrameSettings::reflectionEvery)
+      // keeps its plane while this eye moves.
       const glm::dvec3 offset = cam.eyeEcef() - m.eyeEcef();
-      const glm::dvec3 n0 = geo::surfaceNormal(cam.latDeg(), cam.lonDeg());
+      const geo::Geodetic mg = geo::fromEcef(m.eyeEcef());
+      const glm::dvec3 n0 = geo::surfaceNormal(mg.latDeg, mg.lonDeg);
       const glm::vec3 offsetF(offset), n0F(n0);
       glUniform3fv(p.uniform("uReflEyeOffset"), 1, &offsetF[0]);
       glUniform3fv(p.uniform("uNadirUp"), 1, &n0F[0]);
-      glUniform1f(p.uniform("uEyeHeightM"), float(0.5 * glm::dot(offset, n0)));
+      const double heightM = glm::dot(offset, n0) + mg.heightM;  // this eye over the mirror plane
+      glUniform1f(p.uniform("uEyeHeightM"), float(heightM));
+      // The eye the map was drawn for: the mirrored one reflected back.
+      const glm::dvec3 moved = offset - (heightM - mg.heightM) * n0;
+      glUniform1f(p.uniform("uReflEyeMovedM"), float(glm::length(moved)));
     }
     if (fft) {
       // The coarse cascade's texel: its waves carry the height; the fine one

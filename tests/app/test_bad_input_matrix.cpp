@@ -83,6 +83,7 @@ const Row kRows[] = {
     {"fly --out o --beaufort 2.5", "--beaufort 2.5 is not a Beaufort number 0..12"},
     {"fly --out o --reflection-size 99999", "--reflection-size: 99999 must be in 16..8192 pixels"},
     {"fly --out o --grid ''", "--grid:  not in {direct,ispg}"},
+    {"fly --out o --reflection-every 0", "--reflection-every: 0 must be in 1..1000 frames"},
     // pick
     {"pick --ray nan,0,0,1,0,0", "--ray: 'nan' in 'nan,0,0,1,0,0' is not a finite number"},
     {"pick --ray 0,0,0,0,0,0", "--ray direction 0,0,0 is zero"},
@@ -126,6 +127,7 @@ const Row kRows[] = {
     {"view --fly-to 0,1e300", "--fly-to: longitude 1e+300 is outside [-180, 360]"},
     {"view --fly-to ''", "--fly-to: the value is empty"},
     {"view --grid ISPG", "--grid: ISPG not in {direct,ispg}"},
+    {"view --reflection-every 1001", "--reflection-every: 1001 must be in 1..1000 frames"},
     {"view --fly-to 36", "--fly-to LAT,LON"},
     {"view --frames -1", "--frames: -1 must be >= 0"},
     {"view --frames nan", "--frames"},

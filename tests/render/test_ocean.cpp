@@ -4,8 +4,10 @@
 
 #include "globe/gl/Framebuffer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 namespace geocean::render::test {
 namespace {
@@ -123,6 +125,62 @@ TEST(Ocean, NoZFightingAtALowCoastFrom20000kmTo1m) {
       ++views;
     }
   EXPECT_EQ(views, 32);
+}
+
+// Paper 001 reuses its reflection map for m frames (issue 13 item 4):
+// with FrameSettings::reflectionEvery = 4 the mirrored pass runs on frames
+// 0, 4, 8 of a 9-frame run and the ocean reads the last map through the
+// camera it was drawn with. The camera moves 10 m a frame (36 km/h) at
+// 20 m over a calm sea in the Strait of Gibraltar, looking north at Spain's
+// reflected hills. Frames whose pass ran are bit-identical to drawing it
+// every frame; the others differ from them by at most a quarter of what the
+// reflection itself adds to that frame (the mean difference against
+// --no-reflections): the reuse keeps most of the reflection's effect.
+TEST(Ocean, AReflectionMapReusedForFourFramesKeepsTheReflection) {
+  struct Guard {
+    ~Guard() { useOcean(nullptr); }
+  } guard;
+  ocean_render::OceanOptions calm;
+  calm.sea.windSpeedMps = 1.0;
+  useOcean(std::make_shared<ocean_render::OceanRenderer>(session().world->grids(), ocean_render::defaultLandSea(), calm));
+  Session& s = session();
+  auto frame = [&](int i, int every, bool reflections, bool* drawn) {
+    ViewPose p = seaPose(19.75, -154.85 - i * 10.0 / 104800.0, 20.0, 270.0, 0.0, 160);
+    p.fovYDeg = 20.0;
+    FrameSettings fs;
+    fs.timeS = 5.0 + i / 30.0;
+    fs.sunEcef = sunForView(p, 90.0, 30.0);
+    fs.reflections = reflections;
+    fs.reflectionEvery = every;
+    const FrameTimes t = s.render(p, fs);
+    if (drawn) *drawn = t.reflectionDrawn;
+    return s.image();
+  };
+  std::vector<Image> fresh, reused, none;
+  int passes = 0;
+  for (int i = 0; i < 9; ++i) fresh.push_back(frame(i, 1, true, nullptr));
+  for (int i = 0; i < 9; ++i) {
+    bool drawn = false;
+    reused.push_back(frame(i, 4, true, &drawn));
+    EXPECT_EQ(drawn, i % 4 == 0) << "frame " << i;
+    passes += drawn;
+  }
+  for (int i = 0; i < 9; ++i) none.push_back(frame(i, 1, false, nullptr));
+  EXPECT_EQ(passes, 3);
+  double worstShare = 0.0;
+  for (int i = 0; i < 9; ++i) {
+    const ImageDiff reuse = compare(fresh[i], reused[i]), effect = compare(fresh[i], none[i]);
+    std::printf("frame %d: reused map off by %.3f (%.4f > 16), the reflection adds %.3f\n", i, reuse.mean,
+                reuse.fractionOver16, effect.mean);
+    if (i % 4 == 0) {
+      EXPECT_EQ(reuse.max, 0) << "frame " << i << " drew its own map";
+    } else {
+      EXPECT_GT(effect.mean, 0.5) << "frame " << i << ": the reflection should show";
+      EXPECT_LE(reuse.mean, 0.25 * effect.mean) << "frame " << i;
+      worstShare = std::max(worstShare, reuse.mean / effect.mean);
+    }
+  }
+  std::printf("worst reused frame: %.3f of the reflection's own effect\n", worstShare);
 }
 
 TEST(Ocean, JitterFreeAt1mWithWaves) {
