@@ -57,7 +57,11 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   // fragment shader cuts the exact coastline); nearest-cell classes would
   // drop sea that the smooth shoreline shows as water.
   ocean::SurfaceClassifier classifier;
-  if (landSea)
+  const bool levelIsGrid = options_.waterTiles && waterIndexFollowsTiles(*world_, *options_.waterTiles);
+  pagesIndexed_ = levelIsGrid && options_.streamedIndex;
+  if (levelIsGrid)
+    classifier = nearWaterClassifier(world_->water());
+  else if (landSea)
     classifier = [ls = landSea](const double* lat, const double* lon, std::size_t n, ocean::Surface* out) {
       ls->classifyNearWaterBatch(lat, lon, n, out);
     };
@@ -398,7 +402,7 @@ std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenC
 }
 
 CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi, double cellPx, const ScreenCull& view,
-                          bool cull, bool group, std::vector<std::uint32_t>& idx) {
+                          bool cull, bool group, std::vector<std::uint32_t>& idx, bool paged) {
   // Cells whose every vertex stays beyond one side of the screen cannot
   // reach it (the clamp rectangle adds such cells at low altitude: 2 m above
   // the sea it spans up to 4 screens a side).
@@ -442,7 +446,9 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
     std::vector<std::uint32_t>* to = nullptr;
     if (!limb) {
       const double extent = std::max(x1 - x0, y1 - y0);
-      const double margin = 3.0 + 3.0 * 2.0 * extent / cellPx;
+      // The paged coverage's footprint, length(fwidth) of its texel
+      // position, is up to twice the mipmap's (geo_uv.glsl waterPagesAuto).
+      const double margin = 3.0 + 3.0 * (paged ? 4.0 : 2.0) * extent / cellPx;
       if (wi.allWater(x0 - margin, x1 + margin, y0 - margin, y1 + margin)) {
         // Far: ocean.vert's fade (footprint / longest wavelength >= 0.5)
         // is complete at every vertex, with 1 % for its float arithmetic.
@@ -462,7 +468,7 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
         }
         to = far ? &farOpen : &open;
       }
-      else if (extent <= kSmoothTexels)
+      else if (!paged && extent <= kSmoothTexels)
         to = &smooth;
     }
     if (to)
@@ -536,7 +542,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   }
   const CellGroups groups =
       partitionCells(frame_, world_->waterIndex(), options_.cellPx, cull, options_.cullOffscreen,
-                     !bare && options_.cheapCoverage && !pages_, idx);
+                     !bare && options_.cheapCoverage && (!pages_ || pagesIndexed_), idx, pages_ != nullptr);
   gridMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (idx.empty()) {
     if (pages_) pages_->endFrame();
@@ -710,8 +716,8 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
 }
 
 bool OceanRenderer::coversOpaquely(double lat0, double lat1, double lon0, double lon1, double footprintM) const {
-  if (pages_) return false;  // the water index is the grid's, coarser than the streamed mask
-  return ocean_render::coversOpaquely(*world_, options_.cellPx, lat0, lat1, lon0, lon1, footprintM);
+  if (pages_ && !pagesIndexed_) return false;  // a regional mask: the water index is the layers' below
+  return ocean_render::coversOpaquely(*world_, options_.cellPx, lat0, lat1, lon0, lon1, footprintM, pages_ != nullptr);
 }
 
 }  // namespace geocean::ocean_render
