@@ -80,6 +80,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   }
   if (options_.waterTiles) {
     pages_ = std::make_unique<WaterPages>(options_.waterTiles);
+    pagedTexels_ = world_->water().lonStepDeg / options_.waterTiles->source().transform().lonStepDeg;
     auto paged = shaded;
     paged.push_back("GEOCEAN_WATER_PAGES 1");
     if (!options_.waterTiles->source().transform().global) paged.push_back("GEOCEAN_WATER_PAGES_REGIONAL 1");
@@ -92,6 +93,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     open.push_back("GEOCEAN_OPEN_WATER 1");
     openWater_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", open);
     open.back() = "GEOCEAN_VERTEX_COVERAGE 1";
+    if (pages_) open.push_back("GEOCEAN_WATER_PAGES 1");  // read per vertex from the pages
     smoothCoast_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", open);
     auto far = model;
     far.push_back("GEOCEAN_FAR_SHADED 1");
@@ -402,7 +404,7 @@ std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenC
 }
 
 CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi, double cellPx, const ScreenCull& view,
-                          bool cull, bool group, std::vector<std::uint32_t>& idx, bool paged) {
+                          bool cull, bool group, std::vector<std::uint32_t>& idx, double pagedTexels) {
   // Cells whose every vertex stays beyond one side of the screen cannot
   // reach it (the clamp rectangle adds such cells at low altitude: 2 m above
   // the sea it spans up to 4 screens a side).
@@ -448,7 +450,7 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
       const double extent = std::max(x1 - x0, y1 - y0);
       // The paged coverage's footprint, length(fwidth) of its texel
       // position, is up to twice the mipmap's (geo_uv.glsl waterPagesAuto).
-      const double margin = 3.0 + 3.0 * (paged ? 4.0 : 2.0) * extent / cellPx;
+      const double margin = 3.0 + 3.0 * (pagedTexels > 0.0 ? 4.0 : 2.0) * extent / cellPx;
       if (wi.allWater(x0 - margin, x1 + margin, y0 - margin, y1 + margin)) {
         // Far: ocean.vert's fade (footprint / longest wavelength >= 0.5)
         // is complete at every vertex, with 1 % for its float arithmetic.
@@ -468,7 +470,7 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
         }
         to = far ? &farOpen : &open;
       }
-      else if (!paged && extent <= kSmoothTexels)
+      else if (extent * std::max(pagedTexels, 1.0) <= kSmoothTexels)  // in the texels drawn
         to = &smooth;
     }
     if (to)
@@ -542,7 +544,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   }
   const CellGroups groups =
       partitionCells(frame_, world_->waterIndex(), options_.cellPx, cull, options_.cullOffscreen,
-                     !bare && options_.cheapCoverage && (!pages_ || pagesIndexed_), idx, pages_ != nullptr);
+                     !bare && options_.cheapCoverage && (!pages_ || pagesIndexed_), idx, pagedTexels_);
   gridMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (idx.empty()) {
     if (pages_) pages_->endFrame();
@@ -696,7 +698,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     if (count == 0) continue;
     prog->use();
     setUniforms(*prog);
-    if (pages_ && prog == &program_) pages_->bind(*prog);
+    if (pages_ && (prog == &program_ || prog == &smoothCoast_)) pages_->bind(*prog);
     glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
     first += count;

@@ -52,8 +52,8 @@ struct OceanOptions {
   // coversOpaquely answers, when the world's water grid is a level of this
   // pyramid (oceanWorld makes it so; waterIndexFollowsTiles): its texels
   // are means of the mask's, 1 only where every mask cell under them is
-  // water. No cell reads its coverage from the vertices (the grid's
-  // texture is not the drawn coast). A regional mask's cells all take the
+  // water; cells much smaller than a mask cell read the pages per vertex.
+  // A regional mask's cells all take the
   // per-pixel coverage, and coversOpaquely is false.
   std::shared_ptr<const raster::TilePyramid> waterTiles;
   // False: a streamed mask's cells all per pixel and coversOpaquely false
@@ -95,11 +95,12 @@ struct ScreenCull {
 // 4 bottom, 8 top) under any wave displacement.
 std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenCull& view);
 // With `cull`, drops cells that stay off screen; with `group`, sorts the
-// rest. `paged`: the coverage is a streamed mask's (WaterPages): no smooth
-// run (the index's texture is not the drawn coast) and the open-water
-// margin for its footprint, up to twice the mipmap's.
+// rest. pagedTexels > 0: the coverage is a streamed mask's (WaterPages),
+// this many of its finest texels per water-index texel: the smooth run's
+// bound is in those texels and the open-water margin covers its footprint,
+// up to twice the mipmap's.
 CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi, double cellPx, const ScreenCull& view,
-                          bool cull, bool group, std::vector<std::uint32_t>& idx, bool paged = false);
+                          bool cull, bool group, std::vector<std::uint32_t>& idx, double pagedTexels = 0.0);
 
 // What the host gives a draw beyond the camera (the host/layer contract's
 // inputs) and the optics switches.
@@ -240,6 +241,7 @@ class OceanRenderer {
   // The world's water index is the streamed pyramid's (waterIndexFollowsTiles):
   // open water and coversOpaquely as without pages.
   bool pagesIndexed_ = false;
+  double pagedTexels_ = 0.0;  // the pyramid's level-0 texels per water-grid texel (partitionCells)
   bool completeTiles_ = false;
   double gridMs_ = 0.0;
 };
