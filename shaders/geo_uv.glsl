@@ -324,6 +324,23 @@ int pageLevel(vec2 lonLatDeg, int want) {
   return uPageTop;
 }
 
+#ifndef GEOCEAN_WATER_PAGES_REGIONAL
+// A global pyramid's block of n x n texels from g that lies inside the
+// level and inside one tile with its one-texel border: that tile's layer
+// (.z) and the block's first texel in it (.xy); .z -1 otherwise. The same
+// texels as pageTexel's one by one (a border holds its neighbours'), with
+// one page-table fetch instead of one per texel.
+ivec3 pageBlock(int level, ivec2 g, int n) {
+  int T = uPageTile.x;
+  ivec2 t = (g + 1) / T;  // the tile of the block's second texel
+  ivec2 r = g - t * T;    // from -1
+  if (any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g + n - 1, uPageLevel[level].xy)) ||
+      any(greaterThan(r + n - 1, ivec2(T))))
+    return ivec3(0, 0, -1);
+  return ivec3(r + 1, pageSlot(level, g + 1));  // + 1: the tile's border
+}
+#endif
+
 float pageBSpline(vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo) {
   vec2 p = pagePos(lonLatDeg, level);
   vec2 i = floor(p);
@@ -331,6 +348,19 @@ float pageBSpline(vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo) {
   vec4 wx = bsplineWeights4(f.x), wy = bsplineWeights4(f.y);
   ivec2 g = ivec2(i) - 1;
   float s = 0.0;
+#ifndef GEOCEAN_WATER_PAGES_REGIONAL
+  ivec3 b = pageBlock(level, g, 4);
+  if (b.z >= 0) {
+    for (int y = 0; y < 4; ++y) {
+      vec4 row = vec4(texelFetch(uPagePool, ivec3(b.x, b.y + y, b.z), 0).r,
+                      texelFetch(uPagePool, ivec3(b.x + 1, b.y + y, b.z), 0).r,
+                      texelFetch(uPagePool, ivec3(b.x + 2, b.y + y, b.z), 0).r,
+                      texelFetch(uPagePool, ivec3(b.x + 3, b.y + y, b.z), 0).r);
+      s += wy[y] * dot(row, wx);
+    }
+    return s;
+  }
+#endif
   for (int y = 0; y < 4; ++y) {
     vec4 row = vec4(pageTexel(level, g + ivec2(0, y), grid, gridGeo), pageTexel(level, g + ivec2(1, y), grid, gridGeo),
                     pageTexel(level, g + ivec2(2, y), grid, gridGeo), pageTexel(level, g + ivec2(3, y), grid, gridGeo));
@@ -344,6 +374,13 @@ float pageBilinear(vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo) {
   vec2 i = floor(p);
   vec2 f = p - i;
   ivec2 g = ivec2(i);
+#ifndef GEOCEAN_WATER_PAGES_REGIONAL
+  ivec3 b = pageBlock(level, g, 2);
+  if (b.z >= 0)
+    return mix(mix(texelFetch(uPagePool, b, 0).r, texelFetch(uPagePool, b + ivec3(1, 0, 0), 0).r, f.x),
+               mix(texelFetch(uPagePool, b + ivec3(0, 1, 0), 0).r, texelFetch(uPagePool, b + ivec3(1, 1, 0), 0).r, f.x),
+               f.y);
+#endif
   return mix(mix(pageTexel(level, g, grid, gridGeo), pageTexel(level, g + ivec2(1, 0), grid, gridGeo), f.x),
              mix(pageTexel(level, g + ivec2(0, 1), grid, gridGeo), pageTexel(level, g + ivec2(1, 1), grid, gridGeo), f.x),
              f.y);

@@ -176,7 +176,11 @@ void main() {
 #ifdef GEOCEAN_FAR_SHADED
   vColor = oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, vFoamM, 1.0);
 #endif
-#ifdef GEOCEAN_VERTEX_COVERAGE
+#if defined(GEOCEAN_VERTEX_COVERAGE) && defined(GEOCEAN_WATER_PAGES)
+  // A streamed mask: its finest resident level's B-spline, as the paged
+  // fragments read it magnified (geo_uv.glsl waterPagesAuto).
+  vCoverage = pageBSpline(lonLat, pageLevel(lonLat, 0), uWater, uWaterGeo);
+#elif defined(GEOCEAN_VERTEX_COVERAGE)
   vCoverage = textureBSplineGather(uWater, geoUv(lonLat, uWaterGeo));
 #endif
   gl_Position = uViewProj * vec4(p, 1.0);

@@ -473,9 +473,11 @@ GEOCEAN_API geocean_status geocean_covers_opaquely(geocean_ocean* ocean, double 
     if (!snap->mask && !snap->elevation) return;
     WorldCache& world = drawState(ocean).world;
     const auto& grids = world.of(*snap);
-    if (world.waterTiles) return;  // drawn from the streamed mask: the grids' water index is coarser
+    // A regional streamed mask: the grids' water index is the layers' below it.
+    if (world.waterTiles && !geocean::ocean_render::waterIndexFollowsTiles(grids, *world.waterTiles)) return;
     *out_covers = geocean::ocean_render::coversOpaquely(grids, geocean::ocean_render::OceanOptions{}.cellPx, lat0_deg,
-                                                        lat1_deg, lon0_deg, lon1_deg, pixel_footprint_m)
+                                                        lat1_deg, lon0_deg, lon1_deg, pixel_footprint_m,
+                                                        world.waterTiles != nullptr)
                       ? 1
                       : 0;
   });

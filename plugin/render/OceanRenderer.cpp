@@ -57,7 +57,11 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   // fragment shader cuts the exact coastline); nearest-cell classes would
   // drop sea that the smooth shoreline shows as water.
   ocean::SurfaceClassifier classifier;
-  if (landSea)
+  const bool levelIsGrid = options_.waterTiles && waterIndexFollowsTiles(*world_, *options_.waterTiles);
+  pagesIndexed_ = levelIsGrid && options_.streamedIndex;
+  if (levelIsGrid)
+    classifier = nearWaterClassifier(world_->water());
+  else if (landSea)
     classifier = [ls = landSea](const double* lat, const double* lon, std::size_t n, ocean::Surface* out) {
       ls->classifyNearWaterBatch(lat, lon, n, out);
     };
@@ -76,6 +80,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   }
   if (options_.waterTiles) {
     pages_ = std::make_unique<WaterPages>(options_.waterTiles);
+    pagedTexels_ = world_->water().lonStepDeg / options_.waterTiles->source().transform().lonStepDeg;
     auto paged = shaded;
     paged.push_back("GEOCEAN_WATER_PAGES 1");
     if (!options_.waterTiles->source().transform().global) paged.push_back("GEOCEAN_WATER_PAGES_REGIONAL 1");
@@ -88,6 +93,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     open.push_back("GEOCEAN_OPEN_WATER 1");
     openWater_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", open);
     open.back() = "GEOCEAN_VERTEX_COVERAGE 1";
+    if (pages_) open.push_back("GEOCEAN_WATER_PAGES 1");  // read per vertex from the pages
     smoothCoast_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", open);
     auto far = model;
     far.push_back("GEOCEAN_FAR_SHADED 1");
@@ -398,7 +404,7 @@ std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenC
 }
 
 CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi, double cellPx, const ScreenCull& view,
-                          bool cull, bool group, std::vector<std::uint32_t>& idx) {
+                          bool cull, bool group, std::vector<std::uint32_t>& idx, double pagedTexels) {
   // Cells whose every vertex stays beyond one side of the screen cannot
   // reach it (the clamp rectangle adds such cells at low altitude: 2 m above
   // the sea it spans up to 4 screens a side).
@@ -442,7 +448,9 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
     std::vector<std::uint32_t>* to = nullptr;
     if (!limb) {
       const double extent = std::max(x1 - x0, y1 - y0);
-      const double margin = 3.0 + 3.0 * 2.0 * extent / cellPx;
+      // The paged coverage's footprint, length(fwidth) of its texel
+      // position, is up to twice the mipmap's (geo_uv.glsl waterPagesAuto).
+      const double margin = 3.0 + 3.0 * (pagedTexels > 0.0 ? 4.0 : 2.0) * extent / cellPx;
       if (wi.allWater(x0 - margin, x1 + margin, y0 - margin, y1 + margin)) {
         // Far: ocean.vert's fade (footprint / longest wavelength >= 0.5)
         // is complete at every vertex, with 1 % for its float arithmetic.
@@ -462,7 +470,7 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
         }
         to = far ? &farOpen : &open;
       }
-      else if (extent <= kSmoothTexels)
+      else if (extent * std::max(pagedTexels, 1.0) <= kSmoothTexels)  // in the texels drawn
         to = &smooth;
     }
     if (to)
@@ -538,7 +546,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   }
   const CellGroups groups =
       partitionCells(frame_, world_->waterIndex(), options_.cellPx, cull, options_.cullOffscreen,
-                     !bare && options_.cheapCoverage && !pages_, idx);
+                     !bare && options_.cheapCoverage && (!pages_ || pagesIndexed_), idx, pagedTexels_);
   gridMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (idx.empty()) {
     if (pages_) pages_->endFrame();
@@ -701,7 +709,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     if (count == 0) continue;
     prog->use();
     setUniforms(*prog);
-    if (pages_ && prog == &program_) pages_->bind(*prog);
+    if (pages_ && (prog == &program_ || prog == &smoothCoast_)) pages_->bind(*prog);
     glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
     first += count;
@@ -721,8 +729,8 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
 }
 
 bool OceanRenderer::coversOpaquely(double lat0, double lat1, double lon0, double lon1, double footprintM) const {
-  if (pages_) return false;  // the water index is the grid's, coarser than the streamed mask
-  return ocean_render::coversOpaquely(*world_, options_.cellPx, lat0, lat1, lon0, lon1, footprintM);
+  if (pages_ && !pagesIndexed_) return false;  // a regional mask: the water index is the layers' below
+  return ocean_render::coversOpaquely(*world_, options_.cellPx, lat0, lat1, lon0, lon1, footprintM, pages_ != nullptr);
 }
 
 }  // namespace geocean::ocean_render

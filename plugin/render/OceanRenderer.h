@@ -48,9 +48,18 @@ struct OceanOptions {
   // world::streamedMaskLayer, the host terrain's pyramid): the shoreline is
   // drawn from its tiles (WaterPages.h), so the query's coverage rule on the
   // mask's own cells is what is drawn. Null: the water grid's texture.
-  // Every cell then takes the per-pixel coverage (the water index is the
-  // grid's, coarser than the mask) and coversOpaquely is false.
+  // A global mask's open water still takes the cheap variants and
+  // coversOpaquely answers, when the world's water grid is a level of this
+  // pyramid (oceanWorld makes it so; waterIndexFollowsTiles): its texels
+  // are means of the mask's, 1 only where every mask cell under them is
+  // water; cells much smaller than a mask cell read the pages per vertex.
+  // A regional mask's cells all take the
+  // per-pixel coverage, and coversOpaquely is false.
   std::shared_ptr<const raster::TilePyramid> waterTiles;
+  // False: a streamed mask's cells all per pixel and coversOpaquely false
+  // (the shortcuts' reference in tests). Either way a global mask's grid
+  // cells are classed from the level (nearWaterClassifier).
+  bool streamedIndex = true;
   // Gerstner and FFT whitecaps from the Jacobian's folds per fragment
   // (shaders/foam.glsl), their decaying trail interpolated between the
   // time samples; off, these models take the height-quantile crests.
@@ -85,9 +94,13 @@ struct ScreenCull {
 // Per grid vertex, the screen sides it stays beyond (bits 1 left, 2 right,
 // 4 bottom, 8 top) under any wave displacement.
 std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenCull& view);
-// With `cull`, drops cells that stay off screen; with `group`, sorts the rest.
+// With `cull`, drops cells that stay off screen; with `group`, sorts the
+// rest. pagedTexels > 0: the coverage is a streamed mask's (WaterPages),
+// this many of its finest texels per water-index texel: the smooth run's
+// bound is in those texels and the open-water margin covers its footprint,
+// up to twice the mipmap's.
 CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi, double cellPx, const ScreenCull& view,
-                          bool cull, bool group, std::vector<std::uint32_t>& idx);
+                          bool cull, bool group, std::vector<std::uint32_t>& idx, double pagedTexels = 0.0);
 
 // What the host gives a draw beyond the camera (the host/layer contract's
 // inputs) and the optics switches.
@@ -228,6 +241,10 @@ class OceanRenderer {
   bool writeData_ = false;
   bool glAbandoned_ = false;
   std::unique_ptr<WaterPages> pages_;
+  // The world's water index is the streamed pyramid's (waterIndexFollowsTiles):
+  // open water and coversOpaquely as without pages.
+  bool pagesIndexed_ = false;
+  double pagedTexels_ = 0.0;  // the pyramid's level-0 texels per water-grid texel (partitionCells)
   bool completeTiles_ = false;
   double gridMs_ = 0.0;
 };

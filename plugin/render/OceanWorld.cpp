@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace geocean::ocean_render {
@@ -73,8 +75,59 @@ std::shared_ptr<const raster::TilePyramid> oceanWaterTiles(const ocean::LandSea*
   return l ? world::waterPyramid(l->raster, l->encoding) : nullptr;
 }
 
+bool waterIndexFollowsTiles(const world::WorldGrids& world, const raster::TilePyramid& water) {
+  // A level-k texel is the mean of 2 x 2 texels of level k - 1 (NaN past
+  // the raster's edge left out: 4, 2 or 1 of them), so of 4^k mask cells
+  // that are 0 or 1 (a global mask's nodata is land): every partial sum is
+  // a multiple of 4^-(k-1) up to 4, exact in a float's 24 bits while
+  // 2k <= 24, so the mean is 1 only when all of them are water.
+  if (world::isStreamedRegional(water.source())) return false;
+  const world::WorldLayer& w = world.water();
+  for (int level = 0; level < water.levels() && level <= 12; ++level) {
+    const raster::GeoTransform t = water.levelTransform(level);
+    if (water.levelWidth(level) == w.width && water.levelHeight(level) == w.height &&
+        std::abs(t.originLonDeg - w.originLonDeg) < 1e-9 && std::abs(t.originLatDeg - w.originLatDeg) < 1e-9 &&
+        std::abs(t.lonStepDeg - w.lonStepDeg) < 1e-12 && std::abs(t.latStepDeg - w.latStepDeg) < 1e-12)
+      return true;
+  }
+  return false;
+}
+
+ocean::SurfaceClassifier nearWaterClassifier(const world::WorldLayer& water) {
+  const int w = water.width, h = water.height;
+  const auto wet = [&](int x, int y) {
+    return water.values[(std::size_t(y) * w + std::size_t((x + w) % w)) * std::size_t(water.channels)] > 0.0f;
+  };
+  // Separable dilation by one texel (longitude wraps, latitude clamps).
+  std::vector<std::uint8_t> rows(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) rows[std::size_t(y) * w + x] = wet(x - 1, y) || wet(x, y) || wet(x + 1, y);
+  auto near = std::make_shared<std::vector<std::uint8_t>>(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      (*near)[std::size_t(y) * w + x] = rows[std::size_t(std::max(y - 1, 0)) * w + x] |
+                                        rows[std::size_t(y) * w + x] | rows[std::size_t(std::min(y + 1, h - 1)) * w + x];
+  for (const int y : {0, h - 1})  // a pole is one point
+    if (std::any_of(near->begin() + std::ptrdiff_t(y) * w, near->begin() + std::ptrdiff_t(y + 1) * w,
+                    [](std::uint8_t v) { return v != 0; }))
+      std::fill(near->begin() + std::ptrdiff_t(y) * w, near->begin() + std::ptrdiff_t(y + 1) * w, std::uint8_t(1));
+  const double ox = water.originLonDeg, oy = water.originLatDeg, sx = water.lonStepDeg, sy = water.latStepDeg;
+  return [near, w, h, ox, oy, sx, sy](const double* lat, const double* lon, std::size_t n, ocean::Surface* out) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const double fx = (lon[i] - ox) / sx, fy = (lat[i] - oy) / sy;
+      if (!std::isfinite(fx) || !std::isfinite(fy)) {
+        out[i] = ocean::Surface::Land;
+        continue;
+      }
+      const double wx = fx - w * std::floor(fx / w);
+      const int x = std::clamp(int(wx), 0, w - 1), y = std::clamp(int(std::floor(fy)), 0, h - 1);
+      out[i] = (*near)[std::size_t(y) * w + x] ? ocean::Surface::Ocean : ocean::Surface::Land;
+    }
+  };
+}
+
 bool coversOpaquely(const world::WorldGrids& world, double cellPx, double lat0, double lat1, double lon0, double lon1,
-                    double footprintM) {
+                    double footprintM, bool paged) {
   // Every pixel over the rectangle is drawn opaque, and none of the grid
   // cells over it is skipped as land, if the water layer is water
   // throughout it and a margin around it: the B-spline's 2 texels, the
@@ -86,7 +139,7 @@ bool coversOpaquely(const world::WorldGrids& world, double cellPx, double lat0, 
   const double texelM = std::min(wi.latStepDeg(), wi.lonStepDeg() * std::cos(std::min(maxAbsLat, 89.0) * kDeg)) * kDeg *
                         geo::kWgs84B;
   const double tpp = footprintM / texelM;
-  const double margin = 3.0 + (3.0 + 2.0 * cellPx) * tpp;
+  const double margin = 3.0 + ((paged ? 6.0 : 3.0) + 2.0 * cellPx) * tpp;
   if (margin > 256.0) return false;
   return wi.allWater(wi.texelX(lon0) - margin, wi.texelX(lon1) + margin, wi.texelY(lat0) - margin,
                      wi.texelY(lat1) + margin);

@@ -31,10 +31,28 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
 std::shared_ptr<const raster::TilePyramid> oceanWaterTiles(const ocean::LandSea* landSea,
                                                            const std::shared_ptr<const raster::Raster>& mask);
 
+// True when `world`'s water index says where `water` (a streamed global
+// mask's pyramid) is water: its water grid is one of the pyramid's levels
+// (oceanWorld's waterLayerOf), whose texels are 1 exactly where every mask
+// cell under them is water. So open water drawn without the per-pixel
+// coverage, and terrain left out under it, keep every island of the mask.
+bool waterIndexFollowsTiles(const world::WorldGrids& world, const raster::TilePyramid& water);
+
+// The screen grid's classifier for a streamed global mask whose water
+// grid is a pyramid level (waterIndexFollowsTiles): Ocean within one grid
+// texel (at least two mask cells: LandSea::classifyNearWaterBatch's
+// reach) of a texel with any water (mean above 0), else Land; a pole's
+// texel row is water if any of it is. A lookup instead of the layer
+// stack's coverage rule on the streamed raster per vertex (30-330 ms a
+// frame for the 1.25' mask). Cells it skips (four Land corners) have no
+// water of the mask within the drawn shoreline's reach.
+ocean::SurfaceClassifier nearWaterClassifier(const world::WorldLayer& water);
+
 // The ocean's side of the host/layer contract: true when it draws every
 // pixel over the rectangle opaque, for pixels whose footprint there is up to
-// footprintM metres, with grid cells of cellPx pixels.
+// footprintM metres, with grid cells of cellPx pixels; `paged`: the water
+// is drawn from a streamed mask's pages (footprint up to twice the mipmap's).
 bool coversOpaquely(const world::WorldGrids& world, double cellPx, double lat0Deg, double lat1Deg, double lon0Deg,
-                    double lon1Deg, double footprintM);
+                    double lon1Deg, double footprintM, bool paged = false);
 
 }  // namespace geocean::ocean_render

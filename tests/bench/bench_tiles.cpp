@@ -1,8 +1,12 @@
 // Tile pyramid (globe/raster/TilePyramid): building the coarse levels of a
 // 10800 x 5400 uint8 GeoTIFF (a 2' world, 58 M pixels) against the reference
 // of decoding every source tile once (libtiff through Raster, the least a
-// build must do); opening with a warm cache; reading bordered tiles.
+// build must do); opening with a warm cache; reading bordered tiles; and
+// gl::TilePool's throughput (load on its workers, upload into the texture
+// array) against reading the same tiles on one thread.
 // Run by hand: build/tests/bench/bench_tiles; ratios go to docs/PERFORMANCE.md.
+#include "globe/gl/HeadlessContext.h"
+#include "globe/gl/TilePool.h"
 #include "globe/raster/GeoTiffWriter.h"
 #include "globe/raster/Raster.h"
 #include "globe/raster/TilePyramid.h"
@@ -10,6 +14,9 @@
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 using namespace geocean::raster;
@@ -101,6 +108,49 @@ void BM_ReadTile(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_ReadTile)->Arg(0)->Arg(2)->Unit(benchmark::kMicrosecond);
+
+// gl::TilePool (llvmpipe, EGL surfaceless): 128 distinct level-0 tiles
+// asked for at once, until all are resident (workers decode and border
+// them, endFrame uploads 16 a frame as R8), in a fresh pool each time;
+// the reference is BM_ReadTile(0)'s single-thread read of the same tiles.
+void BM_TilePoolLoadAndUpload(benchmark::State& state) {
+  static std::unique_ptr<geocean::gl::HeadlessContext> ctx = [] {
+    std::string err;
+    auto c = geocean::gl::HeadlessContext::create(err, false);
+    if (!c) throw std::runtime_error("no headless OpenGL context: " + err);
+    return c;
+  }();
+  auto p = TilePyramid::open(Raster::open(source()), options(kCache));
+  constexpr int kTiles = 128;
+  int first = 0;
+  for (auto _ : state) {
+    geocean::gl::TilePool pool(p);
+    const int n = p->tilesX(0) * p->tilesY(0);
+    std::vector<TileId> want;
+    for (int i = 0; i < kTiles; ++i) {
+      const int k = (first + i * 7) % n;
+      want.push_back({0, k % p->tilesX(0), k / p->tilesX(0)});
+    }
+    first += kTiles * 7;
+    // Asked for again every frame, as a drawer does (the pool forgets
+    // requests older than two frames).
+    for (int frame = 0;; ++frame) {
+      int missing = 0;
+      for (const TileId& id : want)
+        if (pool.residentSlot(id) < 0) ++missing, pool.request(id);
+      if (missing == 0) break;
+      if (frame > 100000) {
+        state.SkipWithError("tiles never arrived");
+        break;
+      }
+      pool.waitIdle();
+      pool.endFrame();
+    }
+    glFinish();
+  }
+  state.SetItemsProcessed(state.iterations() * kTiles);
+}
+BENCHMARK(BM_TilePoolLoadAndUpload)->Unit(benchmark::kMillisecond)->Iterations(5)->UseRealTime();
 
 }  // namespace
 

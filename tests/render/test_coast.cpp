@@ -106,10 +106,13 @@ Scene& scene() {
 // oceanWorld/oceanWaterTiles, as plugin/capi's draw does. The control is
 // the same stack drawn from the 5' water grids alone on both sides (no
 // tiles), as before the ocean streamed.
+// The reference (refRenderer, refOcean) draws the same streamed mask
+// without the open-water index: every ocean cell per pixel, the terrain
+// under all the sea.
 struct Streamed {
   std::shared_ptr<WorldTextures> world, gridWorld;
-  std::unique_ptr<GlobeRenderer> renderer, gridRenderer;
-  std::shared_ptr<ocean_render::OceanRenderer> ocean, gridOcean;
+  std::unique_ptr<GlobeRenderer> renderer, gridRenderer, refRenderer;
+  std::shared_ptr<ocean_render::OceanRenderer> ocean, gridOcean, refOcean;
 };
 
 Streamed& streamed() {
@@ -143,6 +146,12 @@ Streamed& streamed() {
     c.gridOcean = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea);
     c.renderer->addLayer(std::make_shared<DirectOceanLayer>(c.ocean));
     c.gridRenderer->addLayer(std::make_shared<DirectOceanLayer>(c.gridOcean));
+    oo.streamedIndex = false;
+    c.refOcean = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+    c.refOcean->setCompleteTiles(true);
+    c.refRenderer = std::make_unique<GlobeRenderer>(c.world, t);
+    c.refRenderer->terrain().setSkipOpenWater(false);
+    c.refRenderer->addLayer(std::make_shared<DirectOceanLayer>(c.refOcean));
     return c;
   }();
   return s;
@@ -487,6 +496,53 @@ TEST(Coast, QueryFollowsThePictureWithAStreamedGlobalMask) {
   std::printf("ocean tile pool: %d resident, %llu uploads\n", pool.stats().resident,
               (unsigned long long)pool.stats().uploads);
   EXPECT_GT(pool.stats().uploads, 0u);
+}
+
+// A streamed global mask's shortcuts (issue 12 item 6: open water from
+// the pyramid level that is the ocean's water grid, cheap shader variants
+// there, the terrain left out under it) must not change the picture: each view drawn with them and
+// by the reference without any (Streamed::refRenderer), as
+// Render.ShortcutsDoNotChangeTheImage does for the default world. Views
+// with the 1.25' mask's smallest islands (two cells near 37.01 N 26.44 E,
+// inside grid texels that are mostly water) and coasts from orbit to 2 m;
+// an open-water cell over a mask cell of land loses the island, a margin
+// short of the paged footprint changes pixels at the limb from orbit (26
+// with the mipmap's margin).
+TEST(Coast, AStreamedMasksShortcutsDoNotChangeTheImage) {
+  Streamed& s = streamed();
+  const std::pair<const char*, ViewPose> views[] = {
+      {"earth_20000km", pose(0.0, -150.0, 2.0e7, 0.0, -90.0)},
+      {"aegean_300km", pose(37.5, 25.0, 3.0e5, 0.0, -90.0)},
+      {"islet_30km", pose(37.01, 26.44, 3.0e4, 0.0, -90.0)},
+      {"islet_oblique_8km", pose(36.95, 26.44, 8000.0, 0.0, -20.0)},
+      {"gibraltar_50km", pose(36.0, -5.45, 5.0e4, 270.0, -50.0)},
+      {"coast_300m", pose(35.95, -5.5, 300.0, 330.0, -8.0)},
+      {"strait_2m", pose(36.0, -5.6, 2.0, 250.0, -3.0)},
+  };
+  for (const auto& [name, p] : views) {
+    s.ocean->setFarVertexShading(false);
+    const Frame exact = render(p, *s.renderer, s.ocean.get(), std::string("shortcuts_") + name);
+    s.refOcean->setCheapCoverage(false);
+    s.refOcean->setCullOffscreen(false);
+    s.refOcean->setFarVertexShading(false);
+    const Frame full = render(p, *s.refRenderer, s.refOcean.get(), std::string("reference_") + name);
+    s.ocean->setFarVertexShading(true);
+    const Frame fast = render(p, *s.renderer, s.ocean.get(), std::string("far_per_vertex_") + name);
+    const ImageDiff d = compare(full.image, exact.image), f = compare(exact.image, fast.image);
+    int drawn = 0;
+    for (const std::uint8_t o : exact.ocean) drawn += o;
+    std::printf("1.25' %s: %d ocean pixels; shortcuts: mean %.4f, max %d, over 16: %.5f; far per vertex: mean %.4f, "
+                "max %d\n",
+                name, drawn, d.mean, d.max, d.fractionOver16, f.mean, f.max);
+    // The bounds of Render.ShortcutsDoNotChangeTheImage: the same bits
+    // where the ocean is opaque, one unit of blending at the coast; far
+    // open water shaded per vertex a few units.
+    EXPECT_LE(d.mean, 0.01) << name;
+    EXPECT_EQ(d.fractionOver16, 0.0) << name;
+    EXPECT_LE(f.mean, 0.1) << name;
+    EXPECT_LE(f.max, 24) << name;
+  }
+  s.ocean->setFarVertexShading(true);
 }
 
 // Pixels of a frame whose drawn class differs from the side of the 3"

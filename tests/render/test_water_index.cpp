@@ -3,12 +3,17 @@
 // the poles, wider than the globe), and bad bounds.
 #include "globe/world/WaterIndex.h"
 #include "globe/render/WorldTextures.h"
+#include "globe/world/WaterPyramid.h"
+#include "globe/world/WorldGrids.h"
+#include "plugin/render/OceanWorld.h"
+#include "tests/support/TempDir.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <random>
+#include <vector>
 
 namespace geocean::world {
 namespace {
@@ -70,6 +75,92 @@ TEST(WaterIndex, MapsLonLatToTexelsAndRejectsBadBounds) {
   EXPECT_FALSE(wi.allWater(nan, 1.0, 0.0, 1.0));
   EXPECT_FALSE(wi.allWater(0.0, 1.0, 0.0, nan));
   EXPECT_FALSE(WaterIndex().allWater(0.0, 1.0, 0.0, 1.0));
+}
+
+// A streamed global mask's open water and the screen grid's near-water
+// classes come from the pyramid level that is the ocean's water grid
+// (ocean_render::waterIndexFollowsTiles, nearWaterClassifier): checked
+// against the mask's own cells, brute force. The mask: 0 ocean, 1 land
+// (the default encoding), a continent, land cells alone in the sea (islands
+// one mask cell wide, in every position within a level-3 texel) and water
+// cells alone inside the land; 8 x 8 mask cells per grid texel.
+TEST(WaterIndex, AStreamedMasksLevelKeepsEveryOneCellIslandAndLake) {
+  constexpr int W = 4096, H = 2048, kStep = 8;  // levels 0-4 of 256^2 tiles
+  std::vector<float> cls(std::size_t(W) * H, 0.0f);
+  const auto at = [&](int x, int y) -> float& { return cls[std::size_t(y) * W + x]; };
+  const auto inLand = [](int x, int y, int in) { return x >= 800 + in && x < 2000 - in && y >= 400 + in && y < 1200 - in; };
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x)
+      if (inLand(x, y, 0)) at(x, y) = 1.0f;
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> ux(0, W - 1), uy(0, H - 1);
+  int islands = 0, lakes = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const int x = ux(rng), y = uy(rng);
+    if (inLand(x, y, 10)) at(x, y) = 0.0f, ++lakes;
+    else if (!inLand(x, y, 0)) at(x, y) = 1.0f, ++islands;
+  }
+  for (const int x : {0, W - 1}) at(x, 7) = 1.0f;  // islands on the antimeridian
+  raster::GeoTransform t;
+  t.lonStepDeg = 360.0 / W, t.latStepDeg = -180.0 / H, t.global = true;
+  const auto mask = raster::Raster::fromPixels(cls, W, H, 1, t);
+  test::TempDir dir("geocean-water-index");
+  raster::PyramidOptions po;
+  po.cacheDir = dir.path.string();
+  po.progress = raster::BuildProgress::Off;
+  const auto pyr = waterPyramid(mask, {}, po);
+  WorldLayer water = waterLayerOf(*pyr, kStep * t.lonStepDeg);
+  ASSERT_EQ(water.width, W / kStep) << "level 3 is the water grid";
+  WorldLayer elevation = globalGridFor(nullptr);
+  const WorldGrids grids(elevation, water);
+  ASSERT_TRUE(ocean_render::waterIndexFollowsTiles(grids, *pyr));
+  WorldLayer other = water;
+  other.originLonDeg += 0.5 * other.lonStepDeg;  // not a level of this pyramid
+  EXPECT_FALSE(ocean_render::waterIndexFollowsTiles(WorldGrids(elevation, other), *pyr));
+
+  // Every rectangle of grid texels is water throughout exactly when every
+  // mask cell under it is.
+  const WaterIndex& wi = grids.waterIndex();
+  const auto landUnder = [&](int gx0, int gx1, int gy0, int gy1) {
+    for (int y = gy0 * kStep; y < (gy1 + 1) * kStep; ++y)
+      for (int x = gx0 * kStep; x < (gx1 + 1) * kStep; ++x)
+        if (at(((x % W) + W) % W, y) != 0.0f) return true;
+    return false;
+  };
+  std::uniform_int_distribution<int> gx(-10, W / kStep + 10), gy(0, H / kStep - 1), size(0, 6);
+  int open = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const int x0 = gx(rng), y0 = gy(rng), x1 = x0 + size(rng), y1 = std::min(y0 + size(rng), H / kStep - 1);
+    const bool expect = !landUnder(x0, x1, y0, y1);
+    open += expect;
+    ASSERT_EQ(wi.allWater(x0 + 0.5, x1 + 0.5, y0 + 0.5, y1 + 0.5), expect) << x0 << " " << x1 << " " << y0 << " " << y1;
+  }
+  EXPECT_GT(open, 1000);
+  EXPECT_GT(20000 - open, 1000);
+
+  // The grid's classes: every point within two mask cells of a water cell
+  // (LandSea::classifyNearWaterBatch's reach) is Ocean; and points deep in
+  // the continent away from its lakes are Land (the shortcut does something).
+  const auto classify = ocean_render::nearWaterClassifier(water);
+  std::uniform_real_distribution<double> lon(-180.0, 180.0), lat(-90.0, 90.0);
+  int land = 0, nearWater = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const double la = lat(rng), lo = lon(rng);
+    world::Surface s;
+    classify(&la, &lo, 1, &s);
+    const int x = std::clamp(int((lo + 180.0) / t.lonStepDeg), 0, W - 1), y = std::clamp(int((90.0 - la) / -t.latStepDeg), 0, H - 1);
+    bool wet = false;
+    for (int dy = -2; dy <= 2 && !wet; ++dy)
+      for (int dx = -2; dx <= 2 && !wet; ++dx) wet = at(((x + dx) % W + W) % W, std::clamp(y + dy, 0, H - 1)) == 0.0f;
+    nearWater += wet;
+    if (wet) {
+      ASSERT_EQ(s, world::Surface::Ocean) << la << " " << lo;
+    }
+    land += s == world::Surface::Land;
+  }
+  EXPECT_GT(nearWater, 1000);
+  EXPECT_GT(land, 1000);
+  std::printf("%d islands, %d lakes; %d of 200000 points classed land\n", islands, lakes, land);
 }
 
 }  // namespace
