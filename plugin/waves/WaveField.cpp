@@ -95,6 +95,25 @@ double bandVariance(const SeaState& sea, double w0, double w1) {
   return s * h / 3.0;
 }
 
+constexpr double kInvGolden = 0.6180339887498949;  // 1 / golden ratio
+
+// A Gerstner component's slope variance, up to a common factor.
+double slopeWeight(const WaveField::Component& c) { return c.amplitudeM * c.amplitudeM * c.kRef * c.kRef; }
+
+}  // namespace
+
+double cos2SpreadingQuantile(double u) {
+  // F(a) = 1/2 + (a + sin a cos a) / pi on [-pi/2, pi/2], increasing: bisect.
+  double lo = -0.5 * kPi, hi = 0.5 * kPi;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (0.5 + (mid + std::sin(mid) * std::cos(mid)) / kPi < u ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+namespace {
+
 kd::WvFrame makeFrame(const glm::dvec3& o) {
   const double r = glm::length(o);
   const glm::dvec3 dO(o.x / (kA * kA), o.y / (kA * kA), o.z / (kB * kB));
@@ -330,6 +349,7 @@ void WaveField::buildGerstner() {
   const double w0 = 0.6 * omegaPeak_, w1 = 4.0 * omegaPeak_;
   const Enu a = enuAt(sea_.anchorLatDeg, sea_.anchorLonDeg);
   const double travel = deg2rad(sea_.windFromDeg + 180.0);
+  std::vector<double> drawn;  // a direction drawn from the spreading per component
   for (int j = 0; j < n; ++j) {
     // Bands equal in log(omega); the frequency is random inside its band so
     // that no two seas (or components) are commensurate.
@@ -340,17 +360,45 @@ void WaveField::buildGerstner() {
     c.kRef = waveNumberExact(c.omega, sea_.referenceDepthM);
     c.phase0 = rng.uniform() * kTwoPi;
     c.choppiness = 1.0;
-    // Direction: cos^2 spreading about the wind, by rejection.
+    // cos^2 spreading about the wind, by rejection: the direction of a lone
+    // component; the draws also keep each seed's frequencies and phases.
     double dth = 0.0;
     for (;;) {
       dth = (rng.uniform() - 0.5) * kPi;
       if (rng.uniform() < std::cos(dth) * std::cos(dth)) break;
     }
-    const double b = travel + dth;
+    drawn.push_back(dth);
+    components_.push_back(c);
+  }
+  const double u0 = rng.uniform();  // the seed's own offset of the direction sequence
+  // Directions (the rule, plugin/waves/README.md): stratified over the cos^2
+  // spreading by slope variance (a^2 k^2 / 2: what the near field shows),
+  // strata in golden-ratio order. Independent draws (the old rejection
+  // sampling) put 3-4 of 16 components within a few degrees of each other:
+  // long parallel crests, the radial streaks seen from 2-30 m. Component j
+  // takes the stratum at the rank of frac(u0 + j / golden ratio):
+  // neighbours in frequency are >= 0.38 apart in that sequence, so no band
+  // of frequencies shares a direction; each stratum's width is its
+  // component's share of the slope variance and the direction its middle
+  // quantile, so the slope-weighted directions follow the spreading within
+  // half the largest share (the least any set of these weights can). A lone
+  // component keeps its random direction.
+  std::vector<std::pair<double, int>> order;
+  double slopeSum = 0.0;
+  for (int j = 0; j < n; ++j) {
+    order.push_back({std::fmod(u0 + j * kInvGolden, 1.0), j});
+    slopeSum += slopeWeight(components_[std::size_t(j)]);
+  }
+  std::sort(order.begin(), order.end());
+  double below = 0.0;
+  for (const auto& [key, j] : order) {
+    Component& c = components_[std::size_t(j)];
+    const double share = slopeWeight(c) / slopeSum;
+    const double b = travel + (n == 1 ? drawn[0] : cos2SpreadingQuantile(below + 0.5 * share));
+    below += share;
     // Source a quarter circumference up-wave of the anchor: at the anchor the
     // great circle runs exactly along bearing b.
     c.source = -(a.e * std::sin(b) + a.n * std::cos(b));
-    components_.push_back(c);
   }
   // The discretised spectrum keeps > 99% of the variance (the tail above
   // 4 w_p holds < 0.5%); rescale so the components carry exactly m0.

@@ -267,6 +267,11 @@ double peakOmega(const SeaState& sea);
 // grows only with log U, where Cox & Munk (1954) measured 0.003 + 5.12e-3 U.
 double slopeVarianceAbove(const SeaState& sea, double kMinRadPerM);
 
+// The direction (radians from the wind's travel, -pi/2 .. pi/2) below which
+// a share u of the cos^2 spreading's energy lies: the Gerstner components'
+// directions are its quantiles (plugin/waves/README.md, the direction rule).
+double cos2SpreadingQuantile(double u);
+
 // Full dispersion relation solved to machine precision (bisection + Newton);
 // the reference the shared kernel's explicit form is tested against.
 double waveNumberExact(double omega, double depthM);
