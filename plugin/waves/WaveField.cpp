@@ -793,7 +793,10 @@ void WaveField::surfaceBatch(const double* latDeg, const double* lonDeg, const d
     out[i] = surfaceAt(latDeg[i], lonDeg[i], timesPerPoint ? tS[i] : tS[0], depthM ? depthM[i] : kDeepWaterM);
 }
 
-double slopeVarianceAbove(const SeaState& sea, double kMinRadPerM) {
+namespace {
+// The integral over ln k from kMin to 1e4 rad/m of Elfouhaily's curvature
+// spectrum B(k) times k^-power (0: slope variance, 2: height variance).
+double elfouhailyMoment(const SeaState& sea, double kMinRadPerM, int power) {
   // Elfouhaily, Chapron, Katsaros & Vandemark (1997), JGR 102(C7), eq. 30-33,
   // 38-41, 44: curvature spectrum B(k) = k^3 S(k) = B_l + B_h, so the slope
   // variance is the integral of B over ln k. Wind at 10 m from the sea
@@ -819,9 +822,73 @@ double slopeVarianceAbove(const SeaState& sea, double kMinRadPerM) {
     const double jp = std::pow(gamma, std::exp(-g * g / (2.0 * sigma * sigma)));
     const double bl = 0.5 * alphaP * cP / c * lpm * jp * std::exp(-omegaC / std::sqrt(10.0) * g);
     const double bh = 0.5 * alphaM * cM / c * lpm * jp * std::exp(-0.25 * (k / kM - 1.0) * (k / kM - 1.0));
-    sum += bl + bh;
+    sum += (bl + bh) * std::pow(k, -power);
   }
   return sum * (hi - lo) / n;
+}
+}  // namespace
+
+double slopeVarianceAbove(const SeaState& sea, double kMinRadPerM) { return elfouhailyMoment(sea, kMinRadPerM, 0); }
+double heightVarianceAbove(const SeaState& sea, double kMinRadPerM) { return elfouhailyMoment(sea, kMinRadPerM, 2); }
+
+std::vector<DetailWave> detailWaves(const SeaState& sea, double kLowRadPerM, int octaves, int perOctave) {
+  Rng rng{sea.seed * 0xD1B54A32D192ED03ULL + 11};
+  const int n = octaves * perOctave;
+  const Enu a = enuAt(sea.anchorLatDeg, sea.anchorLonDeg);
+  const double travel = deg2rad(sea.windFromDeg + 180.0);
+  // Cox & Munk's upwind share of the slopes (sea_shading.glsl's
+  // coxMunkUpwindShare): 1 + D cos 2 phi has the share 1/2 + D/4.
+  const double u10 = sea.windSpeedMps / 1.026, up = 3.16e-3 * u10, cross = 0.003 + 1.92e-3 * u10;
+  const double spread = 4.0 * (up / (up + cross) - 0.5);
+  const auto quantile = [&](double u) {  // F(phi) = 1/2 + (phi + D/2 sin 2 phi) / 2 pi on [-pi, pi]
+    double lo = -kPi, hi = kPi;
+    for (int i = 0; i < 60; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (0.5 + (mid + 0.5 * spread * std::sin(2.0 * mid)) / kTwoPi < u ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  };
+  std::vector<DetailWave> w(static_cast<std::size_t>(n));
+  std::vector<double> var(static_cast<std::size_t>(n));
+  double total = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const double k0 = kLowRadPerM * std::exp2(double(j) / perOctave), k1 = k0 * std::exp2(1.0 / perOctave);
+    var[std::size_t(j)] = std::max(slopeVarianceAbove(sea, k0) - slopeVarianceAbove(sea, k1), 0.0);
+    total += var[std::size_t(j)];
+    DetailWave& d = w[std::size_t(j)];
+    d.k = k0 * std::pow(k1 / k0, rng.uniform());  // not commensurate
+    d.omega = std::sqrt(kG * d.k * (1.0 + (d.k / 370.0) * (d.k / 370.0)));  // capillary term (Elfouhaily's k_m)
+    d.slopeAmplitude = std::sqrt(2.0 * var[std::size_t(j)]);
+    d.phase0 = rng.uniform() * kTwoPi;
+  }
+  // The Gerstner rule: strata as wide as each wave's slope share, in
+  // golden-ratio order.
+  const double u0 = rng.uniform();
+  std::vector<std::pair<double, int>> order;
+  for (int j = 0; j < n; ++j) order.push_back({std::fmod(u0 + j * kInvGolden, 1.0), j});
+  std::sort(order.begin(), order.end());
+  double below = 0.0;
+  for (const auto& [key, j] : order) {
+    const double share = total > 0.0 ? var[std::size_t(j)] / total : 1.0 / n;
+    const double b = travel + quantile(below + 0.5 * share);
+    below += share;
+    w[std::size_t(j)].source = -(a.e * std::sin(b) + a.n * std::cos(b));
+  }
+  return w;
+}
+
+std::vector<glm::dvec4> detailPatch(const std::vector<DetailWave>& waves, const glm::dvec3& originEcef, double tS) {
+  std::vector<glm::dvec4> out;
+  out.reserve(2 * waves.size());
+  const glm::dvec3 radial = glm::normalize(originEcef);
+  for (const DetailWave& d : waves) {
+    // waveAt's great-circle phase and direction at O.
+    WaveField::Component c{d.source, d.omega, d.k, 0.0, d.phase0, 0.0};
+    const kd::WvWave wv = waveAt(c, radial, tS);
+    out.push_back(glm::dvec4(glm::dvec3(wv.dirO) * d.k, d.slopeAmplitude));
+    out.push_back(glm::dvec4(wv.phase.x, kTwoPi / d.k, 0.0, 0.0));
+  }
+  return out;
 }
 
 }  // namespace geocean::waves

@@ -6,6 +6,7 @@
 #include "tests/support/Jonswap.h"
 #include "tests/waves/MakeField.h"
 #include "plugin/waves/WaveField.h"
+#include "plugin/waves/WaveKernel.h"
 
 #include <gtest/gtest.h>
 
@@ -395,4 +396,52 @@ TEST(Gerstner, DirectionsFillTheSpreadingWithoutClusters) {
                   n, fetch, worstNew, worstRatio, oldFails);
       EXPECT_GE(oldFails, 14) << "the criterion must catch the clusters of independent directions";
     }
+}
+
+TEST(DetailLayer, SlopeVarianceIsTheSpectrumsBandIntegral) {
+  // The detail normal layer (wv_detailSlope, the shader's own source) over
+  // 40,000 random points of a 400 m square at the anchor: the variance of
+  // its slopes equals the band integral of the spectrum the roughness
+  // integrates (slopeVarianceAbove(k0) - slopeVarianceAbove(256 k0)) within
+  // 4 standard errors of the sample mean; with a pixel footprint the waves
+  // under 2 px drop out and the slope variance the layer reports kept (the
+  // roughness gives the rest back) is what its slopes have.
+  for (double u : {5.0, 15.0}) {
+    SeaState s;
+    s.windSpeedMps = u;
+    const double k0 = 1.2;  // Gerstner's shortest at U = 10 (4 omega_p)
+    const auto waves = detailWaves(s, k0);
+    const geo::EnuFrame f = geo::enuFrame({0.0, 0.0, 0.0});
+    const auto patch = detailPatch(waves, f.originEcef, 123.4);
+    kd::Kernel k;
+    k.wvDetail = patch.data();
+    const double band = slopeVarianceAbove(s, k0) - slopeVarianceAbove(s, k0 * 256.0);
+    // What the layer leaves out of the heights (README): its waves' Hs.
+    const WaveField gerstner = make(Model::Gerstner, u), noise = make(Model::Noise, u);
+    double kG0 = 0.0;
+    for (const auto& c : gerstner.components()) kG0 = std::max(kG0, c.kRef);
+    for (double kl : {kG0, 2.0 * M_PI * noise.octaves().back().frequencyPerM * std::sqrt(2.0)})
+      std::printf("U %.0f: the layer from k %.2f rad/m: Hs of its waves %.4f m, slope variance %.5f\n", u, kl,
+                  4.0 * std::sqrt(heightVarianceAbove(s, kl)), slopeVarianceAbove(s, kl));
+    for (double footprint : {1e-4, 0.05}) {
+      std::mt19937_64 rng(5);
+      std::uniform_real_distribution<double> x(-200.0, 200.0);
+      const int n = 40000;
+      double sum = 0.0, sum2 = 0.0, kept = 0.0;
+      for (int i = 0; i < n; ++i) {
+        const glm::dvec3 d = f.east * x(rng) + f.north * x(rng);
+        const glm::dvec4 g = k.wv_detailSlope(int(waves.size()), d, footprint);
+        const double s2 = glm::dot(glm::dvec3(g), glm::dvec3(g));
+        sum += s2, sum2 += s2 * s2;
+        kept = g.w;
+        EXPECT_LT(std::abs(glm::dot(glm::dvec3(g), f.up)), 1e-6 * std::sqrt(s2) + 1e-12);  // a tangent slope
+      }
+      const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
+      std::printf("U %.0f footprint %.2g m: slope variance %.5f +- %.5f, reported kept %.5f, band %.5f\n", u,
+                  footprint, mean, se, kept, band);
+      EXPECT_NEAR(mean, kept, 4.0 * se);
+      if (footprint < 1e-3) EXPECT_NEAR(mean, band, 4.0 * se + 0.002 * band);  // + the integral's 0.1 %, twice
+      else EXPECT_LT(kept, 0.9 * band);  // 5 cm pixels drop the waves under 10 cm
+    }
+  }
 }
