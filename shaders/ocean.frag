@@ -120,7 +120,7 @@ void main() {
   vec3 nrm = normalize(normalize(vNormal) - (detail.xyz - up * dot(detail.xyz, up)));
   float farKeep = (1.0 - 0.7 * vFar) * (1.0 - 0.7 * vFar);
   float mss = max(vMss - detail.w * farKeep, 0.0);
-  outColor = vec4(oceanColorCrest(vEyeRel, nrm, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, mss, max(crest, wake), w), alpha);
+  outColor = vec4(oceanColorCrest(vEyeRel, nrm, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, mss, max(crest, wake), w, vHeightM), alpha);
 #endif
   outData = uWriteData != 0 ? vec4(vEyeRel, 1.0) : vec4(0.0);
 }

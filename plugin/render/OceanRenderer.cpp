@@ -637,6 +637,8 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glUniform1f(p.uniform("uWhitecapCover"), float(whitecap_));
     glUniform2f(p.uniform("uWind"), float(windMps_ / 1.026), float(windFromRad_));  // U10, from (radians)
     glUniform1i(p.uniform("uDetailCount"), GLint(detailF.size() / 8));
+    glUniform1f(p.uniform("uHsM"), float(waves_->spectrumHsM()));
+    glUniform1i(p.uniform("uSubsurface"), options_.subsurface ? 1 : 0);
     if (!detailF.empty()) glUniform4fv(p.uniform("wvDetail"), GLsizei(detailF.size() / 4), detailF.data());
     if (jacobianFoam()) {
       float ages[kFoamTimes];

@@ -59,6 +59,8 @@ struct OceanOptions {
   // spectrum's waves shorter than the model draws, per fragment down to 2
   // pixels, taken from the roughness.
   bool detailNormals = true;
+  // Light through thin crests (ocean_shading.glsl, crestSubsurface).
+  bool subsurface = true;
 };
 
 // Reorders a grid frame's compacted cell indices (6 per cell) into three
