@@ -31,6 +31,13 @@ in float vBreakFoam;  // issue 15 hook (ocean.vert): breaking foam, added to the
 // the water depth the vertex used.
 in vec3 vRest;
 in float vWaveDepthM;
+#endif
+#ifndef GEOCEAN_FAR_SHADED
+// The detail normal layer (waves.glsl's wv_detailSlope; OceanRenderer).
+#define WV_DETAIL 1
+uniform vec4 wvDetail[64];
+uniform int uDetailCount;
+uniform vec3 uEyeMinusOrigin;
 #include "waves_types.glsl"
 layout(std430, binding = 0) readonly buffer WvOctaveBuffer { WvOctave wvOctaves[]; };
 layout(std430, binding = 1) readonly buffer WvWaveBuffer { WvWave wvWaves[]; };
@@ -46,7 +53,9 @@ layout(std430, binding = 3) readonly buffer WvCoastBuffer { WvCoast wvCoasts[]; 
 layout(std430, binding = 4) readonly buffer WvCoastTexelBuffer { vec4 wvCoastTexels[]; };
 #endif
 #include "waves.glsl"
+#ifdef FOAM_TIMES
 #include "foam.glsl"
+#endif
 #endif
 
 uniform vec4 uWaterGeo;
@@ -101,7 +110,17 @@ void main() {
   // oceanColor's crest foam.
   float crest = mix(smoothstep(vFoamM - uFoamSoftM, vFoamM + uFoamSoftM, vHeightM), uWhitecapCover, vFar);
 #endif
-  outColor = vec4(oceanColorCrest(vEyeRel, vNormal, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, max(crest, wake), w), alpha);
+  // The detail layer's slopes (waves under a pixel's 2 x footprint drop
+  // out) join the drawn normal and leave the roughness; oceanColorCrest
+  // turns normals towards the mean by 0.7 far, so that share of them stays
+  // roughness.
+  vec3 up = normalize(vUp);
+  float footprint = max(length(dFdx(vEyeRel)), length(dFdy(vEyeRel)));
+  vec4 detail = wv_detailSlope(uDetailCount, vEyeRel + uEyeMinusOrigin, footprint);
+  vec3 nrm = normalize(normalize(vNormal) - (detail.xyz - up * dot(detail.xyz, up)));
+  float farKeep = (1.0 - 0.7 * vFar) * (1.0 - 0.7 * vFar);
+  float mss = max(vMss - detail.w * farKeep, 0.0);
+  outColor = vec4(oceanColorCrest(vEyeRel, nrm, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, mss, max(crest, wake), w, vHeightM), alpha);
 #endif
   outData = uWriteData != 0 ? vec4(vEyeRel, 1.0) : vec4(0.0);
 }

@@ -81,12 +81,34 @@ float depthCurve(float depthM, float tauMin, float tauMax) {
   return clamp((tauMin - depthM) / (tauMin - tauMax), 0.0, 1.0);
 }
 
+// Light through thin crests (issue 13 item 2): sunlight entering the back
+// of a crest and scattered out of its front towards an eye that looks
+// towards the sun. The approximation of Atlas (Mihelich & Tcheblokov, GDC
+// 2019, the one Crest uses): H (v . -L)^4 (0.5 - 0.5 L . n)^3, H the crest's
+// height over the significant amplitude Hs / 2 (a thin, high crest passes
+// more light), faded out with the waves (far). kSubsurface: its radiance
+// per unit sun irradiance, the sea green of light scattered in the water,
+// set by eye: a crest's back lit by a sun 12 degrees high (v . -L 0.85,
+// slope 0.3 to the eye, H 1/2) gets 0.036, 3x the deep body's green
+// (0.0125); then Beer-Lambert's 1 m through the crest (kWaterAttenuation).
+uniform float uHsM;
+uniform int uSubsurface;
+const vec3 kSubsurface = vec3(0.10, 0.93, 0.72);
+vec3 crestSubsurface(vec3 n, vec3 v, vec3 sunDir, vec3 sun, float heightM, float far) {
+  if (uSubsurface == 0) return vec3(0.0);
+  float h = clamp(heightM / max(0.5 * uHsM, 1e-3), 0.0, 1.0) * (1.0 - far);
+  float back = max(dot(v, -sunDir), 0.0), away = 0.5 - 0.5 * dot(sunDir, n);
+  float back2 = back * back;
+  return sun * kSubsurface * exp(-kWaterAttenuation) * (h * back2 * back2 * away * away * away);
+}
+
 // w: water coverage (0.5 = coast); far: how far the waves have faded into
 // roughness (0 near, 1 far); mss: the mean square slope not in `normal`
 // (ocean.vert: the spectrum's waves not drawn, and the slope the fade
-// removes); crest: the whitecaps' foam (0..1).
+// removes); crest: the whitecaps' foam (0..1); heightM: the wave height
+// (the crests' subsurface light).
 vec3 oceanColorCrest(vec3 eyeRel, vec3 normal, vec3 upIn, vec3 sun, vec3 hazeTr, vec3 hazeIn,
-                     float reliefDepthM, float far, float mss, float crest, float w) {
+                     float reliefDepthM, float far, float mss, float crest, float w, float heightM) {
   // Depth (eq. 9's height): relief, or the coverage where the 20' relief
   // puts coastal water above sea level.
   float depth = max(reliefDepthM, (w - 0.5) * 120.0);
@@ -109,6 +131,8 @@ vec3 oceanColorCrest(vec3 eyeRel, vec3 normal, vec3 upIn, vec3 sun, vec3 hazeTr,
   vec3 windAxis = sin(uWind.y) * east + cos(uWind.y) * north;  // the sign does not matter
   vec3 c = seaColorOptics(n, v, up, uSunDir, sun, seen, mss, foam, refl, uRefraction != 0, windAxis,
                           coxMunkUpwindShare(uWind.x));
+  // Leaving the water through the surface (1 - Fresnel), under the foam.
+  c += crestSubsurface(n, v, uSunDir, sun, heightM, far) * (1.0 - fresnelSchlick(dot(n, v))) * (1.0 - foam);
   return toDisplay(c * hazeTr + hazeIn);
 }
 
@@ -116,5 +140,5 @@ vec3 oceanColorCrest(vec3 eyeRel, vec3 normal, vec3 upIn, vec3 sun, vec3 hazeTr,
 vec3 oceanColor(vec3 eyeRel, vec3 normal, vec3 upIn, float heightM, vec3 sun, vec3 hazeTr, vec3 hazeIn,
                 float reliefDepthM, float far, float mss, float foamM, float w) {
   float crest = mix(smoothstep(foamM - uFoamSoftM, foamM + uFoamSoftM, heightM), uWhitecapCover, far);
-  return oceanColorCrest(eyeRel, normal, upIn, sun, hazeTr, hazeIn, reliefDepthM, far, mss, crest, w);
+  return oceanColorCrest(eyeRel, normal, upIn, sun, hazeTr, hazeIn, reliefDepthM, far, mss, crest, w, heightM);
 }

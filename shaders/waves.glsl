@@ -471,4 +471,35 @@ WR wv_fftFold(int first, int planes, int cascades, WR3 d, WvFrame fr) {
 
 #endif  // WV_FFT
 
+// ---- the detail normal layer (issue 13 item 2) -----------------------------
+
+// Waves shorter than the model draws, as a shading normal only (no height,
+// so the query is unchanged: plugin/waves/README.md). `count` plane waves of
+// the spectrum's short band, per wave (WaveField's detailPatch, at the patch
+// origin O): wvDetail[2 i] = (k g: the wave vector, ECEF, rad/m; a k: the
+// slope amplitude), wvDetail[2 i + 1] = (phase at O and the frame's time,
+// wavelength m, 0, 0); ordered by wavelength, longest first. The
+// great-circle wave's phase at O + d is taken to first order (its
+// curvature, k |d|^2 / 2R, is < 0.01 rad wherever the fade keeps the wave).
+// Returns the height's gradient (ECEF, m/m) of the waves whose wavelength
+// is over 4 pixels (footprintM each), faded out by 2 pixels, and in w their
+// slope variance (the fade's keep^2 a^2 k^2 / 2), which the caller takes
+// from the roughness.
+// Only where the includer declares `WR4 wvDetail[]` and defines WV_DETAIL.
+#ifdef WV_DETAIL
+WR4 wv_detailSlope(int count, WR3 d, WR footprintM) {
+  WR3 grad = WR3(0);
+  WR kept = WR(0);
+  for (int i = 0; i < count; ++i) {
+    WR4 kv = wvDetail[2 * i], ph = wvDetail[2 * i + 1];
+    WR keep = smoothstep(WR(2), WR(4), ph.y / max(footprintM, WR(1e-6)));
+    if (keep <= WR(0)) break;  // shorter waves follow
+    WR s = kv.w * keep;
+    grad -= WR3(kv) * (s / length(WR3(kv)) * sin(ph.x + dot(WR3(kv), d)));
+    kept += WR(0.5) * s * s;
+  }
+  return WR4(grad, kept);
+}
+#endif
+
 #endif

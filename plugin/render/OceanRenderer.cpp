@@ -152,6 +152,19 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     if (options_.model == waves::Model::Fft) kMax = kTwoPi / waves_->peakWavelengthM() * 7.3 / 5.3 * 64.0;
     mssAbove_[1] = float(waves::slopeVarianceAbove(sea, kMax));
   }
+  // The detail layer starts where the model's shortest wave ends (noise: the
+  // finest octave's band, as uMssAbove), 8 octaves of 4 waves (to 2 cm at
+  // U = 10 for Gerstner): ocean.frag keeps those over 2 pixels.
+  if (options_.detailNormals) {
+    double kLow = 0.0;
+    if (options_.model == waves::Model::Noise && !waves_->octaves().empty())
+      kLow = kTwoPi * waves_->octaves().back().frequencyPerM * std::sqrt(2.0);
+    else if (options_.model == waves::Model::Fft)
+      kLow = kTwoPi / waves_->peakWavelengthM() * 7.3 / 5.3 * 64.0;
+    else
+      for (const auto& c : waves_->components()) kLow = std::max(kLow, c.kRef);
+    if (kLow > 0.0) detail_ = waves::detailWaves(sea, kLow, 8, 4);
+  }
   // Whitecaps: the crest height that the model's own heights (what
   // ocean.vert displaces by, at rest points) exceed on Monahan's fraction W
   // of the sea, from 16,384 points over 40 x 40 peak wavelengths at t = 0 and
@@ -615,6 +628,9 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
 
 
   const glm::vec4 elevationGeo = world_->elevation().geo(), waterGeo = world_->water().geo();
+  std::vector<float> detailF;  // wv_detailSlope's wvDetail at this patch and time
+  for (const glm::dvec4& v : waves::detailPatch(detail_, origin, light.timeS))
+    for (int c = 0; c < 4; ++c) detailF.push_back(float(v[c]));
   const auto setUniforms = [&](const gl::GlProgram& p) {
     glUniformMatrix4fv(p.uniform("uViewProj"), 1, GL_FALSE, &cam.gpu().viewProj[0][0]);
     const glm::vec3 eyeMinusO(cam.eyeEcef() - origin);
@@ -630,6 +646,10 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glUniform1f(p.uniform("uFoamSoftM"), float(foamSoftM_));
     glUniform1f(p.uniform("uWhitecapCover"), float(whitecap_));
     glUniform2f(p.uniform("uWind"), float(windMps_ / 1.026), float(windFromRad_));  // U10, from (radians)
+    glUniform1i(p.uniform("uDetailCount"), GLint(detailF.size() / 8));
+    glUniform1f(p.uniform("uHsM"), float(waves_->spectrumHsM()));
+    glUniform1i(p.uniform("uSubsurface"), options_.subsurface ? 1 : 0);
+    if (!detailF.empty()) glUniform4fv(p.uniform("wvDetail"), GLsizei(detailF.size() / 4), detailF.data());
     if (jacobianFoam()) {
       float ages[kFoamTimes];
       for (int k = 0; k < kFoamTimes; ++k) ages[k] = float(light.timeS - foamT[std::size_t(k)]);

@@ -64,6 +64,12 @@ struct OceanOptions {
   // (shaders/foam.glsl), their decaying trail interpolated between the
   // time samples; off, these models take the height-quantile crests.
   bool jacobianFoam = true;
+  // The detail normal layer (issue 13 item 2, waves::detailWaves): the
+  // spectrum's waves shorter than the model draws, per fragment down to 2
+  // pixels, taken from the roughness.
+  bool detailNormals = true;
+  // Light through thin crests (ocean_shading.glsl, crestSubsurface).
+  bool subsurface = true;
 };
 
 // Reorders a grid frame's compacted cell indices (6 per cell) into three
@@ -230,6 +236,7 @@ class OceanRenderer {
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;
   std::vector<float> mssAbove_;
+  std::vector<waves::DetailWave> detail_;  // the detail normal layer (ocean.frag)
   std::vector<float> foamHeightM_;
   double foamSoftM_ = 0.0, whitecap_ = 0.0;
   double windMps_ = 0.0, windFromRad_ = 0.0;

@@ -95,6 +95,25 @@ double bandVariance(const SeaState& sea, double w0, double w1) {
   return s * h / 3.0;
 }
 
+constexpr double kInvGolden = 0.6180339887498949;  // 1 / golden ratio
+
+// A Gerstner component's slope variance, up to a common factor.
+double slopeWeight(const WaveField::Component& c) { return c.amplitudeM * c.amplitudeM * c.kRef * c.kRef; }
+
+}  // namespace
+
+double cos2SpreadingQuantile(double u) {
+  // F(a) = 1/2 + (a + sin a cos a) / pi on [-pi/2, pi/2], increasing: bisect.
+  double lo = -0.5 * kPi, hi = 0.5 * kPi;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (0.5 + (mid + std::sin(mid) * std::cos(mid)) / kPi < u ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+namespace {
+
 kd::WvFrame makeFrame(const glm::dvec3& o) {
   const double r = glm::length(o);
   const glm::dvec3 dO(o.x / (kA * kA), o.y / (kA * kA), o.z / (kB * kB));
@@ -330,6 +349,7 @@ void WaveField::buildGerstner() {
   const double w0 = 0.6 * omegaPeak_, w1 = 4.0 * omegaPeak_;
   const Enu a = enuAt(sea_.anchorLatDeg, sea_.anchorLonDeg);
   const double travel = deg2rad(sea_.windFromDeg + 180.0);
+  std::vector<double> drawn;  // a direction drawn from the spreading per component
   for (int j = 0; j < n; ++j) {
     // Bands equal in log(omega); the frequency is random inside its band so
     // that no two seas (or components) are commensurate.
@@ -340,17 +360,45 @@ void WaveField::buildGerstner() {
     c.kRef = waveNumberExact(c.omega, sea_.referenceDepthM);
     c.phase0 = rng.uniform() * kTwoPi;
     c.choppiness = 1.0;
-    // Direction: cos^2 spreading about the wind, by rejection.
+    // cos^2 spreading about the wind, by rejection: the direction of a lone
+    // component; the draws also keep each seed's frequencies and phases.
     double dth = 0.0;
     for (;;) {
       dth = (rng.uniform() - 0.5) * kPi;
       if (rng.uniform() < std::cos(dth) * std::cos(dth)) break;
     }
-    const double b = travel + dth;
+    drawn.push_back(dth);
+    components_.push_back(c);
+  }
+  const double u0 = rng.uniform();  // the seed's own offset of the direction sequence
+  // Directions (the rule, plugin/waves/README.md): stratified over the cos^2
+  // spreading by slope variance (a^2 k^2 / 2: what the near field shows),
+  // strata in golden-ratio order. Independent draws (the old rejection
+  // sampling) put 3-4 of 16 components within a few degrees of each other:
+  // long parallel crests, the radial streaks seen from 2-30 m. Component j
+  // takes the stratum at the rank of frac(u0 + j / golden ratio):
+  // neighbours in frequency are >= 0.38 apart in that sequence, so no band
+  // of frequencies shares a direction; each stratum's width is its
+  // component's share of the slope variance and the direction its middle
+  // quantile, so the slope-weighted directions follow the spreading within
+  // half the largest share (the least any set of these weights can). A lone
+  // component keeps its random direction.
+  std::vector<std::pair<double, int>> order;
+  double slopeSum = 0.0;
+  for (int j = 0; j < n; ++j) {
+    order.push_back({std::fmod(u0 + j * kInvGolden, 1.0), j});
+    slopeSum += slopeWeight(components_[std::size_t(j)]);
+  }
+  std::sort(order.begin(), order.end());
+  double below = 0.0;
+  for (const auto& [key, j] : order) {
+    Component& c = components_[std::size_t(j)];
+    const double share = slopeWeight(c) / slopeSum;
+    const double b = travel + (n == 1 ? drawn[0] : cos2SpreadingQuantile(below + 0.5 * share));
+    below += share;
     // Source a quarter circumference up-wave of the anchor: at the anchor the
     // great circle runs exactly along bearing b.
     c.source = -(a.e * std::sin(b) + a.n * std::cos(b));
-    components_.push_back(c);
   }
   // The discretised spectrum keeps > 99% of the variance (the tail above
   // 4 w_p holds < 0.5%); rescale so the components carry exactly m0.
@@ -745,7 +793,10 @@ void WaveField::surfaceBatch(const double* latDeg, const double* lonDeg, const d
     out[i] = surfaceAt(latDeg[i], lonDeg[i], timesPerPoint ? tS[i] : tS[0], depthM ? depthM[i] : kDeepWaterM);
 }
 
-double slopeVarianceAbove(const SeaState& sea, double kMinRadPerM) {
+namespace {
+// The integral over ln k from kMin to 1e4 rad/m of Elfouhaily's curvature
+// spectrum B(k) times k^-power (0: slope variance, 2: height variance).
+double elfouhailyMoment(const SeaState& sea, double kMinRadPerM, int power) {
   // Elfouhaily, Chapron, Katsaros & Vandemark (1997), JGR 102(C7), eq. 30-33,
   // 38-41, 44: curvature spectrum B(k) = k^3 S(k) = B_l + B_h, so the slope
   // variance is the integral of B over ln k. Wind at 10 m from the sea
@@ -771,9 +822,73 @@ double slopeVarianceAbove(const SeaState& sea, double kMinRadPerM) {
     const double jp = std::pow(gamma, std::exp(-g * g / (2.0 * sigma * sigma)));
     const double bl = 0.5 * alphaP * cP / c * lpm * jp * std::exp(-omegaC / std::sqrt(10.0) * g);
     const double bh = 0.5 * alphaM * cM / c * lpm * jp * std::exp(-0.25 * (k / kM - 1.0) * (k / kM - 1.0));
-    sum += bl + bh;
+    sum += (bl + bh) * std::pow(k, -power);
   }
   return sum * (hi - lo) / n;
+}
+}  // namespace
+
+double slopeVarianceAbove(const SeaState& sea, double kMinRadPerM) { return elfouhailyMoment(sea, kMinRadPerM, 0); }
+double heightVarianceAbove(const SeaState& sea, double kMinRadPerM) { return elfouhailyMoment(sea, kMinRadPerM, 2); }
+
+std::vector<DetailWave> detailWaves(const SeaState& sea, double kLowRadPerM, int octaves, int perOctave) {
+  Rng rng{sea.seed * 0xD1B54A32D192ED03ULL + 11};
+  const int n = octaves * perOctave;
+  const Enu a = enuAt(sea.anchorLatDeg, sea.anchorLonDeg);
+  const double travel = deg2rad(sea.windFromDeg + 180.0);
+  // Cox & Munk's upwind share of the slopes (sea_shading.glsl's
+  // coxMunkUpwindShare): 1 + D cos 2 phi has the share 1/2 + D/4.
+  const double u10 = sea.windSpeedMps / 1.026, up = 3.16e-3 * u10, cross = 0.003 + 1.92e-3 * u10;
+  const double spread = 4.0 * (up / (up + cross) - 0.5);
+  const auto quantile = [&](double u) {  // F(phi) = 1/2 + (phi + D/2 sin 2 phi) / 2 pi on [-pi, pi]
+    double lo = -kPi, hi = kPi;
+    for (int i = 0; i < 60; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (0.5 + (mid + 0.5 * spread * std::sin(2.0 * mid)) / kTwoPi < u ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  };
+  std::vector<DetailWave> w(static_cast<std::size_t>(n));
+  std::vector<double> var(static_cast<std::size_t>(n));
+  double total = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const double k0 = kLowRadPerM * std::exp2(double(j) / perOctave), k1 = k0 * std::exp2(1.0 / perOctave);
+    var[std::size_t(j)] = std::max(slopeVarianceAbove(sea, k0) - slopeVarianceAbove(sea, k1), 0.0);
+    total += var[std::size_t(j)];
+    DetailWave& d = w[std::size_t(j)];
+    d.k = k0 * std::pow(k1 / k0, rng.uniform());  // not commensurate
+    d.omega = std::sqrt(kG * d.k * (1.0 + (d.k / 370.0) * (d.k / 370.0)));  // capillary term (Elfouhaily's k_m)
+    d.slopeAmplitude = std::sqrt(2.0 * var[std::size_t(j)]);
+    d.phase0 = rng.uniform() * kTwoPi;
+  }
+  // The Gerstner rule: strata as wide as each wave's slope share, in
+  // golden-ratio order.
+  const double u0 = rng.uniform();
+  std::vector<std::pair<double, int>> order;
+  for (int j = 0; j < n; ++j) order.push_back({std::fmod(u0 + j * kInvGolden, 1.0), j});
+  std::sort(order.begin(), order.end());
+  double below = 0.0;
+  for (const auto& [key, j] : order) {
+    const double share = total > 0.0 ? var[std::size_t(j)] / total : 1.0 / n;
+    const double b = travel + quantile(below + 0.5 * share);
+    below += share;
+    w[std::size_t(j)].source = -(a.e * std::sin(b) + a.n * std::cos(b));
+  }
+  return w;
+}
+
+std::vector<glm::dvec4> detailPatch(const std::vector<DetailWave>& waves, const glm::dvec3& originEcef, double tS) {
+  std::vector<glm::dvec4> out;
+  out.reserve(2 * waves.size());
+  const glm::dvec3 radial = glm::normalize(originEcef);
+  for (const DetailWave& d : waves) {
+    // waveAt's great-circle phase and direction at O.
+    WaveField::Component c{d.source, d.omega, d.k, 0.0, d.phase0, 0.0};
+    const kd::WvWave wv = waveAt(c, radial, tS);
+    out.push_back(glm::dvec4(glm::dvec3(wv.dirO) * d.k, d.slopeAmplitude));
+    out.push_back(glm::dvec4(wv.phase.x, kTwoPi / d.k, 0.0, 0.0));
+  }
+  return out;
 }
 
 }  // namespace geocean::waves

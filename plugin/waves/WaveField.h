@@ -267,6 +267,32 @@ double peakOmega(const SeaState& sea);
 // grows only with log U, where Cox & Munk (1954) measured 0.003 + 5.12e-3 U.
 double slopeVarianceAbove(const SeaState& sea, double kMinRadPerM);
 
+// The direction (radians from the wind's travel, -pi/2 .. pi/2) below which
+// a share u of the cos^2 spreading's energy lies: the Gerstner components'
+// directions are its quantiles (plugin/waves/README.md, the direction rule).
+double cos2SpreadingQuantile(double u);
+
+// The detail normal layer (issue 13 item 2): the spectrum's waves shorter
+// than a model draws, as a shading normal only. `octaves` x `perOctave`
+// plane waves on great circles (sources a quarter circumference up-wave of
+// the anchor, as Gerstner's) with wave numbers from kLowRadPerM up, each
+// carrying the slope variance of its log-k band of slopeVarianceAbove's
+// spectrum (so the layer's total is slopeVarianceAbove(kLow) -
+// slopeVarianceAbove(kLow 2^octaves)), directions by the Gerstner rule
+// over Elfouhaily's short-wave spreading 1 + D cos 2 phi, D set so that the
+// upwind share of the slopes is Cox & Munk's; gravity-capillary dispersion.
+struct DetailWave {
+  glm::dvec3 source;  // unit ECEF
+  double k, omega, slopeAmplitude, phase0;  // rad/m, rad/s, a k, rad
+};
+std::vector<DetailWave> detailWaves(const SeaState& sea, double kLowRadPerM, int octaves = 8, int perOctave = 4);
+// Per frame at the patch origin O and time t: wv_detailSlope's wvDetail
+// (2 per wave, ordered longest first).
+std::vector<glm::dvec4> detailPatch(const std::vector<DetailWave>& waves, const glm::dvec3& originEcef, double tS);
+// Height variance (m^2) of slopeVarianceAbove's spectrum above kMinRadPerM:
+// what a normal-only layer of those waves leaves out of the heights.
+double heightVarianceAbove(const SeaState& sea, double kMinRadPerM);
+
 // Full dispersion relation solved to machine precision (bisection + Newton);
 // the reference the shared kernel's explicit form is tested against.
 double waveNumberExact(double omega, double depthM);

@@ -43,6 +43,7 @@ using glm::tanh;
 #define WV_CPU 1
 #define WV_FFT 1
 #define WV_COAST 1
+#define WV_DETAIL 1
 #define WR double
 #define WR2 glm::dvec2
 #define WR3 glm::dvec3
@@ -63,6 +64,8 @@ struct Kernel {
   const WR4* wvIslandComps = nullptr;
   WR4* wvIslandTable = nullptr;
   WR* wvIslandShadow = nullptr;
+  // The detail normal layer's patch (WaveField.h, detailPatch): 2 per wave.
+  const WR4* wvDetail = nullptr;
 #include "shaders/waves.glsl"
 #include "shaders/coast_islands.glsl"
 };

@@ -48,8 +48,8 @@ class DirectOceanLayer : public Layer {
 inline std::string addDirectOcean(GlobeRenderer& renderer, std::shared_ptr<const world::WorldGrids> grids,
                                   const std::string& modelName, double windMps, double windFromDeg,
                                   std::shared_ptr<ocean_render::OceanRenderer>* created = nullptr,
-                                  std::shared_ptr<DirectOceanLayer>* layer = nullptr) {
-  ocean_render::OceanOptions oo;
+                                  std::shared_ptr<DirectOceanLayer>* layer = nullptr,
+                                  ocean_render::OceanOptions oo = {}) {
   const auto model = waves::parseModel(modelName);
   if (!model || *model == waves::Model::NoisePaper)
     return "--waves '" + modelName + "' is not a GPU wave model (noise, gerstner, fft)";

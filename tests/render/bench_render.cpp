@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
   std::string size = "1280x720", to = "36.0,-5.6", csvPath;
   bool ocean = true;
   int repeat = 1;  // draws per frame before the timed one
+  bool detail = true;
   render::TerrainOptions terrain;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -79,6 +80,7 @@ int main(int argc, char** argv) {
     else if (a == "--pixel-error") terrain.pixelErrorPx = std::atof(next().c_str());
     else if (a == "--repeat") repeat = std::atoi(next().c_str());
     else if (a == "--sea-proxy") terrain.seaProxy = true;
+    else if (a == "--no-detail") detail = false;  // the ocean without its detail normal layer
     else {
       std::fprintf(stderr, "bench_render: unknown option '%s'\n", a.c_str());
       return 2;
@@ -102,7 +104,10 @@ int main(int argc, char** argv) {
   render::Session s = render::Session::headless(world::loadDefaultWorld(), base.width, base.height, terrain);
   std::shared_ptr<ocean_render::OceanRenderer> oceanLayer;
   if (ocean) {
-    const std::string err = render::test::addDirectOcean(*s.renderer, s.world->grids(), "noise", 10.0, 270.0, &oceanLayer);
+    ocean_render::OceanOptions oo;
+    oo.detailNormals = detail;
+    const std::string err =
+        render::test::addDirectOcean(*s.renderer, s.world->grids(), "noise", 10.0, 270.0, &oceanLayer, nullptr, oo);
     if (!err.empty()) {
       std::fprintf(stderr, "bench_render: %s\n", err.c_str());
       return 2;

@@ -8,6 +8,7 @@
 #include "globe/render/Terrain.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -343,4 +344,87 @@ TEST(SeaOptics, JacobianFoamFollowsAFoldBetweenItsSamples) {
 }
 
 }  // namespace
+}  // namespace geocean::render::test
+
+namespace geocean::render::test {
+namespace {
+// Per pixel: the linear green and the class (0 crest: height > Hs / 4; 1
+// trough: height < -Hs / 4; -1 neither or not sea) from 10 m over a
+// Gerstner sea (U10 = 10) looking east with the sun at azimuth sunAz, 12
+// degrees high; heights from the data pass (eye-relative positions).
+struct Pixels {
+  std::vector<double> green;
+  std::vector<int> cls;
+};
+Pixels seaPixels(bool subsurface, double sunAz) {
+  ocean_render::OceanOptions oo;
+  oo.model = waves::Model::Gerstner;
+  oo.sea.windSpeedMps = 1.026 * 10.0;
+  oo.subsurface = subsurface;
+  oo.jacobianFoam = false;  // foam covers crests: leave it out of a colour statistic
+  auto ocean = std::make_shared<ocean_render::OceanRenderer>(session().world->grids(), ocean_render::defaultLandSea(), oo);
+  GlobeRenderer renderer(session().world);
+  renderer.addLayer(std::make_shared<DirectOceanLayer>(ocean));
+  ocean->setWriteData(true);
+  ViewPose p;
+  p.latDeg = 0.01, p.lonDeg = 0.01, p.altM = 10.0, p.headingDeg = 90.0, p.pitchDeg = -20.0;
+  p.width = p.height = 192;
+  Framebuffer fb(p.width, p.height, true);
+  fb.bind();
+  FrameSettings fs;
+  fs.timeS = 50.0;
+  fs.sunEcef = sunForView(p, sunAz, 12.0);
+  renderer.render(p, fs);
+  const std::vector<float> data = fb.readData();
+  const Image img = fb.readColor();
+  dump(img, std::string("subsurface_") + (subsurface ? "on" : "off") + "_az" + std::to_string(int(sunAz)));
+  const camera::Camera cam = renderer.camera(p);
+  const double hs = ocean->waves().spectrumHsM();
+  Pixels out;
+  for (int y = 0; y < p.height; ++y)
+    for (int x = 0; x < p.width; ++x) {
+      const float* q = &data[(std::size_t(y) * p.width + x) * 4];
+      out.green.push_back(linear(img.rgba[(std::size_t(y) * img.width + x) * 4 + 1]));
+      out.cls.push_back(-1);
+      // The sky writes its colour there (w = 1 too): a sea point is over a
+      // metre away and within 2 Hs of the mean sea.
+      if (q[3] != 1.0f || glm::length(glm::dvec3(q[0], q[1], q[2])) < 1.0) continue;
+      const double h = geo::fromEcef(cam.eyeEcef() + glm::dvec3(q[0], q[1], q[2])).heightM;
+      if (std::abs(h) < 2.0 * hs) out.cls.back() = h > 0.25 * hs ? 0 : h < -0.25 * hs ? 1 : -1;
+    }
+  return out;
+}
+
+// The mean increase of the green (with - without the subsurface light) over
+// crest and over trough pixels: the same sea, so the difference is the term.
+std::array<double, 2> greenGain(double sunAz) {
+  const Pixels on = seaPixels(true, sunAz), off = seaPixels(false, sunAz);
+  double s[2] = {0, 0};
+  int n[2] = {0, 0};
+  for (std::size_t i = 0; i < on.green.size(); ++i)
+    if (on.cls[i] >= 0) s[on.cls[i]] += on.green[i] - off.green[i], ++n[on.cls[i]];
+  EXPECT_GT(n[0], 500);
+  EXPECT_GT(n[1], 500);
+  return {s[0] / std::max(n[0], 1), s[1] / std::max(n[1], 1)};
+}
+}  // namespace
+
+// Light through thin crests (ocean_shading.glsl, crestSubsurface): with the
+// sun ahead (behind the crests, 12 degrees high) crests gain green and
+// troughs none (H = 0 below the mean sea); with the sun behind the eye
+// nothing changes (the term needs v . -L > 0). One step of the 8-bit tone
+// curve at the sea's green here (linear 0.0125, display 43) is 6.5e-4 in
+// linear units: the crests' mean gain must be visible, over 5 steps; the
+// rest under one.
+TEST(SeaOptics, BacklitCrestsAreGreenerThanTroughs) {
+  const auto ahead = greenGain(90.0), behind = greenGain(270.0);
+  std::printf("green gain (linear) with the sun ahead: crests %.4f, troughs %.4f; behind: %.4f, %.4f\n", ahead[0],
+              ahead[1], behind[0], behind[1]);
+  constexpr double kStep = 6.5e-4;
+  EXPECT_GT(ahead[0], 5.0 * kStep);
+  EXPECT_LT(std::abs(ahead[1]), kStep);
+  EXPECT_LT(std::abs(behind[0]), kStep);
+  EXPECT_LT(std::abs(behind[1]), kStep);
+}
+
 }  // namespace geocean::render::test

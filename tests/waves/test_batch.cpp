@@ -135,6 +135,8 @@ TEST(SimdBatch, GerstnerEqualsScalar) {
 TEST(SimdBatch, GerstnerInversionPutsTheParticleAboveThePoint) {
   namespace geo = geocean::geo;
   const WaveField f = make(Model::Gerstner, 15.0, 2);
+  double sumAk = 0.0;
+  for (const auto& comp : f.components()) sumAk += comp.amplitudeM * comp.kRef;
   const Case c = points(15);
   const std::size_t n = 2000;
   std::vector<SurfacePoint> out(n);
@@ -152,7 +154,10 @@ TEST(SimdBatch, GerstnerInversionPutsTheParticleAboveThePoint) {
     // 1e-5 m: the inversion's stopping tolerance, plus 1e-6 m for the
     // round trip through geodetic coordinates.
     EXPECT_LT(miss, 1.1e-5) << i;
-    EXPECT_NEAR(local.z, out[i].heightM, 1e-6) << i;
+    // The height is the batch's last evaluation, the rest offset one step
+    // (< the 1e-5 m tolerance) later: the particle's height moves by at most
+    // sum a k (its map's Lipschitz bound) times that, plus the round trip.
+    EXPECT_NEAR(local.z, out[i].heightM, 1e-6 + sumAk * 1.1e-5) << i;
   }
   std::printf("batch inversion: worst horizontal miss %.3g m\n", worst);
 }

@@ -589,10 +589,11 @@ TEST(Coast, BreakingCapsHeightsAndFoamsTheSurfZone) {
     // The curl's and the collapse's derivatives are the kernel's own: the
     // normal is perpendicular to the drawn surface and d(eta)/dt of the
     // particle is the time derivative (central differences, 1 mm and 1 ms
-    // steps: truncation ~1e-6). The normal within 2e-3: the kernel's slope
+    // steps: truncation ~1e-6). The normal within 2.5e-3: the kernel's slope
     // takes k s for the phase gradient, which the field's bilinear phase
     // between nodes misses by ~1e-3 (measured 0.28e-3 at 40 m, 1.4e-3 at
-    // 1 m); without the curl's d(psx)/d(psi) it was 3.7e-3 .. 7.6e-3 at 4 .. 1 m.
+    // 1 m; 2.0e-3 at 1 m with the stratified directions of issue 13 item 2);
+    // without the curl's d(psx)/d(psi) it was 3.7e-3 .. 7.6e-3 at 4 .. 1 m.
     double worstNormal = 0.0, worstVelocity = 0.0;
     for (int i = 0; i < 20; ++i) {
       const double t = 2.0 + 0.53 * i, dx = 1e-3, dt = 1e-3;
@@ -608,7 +609,7 @@ TEST(Coast, BreakingCapsHeightsAndFoamsTheSurfZone) {
       const double dzdt = (disp(0, 0, t + dt).displacementEnuM.z - disp(0, 0, t - dt).displacementEnuM.z) / (2 * dt);
       worstVelocity = std::max(worstVelocity, std::abs(dzdt - s0.verticalVelocityMps));
     }
-    EXPECT_LT(worstNormal, 2e-3) << "h " << h;
+    EXPECT_LT(worstNormal, 2.5e-3) << "h " << h;
     EXPECT_LT(worstVelocity, 1e-4) << "h " << h;
     std::printf("h %.0f m: crest to trough %.3f m (0.78 h %.3f), foam max %.3f; normal . tangent %.2g, "
                 "|w - dz/dt| %.2g m/s\n", h, top - bottom, 0.78 * h, foam, worstNormal, worstVelocity);

@@ -294,7 +294,8 @@ void runCoastParity(const std::function<double(double, double)>& depthAt, double
               "%.3g m); normal max %.3g, foam max %.3g\n",
               name, cases.size(), feltTheCoast, foaming, worstDisp, worstShallow, worstNormal, worstFoam);
   if (std::string(name) == "breaking beach") {
-    EXPECT_GT(foaming, int(cases.size()) / 10) << "the comparison covers breaking waves";
+    // 8 % with the stratified directions (issue 13 item 2), 10 %+ before.
+    EXPECT_GT(foaming, int(cases.size()) / 20) << "the comparison covers breaking waves";
   }
   GLuint bufs[] = {b0, b1, b2, b3, b4, b5, b6, b7, b8};
   glDeleteBuffers(9, bufs);
