@@ -41,6 +41,7 @@ struct FlyArgs {
   double windFromDeg = 270.0;
   int reflectionSize = 0;
   std::string coastRegion;
+  bool coastFollow = false;
   bool reference = false;
   bool hud = false;
   LayerOptions layers;
@@ -120,7 +121,7 @@ int runFly(const FlyArgs& a) {
       return kExitBadInput;
     }
   }
-  if (const int rc = applyCoastRegion("fly", a.coastRegion, ocean.get()); rc != kExitOk) return rc;
+  if (const int rc = applyCoastRegion("fly", a.coastRegion, ocean.get(), a.coastFollow); rc != kExitOk) return rc;
   std::shared_ptr<host::PluginBoats> boats;
   if (const int rc = addBoats("fly", a.boats, *s.renderer, ocean, plan.toLatDeg, plan.toLonDeg, boats); rc != kExitOk)
     return rc;
@@ -221,7 +222,7 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                       addWindOptions(sub, a->wind);
                       addReflectionSizeOption(sub, a->reflectionSize);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
-                      addCoastOption(sub, a->coastRegion);
+                      addCoastOption(sub, a->coastRegion, &a->coastFollow);
                       addLayerOptions(sub, a->layers);
                       addImageryOption(sub, a->layers);
                       addBoatOptions(sub, a->boats);

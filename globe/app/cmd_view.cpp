@@ -55,6 +55,7 @@ struct ViewArgs {
   double timeS = 0.0;  // simulation time of the first frame
   int reflectionSize = 0;
   std::string coastRegion;  // LAT,LON[,SIZE_M] (CoastOption.h)
+  bool coastFollow = false;
 };
 
 // Height of the drawn sea surface above the ellipsoid exactly under the
@@ -256,7 +257,7 @@ int runView(const ViewArgs& a) {
       glfwSetWindowShouldClose(win, GLFW_TRUE);  // leave through the normal cleanup, context still current
     }
     if (rc == kExitOk) {
-      if (const int crc = applyCoastRegion("view", a.coastRegion, ocean.get()); crc != kExitOk) {
+      if (const int crc = applyCoastRegion("view", a.coastRegion, ocean.get(), a.coastFollow); crc != kExitOk) {
         rc = crc;
         glfwSetWindowShouldClose(win, GLFW_TRUE);
       }
@@ -455,7 +456,7 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                       sub.add_option("--time", a->timeS, "simulation time of the first frame, seconds");
                       addReflectionSizeOption(sub, a->reflectionSize);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees (default 270)");
-                      addCoastOption(sub, a->coastRegion);
+                      addCoastOption(sub, a->coastRegion, &a->coastFollow);
                       addLayerOptions(sub, a->layers);
                       addImageryOption(sub, a->layers);
                       addBoatOptions(sub, a->boats);

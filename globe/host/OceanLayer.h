@@ -38,6 +38,8 @@ class PluginOceanLayer : public render::Layer {
   // tiles each draw asks for (GEOCEAN_DRAW_COMPLETE_TILES), as the
   // terrain's TerrainOptions::waitForTiles.
   void setCompleteTiles(bool on) { completeTiles_ = on; }
+  // The coast region follows the camera (GEOCEAN_DRAW_FOLLOW_COAST, ABI 1.7).
+  void setFollowCoast(bool on) { followCoast_ = on; }
   const OceanPlugin& plugin() const { return *plugin_; }
 
  private:
@@ -45,6 +47,7 @@ class PluginOceanLayer : public render::Layer {
   geocean_ocean* ocean_;
   render::LayerInfo info_;  // asked once: it does not change with the ocean's state
   bool completeTiles_ = false;
+  bool followCoast_ = false;
 };
 
 // The host view for a camera: the same numbers the renderer draws its

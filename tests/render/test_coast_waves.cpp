@@ -18,6 +18,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
+#include <future>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -456,6 +458,202 @@ TEST(OceanCoast, ARoundIslandShelterIsDrawnAt30mAnd300m) {
   // (Coast.BreakwaterDiffractionFollowsSommerfeld) and 0.1 for the zone's
   // points off the axis, where the shadow is shallower.
   EXPECT_LT(with.lee / with.upWave, 0.75);
+}
+
+
+// Issue 15 item 1: the coast region follows the camera. Shared by the two
+// tests below: the shelf of DrawnSurfaceIsTheQueryOverAShelf, a 10 km region.
+namespace {
+struct Shelf {
+  ocean::Ocean o;
+  waves::CoastField::Region region;
+  Shelf(double latDeg, double lonDeg) {
+    o.setRasters(shelfMask(), shelfElevation());
+    waves::SeaState sea;
+    sea.windSpeedMps = 10.0;
+    sea.windFromDeg = 240.0;
+    sea.anchorLatDeg = 0.3;
+    o.setSeaState(waves::Model::Gerstner, sea);
+    region.latDeg = latDeg, region.lonDeg = lonDeg, region.nodes = 201, region.cellM = 50.0;
+    o.setCoastRegion(region);
+  }
+};
+
+// Worst |drawn - queried| height over the drawn sea's own pixels (every 6th).
+double worstDrawnVsQuery(const Drawn& d, const ViewPose& p, const ocean::Snapshot& snap, double t, int& checked) {
+  double worst = 0.0;
+  checked = 0;
+  for (int y = 3; y < p.height; y += 6)
+    for (int x = 3; x < p.width; x += 6) {
+      const float* q = &d.data[(std::size_t(y) * p.width + x) * 4];
+      if (q[3] != 1.0f) continue;
+      const glm::dvec3 rel(q[0], q[1], q[2]);
+      const auto ndc = d.cam.projectEyeRelative(rel);
+      if (!ndc || std::abs((ndc->x * 0.5 + 0.5) * p.width - (x + 0.5)) > 1.0 ||
+          std::abs((0.5 - ndc->y * 0.5) * p.height - (y + 0.5)) > 1.0)
+        continue;
+      const geo::Geodetic g = geo::fromEcef(d.cam.eyeEcef() + rel);
+      double h = 0.0;
+      ocean::SurfaceOutputs out;
+      out.heightM = &h;
+      snap.querySurface({&g.latDeg, &g.lonDeg, 1, &t, false}, out);
+      if (std::isnan(h)) continue;
+      worst = std::max(worst, std::abs(g.heightM - h));
+      ++checked;
+    }
+  return worst;
+}
+}  // namespace
+
+// A flight north along the shelf, 560 m off the shore, 10 m up, looking
+// steeply down (DrawnSurfaceIsTheQueryOverAShelf's view and its 1 cm
+// bound). Once the nadir is more than 2.5 km (a quarter of the region)
+// from the centre a build starts; the test holds the worker (the build
+// hook) for three frames: each is drawn with the old region, which the
+// queries still use (the frame does not wait: followCoastRegion returns
+// Building while the build cannot have finished). Released, the next
+// frame publishes the new region centred on the nadir where the build
+// started, swapped into the renderer without a new one; the flight goes on
+// past the old region's edge (7.8 km north), where only the new field has
+// the shelf's phase, and a second re-centring follows. Every frame: the
+// drawn surface is the query's within 1 cm.
+TEST(OceanCoast, RegionFollowsAFlightAlongTheCoast) {
+  session();
+  Shelf shelf(0.2, 0.035);  // centred on the flight line
+  ocean::Ocean& o = shelf.o;
+  std::promise<void> gate;
+  std::shared_future<void> open = gate.get_future().share();
+  bool held = false;
+  o.setCoastBuildHook([open, &held] {
+    // A minute: the test fails (the frames below would see no swap) instead of hanging.
+    held = open.wait_for(std::chrono::seconds(60)) == std::future_status::ready;
+  });
+  auto snap = o.current();
+  auto grids = std::make_shared<const world::WorldGrids>(world::layerOf(*shelfElevation(), 0),
+                                                         world::waterLayerOf(*shelfMask()));
+  ocean_render::OceanOptions oo;
+  oo.cellPx = 2.0;
+  oo.waves = snap->waves;  // the query's field, as the C ABI's draw
+  auto renderer = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  ViewPose p;
+  p.lonDeg = 0.035, p.altM = 10.0, p.headingDeg = 70.0, p.pitchDeg = -60.0;
+  p.width = p.height = 64;
+  using F = ocean::Ocean::CoastFollow;
+  int frame = 0, building = 0, swaps = 0, replaced = 0;
+  double startedAt = 0.0;
+  auto fly = [&](double latDeg) {
+    p.latDeg = latDeg;
+    const F f = o.followCoastRegion(p.latDeg, p.lonDeg);
+    if (f == F::Started) startedAt = latDeg;
+    building += f == F::Building;
+    swaps += f == F::Swapped;
+    snap = o.current();
+    if (&renderer->waves() != snap->waves.get()) {
+      EXPECT_TRUE(renderer->swapCoast(snap->waves)) << "frame " << frame;
+      ++replaced;
+    }
+    const double t = 41.5 + frame / 30.0;
+    const Drawn d = draw(renderer, p, t, "follow_" + std::to_string(frame));
+    int checked = 0;
+    const double worst = worstDrawnVsQuery(d, p, *snap, t, checked);
+    std::printf("frame %2d lat %.4f: %s, region at %.4f, worst |drawn - query| %.5f m over %d pixels\n", frame,
+                latDeg, f == F::Started ? "started" : f == F::Building ? "building" : f == F::Swapped ? "swapped" : "-",
+                snap->coastRegion->latDeg, worst, checked);
+    EXPECT_GT(checked, 40) << "frame " << frame;
+    EXPECT_LT(worst, 0.01) << "frame " << frame;
+    ++frame;
+    return f;
+  };
+  // 557 m a frame: the sixth frame (2.8 km) starts the build.
+  double lat = 0.2;
+  for (; lat < 0.2249; lat += 0.005) EXPECT_EQ(fly(lat), F::Inside);
+  ASSERT_EQ(fly(lat), F::Started);
+  for (int k = 0; k < 3; ++k) {
+    lat += 0.005;
+    EXPECT_EQ(fly(lat), F::Building);
+    EXPECT_EQ(snap->coastRegion->latDeg, 0.2) << "the old region until the build is done";
+  }
+  EXPECT_FALSE(held) << "the worker was held";
+  gate.set_value();
+  o.waitForCoastBuild();
+  EXPECT_TRUE(held);
+  lat += 0.005;
+  ASSERT_EQ(fly(lat), F::Swapped);
+  EXPECT_EQ(snap->coastRegion->latDeg, startedAt);
+  EXPECT_EQ(snap->coastRegion->lonDeg, 0.035);
+  // On past the old region (its north edge at 0.245 deg).
+  while (lat < 0.2699) fly(lat += 0.005);
+  o.waitForCoastBuild();
+  fly(lat);
+  std::printf("%d frames, %d while building, %d swaps (%d in the renderer)\n", frame, building, o.coastSwaps(),
+              replaced);
+  EXPECT_GE(building, 3);
+  EXPECT_GE(swaps, 2);
+  EXPECT_GE(o.coastSwaps(), 2);
+  EXPECT_EQ(replaced, o.coastSwaps());
+  EXPECT_GT(snap->coastRegion->latDeg, 0.245) << "the last region is the second re-centring's";
+}
+
+
+// Issue 15 item 1, what the swap does to the waves: the region re-centred
+// 2.8 km away (a follow build, as the flight's) against the old one, the
+// query's heights at t over their overlap, on a 50 m lattice of water
+// points. Inside both regions' interiors (not in either's 8-node margin)
+// the two fields integrate the same depth from deep inflow edges, so they
+// differ only by the eikonal's discretisation on two grids; in the margins
+// one of them blends its offset to 0 (the deep-water phase), which is
+// where the picture changes at the swap.
+TEST(OceanCoast, FollowedRegionsAgreeWhereTheyOverlap) {
+  struct Shift {
+    const char* name;
+    double dLatDeg, dLonDeg;
+  };
+  for (const Shift& sh : {Shift{"along the shore", 0.025, 0.0}, Shift{"offshore", 0.0, -0.025},
+                          Shift{"onshore", 0.0, 0.025}}) {
+    Shelf shelf(0.3, 0.0);
+    ocean::Ocean& o = shelf.o;
+    const auto a = o.current();
+    ASSERT_EQ(o.followCoastRegion(0.3 + sh.dLatDeg, sh.dLonDeg), ocean::Ocean::CoastFollow::Started);
+    o.waitForCoastBuild();
+    ASSERT_EQ(o.followCoastRegion(0.3 + sh.dLatDeg, sh.dLonDeg), ocean::Ocean::CoastFollow::Swapped);
+    const auto b = o.current();
+    const waves::CoastField &fa = *a->waves->coastField(), &fb = *b->waves->coastField();
+    const double half = 0.5 * 200 * 50.0, inner = half - 8 * 50.0;
+    auto offset = [](const waves::CoastField& f, const geo::Geodetic& g) {
+      const glm::dvec3 d = geo::toEcef(g) - f.centreEcef();
+      return std::max(std::abs(glm::dot(d, f.east())), std::abs(glm::dot(d, f.north())));
+    };
+    const double t = 41.5;
+    double worstInner = 0.0, worstMargin = 0.0, hs = 0.0;
+    int inners = 0, margins = 0;
+    for (double dn = -half; dn <= half; dn += 50.0)
+      for (double de = -half; de <= half; de += 50.0) {
+        const geo::EnuFrame f = geo::enuFrame({0.3, 0.0, 0.0});
+        const geo::Geodetic g = geo::fromEcef(f.originEcef + f.east * de + f.north * dn);
+        const double oa = offset(fa, g), ob = offset(fb, g);
+        if (oa > half || ob > half) continue;
+        double ha = 0.0, hb = 0.0, hsA = 0.0;
+        ocean::SurfaceOutputs out;
+        out.heightM = &ha;
+        out.hsM = &hsA;
+        a->querySurface({&g.latDeg, &g.lonDeg, 1, &t, false}, out);
+        ocean::SurfaceOutputs outB;
+        outB.heightM = &hb;
+        b->querySurface({&g.latDeg, &g.lonDeg, 1, &t, false}, outB);
+        if (std::isnan(ha) || std::isnan(hb)) continue;
+        const double e = std::abs(ha - hb);
+        if (oa <= inner && ob <= inner) {
+          worstInner = std::max(worstInner, e), ++inners;
+          hs = std::max(hs, hsA);
+        } else {
+          worstMargin = std::max(worstMargin, e), ++margins;
+        }
+      }
+    std::printf("%s: over %d interior points max |h_new - h_old| %.4f m (Hs there <= %.2f m); over %d margin points "
+                "%.3f m\n",
+                sh.name, inners, worstInner, hs, margins, worstMargin);
+    EXPECT_GT(inners, 1000) << sh.name;
+  }
 }
 
 }  // namespace

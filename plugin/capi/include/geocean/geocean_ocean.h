@@ -53,7 +53,7 @@ extern "C" {
  * A host built against MAJOR.MINOR runs with a plugin of the same MAJOR and
  * a MINOR at least as high. */
 #define GEOCEAN_ABI_VERSION_MAJOR 1
-#define GEOCEAN_ABI_VERSION_MINOR 6
+#define GEOCEAN_ABI_VERSION_MINOR 7
 #define GEOCEAN_ABI_VERSION ((uint32_t)((GEOCEAN_ABI_VERSION_MAJOR << 16) | GEOCEAN_ABI_VERSION_MINOR))
 
 /* Enums that cross the boundary as values have int32_t as their C++
@@ -404,6 +404,15 @@ typedef struct geocean_view {
  * ABI 1.6 (first shipped inside a 1.5 build; a 1.5 plugin rejects the
  * bit with INVALID_ARGUMENT naming draw_flags). */
 #define GEOCEAN_DRAW_COMPLETE_TILES 4u
+/* The coast region (geocean_set_coast_region) follows the camera: at each
+ * geocean_update with this bit, when the camera's nadir is more than a
+ * quarter of the region's size from its centre (east or north), a region
+ * of the same size centred on the nadir is built on a worker thread; the
+ * old one serves queries and the draw until a later geocean_update
+ * publishes the finished one for both at once. The update never waits for
+ * the build. ABI 1.7 (a 1.6 plugin rejects the bit with INVALID_ARGUMENT
+ * naming draw_flags). */
+#define GEOCEAN_DRAW_FOLLOW_COAST 8u
 
 /* Fills *view with defaults: struct_size, a 1280x720 view 10,000 km above
  * (0 N, 0 E) looking down, 45 deg field of view, reversed-Z projection,
