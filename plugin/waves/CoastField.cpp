@@ -31,6 +31,71 @@ double smooth01(double x) {
   x = std::clamp(x, 0.0, 1.0);
   return x * x * (3.0 - 2.0 * x);
 }
+
+// The inflow edges as one path (the edge normal to x, then the one normal
+// to y, through their shared corner); along it, from each fixed node both
+// ways, S steps by the along-edge wave number sqrt(k^2 - k_n^2) (k as the
+// sweeps take it) with the sign of the travel along the edge. Each node
+// takes the value from its nearest fixed node on the path; runs stop at land.
+// qEdge (NaN elsewhere): the ray-tube spreading there by the same Snell
+// model, ln(cos(theta) / cos(theta0)) with theta from the along-edge axis
+// (the depth gradient's), so Kr = sqrt(cos theta0 / cos theta) at the edge.
+void inflowEdgePhase(int n, double cellM, double s0x, double s0y, double k0, const std::vector<double>& kLoc,
+                     const std::vector<double>& depth, const std::vector<char>& fixedNode, std::vector<double>& s,
+                     std::vector<double>& qEdge) {
+  struct Node {
+    int i, j;
+    bool alongY;  // the step to the next node runs along y (the x-normal edge)
+  };
+  std::vector<Node> path;
+  const int ie = s0x > 0 ? 0 : n - 1, je = s0y > 0 ? 0 : n - 1;
+  if (s0x != 0.0)  // the x-normal edge, from its far end to the corner
+    for (int m = 0; m < n; ++m) path.push_back({ie, je == 0 ? n - 1 - m : m, true});
+  if (s0y != 0.0)  // the y-normal edge, from the corner on (the corner once)
+    for (int m = s0x != 0.0 ? 1 : 0; m < n; ++m) path.push_back({ie == 0 ? m : n - 1 - m, je, false});
+  if (path.size() < 2) return;
+  auto at = [n](const Node& a) { return std::size_t(a.j) * n + a.i; };
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::size_t len = path.size();
+  std::vector<double> val[2] = {std::vector<double>(len, inf), std::vector<double>(len, inf)};
+  std::vector<std::size_t> dist[2] = {std::vector<std::size_t>(len, len), std::vector<std::size_t>(len, len)};
+  auto step = [&](const Node& a, const Node& b) {
+    // Along y on the x-normal edge (k_n = k0 s0x), else along x (k_n = k0 s0y).
+    const bool y = a.i == b.i;
+    // As the sweeps' update would step from a to b with the normal
+    // gradient k_n (their y-invariant state over straight contours): k at
+    // b, then k moved toward a by half the step's weight (along / k)^2.
+    const double kn = k0 * (y ? s0x : s0y), ka = kLoc[at(a)], kb = kLoc[at(b)];
+    const double along0 = std::sqrt(std::max(kb * kb - kn * kn, 0.0));
+    const double w = kb > 0.0 ? along0 * along0 / (kb * kb) : 0.0, km = kb + 0.5 * w * (ka - kb);
+    const double along = std::sqrt(std::max(km * km - kn * kn, 0.0));
+    const double d = y ? double(b.j - a.j) : double(b.i - a.i);
+    return (y ? (s0y > 0 ? 1.0 : s0y < 0 ? -1.0 : 0.0) : (s0x > 0 ? 1.0 : -1.0)) * along * d * cellM;
+  };
+  auto wet = [&](const Node& a) { return depth[at(a)] > 2.0 * kMinDepthM; };
+  for (int dir = 0; dir < 2; ++dir)
+    for (std::size_t m = 0; m < len; ++m) {
+      const std::size_t c = dir == 0 ? m : len - 1 - m;
+      if (fixedNode[at(path[c])]) {
+        val[dir][c] = s[at(path[c])], dist[dir][c] = 0;
+        continue;
+      }
+      if (m == 0 || !wet(path[c])) continue;
+      const std::size_t pr = dir == 0 ? c - 1 : c + 1;
+      if (!wet(path[pr]) || dist[dir][pr] >= len) continue;
+      val[dir][c] = val[dir][pr] + step(path[pr], path[c]);
+      dist[dir][c] = dist[dir][pr] + 1;
+    }
+  for (std::size_t c = 0; c < len; ++c) {
+    if (fixedNode[at(path[c])]) continue;
+    const int d = dist[0][c] <= dist[1][c] ? 0 : 1;
+    if (dist[d][c] >= len) continue;
+    s[at(path[c])] = val[d][c];
+    const double st = std::abs(path[c].alongY ? s0y : s0x), kn = k0 * (path[c].alongY ? s0x : s0y);
+    const double k = kLoc[at(path[c])], kt = std::sqrt(std::max(k * k - kn * kn, 0.0));
+    if (st > 1e-3 && kt > 0.0) qEdge[at(path[c])] = std::log(kt / (k * st));
+  }
+}
 }  // namespace
 
 CoastField CoastField::build(const WaveField& field, const Region& r,
@@ -90,6 +155,7 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
   std::vector<double> kLoc(depth.size()), s(depth.size()), q(depth.size()), sx(depth.size()), sy(depth.size()),
       div(depth.size());
   std::vector<char> fixedNode(depth.size());
+  std::vector<double> qEdge(depth.size());
   auto at = [n](int i, int j) { return std::size_t(j) * n + i; };
   kd::Kernel kernel{};
   // Travel directions at the centre (as the kernel's great circles there).
@@ -150,6 +216,16 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
         s[at(i, j)] = k0 * (s0x * x(i) + s0y * x(j));
         fixedNode[at(i, j)] = 1;
       }
+    // The other inflow nodes: the phase carried along the inflow edges from
+    // the nearest deep node by Snell's law across the edge (the wave number
+    // normal to the edge, k_ref s0 . n, conserved; the one along it
+    // sqrt(k^2 - k_n^2)), exact where the contours cross the edge at right
+    // angles, as a straight shore does for a region moved along it. So the
+    // phase no longer depends on where the edge lies (issue 15 item 1: a
+    // re-centred region agrees with the old one). Not fixed: the sweeps may
+    // still lower them (an earlier arrival through the interior); land ends a run.
+    std::fill(qEdge.begin(), qEdge.end(), std::numeric_limits<double>::quiet_NaN());
+    inflowEdgePhase(n, r.cellM, s0x, s0y, k0, kLoc, depth, fixedNode, s, qEdge);
     // Fast sweeping, four orderings, until nothing changes.
     for (int iter = 0; iter < 12; ++iter) {
       double change = 0.0;
@@ -212,7 +288,7 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
       }
     // Ray-tube spreading: s . grad q = div s, q = 0 on the inflow edges
     // (upwind Gauss-Seidel in the same four orderings).
-    std::fill(q.begin(), q.end(), 0.0);
+    for (std::size_t p = 0; p < q.size(); ++p) q[p] = std::isnan(qEdge[p]) ? 0.0 : qEdge[p];
     for (int iter = 0; iter < 4; ++iter)
       for (int sweep = 0; sweep < 4; ++sweep) {
         const bool fx = sweep & 1, fy = sweep & 2;
@@ -220,7 +296,7 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
           for (int ii = 0; ii < n; ++ii) {
             const int i = fx ? n - 1 - ii : ii, j = fy ? n - 1 - jj : jj;
             const std::size_t p = at(i, j);
-            if (fixedNode[p]) continue;
+            if (fixedNode[p] || !std::isnan(qEdge[p])) continue;
             const double ax = std::abs(sx[p]), ay = std::abs(sy[p]);
             const int iu = i - (sx[p] > 0 ? 1 : -1), ju = j - (sy[p] > 0 ? 1 : -1);
             const double qx = iu >= 0 && iu < n ? q[at(iu, j)] : 0.0;

@@ -626,6 +626,8 @@ TEST(OceanCoast, FollowedRegionsAgreeWhereTheyOverlap) {
     const double t = 41.5;
     double worstInner = 0.0, worstMargin = 0.0, hs = 0.0;
     int inners = 0, margins = 0;
+    double binWorst[3] = {0, 0, 0}, hsDiff = 0.0;
+    int binOver[3] = {0, 0, 0}, binCount[3] = {0, 0, 0};
     for (double dn = -half; dn <= half; dn += 50.0)
       for (double de = -half; de <= half; de += 50.0) {
         const geo::EnuFrame f = geo::enuFrame({0.3, 0.0, 0.0});
@@ -633,16 +635,26 @@ TEST(OceanCoast, FollowedRegionsAgreeWhereTheyOverlap) {
         const double oa = offset(fa, g), ob = offset(fb, g);
         if (oa > half || ob > half) continue;
         double ha = 0.0, hb = 0.0, hsA = 0.0;
+        float elev = 0.0f;
         ocean::SurfaceOutputs out;
         out.heightM = &ha;
+        out.elevationM = &elev;
         out.hsM = &hsA;
         a->querySurface({&g.latDeg, &g.lonDeg, 1, &t, false}, out);
         ocean::SurfaceOutputs outB;
+        double hsB = 0.0;
+        outB.hsM = &hsB;
         outB.heightM = &hb;
         b->querySurface({&g.latDeg, &g.lonDeg, 1, &t, false}, outB);
         if (std::isnan(ha) || std::isnan(hb)) continue;
         const double e = std::abs(ha - hb);
         if (oa <= inner && ob <= inner) {
+          const int bin = elev > -5.0f ? 0 : elev > -10.0f ? 1 : 2;
+          if (bin == 2 && e > binWorst[bin]) std::printf("   deep worse %.3f at e %.0f n %.0f depth %.1f\n", e, de, dn, -elev);
+          binWorst[bin] = std::max(binWorst[bin], e);
+          binOver[bin] += e > 0.01;
+          binCount[bin]++;
+          hsDiff = std::max(hsDiff, std::abs(hsA - hsB) / hsA);
           worstInner = std::max(worstInner, e), ++inners;
           hs = std::max(hs, hsA);
         } else {
@@ -652,6 +664,10 @@ TEST(OceanCoast, FollowedRegionsAgreeWhereTheyOverlap) {
     std::printf("%s: over %d interior points max |h_new - h_old| %.4f m (Hs there <= %.2f m); over %d margin points "
                 "%.3f m\n",
                 sh.name, inners, worstInner, hs, margins, worstMargin);
+    std::printf("  Hs differs by at most %.1f%%\n", 100.0 * hsDiff);
+    for (int k = 0; k < 3; ++k)
+      std::printf("  depth %s: %d points, max %.4f m, %d over 1 cm\n", k == 0 ? "< 5 m" : k == 1 ? "5 .. 10 m" : "> 10 m",
+                  binCount[k], binWorst[k], binOver[k]);
     EXPECT_GT(inners, 1000) << sh.name;
   }
 }
