@@ -51,12 +51,16 @@ std::string checkCoastRegion(const std::string& spec) {
   return {};
 }
 
+std::string checkCoastFollow(bool follow, const std::string& spec) {
+  return follow && spec.empty() ? "--coast-follow needs --coast-region LAT,LON[,SIZE_M] (where to start)" : "";
+}
+
 int applyCoastRegion(const char* command, const std::string& spec, host::PluginOceanLayer* ocean, bool follow) {
   auto bad = [&](const std::string& m) {
     std::fprintf(stderr, "geocean %s: %s\n", command, m.c_str());
     return kExitBadInput;
   };
-  if (follow && spec.empty()) return bad("--coast-follow needs --coast-region LAT,LON[,SIZE_M] (where to start)");
+  if (auto e = checkCoastFollow(follow, spec); !e.empty()) return bad(e);
   if (spec.empty()) return kExitOk;
   if (!ocean) return bad("--coast-region needs the ocean (not --no-ocean)");
   if (auto e = checkCoastRegion(spec); !e.empty()) return bad(e);

@@ -28,6 +28,8 @@ void addCoastOption(CLI::App& sub, std::string& spec, bool* follow = nullptr);
 std::string checkDrawnSea(const std::string& waves, double windMps, double windFromDeg);
 // LAT,LON[,SIZE_M] with SIZE_M 500 .. 40000 m (geocean_set_coast_region's range).
 std::string checkCoastRegion(const std::string& spec);
+// --coast-follow needs a --coast-region (where the region starts).
+std::string checkCoastFollow(bool follow, const std::string& spec);
 
 // Sets the region on `ocean` when spec is non-empty (ocean may be null only
 // then: --no-ocean with --coast-region is bad input). A failure is printed

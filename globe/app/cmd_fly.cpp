@@ -79,7 +79,7 @@ int runFly(const FlyArgs& a) {
     // The sea's options before the GL context (the plugin would say it by its field names).
     for (const std::string& e : {checkDrawnSea(a.waves, a.wind.windMps, a.windFromDeg),
                                  a.coastRegion.empty() ? std::string() : checkCoastRegion(a.coastRegion),
-                                 checkBoatOptions(a.boats)})
+                                 checkCoastFollow(a.coastFollow, a.coastRegion), checkBoatOptions(a.boats)})
       if (!e.empty()) throw render::ArgError(e);
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean fly: %s\n", e.what());

@@ -193,7 +193,7 @@ int runView(const ViewArgs& a) {
     // no window comes before the display's (--beaufort: resolveWind below).
     for (const std::string& e : {checkDrawnSea(a.waves, a.wind.windMps, a.windFromDeg),
                                  a.coastRegion.empty() ? std::string() : checkCoastRegion(a.coastRegion),
-                                 checkBoatOptions(a.boats)})
+                                 checkCoastFollow(a.coastFollow, a.coastRegion), checkBoatOptions(a.boats)})
       if (!e.empty()) throw render::ArgError(e);
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean view: %s\n", e.what());

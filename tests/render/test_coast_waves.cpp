@@ -597,12 +597,20 @@ TEST(OceanCoast, RegionFollowsAFlightAlongTheCoast) {
 
 // Issue 15 item 1, what the swap does to the waves: the region re-centred
 // 2.8 km away (a follow build, as the flight's) against the old one, the
-// query's heights at t over their overlap, on a 50 m lattice of water
+// query's heights at t over their overlap on a 50 m lattice of water
 // points. Inside both regions' interiors (not in either's 8-node margin)
-// the two fields integrate the same depth from deep inflow edges, so they
-// differ only by the eikonal's discretisation on two grids; in the margins
-// one of them blends its offset to 0 (the deep-water phase), which is
-// where the picture changes at the swap.
+// both fields integrate the same depth: the inflow edges carry the phase
+// by Snell's law as the sweeps' own straight-contour state, so moved along
+// the shore or offshore they differ only by the discretisation on two
+// grids. Bound: 5% of the sea's Hs, the model's own amplitude accuracy
+// (Coast.PlanarBeachSnellShoalingAndBreaking: H/H0 within 5% of Ks Kr);
+// measured 0.039 m along the shore, 0.0005 m offshore (Hs 2.13 m). Moved
+// onshore, water deeper than 10 m keeps the bound; in the last 10 m of
+// depth (within 500 m of the shore, where 50 m cells hold less than a
+// wavelength) the heights change by up to 0.23 m: measured and printed,
+// not bounded. In the margins one field blends its offset to 0 (the deep
+// phase): there the picture changes at the swap (up to 2.3 m, the full
+// wave), 2.5 km and more from the nadir (docs: plugin/waves/README.md).
 TEST(OceanCoast, FollowedRegionsAgreeWhereTheyOverlap) {
   struct Shift {
     const char* name;
@@ -650,7 +658,6 @@ TEST(OceanCoast, FollowedRegionsAgreeWhereTheyOverlap) {
         const double e = std::abs(ha - hb);
         if (oa <= inner && ob <= inner) {
           const int bin = elev > -5.0f ? 0 : elev > -10.0f ? 1 : 2;
-          if (bin == 2 && e > binWorst[bin]) std::printf("   deep worse %.3f at e %.0f n %.0f depth %.1f\n", e, de, dn, -elev);
           binWorst[bin] = std::max(binWorst[bin], e);
           binOver[bin] += e > 0.01;
           binCount[bin]++;
@@ -669,6 +676,12 @@ TEST(OceanCoast, FollowedRegionsAgreeWhereTheyOverlap) {
       std::printf("  depth %s: %d points, max %.4f m, %d over 1 cm\n", k == 0 ? "< 5 m" : k == 1 ? "5 .. 10 m" : "> 10 m",
                   binCount[k], binWorst[k], binOver[k]);
     EXPECT_GT(inners, 1000) << sh.name;
+    const double bound = 0.05 * a->significantWaveHeightM();
+    if (std::string(sh.name) == "onshore")
+      EXPECT_LT(binWorst[2], bound) << sh.name << ", deeper than 10 m";
+    else
+      EXPECT_LT(worstInner, bound) << sh.name;
+    EXPECT_LT(hsDiff, 0.05) << sh.name;  // the local Hs (Kr, shoaling) within the same 5%
   }
 }
 
