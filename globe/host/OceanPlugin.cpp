@@ -139,6 +139,7 @@ std::unique_ptr<OceanPlugin> OceanPlugin::load(const std::string& path, std::str
   }
   // ABI 1.6 adds no symbols: geocean_bodies_config's repulsion field and the
   // GEOCEAN_DRAW_COMPLETE_TILES flag (a 1.6 host gets no older plugin).
+  // ABI 1.7 adds no symbols: the GEOCEAN_DRAW_FOLLOW_COAST flag.
   return p;
 }
 
