@@ -467,12 +467,20 @@ namespace {
 struct Shelf {
   ocean::Ocean o;
   waves::CoastField::Region region;
-  Shelf(double latDeg, double lonDeg) {
-    o.setRasters(shelfMask(), shelfElevation());
+  // dutch: the bundled world off the Dutch coast (17-30 m deep: no deep
+  // inflow), the sea of ViewWindow.CoastRegionMakesTheViewedSeaTheQueriedOne.
+  Shelf(double latDeg, double lonDeg, bool dutch = false) {
     waves::SeaState sea;
-    sea.windSpeedMps = 10.0;
-    sea.windFromDeg = 240.0;
-    sea.anchorLatDeg = 0.3;
+    if (dutch) {
+      o.setDefaultWorld(ocean::Ocean::defaultWorldDir());
+      sea.windSpeedMps = 12.0;
+      sea.windFromDeg = 270.0;
+    } else {
+      o.setRasters(shelfMask(), shelfElevation());
+      sea.windSpeedMps = 10.0;
+      sea.windFromDeg = 240.0;
+      sea.anchorLatDeg = 0.3;
+    }
     o.setSeaState(waves::Model::Gerstner, sea);
     region.latDeg = latDeg, region.lonDeg = lonDeg, region.nodes = 201, region.cellM = 50.0;
     o.setCoastRegion(region);
@@ -611,19 +619,25 @@ TEST(OceanCoast, RegionFollowsAFlightAlongTheCoast) {
 // not bounded. In the margins one field blends its offset to 0 (the deep
 // phase): there the picture changes at the swap (up to 2.3 m, the full
 // wave), 2.5 km and more from the nadir (docs: plugin/waves/README.md).
+// Off the Dutch coast (the bundled world, 17-30 m deep: no inflow node is
+// deep) the two fields' phases are unrelated: measured and printed only,
+// the limit the README states.
 TEST(OceanCoast, FollowedRegionsAgreeWhereTheyOverlap) {
   struct Shift {
     const char* name;
-    double dLatDeg, dLonDeg;
+    double latDeg, lonDeg, dLatDeg, dLonDeg;
+    bool dutch;
   };
-  for (const Shift& sh : {Shift{"along the shore", 0.025, 0.0}, Shift{"offshore", 0.0, -0.025},
-                          Shift{"onshore", 0.0, 0.025}}) {
-    Shelf shelf(0.3, 0.0);
+  for (const Shift& sh : {Shift{"along the shore", 0.3, 0.0, 0.025, 0.0, false},
+                          Shift{"offshore", 0.3, 0.0, 0.0, -0.025, false},
+                          Shift{"onshore", 0.3, 0.0, 0.0, 0.025, false},
+                          Shift{"along the Dutch coast", 52.6, 4.45, 0.025, 0.0, true}}) {
+    Shelf shelf(sh.latDeg, sh.lonDeg, sh.dutch);
     ocean::Ocean& o = shelf.o;
     const auto a = o.current();
-    ASSERT_EQ(o.followCoastRegion(0.3 + sh.dLatDeg, sh.dLonDeg), ocean::Ocean::CoastFollow::Started);
+    ASSERT_EQ(o.followCoastRegion(sh.latDeg + sh.dLatDeg, sh.lonDeg + sh.dLonDeg), ocean::Ocean::CoastFollow::Started);
     o.waitForCoastBuild();
-    ASSERT_EQ(o.followCoastRegion(0.3 + sh.dLatDeg, sh.dLonDeg), ocean::Ocean::CoastFollow::Swapped);
+    ASSERT_EQ(o.followCoastRegion(sh.latDeg + sh.dLatDeg, sh.lonDeg + sh.dLonDeg), ocean::Ocean::CoastFollow::Swapped);
     const auto b = o.current();
     const waves::CoastField &fa = *a->waves->coastField(), &fb = *b->waves->coastField();
     const double half = 0.5 * 200 * 50.0, inner = half - 8 * 50.0;
@@ -638,7 +652,7 @@ TEST(OceanCoast, FollowedRegionsAgreeWhereTheyOverlap) {
     int binOver[3] = {0, 0, 0}, binCount[3] = {0, 0, 0};
     for (double dn = -half; dn <= half; dn += 50.0)
       for (double de = -half; de <= half; de += 50.0) {
-        const geo::EnuFrame f = geo::enuFrame({0.3, 0.0, 0.0});
+        const geo::EnuFrame f = geo::enuFrame({sh.latDeg, sh.lonDeg, 0.0});
         const geo::Geodetic g = geo::fromEcef(f.originEcef + f.east * de + f.north * dn);
         const double oa = offset(fa, g), ob = offset(fb, g);
         if (oa > half || ob > half) continue;
@@ -677,6 +691,7 @@ TEST(OceanCoast, FollowedRegionsAgreeWhereTheyOverlap) {
                   binCount[k], binWorst[k], binOver[k]);
     EXPECT_GT(inners, 1000) << sh.name;
     const double bound = 0.05 * a->significantWaveHeightM();
+    if (sh.dutch) continue;  // measured only (plugin/waves/README.md: no deep inflow, the limit)
     if (std::string(sh.name) == "onshore")
       EXPECT_LT(binWorst[2], bound) << sh.name << ", deeper than 10 m";
     else
