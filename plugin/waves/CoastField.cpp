@@ -34,18 +34,25 @@ double smooth01(double x) {
 
 // The inflow edges as one path (the edge normal to x, then the one normal
 // to y, through their shared corner); along it, from each fixed node both
-// ways, S steps by the along-edge wave number sqrt(k^2 - k_n^2) (k as the
-// sweeps take it) with the sign of the travel along the edge. Each node
-// takes the value from its nearest fixed node on the path; runs stop at land.
-// qEdge (NaN elsewhere): the ray-tube spreading there by the same Snell
-// model, ln(cos(theta) / cos(theta0)) with theta from the along-edge axis
-// (the depth gradient's), so Kr = sqrt(cos theta0 / cos theta) at the edge.
+// ways, S steps by the local wave vector's component along the edge. The
+// wave vector by Snell's law over the local contours: the depth gradient g
+// (central differences over +-3 nodes; where the bottom is flat, the edge's
+// normal: contours along the edge), the component along the contour
+// k_c = k_ref s0 . c conserved from deep water, the rest k_g =
+// sqrt(k^2 - k_c^2) along g with the sign of s0 . g. Contours across the
+// edge (a region moved along a straight shore) and along it (an offshore
+// edge: then the plane wave's own k_ref s0 . t) are both exact; k is taken
+// as the sweeps take it over a step (at b, moved toward a by half the
+// step's weight), so their straight-contour state continues it. Each node
+// takes the value from its nearest fixed node on the path; runs stop at
+// land. qEdge (NaN elsewhere): the ray-tube spreading of the same model,
+// ln(cos(theta) / cos(theta0)), theta from g: Kr = sqrt(cos theta0 / cos theta).
 void inflowEdgePhase(int n, double cellM, double s0x, double s0y, double k0, const std::vector<double>& kLoc,
                      const std::vector<double>& depth, const std::vector<char>& fixedNode, std::vector<double>& s,
                      std::vector<double>& qEdge) {
   struct Node {
     int i, j;
-    bool alongY;  // the step to the next node runs along y (the x-normal edge)
+    bool alongY;  // on the x-normal edge (the path runs along y there)
   };
   std::vector<Node> path;
   const int ie = s0x > 0 ? 0 : n - 1, je = s0y > 0 ? 0 : n - 1;
@@ -57,20 +64,33 @@ void inflowEdgePhase(int n, double cellM, double s0x, double s0y, double k0, con
   auto at = [n](const Node& a) { return std::size_t(a.j) * n + a.i; };
   const double inf = std::numeric_limits<double>::infinity();
   const std::size_t len = path.size();
+  // Per path node: the unit depth gradient g (or the edge normal).
+  std::vector<glm::dvec2> grad(len);
+  for (std::size_t c = 0; c < len; ++c) {
+    const int i = path[c].i, j = path[c].j;
+    const int i0 = std::max(i - 3, 0), i1 = std::min(i + 3, n - 1), j0 = std::max(j - 3, 0), j1 = std::min(j + 3, n - 1);
+    const glm::dvec2 g((depth[std::size_t(j) * n + i1] - depth[std::size_t(j) * n + i0]) / ((i1 - i0) * cellM),
+                       (depth[std::size_t(j1) * n + i] - depth[std::size_t(j0) * n + i]) / ((j1 - j0) * cellM));
+    // Flatter than 1:10000: no contour to refract over; the edge's normal.
+    grad[c] = glm::length(g) > 1e-4 ? glm::normalize(g) : (path[c].alongY ? glm::dvec2(1.0, 0.0) : glm::dvec2(0.0, 1.0));
+  }
+  const glm::dvec2 s0(s0x, s0y);
+  // The wave vector at path node c with wave number k.
+  auto wave = [&](std::size_t c, double k) {
+    const glm::dvec2 g = grad[c], cn(-g.y, g.x);
+    const double kc = k0 * glm::dot(s0, cn), sg = glm::dot(s0, g) >= 0.0 ? 1.0 : -1.0;
+    return kc * cn + sg * std::sqrt(std::max(k * k - kc * kc, 0.0)) * g;
+  };
   std::vector<double> val[2] = {std::vector<double>(len, inf), std::vector<double>(len, inf)};
   std::vector<std::size_t> dist[2] = {std::vector<std::size_t>(len, len), std::vector<std::size_t>(len, len)};
-  auto step = [&](const Node& a, const Node& b) {
-    // Along y on the x-normal edge (k_n = k0 s0x), else along x (k_n = k0 s0y).
-    const bool y = a.i == b.i;
-    // As the sweeps' update would step from a to b with the normal
-    // gradient k_n (their y-invariant state over straight contours): k at
-    // b, then k moved toward a by half the step's weight (along / k)^2.
-    const double kn = k0 * (y ? s0x : s0y), ka = kLoc[at(a)], kb = kLoc[at(b)];
-    const double along0 = std::sqrt(std::max(kb * kb - kn * kn, 0.0));
+  auto step = [&](std::size_t ca, std::size_t cb) {
+    const Node &a = path[ca], &b = path[cb];
+    const glm::dvec2 d(double(b.i - a.i) * cellM, double(b.j - a.j) * cellM);
+    const double ka = kLoc[at(a)], kb = kLoc[at(b)];
+    const glm::dvec2 t = glm::normalize(d);
+    const double along0 = glm::dot(wave(cb, kb), t);
     const double w = kb > 0.0 ? along0 * along0 / (kb * kb) : 0.0, km = kb + 0.5 * w * (ka - kb);
-    const double along = std::sqrt(std::max(km * km - kn * kn, 0.0));
-    const double d = y ? double(b.j - a.j) : double(b.i - a.i);
-    return (y ? (s0y > 0 ? 1.0 : s0y < 0 ? -1.0 : 0.0) : (s0x > 0 ? 1.0 : -1.0)) * along * d * cellM;
+    return glm::dot(wave(cb, km), d);
   };
   auto wet = [&](const Node& a) { return depth[at(a)] > 2.0 * kMinDepthM; };
   for (int dir = 0; dir < 2; ++dir)
@@ -83,7 +103,7 @@ void inflowEdgePhase(int n, double cellM, double s0x, double s0y, double k0, con
       if (m == 0 || !wet(path[c])) continue;
       const std::size_t pr = dir == 0 ? c - 1 : c + 1;
       if (!wet(path[pr]) || dist[dir][pr] >= len) continue;
-      val[dir][c] = val[dir][pr] + step(path[pr], path[c]);
+      val[dir][c] = val[dir][pr] + step(pr, c);
       dist[dir][c] = dist[dir][pr] + 1;
     }
   for (std::size_t c = 0; c < len; ++c) {
@@ -91,9 +111,9 @@ void inflowEdgePhase(int n, double cellM, double s0x, double s0y, double k0, con
     const int d = dist[0][c] <= dist[1][c] ? 0 : 1;
     if (dist[d][c] >= len) continue;
     s[at(path[c])] = val[d][c];
-    const double st = std::abs(path[c].alongY ? s0y : s0x), kn = k0 * (path[c].alongY ? s0x : s0y);
-    const double k = kLoc[at(path[c])], kt = std::sqrt(std::max(k * k - kn * kn, 0.0));
-    if (st > 1e-3 && kt > 0.0) qEdge[at(path[c])] = std::log(kt / (k * st));
+    const double k = kLoc[at(path[c])], cos0 = std::abs(glm::dot(s0, grad[c]));
+    const double kg = std::abs(glm::dot(wave(c, k), grad[c]));
+    if (cos0 > 1e-3 && kg > 0.0) qEdge[at(path[c])] = std::log(kg / (k * cos0));
   }
 }
 }  // namespace
