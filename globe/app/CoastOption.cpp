@@ -13,11 +13,15 @@ namespace geocean::app {
 const CLI::Validator nonEmpty(
     [](std::string& v) { return v.empty() ? std::string("the value is empty") : std::string(); }, "NONEMPTY");
 
-void addCoastOption(CLI::App& sub, std::string& spec) {
+void addCoastOption(CLI::App& sub, std::string& spec, bool* follow) {
   sub.add_option("--coast-region", spec,
                  "LAT,LON[,SIZE_M]: near-shore region (default 10000 m square, 500 .. 40000) where gerstner "
                  "waves take the local depth's wavelength and refract (needs --waves gerstner)")
       ->check(nonEmpty);
+  if (follow)
+    sub.add_flag("--coast-follow", *follow,
+                 "the --coast-region follows the camera: rebuilt around its nadir (on a worker thread) when the "
+                 "nadir leaves the region's middle half");
 }
 
 namespace {
@@ -47,12 +51,17 @@ std::string checkCoastRegion(const std::string& spec) {
   return {};
 }
 
-int applyCoastRegion(const char* command, const std::string& spec, const host::PluginOceanLayer* ocean) {
-  if (spec.empty()) return kExitOk;
+std::string checkCoastFollow(bool follow, const std::string& spec) {
+  return follow && spec.empty() ? "--coast-follow needs --coast-region LAT,LON[,SIZE_M] (where to start)" : "";
+}
+
+int applyCoastRegion(const char* command, const std::string& spec, host::PluginOceanLayer* ocean, bool follow) {
   auto bad = [&](const std::string& m) {
     std::fprintf(stderr, "geocean %s: %s\n", command, m.c_str());
     return kExitBadInput;
   };
+  if (auto e = checkCoastFollow(follow, spec); !e.empty()) return bad(e);
+  if (spec.empty()) return kExitOk;
   if (!ocean) return bad("--coast-region needs the ocean (not --no-ocean)");
   if (auto e = checkCoastRegion(spec); !e.empty()) return bad(e);
   std::vector<double> v;
@@ -62,6 +71,9 @@ int applyCoastRegion(const char* command, const std::string& spec, const host::P
   if (!api.setCoastRegion) return bad("--coast-region needs an ocean plugin of ABI 1.5 or later");
   if (api.setCoastRegion(ocean->ocean(), v[0], v[1], parts == 3 ? v[2] : 10000.0) != GEOCEAN_OK)
     return bad("--coast-region '" + spec + "': " + api.lastError());
+  if (follow && (ocean->plugin().pluginAbiVersion() & 0xffffu) < 7)
+    return bad("--coast-follow needs an ocean plugin of ABI 1.7 or later");
+  ocean->setFollowCoast(follow);
   return kExitOk;
 }
 

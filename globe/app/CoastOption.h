@@ -17,7 +17,8 @@ namespace geocean::app {
 extern const CLI::Validator nonEmpty;
 
 // Adds the option; `spec` stays empty without it (given empty: bad input).
-void addCoastOption(CLI::App& sub, std::string& spec);
+// With `follow`, also `--coast-follow` (the region follows the camera).
+void addCoastOption(CLI::App& sub, std::string& spec, bool* follow = nullptr);
 
 // The drawing commands' sea options checked before any window or GL
 // context (so a bad one exits 2 with or without a display): `--waves` one of
@@ -27,11 +28,15 @@ void addCoastOption(CLI::App& sub, std::string& spec);
 std::string checkDrawnSea(const std::string& waves, double windMps, double windFromDeg);
 // LAT,LON[,SIZE_M] with SIZE_M 500 .. 40000 m (geocean_set_coast_region's range).
 std::string checkCoastRegion(const std::string& spec);
+// --coast-follow needs a --coast-region (where the region starts).
+std::string checkCoastFollow(bool follow, const std::string& spec);
 
 // Sets the region on `ocean` when spec is non-empty (ocean may be null only
 // then: --no-ocean with --coast-region is bad input). A failure is printed
 // as "geocean <command>: ..." naming the option and value; returns the exit
-// code (kExitOk, kExitBadInput).
-int applyCoastRegion(const char* command, const std::string& spec, const host::PluginOceanLayer* ocean);
+// code (kExitOk, kExitBadInput). `follow` (--coast-follow, needs the
+// region): each draw re-centres it on the camera (GEOCEAN_DRAW_FOLLOW_COAST).
+int applyCoastRegion(const char* command, const std::string& spec, host::PluginOceanLayer* ocean,
+                     bool follow = false);
 
 }  // namespace geocean::app

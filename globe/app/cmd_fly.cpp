@@ -43,6 +43,7 @@ struct FlyArgs {
   int reflectionEvery = 1;
   std::string grid = "direct";
   std::string coastRegion;
+  bool coastFollow = false;
   bool reference = false;
   bool hud = false;
   LayerOptions layers;
@@ -81,7 +82,7 @@ int runFly(const FlyArgs& a) {
     // The sea's options before the GL context (the plugin would say it by its field names).
     for (const std::string& e : {checkDrawnSea(a.waves, a.wind.windMps, a.windFromDeg),
                                  a.coastRegion.empty() ? std::string() : checkCoastRegion(a.coastRegion),
-                                 checkBoatOptions(a.boats)})
+                                 checkCoastFollow(a.coastFollow, a.coastRegion), checkBoatOptions(a.boats)})
       if (!e.empty()) throw render::ArgError(e);
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean fly: %s\n", e.what());
@@ -124,7 +125,7 @@ int runFly(const FlyArgs& a) {
     }
   }
   if (ocean) ocean->setGridIspg(a.grid == "ispg");
-  if (const int rc = applyCoastRegion("fly", a.coastRegion, ocean.get()); rc != kExitOk) return rc;
+  if (const int rc = applyCoastRegion("fly", a.coastRegion, ocean.get(), a.coastFollow); rc != kExitOk) return rc;
   std::shared_ptr<host::PluginBoats> boats;
   if (const int rc = addBoats("fly", a.boats, *s.renderer, ocean, plan.toLatDeg, plan.toLonDeg, boats); rc != kExitOk)
     return rc;
@@ -228,7 +229,7 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                       addReflectionEveryOption(sub, a->reflectionEvery);
                       addGridOption(sub, a->grid);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
-                      addCoastOption(sub, a->coastRegion);
+                      addCoastOption(sub, a->coastRegion, &a->coastFollow);
                       addLayerOptions(sub, a->layers);
                       addImageryOption(sub, a->layers);
                       addBoatOptions(sub, a->boats);

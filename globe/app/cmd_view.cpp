@@ -57,6 +57,7 @@ struct ViewArgs {
   int reflectionEvery = 1;
   std::string grid = "direct";
   std::string coastRegion;  // LAT,LON[,SIZE_M] (CoastOption.h)
+  bool coastFollow = false;
 };
 
 // Height of the drawn sea surface above the ellipsoid exactly under the
@@ -195,7 +196,7 @@ int runView(const ViewArgs& a) {
     // no window comes before the display's (--beaufort: resolveWind below).
     for (const std::string& e : {checkDrawnSea(a.waves, a.wind.windMps, a.windFromDeg),
                                  a.coastRegion.empty() ? std::string() : checkCoastRegion(a.coastRegion),
-                                 checkBoatOptions(a.boats)})
+                                 checkCoastFollow(a.coastFollow, a.coastRegion), checkBoatOptions(a.boats)})
       if (!e.empty()) throw render::ArgError(e);
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean view: %s\n", e.what());
@@ -260,7 +261,7 @@ int runView(const ViewArgs& a) {
     }
     if (rc == kExitOk) {
       if (ocean) ocean->setGridIspg(a.grid == "ispg");
-      if (const int crc = applyCoastRegion("view", a.coastRegion, ocean.get()); crc != kExitOk) {
+      if (const int crc = applyCoastRegion("view", a.coastRegion, ocean.get(), a.coastFollow); crc != kExitOk) {
         rc = crc;
         glfwSetWindowShouldClose(win, GLFW_TRUE);
       }
@@ -462,7 +463,7 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                       addReflectionEveryOption(sub, a->reflectionEvery);
                       addGridOption(sub, a->grid);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees (default 270)");
-                      addCoastOption(sub, a->coastRegion);
+                      addCoastOption(sub, a->coastRegion, &a->coastFollow);
                       addLayerOptions(sub, a->layers);
                       addImageryOption(sub, a->layers);
                       addBoatOptions(sub, a->boats);

@@ -59,7 +59,8 @@ void PluginOceanLayer::draw(const camera::Camera& cam, const camera::Lighting& l
   if (a.viewInit(&defaults) != GEOCEAN_OK) throw std::runtime_error(a.lastError());
   geocean_view v = hostView(defaults, cam, light);
   v.draw_flags = (bare ? GEOCEAN_DRAW_REFERENCE : 0u) | (inputs.refraction ? 0u : GEOCEAN_DRAW_NO_REFRACTION) |
-                 (completeTiles_ ? GEOCEAN_DRAW_COMPLETE_TILES : 0u) | (gridIspg_ ? GEOCEAN_DRAW_GRID_ISPG : 0u);
+                 (completeTiles_ ? GEOCEAN_DRAW_COMPLETE_TILES : 0u) | (gridIspg_ ? GEOCEAN_DRAW_GRID_ISPG : 0u) |
+                 (followCoast_ ? GEOCEAN_DRAW_FOLLOW_COAST : 0u);
   if (a.setLayerInputs && info_.wants) {
     geocean_layer_inputs in{};
     in.struct_size = sizeof in;

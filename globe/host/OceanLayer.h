@@ -40,6 +40,8 @@ class PluginOceanLayer : public render::Layer {
   void setCompleteTiles(bool on) { completeTiles_ = on; }
   // --grid ispg: the plugin's grid from paper 000's ISPG (GEOCEAN_DRAW_GRID_ISPG).
   void setGridIspg(bool on) { gridIspg_ = on; }
+  // The coast region follows the camera (GEOCEAN_DRAW_FOLLOW_COAST, ABI 1.7).
+  void setFollowCoast(bool on) { followCoast_ = on; }
   const OceanPlugin& plugin() const { return *plugin_; }
 
  private:
@@ -48,6 +50,7 @@ class PluginOceanLayer : public render::Layer {
   render::LayerInfo info_;  // asked once: it does not change with the ocean's state
   bool completeTiles_ = false;
   bool gridIspg_ = false;
+  bool followCoast_ = false;
 };
 
 // The host view for a camera: the same numbers the renderer draws its

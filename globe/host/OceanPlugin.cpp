@@ -138,8 +138,8 @@ std::unique_ptr<OceanPlugin> OceanPlugin::load(const std::string& path, std::str
     if (!ok15) return nullptr;
   }
   // ABI 1.6 and 1.7 add no symbols: geocean_bodies_config's repulsion field,
-  // the GEOCEAN_DRAW_COMPLETE_TILES and GEOCEAN_DRAW_GRID_ISPG flags (a 1.7
-  // host gets no older plugin).
+  // the GEOCEAN_DRAW_COMPLETE_TILES, GEOCEAN_DRAW_FOLLOW_COAST and
+  // GEOCEAN_DRAW_GRID_ISPG flags (a 1.7 host gets no older plugin).
   return p;
 }
 

@@ -203,6 +203,7 @@ struct FrameView {
   bool refraction = true;
   bool completeTiles = false;
   bool ispg = false;
+  bool followCoast = false;
 };
 
 FrameView frameViewOf(const geocean_view* v) {
@@ -250,13 +251,14 @@ FrameView frameViewOf(const geocean_view* v) {
                                                  up, proj, w, h)};
   f.light.sunEcef = glm::normalize(sun);
   f.light.timeS = v->time_s;
-  if (v->draw_flags &
-      ~(GEOCEAN_DRAW_REFERENCE | GEOCEAN_DRAW_NO_REFRACTION | GEOCEAN_DRAW_COMPLETE_TILES | GEOCEAN_DRAW_GRID_ISPG))
+  if (v->draw_flags & ~(GEOCEAN_DRAW_REFERENCE | GEOCEAN_DRAW_NO_REFRACTION | GEOCEAN_DRAW_COMPLETE_TILES |
+                        GEOCEAN_DRAW_FOLLOW_COAST | GEOCEAN_DRAW_GRID_ISPG))
     bad("draw_flags " + std::to_string(v->draw_flags) + " has bits that are not GEOCEAN_DRAW_*");
   f.reference = (v->draw_flags & GEOCEAN_DRAW_REFERENCE) != 0;
   f.refraction = (v->draw_flags & GEOCEAN_DRAW_NO_REFRACTION) == 0;
   f.completeTiles = (v->draw_flags & GEOCEAN_DRAW_COMPLETE_TILES) != 0;
   f.ispg = (v->draw_flags & GEOCEAN_DRAW_GRID_ISPG) != 0;
+  f.followCoast = (v->draw_flags & GEOCEAN_DRAW_FOLLOW_COAST) != 0;
   return f;
 }
 
@@ -354,7 +356,10 @@ GEOCEAN_API geocean_status geocean_update(geocean_ocean* ocean, const geocean_vi
   return guard("geocean_update", [&] {
     requireNonNull(ocean, "ocean");
     requireNonNull(view, "view");
-    drawState(ocean).view = frameViewOf(view);
+    DrawState& ds = drawState(ocean);
+    ds.view = frameViewOf(view);
+    // At the frame's start, so its queries and its draw see one region.
+    if (ds.view->followCoast) ocean->core.followCoastRegion(ds.view->cam.latDeg(), ds.view->cam.lonDeg());
   });
 }
 
@@ -389,9 +394,10 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
     try {
       if (!ds.gl) ds.gl = std::make_unique<GlResources>(ctx);
       GlResources& gl = *ds.gl;
-      if (!gl.renderer || gl.builtFrom->landSea != snap->landSea || gl.builtFrom->mask != snap->mask ||
-          gl.builtFrom->elevation != snap->elevation ||
-          gl.builtFrom->waves != snap->waves) {
+      const bool sameWorld = gl.renderer && gl.builtFrom->landSea == snap->landSea &&
+                             gl.builtFrom->mask == snap->mask && gl.builtFrom->elevation == snap->elevation;
+      // A followed coast region's swap changes only the coast texels.
+      if (!sameWorld || (gl.builtFrom->waves != snap->waves && !gl.renderer->swapCoast(snap->waves))) {
         ds.world.of(*snap);
         geocean::ocean_render::OceanOptions o;
         o.model = snap->model;

@@ -201,6 +201,10 @@ void Snapshot::queryRange(const Points& p, std::size_t begin, std::size_t end, c
 
 Ocean::Ocean() : snapshot_(std::make_shared<Snapshot>()) {}
 
+Ocean::~Ocean() {
+  if (worker_.joinable()) worker_.join();
+}
+
 std::string Ocean::defaultWorldDir(const std::function<std::string()>& installedDir) {
   if (const char* env = std::getenv("GEOCEAN_DATA"); env && *env) return env;
   if (installedDir)
@@ -328,6 +332,29 @@ std::shared_ptr<const Snapshot> Ocean::current() const {
   return snapshot_;
 }
 
+namespace {
+// The coast field from a snapshot's water depth over a region (as the
+// query's: -elevation where the mask says ocean, 0 on land). Throws
+// std::invalid_argument naming a bad region.
+std::shared_ptr<const waves::CoastField> buildCoastField(const Snapshot& s, const waves::CoastField::Region& r) {
+  const auto ls = s.landSea;
+  const geo::EnuFrame f = geo::enuFrame({r.latDeg, r.lonDeg, 0.0});
+  auto depthAt = [&](double e, double n) {
+    const geo::Geodetic g = geo::fromEcef(f.originEcef + f.east * e + f.north * n);
+    Surface c;
+    ls->classifyBatch(&g.latDeg, &g.lonDeg, 1, &c);
+    if (c != Surface::Ocean) return 0.0;
+    float el = std::numeric_limits<float>::quiet_NaN();
+    ls->elevationBatch(&g.latDeg, &g.lonDeg, 1, &el);
+    return std::isnan(el) ? waves::kDeepWaterM : std::max(-double(el), 1.0);
+  };
+  std::string error;
+  auto coast = std::make_shared<const waves::CoastField>(waves::CoastField::build(*s.waves, r, depthAt, error));
+  if (coast->empty()) throw std::invalid_argument(error);
+  return coast;
+}
+}  // namespace
+
 void Ocean::update(const std::function<void(Snapshot&)>& edit) {
   std::lock_guard editLock(editMutex_);
   const std::shared_ptr<const Snapshot> prev = current();
@@ -370,26 +397,8 @@ void Ocean::update(const std::function<void(Snapshot&)>& edit) {
                                                       next->coastRegion->breaking == prev->coastRegion->breaking)));
   if (next->waves && next->model == waves::Model::Gerstner &&
       (rastersChanged || coastChanged || next->waves != prev->waves)) {
-    // The coast field from this snapshot's water depth (as the query's:
-    // -elevation where the mask says ocean, 0 on land).
     std::shared_ptr<const waves::CoastField> coast;
-    if (next->coastRegion && next->landSea) {
-      const auto ls = next->landSea;
-      const waves::CoastField::Region r = *next->coastRegion;
-      const geo::EnuFrame f = geo::enuFrame({r.latDeg, r.lonDeg, 0.0});
-      auto depthAt = [&](double e, double n) {
-        const geo::Geodetic g = geo::fromEcef(f.originEcef + f.east * e + f.north * n);
-        Surface c;
-        ls->classifyBatch(&g.latDeg, &g.lonDeg, 1, &c);
-        if (c != Surface::Ocean) return 0.0;
-        float el = std::numeric_limits<float>::quiet_NaN();
-        ls->elevationBatch(&g.latDeg, &g.lonDeg, 1, &el);
-        return std::isnan(el) ? waves::kDeepWaterM : std::max(-double(el), 1.0);
-      };
-      std::string error;
-      coast = std::make_shared<const waves::CoastField>(waves::CoastField::build(*next->waves, r, depthAt, error));
-      if (coast->empty()) throw std::invalid_argument(error);
-    }
+    if (next->coastRegion && next->landSea) coast = buildCoastField(*next, *next->coastRegion);
     if (coast || next->waves->coastField()) {
       auto copy = std::make_shared<waves::WaveField>(*next->waves);
       copy->setCoast(coast);
@@ -400,6 +409,78 @@ void Ocean::update(const std::function<void(Snapshot&)>& edit) {
     next->sea = next->waves ? std::make_shared<const waves::SeaQuery>(*next->waves, next->landSea) : nullptr;
   std::lock_guard lock(mutex_);
   snapshot_ = std::move(next);
+}
+
+Ocean::CoastFollow Ocean::followCoastRegion(double nadirLatDeg, double nadirLonDeg) {
+  std::unique_lock follow(followMutex_);
+  bool swapped = false;
+  if (ready_) {
+    // Publish the finished build if nothing changed since it started (the
+    // lock order is followMutex_ then editMutex_, as nowhere else takes both).
+    std::lock_guard edit(editMutex_);
+    if (current() == readyFrom_) {
+      std::lock_guard lock(mutex_);
+      snapshot_ = std::move(ready_);
+      ++swaps_;
+      swapped = true;
+    }
+    ready_.reset();
+    readyFrom_.reset();
+  }
+  if (building_) return CoastFollow::Building;
+  const std::shared_ptr<const Snapshot> snap = current();
+  if (!snap->coastRegion || !snap->waves || snap->model != waves::Model::Gerstner || !snap->landSea ||
+      !snap->waves->coastField())
+    return CoastFollow::Off;
+  // The nadir in the region's tangent plane (the grid's own frame).
+  const waves::CoastField& field = *snap->waves->coastField();
+  const glm::dvec3 p = geo::toEcef({nadirLatDeg, nadirLonDeg, 0.0}) - field.centreEcef();
+  const waves::CoastField::Region region = *snap->coastRegion;
+  const double quarter = 0.25 * region.cellM * (region.nodes - 1);
+  if (std::abs(glm::dot(p, field.east())) <= quarter && std::abs(glm::dot(p, field.north())) <= quarter)
+    return swapped ? CoastFollow::Swapped : CoastFollow::Inside;
+  if (worker_.joinable()) worker_.join();  // finished: building_ was false
+  waves::CoastField::Region next = region;
+  next.latDeg = nadirLatDeg;
+  next.lonDeg = nadirLonDeg;
+  building_ = true;
+  worker_ = std::thread([this, snap, next, hook = buildHook_] {
+    std::shared_ptr<const Snapshot> built;
+    try {
+      if (hook) hook();
+      auto s = std::make_shared<Snapshot>(*snap);
+      s->coastRegion = next;
+      auto copy = std::make_shared<waves::WaveField>(*snap->waves);
+      copy->setCoast(buildCoastField(*snap, next));
+      s->waves = std::move(copy);
+      s->sea = std::make_shared<const waves::SeaQuery>(*s->waves, s->landSea);
+      built = std::move(s);
+    } catch (const std::exception&) {
+      // The nadir's region is as valid as the old one (same size, finite
+      // place); a failure (out of memory) leaves the old region in use.
+    }
+    std::lock_guard lock(followMutex_);
+    ready_ = std::move(built);
+    readyFrom_ = ready_ ? snap : nullptr;
+    building_ = false;
+    followDone_.notify_all();
+  });
+  return swapped ? CoastFollow::Swapped : CoastFollow::Started;
+}
+
+void Ocean::waitForCoastBuild() {
+  std::unique_lock lock(followMutex_);
+  followDone_.wait(lock, [&] { return !building_; });
+}
+
+int Ocean::coastSwaps() const {
+  std::lock_guard lock(followMutex_);
+  return swaps_;
+}
+
+void Ocean::setCoastBuildHook(std::function<void()> hook) {
+  std::lock_guard lock(followMutex_);
+  buildHook_ = std::move(hook);
 }
 
 }  // namespace geocean::ocean

@@ -25,8 +25,10 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <condition_variable>
 #include <mutex>
 #include <optional>
+#include <thread>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -138,6 +140,9 @@ struct Snapshot {
 class Ocean {
  public:
   Ocean();
+  ~Ocean();  // waits for a coast build in flight (followCoastRegion)
+  Ocean(const Ocean&) = delete;
+  Ocean& operator=(const Ocean&) = delete;
 
   // The default world's directory: $GEOCEAN_DATA if set, else what
   // `installedDir` returns if it is non-empty (the plugin looks beside its
@@ -188,6 +193,32 @@ class Ocean {
   // change). Throws std::invalid_argument naming a bad field and value.
   void setCoastRegion(const waves::CoastField::Region& region);
   void clearCoastRegion();
+  // The coast region follows a moving camera (issue 15 item 1). Call once
+  // per frame with the camera's nadir, before the frame's queries and draw;
+  // never waits for a build. When the nadir is outside the middle half of
+  // the current region (more than a quarter of its size from the centre
+  // along east or north), a region of the same size centred on the nadir
+  // is built on a worker thread from the current snapshot; the old region
+  // serves queries and drawing until then. A later call publishes the
+  // finished build as one new snapshot (field and queries together), unless
+  // any setter changed the snapshot meanwhile (then it is dropped and the
+  // next call starts over). Hysteresis: the new centre is the nadir, so it
+  // must move another quarter of the size before the next build.
+  enum class CoastFollow {
+    Off,       // no region, or no Gerstner sea or rasters: nothing to follow
+    Inside,    // the nadir is in the middle half: nothing to do
+    Started,   // a build started on the worker
+    Building,  // a build is in flight: the old region stays
+    Swapped,   // a finished build was published by this call
+  };
+  CoastFollow followCoastRegion(double nadirLatDeg, double nadirLonDeg);
+  // Blocks until no build is in flight (tests, shutdown); the result waits
+  // for the next followCoastRegion.
+  void waitForCoastBuild();
+  // How many follow builds were published (tests, the HUD).
+  int coastSwaps() const;
+  // Tests: run by the worker before it builds (e.g. to hold it there).
+  void setCoastBuildHook(std::function<void()> hook);
 
   std::shared_ptr<const Snapshot> current() const;
 
@@ -199,6 +230,15 @@ class Ocean {
   mutable std::mutex mutex_;  // guards snapshot_ (the pointer, not its contents)
   std::mutex editMutex_;      // serialises setters so no edit is lost
   std::shared_ptr<const Snapshot> snapshot_;
+
+  // followCoastRegion's worker and its result (guarded by followMutex_).
+  mutable std::mutex followMutex_;
+  std::condition_variable followDone_;
+  std::thread worker_;
+  bool building_ = false;
+  int swaps_ = 0;
+  std::shared_ptr<const Snapshot> ready_, readyFrom_;  // the build and the snapshot it was made from
+  std::function<void()> buildHook_;
 };
 
 }  // namespace geocean::ocean

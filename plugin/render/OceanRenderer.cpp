@@ -748,6 +748,21 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     }
 }
 
+bool OceanRenderer::swapCoast(std::shared_ptr<const waves::WaveField> w) {
+  if (!w || !w->coastField() || !waves_->coastField() || w->model() != waves_->model()) return false;
+  const waves::SeaState &a = w->seaState(), &b = waves_->seaState();
+  if (a.windSpeedMps != b.windSpeedMps || a.windFromDeg != b.windFromDeg || a.fetchM != b.fetchM ||
+      a.seed != b.seed || a.anchorLatDeg != b.anchorLatDeg || a.anchorLonDeg != b.anchorLonDeg ||
+      a.referenceDepthM != b.referenceDepthM || a.gerstnerComponents != b.gerstnerComponents ||
+      w->coastField()->components() != waves_->coastField()->components())
+    return false;
+  const std::vector<glm::vec4> texels = w->coastField()->gpuTexels();
+  glNamedBufferData(ssbo_[4], GLsizeiptr(texels.size() * sizeof(glm::vec4)), texels.data(), GL_STATIC_DRAW);
+  waves_ = std::move(w);
+  options_.coast = waves_->coastFieldShared();
+  return true;
+}
+
 bool OceanRenderer::coversOpaquely(double lat0, double lat1, double lon0, double lon1, double footprintM) const {
   if (pages_ && !pagesIndexed_) return false;  // a regional mask: the water index is the layers' below
   return ocean_render::coversOpaquely(*world_, options_.cellPx, lat0, lat1, lon0, lon1, footprintM, pages_ != nullptr);

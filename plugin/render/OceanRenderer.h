@@ -168,6 +168,12 @@ class OceanRenderer {
   double cellPx() const { return options_.cellPx; }
 
   const waves::WaveField& waves() const { return *waves_; }
+  // Draws `waves` from now on if it is the drawn field with another coast
+  // region (Ocean::followCoastRegion's swap): only the coast texels are
+  // uploaded (the CPU-built island table: a GPU build would stall this
+  // frame), no program or grid is made. False (nothing changed) for any
+  // other field: make a new renderer then.
+  bool swapCoast(std::shared_ptr<const waves::WaveField> waves);
   const grid::GridFrame& lastFrame() const { return frame_; }
   // Draw the eye-relative surface position into colour attachment 1 (tests).
   void setWriteData(bool on) { writeData_ = on; }

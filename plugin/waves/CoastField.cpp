@@ -20,8 +20,10 @@ constexpr double kE2 = kF * (2.0 - kF);
 constexpr double kMinDepthM = 0.05;
 // Below these a node does not feel the bottom: stored as exact 0 so the
 // kernel reproduces deep water bit for bit. The eikonal's rounding reaches
-// ~5e-7 rad over 400 nodes; 1e-5 rad is 0.01 mm on a 1 m wave.
-constexpr double kPhaseEps = 1e-5, kAngleEps = 1e-9, kKrEps = 1e-7;
+// ~5e-7 rad over 400 nodes; 1e-5 rad is 0.01 mm on a 1 m wave. A turning
+// below 1e-7 rad moves a 1 m wave by 0.1 um (deep water stored 1.7e-9 rad
+// for a component 72 degrees off the wind, above the former 1e-9 cutoff).
+constexpr double kPhaseEps = 1e-5, kAngleEps = 1e-7, kKrEps = 1e-7;
 // Kr bounds: where rays cross (caustics) or diverge at the shoreline the
 // ray-tube width has no meaning; the breaking cap limits heights anyway.
 constexpr double kKrMin = CoastField::kMinKr, kKrMax = CoastField::kMaxKr;
@@ -30,6 +32,91 @@ constexpr double kMaxIslandRadiusNodes = 64.0;
 double smooth01(double x) {
   x = std::clamp(x, 0.0, 1.0);
   return x * x * (3.0 - 2.0 * x);
+}
+
+// The inflow edges as one path (the edge normal to x, then the one normal
+// to y, through their shared corner); along it, from each fixed node both
+// ways, S steps by the local wave vector's component along the edge. The
+// wave vector by Snell's law over the local contours: the depth gradient g
+// (central differences over +-3 nodes; where the bottom is flat, the edge's
+// normal: contours along the edge), the component along the contour
+// k_c = k_ref s0 . c conserved from deep water, the rest k_g =
+// sqrt(k^2 - k_c^2) along g with the sign of s0 . g. Contours across the
+// edge (a region moved along a straight shore) and along it (an offshore
+// edge: then the plane wave's own k_ref s0 . t) are both exact; k is taken
+// as the sweeps take it over a step (at b, moved toward a by half the
+// step's weight), so their straight-contour state continues it. Each node
+// takes the value from its nearest fixed node on the path; runs stop at
+// land. qEdge (NaN elsewhere): the ray-tube spreading of the same model,
+// ln(cos(theta) / cos(theta0)), theta from g: Kr = sqrt(cos theta0 / cos theta).
+void inflowEdgePhase(int n, double cellM, double s0x, double s0y, double k0, const std::vector<double>& kLoc,
+                     const std::vector<double>& depth, const std::vector<char>& fixedNode, std::vector<double>& s,
+                     std::vector<double>& qEdge) {
+  struct Node {
+    int i, j;
+    bool alongY;  // on the x-normal edge (the path runs along y there)
+  };
+  std::vector<Node> path;
+  const int ie = s0x > 0 ? 0 : n - 1, je = s0y > 0 ? 0 : n - 1;
+  if (s0x != 0.0)  // the x-normal edge, from its far end to the corner
+    for (int m = 0; m < n; ++m) path.push_back({ie, je == 0 ? n - 1 - m : m, true});
+  if (s0y != 0.0)  // the y-normal edge, from the corner on (the corner once)
+    for (int m = s0x != 0.0 ? 1 : 0; m < n; ++m) path.push_back({ie == 0 ? m : n - 1 - m, je, false});
+  if (path.size() < 2) return;
+  auto at = [n](const Node& a) { return std::size_t(a.j) * n + a.i; };
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::size_t len = path.size();
+  // Per path node: the unit depth gradient g (or the edge normal).
+  std::vector<glm::dvec2> grad(len);
+  for (std::size_t c = 0; c < len; ++c) {
+    const int i = path[c].i, j = path[c].j;
+    const int i0 = std::max(i - 3, 0), i1 = std::min(i + 3, n - 1), j0 = std::max(j - 3, 0), j1 = std::min(j + 3, n - 1);
+    const glm::dvec2 g((depth[std::size_t(j) * n + i1] - depth[std::size_t(j) * n + i0]) / ((i1 - i0) * cellM),
+                       (depth[std::size_t(j1) * n + i] - depth[std::size_t(j0) * n + i]) / ((j1 - j0) * cellM));
+    // Flatter than 1:10000: no contour to refract over; the edge's normal.
+    grad[c] = glm::length(g) > 1e-4 ? glm::normalize(g) : (path[c].alongY ? glm::dvec2(1.0, 0.0) : glm::dvec2(0.0, 1.0));
+  }
+  const glm::dvec2 s0(s0x, s0y);
+  // The wave vector at path node c with wave number k.
+  auto wave = [&](std::size_t c, double k) {
+    const glm::dvec2 g = grad[c], cn(-g.y, g.x);
+    const double kc = k0 * glm::dot(s0, cn), sg = glm::dot(s0, g) >= 0.0 ? 1.0 : -1.0;
+    return kc * cn + sg * std::sqrt(std::max(k * k - kc * kc, 0.0)) * g;
+  };
+  std::vector<double> val[2] = {std::vector<double>(len, inf), std::vector<double>(len, inf)};
+  std::vector<std::size_t> dist[2] = {std::vector<std::size_t>(len, len), std::vector<std::size_t>(len, len)};
+  auto step = [&](std::size_t ca, std::size_t cb) {
+    const Node &a = path[ca], &b = path[cb];
+    const glm::dvec2 d(double(b.i - a.i) * cellM, double(b.j - a.j) * cellM);
+    const double ka = kLoc[at(a)], kb = kLoc[at(b)];
+    const glm::dvec2 t = glm::normalize(d);
+    const double along0 = glm::dot(wave(cb, kb), t);
+    const double w = kb > 0.0 ? along0 * along0 / (kb * kb) : 0.0, km = kb + 0.5 * w * (ka - kb);
+    return glm::dot(wave(cb, km), d);
+  };
+  auto wet = [&](const Node& a) { return depth[at(a)] > 2.0 * kMinDepthM; };
+  for (int dir = 0; dir < 2; ++dir)
+    for (std::size_t m = 0; m < len; ++m) {
+      const std::size_t c = dir == 0 ? m : len - 1 - m;
+      if (fixedNode[at(path[c])]) {
+        val[dir][c] = s[at(path[c])], dist[dir][c] = 0;
+        continue;
+      }
+      if (m == 0 || !wet(path[c])) continue;
+      const std::size_t pr = dir == 0 ? c - 1 : c + 1;
+      if (!wet(path[pr]) || dist[dir][pr] >= len) continue;
+      val[dir][c] = val[dir][pr] + step(pr, c);
+      dist[dir][c] = dist[dir][pr] + 1;
+    }
+  for (std::size_t c = 0; c < len; ++c) {
+    if (fixedNode[at(path[c])]) continue;
+    const int d = dist[0][c] <= dist[1][c] ? 0 : 1;
+    if (dist[d][c] >= len) continue;
+    s[at(path[c])] = val[d][c];
+    const double k = kLoc[at(path[c])], cos0 = std::abs(glm::dot(s0, grad[c]));
+    const double kg = std::abs(glm::dot(wave(c, k), grad[c]));
+    if (cos0 > 1e-3 && kg > 0.0) qEdge[at(path[c])] = std::log(kg / (k * cos0));
+  }
 }
 }  // namespace
 
@@ -90,6 +177,7 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
   std::vector<double> kLoc(depth.size()), s(depth.size()), q(depth.size()), sx(depth.size()), sy(depth.size()),
       div(depth.size());
   std::vector<char> fixedNode(depth.size());
+  std::vector<double> qEdge(depth.size());
   auto at = [n](int i, int j) { return std::size_t(j) * n + i; };
   kd::Kernel kernel{};
   // Travel directions at the centre (as the kernel's great circles there).
@@ -150,6 +238,16 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
         s[at(i, j)] = k0 * (s0x * x(i) + s0y * x(j));
         fixedNode[at(i, j)] = 1;
       }
+    // The other inflow nodes: the phase carried along the inflow edges from
+    // the nearest deep node by Snell's law across the edge (the wave number
+    // normal to the edge, k_ref s0 . n, conserved; the one along it
+    // sqrt(k^2 - k_n^2)), exact where the contours cross the edge at right
+    // angles, as a straight shore does for a region moved along it. So the
+    // phase no longer depends on where the edge lies (issue 15 item 1: a
+    // re-centred region agrees with the old one). Not fixed: the sweeps may
+    // still lower them (an earlier arrival through the interior); land ends a run.
+    std::fill(qEdge.begin(), qEdge.end(), std::numeric_limits<double>::quiet_NaN());
+    inflowEdgePhase(n, r.cellM, s0x, s0y, k0, kLoc, depth, fixedNode, s, qEdge);
     // Fast sweeping, four orderings, until nothing changes.
     for (int iter = 0; iter < 12; ++iter) {
       double change = 0.0;
@@ -212,7 +310,7 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
       }
     // Ray-tube spreading: s . grad q = div s, q = 0 on the inflow edges
     // (upwind Gauss-Seidel in the same four orderings).
-    std::fill(q.begin(), q.end(), 0.0);
+    for (std::size_t p = 0; p < q.size(); ++p) q[p] = std::isnan(qEdge[p]) ? 0.0 : qEdge[p];
     for (int iter = 0; iter < 4; ++iter)
       for (int sweep = 0; sweep < 4; ++sweep) {
         const bool fx = sweep & 1, fy = sweep & 2;
@@ -220,7 +318,7 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
           for (int ii = 0; ii < n; ++ii) {
             const int i = fx ? n - 1 - ii : ii, j = fy ? n - 1 - jj : jj;
             const std::size_t p = at(i, j);
-            if (fixedNode[p]) continue;
+            if (fixedNode[p] || !std::isnan(qEdge[p])) continue;
             const double ax = std::abs(sx[p]), ay = std::abs(sy[p]);
             const int iu = i - (sx[p] > 0 ? 1 : -1), ju = j - (sy[p] > 0 ? 1 : -1);
             const double qx = iu >= 0 && iu < n ? q[at(iu, j)] : 0.0;

@@ -19,9 +19,15 @@
 // no jump at the region's edge. The shared kernel (wv_gerstnerCoast,
 // shaders/waves.glsl) samples it bilinearly, the same on CPU and GPU.
 //
-// Limits: rays that enter through a shallow inflow edge start as the plane
-// wave there (choose a region whose up-wave edges are deep); first arrivals
-// only (no crossing seas behind a shoal).
+// Inflow edges: the deepest nodes carry the plane wave; the others the
+// phase carried along the edge by Snell's law over the local contours (the
+// wave number along them conserved from deep water) and the matching
+// ray-tube spreading, so a region moved along a straight shore gives the
+// same field in the overlap (Ocean::followCoastRegion).
+// Limits: curved contours at a shallow inflow edge start approximately;
+// where no inflow node is deep the phase's constant is the region's own (a
+// moved region shifts it); first arrivals only (no crossing seas behind a
+// shoal).
 //
 // Islands (paper 003 sec. 3): the table (D_blo, theta_blo, D_obs, theta_def)
 // per component and node from the same elevation (shaders/coast_islands.glsl,

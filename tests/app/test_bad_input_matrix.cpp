@@ -118,6 +118,7 @@ const Row kRows[] = {
     {"render --out x.png --boats -1", "--boats -1 is not in 0..10000"},
     {"fly --out o --wind 1e300", "--wind 1e+300 m/s is outside 0.2 .. 60 m/s"},
     {"fly --out o --waves gerstner --coast-region 52.6,nan", "'nan' in '52.6,nan' is not a finite number"},
+    {"fly --out o --waves gerstner --coast-follow", "--coast-follow needs --coast-region LAT,LON[,SIZE_M]"},
     {"fly --out o --boats 2 --follow 3", "--follow 3 is not a boat of --boats 2"},
     // view: every check comes before the display's, so these exit 2 with no
     // display at all (the runner unsets DISPLAY; with one, ViewWindow.*)
@@ -149,6 +150,7 @@ const Row kRows[] = {
      "--coast-region '52.6,4.45,1e300': size 1e+300 m is outside 500 .. 40000 m"},
     {"view --waves gerstner --coast-region 52.6,4.45,0", "size 0 m is outside 500 .. 40000 m"},
     {"view --coast-region ''", "--coast-region: the value is empty"},
+    {"view --waves gerstner --coast-follow", "--coast-follow needs --coast-region LAT,LON[,SIZE_M]"},
     {"view --coast-region 1,2,3,4", "--coast-region '1,2,3,4' is not LAT,LON[,SIZE_M]"},
     {"view --wind nan", "--wind nan m/s is outside 0.2 .. 60 m/s"},
     {"view --wind inf", "--wind inf m/s is outside 0.2 .. 60 m/s"},

@@ -9,11 +9,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -150,6 +155,87 @@ TEST(CapiV15, CoastRegionRejectsBadInputAndKeepsTheRegion) {
   EXPECT_EQ(api().setCoastRegion(o.h, 0.3, 0.0, 1e4), GEOCEAN_OK) << lastError();
   EXPECT_EQ(api().clearCoastRegion(o.h), GEOCEAN_OK);
   EXPECT_EQ(api().clearCoastRegion(o.h), GEOCEAN_OK);  // nothing to clear is not an error
+}
+
+// ABI 1.7, GEOCEAN_DRAW_FOLLOW_COAST (issue 15 item 1): an update whose
+// camera is 3.3 km north of the region's centre (outside its middle half)
+// starts the nadir's region on the plugin's worker; the query right after
+// it still answers with the old region (the finished build is published
+// only by a later update, at a frame's start), and later updates publish
+// the new one. Meanwhile three threads query points north of the old
+// region's edge and inside the new one: every batch is the old region's
+// (bit for bit) or the new one's (geocean_set_coast_region's at the nadir;
+// within 1e-6 m: the camera's nadir is 0.33 degrees through ECEF and back,
+// a few 1e-15 degrees off), never a mix (the regions differ by > 1 cm). In the TSan set (CapiThreads): the swap and the
+// worker against concurrent queries.
+TEST(CapiThreads, CoastFollowSwapsWholeRegionsUnderConcurrentQueries) {
+  const auto& a = api();
+  const auto px = beach();
+  const geocean_grid_placement pl{-0.2, 0.5, 0.001, -0.001, 0, 0, 0.0};
+  const geocean_sea_state cs = capiSea();
+  auto make = [&](Ocean& o, double latDeg) {
+    ASSERT_EQ(a.setElevationPixels(o.h, px.data(), kW, kH, &pl), GEOCEAN_OK) << lastError();
+    ASSERT_EQ(a.setSeaState(o.h, &cs), GEOCEAN_OK) << lastError();
+    ASSERT_EQ(a.setCoastRegion(o.h, latDeg, 0.0, 10000.0), GEOCEAN_OK) << lastError();
+  };
+  const std::size_t n = 64;
+  std::vector<double> lat(n), lon(n);
+  for (std::size_t i = 0; i < n; ++i) lat[i] = 0.352 + 0.0002 * double(i % 8), lon[i] = 0.0 + 0.004 * double(i / 8);
+  auto query = [&](geocean_ocean* h, std::vector<double>& out) {
+    out.assign(n, 0.0);
+    return a.querySeaSurface(h, n, lat.data(), lon.data(), 7.5, out.data(), nullptr, nullptr);
+  };
+  Ocean o, ref;
+  make(o, 0.3);
+  make(ref, 0.33);
+  std::vector<double> oldRegion, newRegion;
+  ASSERT_EQ(query(o.h, oldRegion), GEOCEAN_OK);
+  ASSERT_EQ(query(ref.h, newRegion), GEOCEAN_OK);
+  double apart = 0.0;
+  for (std::size_t i = 0; i < n; ++i) apart = std::max(apart, std::abs(oldRegion[i] - newRegion[i]));
+  ASSERT_GT(apart, 0.01) << "the points must tell the regions apart";
+  auto isNew = [&](const std::vector<double>& x) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (!(std::abs(x[i] - newRegion[i]) <= 1e-6)) return false;
+    return true;
+  };
+
+  geocean_view v;
+  ASSERT_EQ(a.viewInit(&v), GEOCEAN_OK);
+  ASSERT_EQ(a.viewFromPose(&v, 0.33, 0.0, 50.0, 0.0, -60.0, 45.0, 64, 64), GEOCEAN_OK) << lastError();
+  v.draw_flags = GEOCEAN_DRAW_FOLLOW_COAST;
+  std::atomic<bool> stop{false};
+  std::atomic<int> bad{0}, sawNew{0};
+  std::vector<std::thread> readers;
+  for (int t = 0; t < 3; ++t)
+    readers.emplace_back([&] {
+      std::vector<double> h;
+      while (!stop) {
+        if (query(o.h, h) != GEOCEAN_OK || (h != oldRegion && !isNew(h))) ++bad;
+        if (isNew(h)) ++sawNew;
+      }
+    });
+  ASSERT_EQ(a.update(o.h, &v), GEOCEAN_OK) << lastError();
+  std::vector<double> h;
+  ASSERT_EQ(query(o.h, h), GEOCEAN_OK);
+  EXPECT_EQ(h, oldRegion) << "the build is published by a later update, never inside this one";
+  // Later frames until the swap (a minute at most: a busy machine builds slowly).
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  int frames = 1;
+  while (!isNew(h) && std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ASSERT_EQ(a.update(o.h, &v), GEOCEAN_OK) << lastError();
+    ++frames;
+    ASSERT_EQ(query(o.h, h), GEOCEAN_OK);
+  }
+  while (sawNew == 0 && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+  stop = true;
+  for (auto& r : readers) r.join();
+  std::printf("swapped after %d updates\n", frames);
+  EXPECT_TRUE(isNew(h));
+  EXPECT_GT(frames, 1);
+  EXPECT_GT(sawNew, 0);
+  EXPECT_EQ(bad, 0);
 }
 
 }  // namespace

@@ -90,5 +90,20 @@ TEST(RenderCli, FlyWritesFramesAndATimingsCsv) {
   EXPECT_NE(bad.err.find("latitude"), std::string::npos) << bad.err;
 }
 
+// Issue 15 item 1: `fly --coast-follow` sets GEOCEAN_DRAW_FOLLOW_COAST on
+// every draw (a plugin that refused the bit would fail the first frame):
+// a flight from orbit down to the Dutch coast, whose first frames' nadirs
+// are far outside the region, so builds start on the plugin's worker; the
+// flight does not wait for them and exits cleanly with one in flight.
+TEST(RenderCli, FlyWithCoastFollowRuns) {
+  const std::string dir = ::testing::TempDir() + "/cli_flight_follow";
+  std::filesystem::remove_all(dir);
+  const auto r = geocean::test::run(kExe + " fly --to 52.6,4.45 --frames 3 --size 48x32 --waves gerstner --wind 12 "
+                                           "--coast-region 52.6,4.45,10000 --coast-follow --out " + dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  for (int f = 0; f < 3; ++f)
+    EXPECT_TRUE(std::filesystem::exists(dir + "/frame_0000" + std::to_string(f) + ".png"));
+}
+
 }  // namespace
 }  // namespace geocean::render::test

@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <vector>
 #include <filesystem>
 
 namespace geocean::render::test {
@@ -249,6 +252,121 @@ TEST(Render, ShortcutsDoNotChangeTheImage) {
     EXPECT_LE(f.max, 24) << v.name;
   }
   shortcuts(true, true);
+}
+
+
+// Issue 15 item 4, "no visible boundary between bands": the renderer's one
+// distance band edge over open water is where cells turn far (their every
+// vertex beyond 1.01 x the far footprint over ScreenCull::cellRadians; with
+// reflections at least 40 km) and are shaded per vertex (farShaded_). A
+// strip across it, the same view drawn with per-vertex far shading (A) and
+// per pixel everywhere (B, no band). The band's rows are where A and B
+// differ; per screen row the mean luma (Rec. 709 on the 8-bit values) is
+// fitted by a line on 24 rows each side (4 rows left out at the edge): the
+// step is the gap of the two fits at the edge, A's minus B's (B's is the
+// view-angle trend's own curvature). Spectrum: per row, the power of the
+// luma along the row in the band 1/16 .. 1/2 cycles per pixel (what 8 px
+// vertex shading cannot carry) over the total AC power, after the edge
+// over before, A's ratio over B's.
+TEST(Render, FarShadingBandEdgeHasNoStep) {
+  Session& s = session();
+  struct View {
+    const char* name;
+    ViewPose pose;
+    bool reflections, glint;  // glint: the sun ahead at the edge's depression, its glint across the edge
+  };
+  const View views[] = {
+      {"open Pacific from 10 km, reflections (edge 40 km)", pose(0.0, -150.0, 1.0e4, 0.0, -14.0, 512), true, false},
+      {"open Pacific from 1 km, no reflections", pose(0.0, -150.0, 1.0e3, 0.0, -14.0, 512), false, false},
+      {"the same, the sun's glint on the edge", pose(0.0, -150.0, 1.0e4, 0.0, -14.0, 512), true, true},
+      {"the same from 1 km, the sun's glint on the edge", pose(0.0, -150.0, 1.0e3, 0.0, -14.0, 512), false, true}};
+  for (const View& v : views) {
+    FrameSettings fs;
+    fs.sunEcef = v.glint ? sunFromLocal(v.pose.latDeg, v.pose.lonDeg, 0.0, 14.0) : sunForView(v.pose);
+    fs.reflections = v.reflections;
+    sessionOcean().setFarVertexShading(true);
+    s.render(v.pose, fs);
+    const Image a = s.image();
+    sessionOcean().setFarVertexShading(false);
+    s.render(v.pose, fs);
+    const Image b = s.image();
+    sessionOcean().setFarVertexShading(true);
+    gl::writePng(::testing::TempDir() + "/band_edge_" + std::to_string(&v - views) + ".png", a);
+    const int w = a.width, h = a.height;
+    auto luma = [&](const Image& im, int x, int y) {
+      const std::uint8_t* p = &im.rgba[(std::size_t(y) * w + x) * 4];
+      return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+    };
+    // The band: rows (top first) where any pixel differs; the edge is the
+    // nearest such row's lower boundary (far rows are above near ones).
+    int edge = -1;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        if (std::memcmp(&a.rgba[(std::size_t(y) * w + x) * 4], &b.rgba[(std::size_t(y) * w + x) * 4], 3) != 0)
+          edge = y;
+    ASSERT_GT(edge, 40) << v.name << ": no far band on screen";
+    ASSERT_LT(edge, h - 40) << v.name;
+    auto rowMean = [&](const Image& im, int y) {
+      double m = 0.0;
+      for (int x = 0; x < w; ++x) m += luma(im, x, y);
+      return m / w;
+    };
+    auto fitAt = [&](const Image& im, int from, int to, double at) {  // least-squares line over rows [from, to)
+      double sx = 0, sy = 0, sxx = 0, sxy = 0;
+      const int n = to - from;
+      for (int y = from; y < to; ++y) {
+        const double m = rowMean(im, y);
+        sx += y, sy += m, sxx += double(y) * y, sxy += y * m;
+      }
+      const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+      return (sy - slope * sx) / n + slope * at;
+    };
+    const double at = edge + 0.5;
+    auto step = [&](const Image& im) { return fitAt(im, edge - 27, edge - 3, at) - fitAt(im, edge + 4, edge + 28, at); };
+    // Per row: the power share of 1/16 .. 1/2 cycles per pixel in the row's AC power.
+    auto rowShare = [&](const Image& im, int y) {
+      std::vector<double> l(static_cast<std::size_t>(w));
+      double mean = 0.0, hi = 0.0, all = 0.0;
+      for (int x = 0; x < w; ++x) mean += (l[std::size_t(x)] = luma(im, x, y)) / w;
+      for (int k = 1; k <= w / 2; ++k) {
+        double re = 0.0, imag = 0.0;
+        for (int x = 0; x < w; ++x) {
+          const double ph = 2.0 * 3.14159265358979 * k * x / w;
+          re += (l[std::size_t(x)] - mean) * std::cos(ph), imag -= (l[std::size_t(x)] - mean) * std::sin(ph);
+        }
+        all += re * re + imag * imag;
+        if (k >= w / 16) hi += re * re + imag * imag;
+      }
+      return all > 0.0 ? hi / all : 0.0;
+    };
+    struct Share {
+      double mean = 0.0, relErr = 0.0;  // over 24 rows; the mean's standard error over the mean
+    };
+    auto share = [&](const Image& im, int from) {
+      std::vector<double> r;
+      for (int y = from; y < from + 24; ++y) r.push_back(rowShare(im, y));
+      Share sh;
+      for (double x : r) sh.mean += x / r.size();
+      double var = 0.0;
+      for (double x : r) var += (x - sh.mean) * (x - sh.mean) / (r.size() - 1);
+      sh.relErr = sh.mean > 0.0 ? std::sqrt(var / r.size()) / sh.mean : 0.0;
+      return sh;
+    };
+    const double stepA = step(a), stepB = step(b);
+    const Share farA = share(a, edge - 24), nearA = share(a, edge + 1), farB = share(b, edge - 24),
+                nearB = share(b, edge + 1);
+    const double ratio = (farA.mean / nearA.mean) / (farB.mean / nearB.mean);
+    const double relErr = std::sqrt(farA.relErr * farA.relErr + nearA.relErr * nearA.relErr +
+                                    farB.relErr * farB.relErr + nearB.relErr * nearB.relErr);
+    std::printf("%s: edge at row %d; luma step across it %.3f with the band, %.3f without (%.3f beyond the trend); "
+                "high-frequency share far/near %.4f/%.4f with, %.4f/%.4f without: ratio %.3f (standard error %.3f)\n",
+                v.name, edge, stepA, stepB, stepA - stepB, farA.mean, nearA.mean, farB.mean, nearB.mean, ratio,
+                relErr);
+    // Half a unit of the 8-bit output: a row's mean cannot step by less on screen.
+    EXPECT_LT(std::abs(stepA - stepB), 0.5) << v.name;
+    // The spectrum's step: within 3 standard errors of the rows' own scatter.
+    EXPECT_LT(std::abs(std::log(ratio)), 3.0 * relErr) << v.name;
+  }
 }
 
 }  // namespace

@@ -404,12 +404,22 @@ typedef struct geocean_view {
  * ABI 1.6 (first shipped inside a 1.5 build; a 1.5 plugin rejects the
  * bit with INVALID_ARGUMENT naming draw_flags). */
 #define GEOCEAN_DRAW_COMPLETE_TILES 4u
+/* The coast region (geocean_set_coast_region) follows the camera: at each
+ * geocean_update with this bit, when the camera's nadir is more than a
+ * quarter of the region's size from its centre (east or north), a region
+ * of the same size centred on the nadir is built on a worker thread; the
+ * old one serves queries and the draw until a later geocean_update
+ * publishes the finished one for both at once. The update never waits for
+ * the build. ABI 1.7 (a 1.6 plugin rejects the bit with INVALID_ARGUMENT
+ * naming draw_flags). */
+#define GEOCEAN_DRAW_FOLLOW_COAST 8u
+
 /* ABI 1.7: the ocean's screen grid from paper 000's improved spherical
  * projected grid (ISPG: the tangent plane under the eye, mapped radially
  * onto the ellipsoid) instead of the default direct projector (each vertex's
  * ray meets the ellipsoid), for comparing the two; a 1.6 plugin rejects the
  * bit (INVALID_ARGUMENT naming draw_flags). */
-#define GEOCEAN_DRAW_GRID_ISPG 8u
+#define GEOCEAN_DRAW_GRID_ISPG 16u
 
 /* Fills *view with defaults: struct_size, a 1280x720 view 10,000 km above
  * (0 N, 0 E) looking down, 45 deg field of view, reversed-Z projection,
