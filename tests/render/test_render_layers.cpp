@@ -7,6 +7,7 @@
 #include "globe/gl/Framebuffer.h"
 #include "globe/raster/GeoTiffWriter.h"
 #include "globe/raster/World.h"
+#include "tests/support/IslandRelief.h"
 #include "tests/support/Subprocess.h"
 
 #include <gtest/gtest.h>
@@ -37,19 +38,8 @@ const std::string kCamera = " --camera " + kView + " --size 320x200 --fov 50 --s
 // across, three or four cells.
 std::string islandTif() {
   static const std::string path = [] {
-    constexpr int n = 360;
-    constexpr double step = 1.0 / 240.0;
-    std::vector<float> px(std::size_t(n) * n);
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        const double lat = 1.0 - (y + 0.5) * step, lon = -0.5 + (x + 0.5) * step;
-        const double r2 = ((lat - 0.25) * (lat - 0.25) + (lon - 0.25) * (lon - 0.25)) / (0.15 * 0.15);
-        px[std::size_t(y) * n + x] = float(-200.0 + 490.0 * std::exp(-r2));
-      }
-    geocean::raster::GeoTiffWriteOptions wo;
-    wo.transform = {-0.5, 1.0, step, -step, false};
     const std::string p = ::testing::TempDir() + "/render_island.tif";
-    geocean::raster::writeGeoTiff(p, px.data(), n, n, 1, geocean::raster::SampleType::F32, wo);
+    geocean::test::writeIslandRelief(p);
     return p;
   }();
   return path;

@@ -4,6 +4,7 @@
 #include "globe/geo/Ellipsoid.h"
 #include "globe/raster/GeoTiffWriter.h"
 #include "globe/raster/ImageIo.h"
+#include "tests/support/IslandRelief.h"
 #include "tests/support/Subprocess.h"
 #include "tests/view/ViewStats.h"
 
@@ -39,6 +40,26 @@ std::string tempPath(const std::string& name) {
   const std::string dir = ::testing::TempDir() + "/geocean_view";
   std::filesystem::create_directories(dir);
   return dir + "/" + name;
+}
+
+// The first answer row of `geocean query <args>` (CSV), split into its
+// fields, at least 6 (sea_height_m is the sixth): a failed or short answer
+// is a test failure, and empty fields are returned.
+std::vector<std::string> queryRow(const std::string& args) {
+  const auto q = geocean::test::run(kGeocean + " query " + args);
+  EXPECT_EQ(q.exitCode, 0) << q.err;
+  std::stringstream qs(q.out);
+  std::string line;
+  std::getline(qs, line);
+  std::getline(qs, line);
+  std::vector<std::string> f;
+  std::stringstream ls(line);
+  for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
+  if (f.size() < 6) {
+    ADD_FAILURE() << "geocean query " << args << ": " << q.out;
+    f.resize(6, "nan");
+  }
+  return f;
 }
 
 struct Rgb {
@@ -145,19 +166,9 @@ TEST(ViewWindow, FlyToEndsTwoMetresAboveTheSeaWithTheQueriedSeaHeight) {
   ASSERT_TRUE(std::isfinite(last.seaM)) << "the Strait of Gibraltar is sea";
   // Frame f is drawn at simulation time f / 30 s.
   const std::string t = std::to_string((frames - 1) / 30.0);
-  const auto q = geocean::test::run(kGeocean + " query --waves noise --time " + t + " 36.0 -5.6");
-  ASSERT_EQ(q.exitCode, 0) << q.err;
-  // Second CSV line, sixth field: sea_height_m.
-  std::stringstream qs(q.out);
-  std::string line;
-  std::getline(qs, line);
-  std::getline(qs, line);
-  std::vector<std::string> f;
-  std::stringstream ls(line);
-  for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
-  ASSERT_GE(f.size(), 6u) << q.out;
+  const auto f = queryRow("--waves noise --time " + t + " 36.0 -5.6");
   // The viewer's CSV prints 4 decimals: 0.05 mm of rounding.
-  EXPECT_NEAR(last.seaM, std::stod(f[5]), 5.1e-5) << q.out;
+  EXPECT_NEAR(last.seaM, std::stod(f[5]), 5.1e-5);
 
   // 2 m above the sea looking just below the horizon: sky above, water below.
   const auto img = geocean::raster::readImage8(shot);
@@ -331,19 +342,9 @@ TEST(ViewWindow, CoastRegionMakesTheViewedSeaTheQueriedOne) {
   const double with = lastSea(" --coast-region 52.6,4.45,20000", "coast"), without = lastSea("", "no_coast");
   ASSERT_TRUE(std::isfinite(with) && std::isfinite(without));
   const std::string t = std::to_string((frames - 1) / 30.0);
-  const auto q = geocean::test::run(kGeocean + " query" + sea + " --coast-region 52.6,4.45,20000 --time " + t +
-                                    " 52.6 4.45");
-  ASSERT_EQ(q.exitCode, 0) << q.err;
-  std::stringstream qs(q.out);
-  std::string line;
-  std::getline(qs, line);
-  std::getline(qs, line);
-  std::vector<std::string> f;
-  std::stringstream ls(line);
-  for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
-  ASSERT_GE(f.size(), 6u) << q.out;
+  const auto f = queryRow(sea + " --coast-region 52.6,4.45,20000 --time " + t + " 52.6 4.45");
   std::printf("sea under the camera: %.4f m with the region (query %s m), %.4f m without\n", with, f[5].c_str(), without);
-  EXPECT_NEAR(with, std::stod(f[5]), 5.1e-5) << q.out;  // the CSV's 4 decimals
+  EXPECT_NEAR(with, std::stod(f[5]), 5.1e-5);  // the CSV's 4 decimals
   EXPECT_GT(std::abs(with - without), 0.01) << "the coast region changes the sea there";
   const auto bad = view("--frames 2 --coast-region 52.6,4.45");
   EXPECT_EQ(bad.exitCode, 2);
@@ -356,7 +357,7 @@ TEST(ViewWindow, CoastRegionMakesTheViewedSeaTheQueriedOne) {
 // drawn stack) follows them as `geocean query` with the same files does.
 // Two points the 5' default world calls open sea: one under a user's mask
 // patch of land (0.2 degrees square, 15" cells), one on the flank of a
-// user's relief island (the render test's: -200 + 490 exp(-r^2/0.15^2) m,
+// user's relief island (tests/support/IslandRelief.h, the render test's:
 // 31 m high 0.13 degrees east of its peak), where the relief, finer than
 // every mask, decides land. Without the layers both answer a sea height.
 TEST(ViewWindow, TheUsersMaskAndReliefDecideWhatIsSeaUnderTheCamera) {
@@ -372,18 +373,7 @@ TEST(ViewWindow, TheUsersMaskAndReliefDecideWhatIsSeaUnderTheCamera) {
     wo.transform = {0.5, 0.1, step, -step, false};
     gr::writeGeoTiff(mask, px.data(), 48, 48, 1, gr::SampleType::U8, wo);
   }
-  {
-    constexpr int n = 360;
-    std::vector<float> px(std::size_t(n) * n);
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        const double lat = 1.0 - (y + 0.5) * step, lon = -0.5 + (x + 0.5) * step;
-        const double r2 = ((lat - 0.25) * (lat - 0.25) + (lon - 0.25) * (lon - 0.25)) / (0.15 * 0.15);
-        px[std::size_t(y) * n + x] = float(-200.0 + 490.0 * std::exp(-r2));
-      }
-    wo.transform = {-0.5, 1.0, step, -step, false};
-    gr::writeGeoTiff(relief, px.data(), n, n, 1, gr::SampleType::F32, wo);
-  }
+  geocean::test::writeIslandRelief(relief);
   const int frames = 3;
   const std::string t = std::to_string((frames - 1) / 30.0);
   auto lastSea = [&](const std::string& at, const std::string& layers, const std::string& name) {
@@ -396,20 +386,7 @@ TEST(ViewWindow, TheUsersMaskAndReliefDecideWhatIsSeaUnderTheCamera) {
   };
   // Surface class and sea height (fields 3 and 6) of `geocean query`.
   auto query = [&](const std::string& lat, const std::string& lon, const std::string& layers) {
-    const auto q = geocean::test::run(kGeocean + " query --time " + t + layers + " " + lat + " " + lon);
-    EXPECT_EQ(q.exitCode, 0) << q.err;
-    std::stringstream qs(q.out);
-    std::string line;
-    std::getline(qs, line);
-    std::getline(qs, line);
-    std::vector<std::string> f;
-    std::stringstream ls(line);
-    for (std::string x; std::getline(ls, x, ',');) f.push_back(x);
-    if (f.size() < 6) {
-      ADD_FAILURE() << q.out;
-      f.resize(6);
-    }
-    return f;
+    return queryRow("--time " + t + layers + " " + lat + " " + lon);
   };
   struct Case {
     std::string lat, lon, layers, name;
