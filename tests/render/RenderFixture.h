@@ -31,6 +31,13 @@ ocean_render::OceanRenderer& sessionOcean();
 // Draws `ocean` instead of the session's own until the guard goes (null:
 // back to the default ocean).
 void useOcean(std::shared_ptr<ocean_render::OceanRenderer> ocean);
+// An ocean on the session's world and default land/sea with other options
+// (a sea state, a model), for useOcean.
+std::shared_ptr<ocean_render::OceanRenderer> sessionOceanWith(const ocean_render::OceanOptions& options);
+// Puts the session's own ocean back when it goes.
+struct OceanGuard {
+  ~OceanGuard() { useOcean(nullptr); }
+};
 
 // Image difference in 8-bit units over RGB.
 struct ImageDiff {

@@ -84,13 +84,10 @@ TEST(Ocean, SeaFrom2mAtLatitude80) {
 TEST(Ocean, NoZFightingAtALowCoastFrom20000kmTo1m) {
   // A calm sea (0.5 m/s: millimetre waves), where the water lies flattest
   // on the terrain's 0 m, and the session's 10 m/s sea.
-  struct Guard {
-    ~Guard() { useOcean(nullptr); }
-  } guard;
+  OceanGuard guard;
   ocean_render::OceanOptions calm;
   calm.sea.windSpeedMps = 0.5;
-  const auto calmOcean =
-      std::make_shared<ocean_render::OceanRenderer>(session().world->grids(), ocean_render::defaultLandSea(), calm);
+  const auto calmOcean = sessionOceanWith(calm);
   const auto landSea = ocean_render::defaultLandSea();
   constexpr double lat = 52.6;
   double sea = 4.2, land = 5.0;  // longitudes of open sea and of land
@@ -139,12 +136,10 @@ TEST(Ocean, NoZFightingAtALowCoastFrom20000kmTo1m) {
 // reflection itself adds to that frame (the mean difference against
 // --no-reflections): the reuse keeps most of the reflection's effect.
 TEST(Ocean, AReflectionMapReusedForFourFramesKeepsTheReflection) {
-  struct Guard {
-    ~Guard() { useOcean(nullptr); }
-  } guard;
+  OceanGuard guard;
   ocean_render::OceanOptions calm;
   calm.sea.windSpeedMps = 1.0;
-  useOcean(std::make_shared<ocean_render::OceanRenderer>(session().world->grids(), ocean_render::defaultLandSea(), calm));
+  useOcean(sessionOceanWith(calm));
   Session& s = session();
   auto frame = [&](int i, int every, bool reflections, bool* drawn) {
     ViewPose p = seaPose(19.75, -154.85 - i * 10.0 / 104800.0, 20.0, 270.0, 0.0, 160);
@@ -206,14 +201,12 @@ TEST(Ocean, OpenSeaGoldenMatrixFrom2mTo30km) {
   Image matrix;
   matrix.width = 5 * kSize, matrix.height = 2 * kSize;
   matrix.rgba.assign(std::size_t(matrix.width) * matrix.height * 4, 255);
-  struct Guard {
-    ~Guard() { useOcean(nullptr); }
-  } guard;
+  OceanGuard guard;
   for (int row = 0; row < 2; ++row) {
     const double u10 = row == 0 ? 5.0 : 15.0;
     ocean_render::OceanOptions oo;
     oo.sea.windSpeedMps = 1.026 * u10;  // U19.5 from U10 (log profile, as test_sea_optics)
-    useOcean(std::make_shared<ocean_render::OceanRenderer>(session().world->grids(), ocean_render::defaultLandSea(), oo));
+    useOcean(sessionOceanWith(oo));
     for (int col = 0; col < 5; ++col) {
       const Alt& a = alts[col];
       const Image img = renderAt(seaPose(30.0, -40.0, a.m, 0.0, a.pitch, kSize), 20.0, 135.0, 40.0);

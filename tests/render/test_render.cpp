@@ -38,6 +38,11 @@ void useOcean(std::shared_ptr<ocean_render::OceanRenderer> ocean) {
   g_layer->setOcean(ocean ? std::move(ocean) : g_ocean);
 }
 
+std::shared_ptr<ocean_render::OceanRenderer> sessionOceanWith(const ocean_render::OceanOptions& options) {
+  return std::make_shared<ocean_render::OceanRenderer>(session().world->grids(), ocean_render::defaultLandSea(),
+                                                       options);
+}
+
 ImageDiff compare(const Image& a, const Image& b) {
   ImageDiff d;
   if (a.width != b.width || a.height != b.height) {

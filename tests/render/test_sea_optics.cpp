@@ -29,12 +29,8 @@ std::shared_ptr<ocean_render::OceanRenderer> oceanAt(double u10, waves::Model mo
   oo.jacobianFoam = model != waves::Model::Noise;
   oo.sea.windSpeedMps = 1.026 * u10;
   oo.sea.windFromDeg = windFromDeg;
-  return std::make_shared<ocean_render::OceanRenderer>(session().world->grids(), ocean_render::defaultLandSea(), oo);
+  return sessionOceanWith(oo);
 }
-
-struct OceanGuard {
-  ~OceanGuard() { useOcean(nullptr); }
-};
 
 // Display value (0..255) back to the linear radiance the shaders tone map
 // (atmosphere.glsl toDisplay: d = (1 - exp(-1.6 c))^(1/2.2)).
@@ -362,7 +358,7 @@ Pixels seaPixels(bool subsurface, double sunAz) {
   oo.sea.windSpeedMps = 1.026 * 10.0;
   oo.subsurface = subsurface;
   oo.jacobianFoam = false;  // foam covers crests: leave it out of a colour statistic
-  auto ocean = std::make_shared<ocean_render::OceanRenderer>(session().world->grids(), ocean_render::defaultLandSea(), oo);
+  auto ocean = sessionOceanWith(oo);
   GlobeRenderer renderer(session().world);
   renderer.addLayer(std::make_shared<DirectOceanLayer>(ocean));
   ocean->setWriteData(true);

@@ -19,10 +19,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979;
 
-struct OceanGuard {
-  ~OceanGuard() { useOcean(nullptr); }
-};
-
 // A light 4 m/s sea (whitecaps on 4e-4 of it, Monahan) with no Jacobian
 // foam: the foam in the difference of two pictures is the wake's.
 std::shared_ptr<ocean_render::OceanRenderer> lightSea(waves::Model model = waves::Model::Noise) {
@@ -30,7 +26,7 @@ std::shared_ptr<ocean_render::OceanRenderer> lightSea(waves::Model model = waves
   oo.model = model;
   oo.sea.windSpeedMps = 4.0;
   oo.sea.windFromDeg = 270.0;
-  return std::make_shared<ocean_render::OceanRenderer>(session().world->grids(), ocean_render::defaultLandSea(), oo);
+  return sessionOceanWith(oo);
 }
 
 struct Hull {
