@@ -129,8 +129,9 @@ void GlobeRenderer::makeLayerInputs(const camera::Camera& cam, const camera::Lig
       rh = std::max(1, int(std::lround(h * scale)));
     }
     // Reused while younger than reflectionEvery frames and of the same size.
-    if (reflectionCamera_ && ++reflectionAge_ < std::max(settings.reflectionEvery, 1) && rw == reflectionW_ &&
-        rh == reflectionH_ && settings.reflectionEvery == reflectionEvery_) {
+    if (reflectionCamera_ && ++reflectionAge_ < std::max(settings.reflectionEvery, 1) &&
+        rw == reflectionCamera_->widthPx() && rh == reflectionCamera_->heightPx() &&
+        settings.reflectionEvery == reflectionEvery_) {
       in.reflectionCamera = *reflectionCamera_;
       in.reflectionColor = reflection_.color();
       return;
@@ -138,7 +139,7 @@ void GlobeRenderer::makeLayerInputs(const camera::Camera& cam, const camera::Lig
     in.reflectionCamera = camera::Camera::fromEcef(eye, mirror(cam.forward()), mirror(cam.up()), cam.vfovDeg(), rw, rh,
                                                    cam.heightM());
     reflectionCamera_ = in.reflectionCamera;
-    reflectionAge_ = 0, reflectionW_ = rw, reflectionH_ = rh, reflectionEvery_ = settings.reflectionEvery;
+    reflectionAge_ = 0, reflectionEvery_ = settings.reflectionEvery;
     t.reflectionDrawn = true;
     reflection_.ensure(rw, rh);
     // At the viewport's size the map is read about 1:1 (nearest, as it

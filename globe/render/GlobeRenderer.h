@@ -85,11 +85,11 @@ class GlobeRenderer {
   GLuint emptyVao_ = 0;
   // The layers' inputs (made on first need, per size).
   gl::TextureTarget sceneCopy_, reflection_;
-  // The last mirrored pass (FrameSettings::reflectionEvery): its camera,
-  // the frames since, and the map size it was drawn at.
+  // The last mirrored pass (FrameSettings::reflectionEvery): its camera
+  // (and so the map's size) and the frames since; a change of
+  // reflectionEvery starts a new cycle (the next frame draws).
   std::optional<camera::Camera> reflectionCamera_;
-  // A change of reflectionEvery starts a new cycle (the next frame draws).
-  int reflectionAge_ = 0, reflectionW_ = 0, reflectionH_ = 0, reflectionEvery_ = 1;
+  int reflectionAge_ = 0, reflectionEvery_ = 1;
   std::vector<std::shared_ptr<Layer>> layers_;
   std::vector<std::shared_ptr<SceneObject>> objects_;
 };
