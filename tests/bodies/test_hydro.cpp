@@ -494,6 +494,35 @@ TEST(BodyContactPoints, PaperProxyFloatsWhereItsColumnsCarryItsWeight) {
   EXPECT_NEAR(mean, expected, 0.005 * 2 * R);
 }
 
+TEST(BodyContactPoints, TheTorqueOfAHeldRollIsTheColumnsMoment) {
+  // Paper 000 eq. 4: the torque is the sum of r_i x F_i over the points.
+  // The proxy's points sit at y = +-R/2 (body axes); rolled by theta with
+  // its centre on a flat sea, a point's column is submerged by
+  // f = 1/2 -+ (R/2) sin(theta) / 2R, its force rho g (V/n) f acts up at the
+  // lever +-(R/2) cos(theta): the sum is -rho g V R sin(theta) cos(theta) / 8
+  // about the bow axis, and the force is still rho g V / 2.
+  const double L = 12.0, R = 1.5, V = kPi * R * R * L;
+  auto cp = ContactPointForce::hollowCylinderProxy(L, R, 4, std::make_shared<FlatSea>());
+  for (double rollDeg : {5.0, 10.0, 30.0, -20.0}) {
+    Simulation sim;
+    BodyState s = stateAt(kAt);  // centre of mass on the still water
+    s.orientation = orientationAt(kAt, rollDeg);
+    const BodyId id = sim.addBody(MassProperties::box(1e4, {L, 2 * R, 2 * R}), s);
+    const Body& b = sim.body(id);
+    const StepContext ctx = sim.context(b.state);
+    Wrench w;
+    cp->accumulate(b, ctx, w);
+    const double th = rollDeg * kPi / 180.0, g = ctx.gravityMps2;
+    const glm::dvec3 tau = ctx.enu.toLocal(w.torque()), F = ctx.enu.toLocal(w.force());
+    const double expected = -kRho * g * V * R * std::sin(th) * std::cos(th) / 8.0;
+    // The points lie within 6 m of the centre: the ellipsoid's curvature
+    // lowers them by up to 3e-6 m, 1e-6 of a column.
+    EXPECT_NEAR(tau.x, expected, 1e-5 * std::abs(expected)) << rollDeg;
+    EXPECT_NEAR(F.z, 0.5 * kRho * g * V, 1e-5 * kRho * g * V) << rollDeg;
+    EXPECT_LT(std::hypot(tau.y, tau.z), 1e-5 * std::abs(expected)) << rollDeg;
+  }
+}
+
 TEST(BodyHydroValidation, BadInputsNameTheField) {
   auto hull = std::make_shared<HullMesh>(HullMesh::box({1, 1, 1}));
   HullForceOptions o;
