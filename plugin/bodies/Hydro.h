@@ -91,7 +91,8 @@
 // relative to the water (the orbital velocity at the centre decayed to the
 // point's depth, ContactPointOptions), torque from the same points (eq. 4). Gravity acts at
 // the centre of mass (Simulation). Use with MassProperties::isotropicFrom of
-// the hollow-cylinder proxy (eq. 2).
+// the hollow-cylinder proxy (eq. 2). As in the paper: no added mass and no
+// damping but the drag.
 //
 // Thrust: the engine force F_e along the hull's x axis at the centre of mass.
 // Repulsion: F_c between bodies (paper eq. 3-4), springs on the overlap of
