@@ -292,7 +292,7 @@ Blob yellowPixels(const gl::Image& img) {
   return b;
 }
 
-// `fly --follow I` and `view --follow I` (issue 14 item 5): the camera
+// `fly --follow I`, `render --follow I` and `view --follow I` (issue 14 item 5): the camera
 // chases boat I, 3 L behind and 1.2 L above its centre of mass, looking at
 // it, so the boat stays at the picture's centre while it moves (its engine
 // drives it some metres over the flight) and the camera keeps its height
@@ -338,6 +338,24 @@ TEST(RenderBoats, FlyAndViewFollowKeepTheChasedBoatAtThePictureCentre) {
   const double dn = (cam[3][0] - cam[0][0]) * 111'000.0;
   const double de = (cam[3][1] - cam[0][1]) * 111'000.0 * std::cos(30.0 * M_PI / 180.0);
   EXPECT_GT(std::hypot(dn, de), 5.0);
+
+  // `render --follow 3`: one frame, the camera given by --camera (3 km up)
+  // replaced by the chase; without --follow no boat is in sight.
+  for (const bool follow : {true, false}) {
+    const std::string png = dir + (follow ? "/render_follow.png" : "/render_nofollow.png");
+    const auto rr = geocean::test::run(std::string(GEOCEAN_EXE) + " render --camera 30,-40,3000,0,-60 --boats 3" +
+                                       (follow ? " --follow 3" : "") +
+                                       " --time 10 --waves gerstner --size 200x120 --out " + png);
+    ASSERT_EQ(rr.exitCode, 0) << rr.err;
+    const Blob b = yellowPixels(gl::readImage(png));
+    if (!follow) {
+      EXPECT_LT(b.n, 5) << "from 3 km the boats are specks";
+      continue;
+    }
+    EXPECT_GT(b.n, 80);
+    EXPECT_NEAR(b.x, 100.0, 20.0);
+    EXPECT_NEAR(b.y, 60.0, 12.0);
+  }
 
   // `view --follow 3` in a window (GLFW under Xvfb), its last frame.
   if (!geocean::test::haveTool("xvfb-run")) {
