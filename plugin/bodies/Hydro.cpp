@@ -211,8 +211,8 @@ double carlsonRD(double x, double y, double z) {
     if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) <= 1e-4) break;
   }
   const double ea = dx * dy, eb = dz * dz, ec = ea - eb, ed = ea - 6.0 * eb, ee = ed + ec + ec;
-  return 3.0 * sum + fac * (1.0 + ed * (-C1 + C5 * ed - C6 * dz * ee) + dz * (C2 * ee + dz * (-C3 * ec + dz * C4 * ea))) /
-                         (ave * std::sqrt(ave));
+  const double series = 1.0 + ed * (-C1 + C5 * ed - C6 * dz * ee) + dz * (C2 * ee + dz * (-C3 * ec + dz * C4 * ea));
+  return 3.0 * sum + fac * series / (ave * std::sqrt(ave));
 }
 
 EllipsoidAddedMass ellipsoidAddedMass(double a, double b, double c, double rho) {
