@@ -207,16 +207,50 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
           isl.landSat[std::size_t(j) * (n + 1) + i + 1] + isl.landSat[std::size_t(j + 1) * (n + 1) + i] -
           isl.landSat[std::size_t(j) * (n + 1) + i];
   cf.islands_ = islandTable(isl, &cf.shadow_);
+  // How deep the inflow edges of travel (dx, dy) are for the current kLoc.
+  auto edgeDeepness = [&](double dx, double dy, double kDeep) {
+    double num = 0.0, den = 0.0;
+    auto side = [&](double flux, bool xNormal, int fixed) {
+      if (flux <= 0.0) return;
+      double sum = 0.0;
+      int wet = 0;
+      for (int m = 0; m < n; ++m) {
+        const std::size_t p = xNormal ? at(fixed, m) : at(m, fixed);
+        if (isl.elevation[p] >= 0.0) continue;
+        sum += kDeep / kLoc[p];
+        ++wet;
+      }
+      if (wet > 0) num += flux * sum / wet, den += flux;
+    };
+    side(std::abs(dx), true, dx > 0.0 ? 0 : n - 1);
+    side(std::abs(dy), false, dy > 0.0 ? 0 : n - 1);
+    return den > 0.0 ? num / den : 0.0;
+  };
   for (std::size_t c = 0; c < comps.size(); ++c) {
     const WaveField::Component& w = comps[c];
     if (atSource[c]) continue;
-    const double s0x = isl.travel[c].x, s0y = isl.travel[c].y;
     const double k0 = w.kRef;
     // The kernel's own dispersion solve (Guo + 2 Newton steps, ~1e-9) and
     // its deep-water cut-off: deep nodes get exactly k_deep, as the kernel.
     const double kDeep = w.omega * w.omega / WV_G;
     for (std::size_t p = 0; p < depth.size(); ++p)
       kLoc[p] = kDeep * depth[p] < WV_DEEP_KH ? kernel.wv_waveNumber(w.omega, depth[p]) : kDeep;
+    // Carried from its deeper side: a component travelling toward deeper
+    // water (offshore) has no deep inflow edge; its rays, traced back, end on
+    // the shore, so a forward solve's phase there would be whatever arrives
+    // first from the region's (moving) edges. Rays are reversible: solve the
+    // time-reversed wave (-s0) from the deep outflow edges, where the phase
+    // is the deep-water phase, and negate its phase (same turning and Kr:
+    // the same rays and tubes). So two regions over one shelf agree
+    // (Ocean::followCoastRegion). The sides compared by the flux-weighted
+    // mean of k_deep / k over each side's wet edge nodes (1: deep); land is
+    // no depth (a breakwater through an edge does not flip it); ties (deep
+    // all round) keep the forward solve.
+    const double sgn = edgeDeepness(-isl.travel[c].x, -isl.travel[c].y, kDeep) >
+                               edgeDeepness(isl.travel[c].x, isl.travel[c].y, kDeep) + 1e-3
+                           ? -1.0
+                           : 1.0;
+    const double s0x = sgn * isl.travel[c].x, s0y = sgn * isl.travel[c].y;
     // Inflow edges: the plane wave of the reference depth (outside the
     // region the kernel has no offset, so none here either). Only the
     // deepest inflow nodes carry it (deep water, or for long waves the
@@ -332,7 +366,7 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
         const std::size_t p = at(i, j);
         if (!std::isfinite(s[p]) || !std::isfinite(q[p])) continue;  // not reached from the inflow edges
         cf.eikonal_[c * std::size_t(n) * n + p] =
-            glm::dvec3(s[p] - k0 * (s0x * x(i) + s0y * x(j)),
+            glm::dvec3(sgn * (s[p] - k0 * (s0x * x(i) + s0y * x(j))),
                        std::atan2(s0x * sy[p] - s0y * sx[p], s0x * sx[p] + s0y * sy[p]),
                        std::clamp(std::exp(-0.5 * q[p]), kKrMin, kKrMax));
       }

@@ -24,6 +24,13 @@
 // wave number along them conserved from deep water) and the matching
 // ray-tube spreading, so a region moved along a straight shore gives the
 // same field in the overlap (Ocean::followCoastRegion).
+// Each component is carried from its deeper side: one travelling toward
+// deeper water (offshore: its inflow edges less deep than its outflow
+// edges) is solved as the time-reversed wave (-s0) from its outflow edges,
+// where the phase is the deep-water phase, and its phase negated (rays and
+// ray tubes are reversible: same turning and Kr). Otherwise its rays,
+// traced back, end on the shore, and its phase there is whatever first
+// arrives from the region's own edges (two regions disagree).
 // Limits: curved contours at a shallow inflow edge start approximately;
 // where no inflow node is deep the phase's constant is the region's own (a
 // moved region shifts it); first arrivals only (no crossing seas behind a
