@@ -30,7 +30,9 @@
 // where the phase is the deep-water phase, and its phase negated (rays and
 // ray tubes are reversible: same turning and Kr). Otherwise its rays,
 // traced back, end on the shore, and its phase there is whatever first
-// arrives from the region's own edges (two regions disagree).
+// arrives from the region's own edges (two regions disagree). Near an
+// island such a component's eikonal wraps around it on the up-wave side
+// (the reversed wave's lee); the island table still shades the true lee.
 // Limits: curved contours at a shallow inflow edge start approximately;
 // where no inflow node is deep the phase's constant is the region's own (a
 // moved region shifts it); first arrivals only (no crossing seas behind a
