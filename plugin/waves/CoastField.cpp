@@ -207,20 +207,20 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
           isl.landSat[std::size_t(j) * (n + 1) + i + 1] + isl.landSat[std::size_t(j + 1) * (n + 1) + i] -
           isl.landSat[std::size_t(j) * (n + 1) + i];
   cf.islands_ = islandTable(isl, &cf.shadow_);
-  // How deep the inflow edges of travel (dx, dy) are for the current kLoc.
-  auto edgeDeepness = [&](double dx, double dy, double kDeep) {
+  cf.reversed_.assign(comps.size(), 0);
+  // How much deep water the inflow edges of travel (dx, dy) have: per node
+  // kEdge / k (1: as deep as the deepest wet edge node; land 0: no wave
+  // comes from land), the mean over each edge weighted by the flux through it.
+  auto edgeDeepness = [&](double dx, double dy, double kEdge) {
     double num = 0.0, den = 0.0;
     auto side = [&](double flux, bool xNormal, int fixed) {
       if (flux <= 0.0) return;
       double sum = 0.0;
-      int wet = 0;
       for (int m = 0; m < n; ++m) {
         const std::size_t p = xNormal ? at(fixed, m) : at(m, fixed);
-        if (isl.elevation[p] >= 0.0) continue;
-        sum += kDeep / kLoc[p];
-        ++wet;
+        if (isl.elevation[p] < 0.0) sum += kEdge / kLoc[p];
       }
-      if (wet > 0) num += flux * sum / wet, den += flux;
+      num += flux * sum / n, den += flux;
     };
     side(std::abs(dx), true, dx > 0.0 ? 0 : n - 1);
     side(std::abs(dy), false, dy > 0.0 ? 0 : n - 1);
@@ -242,14 +242,18 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
     // time-reversed wave (-s0) from the deep outflow edges, where the phase
     // is the deep-water phase, and negate its phase (same turning and Kr:
     // the same rays and tubes). So two regions over one shelf agree
-    // (Ocean::followCoastRegion). The sides compared by the flux-weighted
-    // mean of k_deep / k over each side's wet edge nodes (1: deep); land is
-    // no depth (a breakwater through an edge does not flip it); ties (deep
-    // all round) keep the forward solve.
-    const double sgn = edgeDeepness(-isl.travel[c].x, -isl.travel[c].y, kDeep) >
-                               edgeDeepness(isl.travel[c].x, isl.travel[c].y, kDeep) + 1e-3
-                           ? -1.0
-                           : 1.0;
+    // (Ocean::followCoastRegion). Reversed when the outflow edges' deep
+    // water (edgeDeepness) exceeds the inflow's by 5 % of the flux: land
+    // or an island blocking less of the inflow, and ties (deep all round),
+    // keep the forward solve (its island shadows on the lee side).
+    double kEdge = inf;
+    for (int m = 0; m < n; ++m)
+      for (const std::size_t p : {at(0, m), at(n - 1, m), at(m, 0), at(m, n - 1)})
+        if (isl.elevation[p] < 0.0) kEdge = std::min(kEdge, kLoc[p]);
+    const double dIn = edgeDeepness(isl.travel[c].x, isl.travel[c].y, kEdge);
+    const double dOut = edgeDeepness(-isl.travel[c].x, -isl.travel[c].y, kEdge);
+    const double sgn = std::isfinite(kEdge) && dOut > dIn + 0.05 ? -1.0 : 1.0;
+    cf.reversed_[c] = sgn < 0.0;
     const double s0x = sgn * isl.travel[c].x, s0y = sgn * isl.travel[c].y;
     // Inflow edges: the plane wave of the reference depth (outside the
     // region the kernel has no offset, so none here either). Only the

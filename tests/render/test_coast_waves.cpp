@@ -618,7 +618,7 @@ TEST(OceanCoast, RegionFollowsAFlightAlongTheCoast) {
 // degrees off the wind (240) travel offshore: each is carried from its
 // deeper side (the time-reversed wave from the deep outflow edges), else
 // the two fields differ by 0.29 / 0.33 m and Hs by 6-7 %. Measured 0.037 m
-// along the shore, 0.0013 m offshore (Hs 2.13 m), Hs within 0.3 %. Moved
+// along the shore, 0.034 m offshore (Hs 2.13 m), Hs within 0.3 %. Moved
 // onshore, water deeper than 10 m keeps the bound (0.026 m); in the last
 // 10 m of depth (within 500 m of the shore, where 50 m cells hold less
 // than a wavelength) the heights change by up to 0.33 m: measured and
