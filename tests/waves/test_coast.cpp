@@ -245,9 +245,9 @@ TEST(Coast, OffshoreTravellingWaveLeavesTheBeachAsTheWaveBeyond) {
 // travelling toward deeper water (s0 . d > sin 10 degrees, d the way down
 // the slope) is reversed; one travelling toward the shore (s0 . d < -sin
 // 10 degrees) is not, even with the deeper north edge among its outflow
-// edges (a first rule that left land out of the comparison reversed them:
-// their whole field then came from the shore side, and the picture off
-// Nazare showed white blobs everywhere). Within 10 degrees of the contours
+// edges (a first rule that left land out of the comparison reversed one
+// here, and 12 of 16 off Nazare, where their fields then came from the
+// shore side and the picture showed white blobs everywhere). Within 10 degrees of the contours
 // the 5 % flux margin decides: not checked.
 TEST(Coast, OnlyComponentsTravellingOffshoreAreCarriedFromTheirOutflowEdges) {
   SeaState sea;
