@@ -363,7 +363,7 @@ TEST(RenderBoats, FlyAndViewFollowKeepTheChasedBoatAtThePictureCentre) {
     return;
   }
   const std::string shot = dir + "/view.png";
-  const auto v = geocean::test::run("xvfb-run -a -s '-screen 0 640x480x24' " + std::string(GEOCEAN_EXE) +
+  const auto v = geocean::test::runUnderXvfb("640x480x24", std::string(GEOCEAN_EXE) +
                                     " view --fly-to 30,-40 --boats 3 --follow 3 --frames 30 --size 200x120 --no-hud"
                                     " --screenshot " + shot);
   ASSERT_EQ(v.exitCode, 0) << v.err;
@@ -403,7 +403,7 @@ TEST(RenderBoats, TheFKeyInTheWindowStartsTheChase) {
       "timeout 120 xdotool search --sync --onlyvisible --name Geocean >/dev/null; sleep 2; "
       "xdotool key f; timeout 120 xdotool search --sync --name \"alt +[0-9.]+ m \" >/dev/null; sleep 1; "
       "xdotool key Escape; wait $v";
-  const auto r = geocean::test::run("xvfb-run -a -s '-screen 0 640x480x24' sh -c '" + script + "'");
+  const auto r = geocean::test::runUnderXvfb("640x480x24", "sh -c '" + script + "'");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::ifstream csv(dir + "/stats.csv");
   std::string line;

@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -36,6 +37,23 @@ ProcessResult run(const std::string& command, const std::string& input) {
 
 bool haveTool(const std::string& tool) {
   return std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+ProcessResult runUnderXvfb(const std::string& screen, const std::string& command, const std::string& input) {
+  static std::atomic<int> calls{0};
+  ProcessResult r;
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    const int k = calls++;
+    // Server numbers 200-999, spread by pid so parallel test processes
+    // start apart; -a still skips any number whose lock file exists.
+    const int server = 200 + int((unsigned(getpid()) * 37u + unsigned(k) * 101u) % 800u);
+    const std::string auth = "/tmp/geocean-xauth-" + std::to_string(getpid()) + "-" + std::to_string(k);
+    r = run("xvfb-run -a -n " + std::to_string(server) + " -f " + auth + " -s '-screen 0 " + screen + "' " + command,
+            input);
+    std::remove(auth.c_str());
+    if (r.err.find("Xvfb failed to start") == std::string::npos) return r;
+  }
+  return r;
 }
 
 }  // namespace geocean::test

@@ -17,4 +17,12 @@ ProcessResult run(const std::string& command, const std::string& input = {});
 // True if `tool` is on PATH.
 bool haveTool(const std::string& tool);
 
+// Runs `command` (through /bin/sh) in its own Xvfb server of `screen`
+// ("WxHxDEPTH") via xvfb-run. Tests run in parallel: `xvfb-run -a` alone
+// races for a server number (two can pick the same free one; the loser
+// exits 1 with "Xvfb failed to start") and shares ./.Xauthority, so each
+// call takes a server number from its pid and its own auth file, and
+// retries (up to 5 times) only when Xvfb itself failed to start.
+ProcessResult runUnderXvfb(const std::string& screen, const std::string& command, const std::string& input = {});
+
 }  // namespace geocean::test

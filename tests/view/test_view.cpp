@@ -33,7 +33,7 @@ const std::string kGeocean = GEOCEAN_EXE;
 
 geocean::test::ProcessResult view(const std::string& args) {
   // -a: a free server number, so tests may run in parallel.
-  return geocean::test::run("xvfb-run -a -s '-screen 0 800x600x24' " + kGeocean + " view " + args);
+  return geocean::test::runUnderXvfb("800x600x24", kGeocean + " view " + args);
 }
 
 std::string tempPath(const std::string& name) {

@@ -45,7 +45,7 @@ TEST(ViewMemory, FlatOverARepeatedFlight) {
   const int perFlight = 1000;
   // 96x54: a tiny window keeps 2,000 llvmpipe frames near a minute; the
   // code path (terrain LOD and pool, the plugin's ocean, HUD, window) is the same.
-  const auto r = geocean::test::run("xvfb-run -a -s '-screen 0 640x480x24' " + kGeocean +
+  const auto r = geocean::test::runUnderXvfb("640x480x24", kGeocean +
                                     " view --size 96x54 --fly-to 36.0,-5.6 --frames " +
                                     std::to_string(2 * perFlight) + " --flight-frames " +
                                     std::to_string(perFlight) + " --stats " + stats);
