@@ -99,17 +99,20 @@ TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
   tileRange(k, lat0, lat1, lon0, lon1);
   Bounds b;
   b.center = geo::toEcef({0.5 * (lat0 + lat1), 0.5 * (lon0 + lon1), 0.0});
+  // Water throughout: every water texel the tile's bilinear samples reach
+  // (one texel around it) is water, from the exact any-land index; 9 x 9
+  // samples missed an island between them and capped its LOD at level 7.
+  const world::WaterIndex& wi = world_.waterIndex();
+  b.allWater = wi.allWaterAround(lat0, lat1, lon0, lon1, 1.0);
   // Heights as the vertex shader makes them (land >= 0, water at -seaDrop),
   // from 9 x 9 samples; between samples the bilinear relief can rise further,
   // by at most the range seen plus a margin, and never above Everest.
   const double exag = std::max(1.0, options_.exaggeration);
   double hMin = 1e30, hMax = -1e30;
-  b.allWater = true;
   for (int j = 0; j < 9; ++j)
     for (int i = 0; i < 9; ++i) {
       const double lat = lat0 + (lat1 - lat0) * j / 8.0, lon = lon0 + (lon1 - lon0) * i / 8.0;
       const double w = world_.waterAt(lat, lon);
-      b.allWater = b.allWater && w > 0.55;
       const double land = std::max(0.0, double(world_.elevationAt(lat, lon))) * exag;
       const double h = w > 0.55 ? -options_.seaDropM : (w < 0.45 ? land : std::max(land, 0.0));
       // The vertex shader drops the ground from coverage 0.3 (B-spline), which
@@ -178,7 +181,9 @@ void TerrainRenderer::select(const Key& k, const camera::Camera& cam, std::vecto
   double lat0, lat1, lon0, lon1;
   tileRange(k, lat0, lat1, lon0, lon1);
   const double pxPerM = cam.heightPx() / (2.0 * tanY);
-  if (waterLayer_ && b.allWater && underOpenWater(lat0, lat1, lon0, lon1, b, dist, cam, pxPerM)) return;
+  // The ocean layer answers from its own stack (a regional mask over the
+  // grid), which can call water what the host grid calls land.
+  if (waterLayer_ && underOpenWater(lat0, lat1, lon0, lon1, b, dist, cam, pxPerM)) return;
   const double latEq = (lat0 <= 0.0 && lat1 >= 0.0) ? 0.0 : std::min(std::abs(lat0), std::abs(lat1));
   const double extentM = std::max((lat1 - lat0), (lon1 - lon0) * std::cos(latEq * kDeg)) * kDeg * geo::kWgs84A;
   const double nearest = std::max(dist - b.radius, cam.nearM());

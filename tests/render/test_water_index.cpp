@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <tuple>
 #include <vector>
 
 namespace geocean::world {
@@ -75,6 +76,38 @@ TEST(WaterIndex, MapsLonLatToTexelsAndRejectsBadBounds) {
   EXPECT_FALSE(wi.allWater(nan, 1.0, 0.0, 1.0));
   EXPECT_FALSE(wi.allWater(0.0, 1.0, 0.0, nan));
   EXPECT_FALSE(WaterIndex().allWater(0.0, 1.0, 0.0, 1.0));
+}
+
+// A lon/lat rectangle with a margin of m texels is widened by m on every
+// side (latitude steps are negative: widening in texel rows by hand,
+// texelY(lat0) - m and texelY(lat1) + m, narrowed it and saw no land along a
+// rectangle's north and south edges). The ocean's coversOpaquely (which the
+// host's terrain asks before leaving a tile out) must see such land: its
+// margin holds the B-spline's reach.
+TEST(WaterIndex, AMarginAroundALonLatRectangleWidensItOnEverySide) {
+  // 1-degree texels; rectangle lat 5.5..9.5, lon 0.25..0.75 (texel rows
+  // 80..84, column 180); a margin of 1 reaches rows 79..85, columns 179..181.
+  for (const auto& [landLat, landLon, m, expect] :
+       {std::tuple{10.5, 0.5, 1.0, false}, std::tuple{4.5, 0.5, 1.0, false}, std::tuple{7.5, 1.5, 1.0, false},
+        std::tuple{7.5, -0.5, 1.0, false}, std::tuple{11.5, 0.5, 1.0, true}, std::tuple{3.5, 0.5, 1.0, true},
+        std::tuple{12.5, 0.5, 3.0, false}, std::tuple{2.5, 0.5, 3.0, false}, std::tuple{13.5, 0.5, 3.0, true},
+        std::tuple{7.5, 0.5, 0.0, false}}) {
+    WorldLayer l = layer(360, 180, 0.0, 1);
+    const int x = int(std::floor(landLon + 180.0)), y = int(std::floor(90.0 - landLat));
+    l.values[std::size_t(y) * l.width + std::size_t(x)] = 0.0f;
+    const WaterIndex wi(l);
+    EXPECT_EQ(wi.allWaterAround(5.5, 9.5, 0.25, 0.75, m), expect) << landLat << " " << landLon << " margin " << m;
+    EXPECT_EQ(wi.allWaterAround(9.5, 5.5, 0.75, 0.25, m), expect) << "corners in the other order";
+  }
+  // Land in the texel row just north of a tile's edge, within the
+  // B-spline's two texels: the ocean does not cover that tile opaquely.
+  for (const double landLat : {10.5, 4.5, 20.5}) {
+    WorldLayer water = layer(360, 180, 0.0, 1);
+    water.values[std::size_t(90.0 - landLat) * water.width + 180] = 0.0f;
+    const WorldGrids grids(globalGridFor(nullptr), water);
+    const bool covered = ocean_render::coversOpaquely(grids, 8.0, 5.0, 10.0, 0.0, 1.0, 1.0, false);
+    EXPECT_EQ(covered, landLat > 15.0) << "land at " << landLat;
+  }
 }
 
 // A streamed global mask's open water and the screen grid's near-water
