@@ -110,6 +110,57 @@ TEST(WaterIndex, AMarginAroundALonLatRectangleWidensItOnEverySide) {
   }
 }
 
+// A regional mask's index (world::regionalWaterCover, the host terrain's
+// all-water rule over a regional layer): a texel of the level is water
+// only where every mask cell under it that has data is water, and where
+// none has data it is water (the grid below answers there). Brute force
+// over every texel, at level 0 and at the coarser level a small texel
+// budget forces.
+TEST(WaterIndex, ARegionalMasksCoverIsWaterWhereEveryCellWithDataIs) {
+  constexpr int W = 600, H = 300;  // 0.01-degree cells over 10..16 E, 40..37 N
+  std::vector<float> cls(std::size_t(W) * H, 0.0f);
+  const auto at = [&](int x, int y) -> float& { return cls[std::size_t(y) * W + x]; };
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> ux(0, W - 1), uy(0, H - 1);
+  for (int i = 0; i < 300; ++i) at(ux(rng), uy(rng)) = 1.0f;  // one-cell islands
+  for (int y = 100; y < 180; ++y)
+    for (int x = 250; x < 400; ++x) at(x, y) = 255.0f;  // nodata, with islands in it left out
+  raster::GeoTransform t;
+  t.originLonDeg = 10.0, t.originLatDeg = 40.0, t.lonStepDeg = 0.01, t.latStepDeg = -0.01;
+  const auto mask = raster::Raster::fromPixels(cls, W, H, 1, t, 255.0);
+  test::TempDir dir("geocean-regional-cover");
+  raster::PyramidOptions po;
+  po.cacheDir = dir.path.string();
+  po.progress = raster::BuildProgress::Off;
+  const auto pyr = waterPyramid(mask, {}, po);
+  for (const std::size_t budget : {std::size_t(1) << 22, std::size_t(W * H / 16)}) {
+    const WorldLayer l = regionalWaterCover(*pyr, budget);
+    const int s = W / l.width;
+    ASSERT_EQ(l.width * s, W);
+    ASSERT_LE(std::size_t(l.width) * l.height, budget);
+    EXPECT_DOUBLE_EQ(l.originLonDeg, 10.0);
+    EXPECT_DOUBLE_EQ(l.lonStepDeg, 0.01 * s);
+    int land = 0, nodata = 0;
+    for (int y = 0; y < l.height; ++y)
+      for (int x = 0; x < l.width; ++x) {
+        bool anyLand = false, allNodata = true;
+        for (int yy = y * s; yy < std::min((y + 1) * s, H); ++yy)
+          for (int xx = x * s; xx < std::min((x + 1) * s, W); ++xx) {
+            anyLand = anyLand || at(xx, yy) == 1.0f;
+            allNodata = allNodata && at(xx, yy) == 255.0f;
+          }
+        const float v = l.values[std::size_t(y) * l.width + x];
+        ASSERT_EQ(v >= 1.0f, !anyLand) << x << " " << y << " level texel " << s;
+        land += anyLand, nodata += allNodata;
+        if (allNodata) {
+          ASSERT_EQ(v, 1.0f);
+        }
+      }
+    EXPECT_GT(land, 100);
+    EXPECT_GT(nodata, 100);
+  }
+}
+
 // A streamed global mask's open water and the screen grid's near-water
 // classes come from the pyramid level that is the ocean's water grid
 // (ocean_render::waterIndexFollowsTiles, nearWaterClassifier): checked
