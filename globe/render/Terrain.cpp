@@ -16,6 +16,17 @@ constexpr int kFloatsPerVertex = 9;  // local xyz, normal xyz, lon, lat, skirt
 // Highest and lowest terrain on Earth (Everest 8849 m, Challenger Deep 10935 m), with margin.
 constexpr double kMaxTerrainM = 9000.0;
 constexpr double kMinTerrainM = -11000.0;
+// Texels the water/elevation filters read past a terrain tile's edge in
+// its pyramid level (the B-spline's 2 and a skirt's).
+constexpr double kReach = 3.0;
+
+// The pyramid level a terrain tile `cellsAcross` level-0 texels wide asks
+// for: the finest whose 2 x 2 tiles hold it and the filters' reach.
+int blockLevel(const raster::TilePyramid& pyr, double cellsAcross) {
+  int want = 0;
+  while (want < pyr.levels() - 1 && cellsAcross / double(1 << want) + 2.0 * kReach + 1.0 > pyr.tileSize()) ++want;
+  return want;
+}
 }  // namespace
 
 glm::dvec3 sunFromSubsolar(double latDeg, double lonDeg) { return geo::surfaceNormal(latDeg, lonDeg); }
@@ -99,23 +110,51 @@ TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
   tileRange(k, lat0, lat1, lon0, lon1);
   Bounds b;
   b.center = geo::toEcef({0.5 * (lat0 + lat1), 0.5 * (lon0 + lon1), 0.0});
+  // Water throughout: every water texel the tile's bilinear samples reach
+  // (one texel around it) is water, from the exact any-land index; 9 x 9
+  // samples missed an island between them and capped its LOD at level 7.
+  // Over a regional streamed mask the grid's index is the layers' below
+  // it: the mask's own index must agree, over the reach of the level the
+  // tile reads (whose texels past the mask's edge or at its nodata read the
+  // grid at their centres: that far into the grid too).
+  const world::WaterIndex& wi = world_.waterIndex();
+  double gridMargin = 1.0;
+  bool regional = false, regionalLand = false;
+  if (const world::WaterIndex* ri = world_.regionalWaterIndex()) {
+    const raster::TilePyramid& pyr = world_.waterTiles()->pyramid();
+    const raster::GeoTransform& t = pyr.source().transform();
+    const double cellDeg = std::max(std::abs(t.lonStepDeg), std::abs(t.latStepDeg));
+    const double across = std::max((lon1 - lon0) / std::abs(t.lonStepDeg), (lat1 - lat0) / std::abs(t.latStepDeg));
+    const double reachDeg = 2.0 * double(1 << blockLevel(pyr, across)) * cellDeg;
+    double x0 = ri->texelX(lon0 - reachDeg), x1 = ri->texelX(lon1 + reachDeg);
+    double y0 = ri->texelY(lat0 - reachDeg), y1 = ri->texelY(lat1 + reachDeg);
+    if (x0 > x1) std::swap(x0, x1);
+    if (y0 > y1) std::swap(y0, y1);
+    regional = x1 >= 0.0 && x0 <= ri->width() && y1 >= 0.0 && y0 <= ri->height();
+    if (regional) {  // clipped: the index is not global, nothing past its edge may wrap in
+      const double xe = std::nextafter(double(ri->width()), 0.0), ye = std::nextafter(double(ri->height()), 0.0);
+      regionalLand = !ri->allWater(std::clamp(x0, 0.0, xe), std::clamp(x1, 0.0, xe), std::clamp(y0, 0.0, ye),
+                                   std::clamp(y1, 0.0, ye));
+      gridMargin += reachDeg / std::min(wi.lonStepDeg(), wi.latStepDeg());
+    }
+  }
+  b.allWater = !regionalLand && wi.allWaterAround(lat0, lat1, lon0, lon1, gridMargin);
   // Heights as the vertex shader makes them (land >= 0, water at -seaDrop),
   // from 9 x 9 samples; between samples the bilinear relief can rise further,
   // by at most the range seen plus a margin, and never above Everest.
   const double exag = std::max(1.0, options_.exaggeration);
   double hMin = 1e30, hMax = -1e30;
-  b.allWater = true;
   for (int j = 0; j < 9; ++j)
     for (int i = 0; i < 9; ++i) {
       const double lat = lat0 + (lat1 - lat0) * j / 8.0, lon = lon0 + (lon1 - lon0) * i / 8.0;
       const double w = world_.waterAt(lat, lon);
-      b.allWater = b.allWater && w > 0.55;
       const double land = std::max(0.0, double(world_.elevationAt(lat, lon))) * exag;
       const double h = w > 0.55 ? -options_.seaDropM : (w < 0.45 ? land : std::max(land, 0.0));
       // The vertex shader drops the ground from coverage 0.3 (B-spline), which
       // can reach past these bilinear samples: any water at all may go under.
-      hMin = std::min({hMin, h, w > 0.0 ? -options_.seaDropM : h});
-      hMax = std::max(hMax, h);
+      // A regional mask may put land or water where the grid has neither.
+      hMin = std::min({hMin, h, w > 0.0 || regional ? -options_.seaDropM : h});
+      hMax = std::max({hMax, h, regionalLand ? land : h});
     }
   const double margin = 0.5 * (hMax - hMin) + 50.0 * exag;
   const double hi = std::min(hMax + margin, kMaxTerrainM * exag);
@@ -178,7 +217,9 @@ void TerrainRenderer::select(const Key& k, const camera::Camera& cam, std::vecto
   double lat0, lat1, lon0, lon1;
   tileRange(k, lat0, lat1, lon0, lon1);
   const double pxPerM = cam.heightPx() / (2.0 * tanY);
-  if (waterLayer_ && b.allWater && underOpenWater(lat0, lat1, lon0, lon1, b, dist, cam, pxPerM)) return;
+  // The ocean layer answers from its own stack (a regional mask over the
+  // grid), which can call water what the host grid calls land.
+  if (waterLayer_ && underOpenWater(lat0, lat1, lon0, lon1, b, dist, cam, pxPerM)) return;
   const double latEq = (lat0 <= 0.0 && lat1 >= 0.0) ? 0.0 : std::min(std::abs(lat0), std::abs(lat1));
   const double extentM = std::max((lat1 - lat0), (lon1 - lon0) * std::cos(latEq * kDeg)) * kDeg * geo::kWgs84A;
   const double nearest = std::max(dist - b.radius, cam.nearM());
@@ -329,7 +370,6 @@ bool TerrainRenderer::bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, c
   const double x0 = (lon0 - t0.originLonDeg) / t0.lonStepDeg, x1 = (lon1 - t0.originLonDeg) / t0.lonStepDeg;
   const double ya = (lat0 - t0.originLatDeg) / t0.latStepDeg, yb = (lat1 - t0.originLatDeg) / t0.latStepDeg;
   const double y0 = std::min(ya, yb), y1 = std::max(ya, yb);
-  constexpr double kReach = 3.0;
   if (!wrap) {
     // A regional layer: a terrain tile clear of it by the filter's reach at
     // the coarsest level draws the grid alone (slots -1, geo_uv.glsl), so
@@ -340,8 +380,7 @@ bool TerrainRenderer::bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, c
       return true;
     }
   }
-  int want = 0;
-  while (want < top && std::max(x1 - x0, y1 - y0) / double(1 << want) + 2.0 * kReach + 1.0 > T) ++want;
+  const int want = blockLevel(pyr, std::max(x1 - x0, y1 - y0));
   int slots[4] = {0, 0, 0, 0};
   int level = top, bx = 0, by = 0;
   for (int l = want; l <= top; ++l) {

@@ -108,7 +108,7 @@ class TerrainRenderer {
     double radius;
     glm::dvec3 samples[9];  // 3 x 3 points at the highest height
     double bulgeM = 0.0;    // how far the surface rises between them
-    bool allWater = false;  // every sample is water: no relief to refine
+    bool allWater = false;  // water throughout (WaterIndex): no relief to refine
   };
 
   void select(const Key& k, const camera::Camera& cam, std::vector<Key>& out, int depth);

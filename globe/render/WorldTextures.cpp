@@ -50,12 +50,20 @@ WorldTextures::WorldTextures(const world::WorldData& data)
     elevationTiles_ = std::make_unique<gl::TilePool>(data.elevationTiles, o);
   }
   if (data.waterSource) waterTiles_ = std::make_unique<gl::TilePool>(world::waterPyramid(data.waterSource, data.waterEncoding));
+  indexRegionalWater();
+}
+
+void WorldTextures::indexRegionalWater() {
+  regionalIndex_.reset();
+  if (waterTiles_ && world::isStreamedRegional(waterTiles_->pyramid().source()))
+    regionalIndex_ = std::make_unique<world::WaterIndex>(world::regionalWaterCover(waterTiles_->pyramid()));
 }
 
 WorldTextures::WorldTextures(const world::WorldData& data, std::shared_ptr<const raster::TilePyramid> water,
                              gl::TilePoolOptions pool)
     : WorldTextures(data) {
   if (water) waterTiles_ = std::make_unique<gl::TilePool>(std::move(water), pool);
+  indexRegionalWater();
 }
 
 WorldTextures::~WorldTextures() {

@@ -50,6 +50,10 @@ class WorldTextures {
   const world::WaterIndex& waterIndex() const { return grids_->waterIndex(); }
   // The streamed water coverage, or null (the single texture only).
   gl::TilePool* waterTiles() const { return waterTiles_.get(); }
+  // A regional streamed mask's own water index (world::regionalWaterCover,
+  // over its extent; null otherwise): waterIndex() is the grid's below it,
+  // which knows nothing of the mask's islands and coasts.
+  const world::WaterIndex* regionalWaterIndex() const { return regionalIndex_.get(); }
   // The streamed elevation (WorldData::elevationTiles: R32F, NaN where the
   // raster has no data), or null.
   gl::TilePool* elevationTiles() const { return elevationTiles_.get(); }
@@ -61,6 +65,8 @@ class WorldTextures {
   std::vector<GLuint> imageryLayers_;
   std::vector<glm::vec4> imageryLayerGeo_;
   std::unique_ptr<gl::TilePool> waterTiles_, elevationTiles_;
+  std::unique_ptr<world::WaterIndex> regionalIndex_;
+  void indexRegionalWater();
 };
 
 }  // namespace geocean::render

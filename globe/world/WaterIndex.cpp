@@ -82,4 +82,11 @@ bool WaterIndex::allWater(double x0, double x1, double y0, double y1) const {
   return !anyLand(ix0, width_ - 1, iy0, iy1) && !anyLand(0, ix1 - width_, iy0, iy1);
 }
 
+bool WaterIndex::allWaterAround(double lat0, double lat1, double lon0, double lon1, double marginTexels) const {
+  double x0 = texelX(lon0), x1 = texelX(lon1), y0 = texelY(lat0), y1 = texelY(lat1);
+  if (x0 > x1) std::swap(x0, x1);
+  if (y0 > y1) std::swap(y0, y1);
+  return allWater(x0 - marginTexels, x1 + marginTexels, y0 - marginTexels, y1 + marginTexels);
+}
+
 }  // namespace geocean::world

@@ -24,6 +24,11 @@ class WaterIndex {
   // x wraps around the globe, y is clamped to the raster; the corners may
   // come in any order). Empty index (no layer) or NaN bounds: false.
   bool allWater(double x0, double x1, double y0, double y1) const;
+  // The same for a longitude / latitude rectangle (corners in any order)
+  // widened by `marginTexels` on every side. Widen here, not in texel
+  // coordinates by hand: latitude steps are negative (north up), so
+  // texelY(lat0) - m, texelY(lat1) + m narrows the rectangle instead.
+  bool allWaterAround(double lat0, double lat1, double lon0, double lon1, double marginTexels) const;
 
   // Continuous texel coordinates of a longitude / latitude in degrees.
   double texelX(double lonDeg) const { return (lonDeg - originLonDeg_) / lonStepDeg_; }

@@ -78,6 +78,18 @@ WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg) {
   return l;
 }
 
+WorldLayer regionalWaterCover(const raster::TilePyramid& water, std::size_t maxTexels) {
+  int level = 0;
+  while (level + 1 < water.levels() &&
+         std::size_t(water.levelWidth(level)) * std::size_t(water.levelHeight(level)) > maxTexels)
+    ++level;
+  const double step = std::abs(water.levelTransform(level).lonStepDeg);
+  WorldLayer l = levelLayerOf(water, step);
+  for (float& v : l.values)
+    if (std::isnan(v)) v = 1.0f;
+  return l;
+}
+
 WorldLayer levelLayerOf(const raster::TilePyramid& water, double stepDeg) {
   const raster::GeoTransform& t = water.source().transform();
   int level = 0;

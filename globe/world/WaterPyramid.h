@@ -55,4 +55,13 @@ bool isStreamedRegional(const raster::Raster& r);
 // stack's resample: relief has no class to keep.)
 WorldLayer waterLayerBelow(const LayerStack& stack, const raster::Raster& streamed);
 
+// A regional pyramid's water for a WaterIndex: its finest level of at most
+// maxTexels texels, nodata (NaN) as water. A level texel is the mean of the
+// mask cells under it that have data (exact in float for levels <= 12), so
+// it is 1 only where each of them is water; where none has data the layers
+// below answer, and the index of their grid (waterLayerBelow) speaks for
+// them. So the grid's index and this one both all water over a rectangle
+// means the drawn coverage is water throughout it.
+WorldLayer regionalWaterCover(const raster::TilePyramid& water, std::size_t maxTexels = std::size_t(1) << 22);
+
 }  // namespace geocean::world

@@ -141,8 +141,7 @@ bool coversOpaquely(const world::WorldGrids& world, double cellPx, double lat0, 
   const double tpp = footprintM / texelM;
   const double margin = 3.0 + ((paged ? 6.0 : 3.0) + 2.0 * cellPx) * tpp;
   if (margin > 256.0) return false;
-  return wi.allWater(wi.texelX(lon0) - margin, wi.texelX(lon1) + margin, wi.texelY(lat0) - margin,
-                     wi.texelY(lat1) + margin);
+  return wi.allWaterAround(lat0, lat1, lon0, lon1, margin);
 }
 
 }  // namespace geocean::ocean_render

@@ -21,6 +21,7 @@
 
 #include "globe/geo/Ellipsoid.h"
 #include "globe/gl/Framebuffer.h"
+#include "globe/raster/GeoTiffWriter.h"
 #include "globe/raster/Raster.h"
 #include "globe/raster/World.h"
 #include "globe/render/Session.h"
@@ -157,12 +158,13 @@ Streamed& streamed() {
   return s;
 }
 
-// The 3" Strait of Gibraltar mask as a regional layer over the default
-// world, built as `geocean render --mask gibraltar_3s.tif` builds it (issue
-// 12): the host's world by world::loadLayeredWorld (its terrain streams the
-// mask's tiles over the stack's 5' grid), the ocean's from the façade's
-// snapshot by oceanWorld/oceanWaterTiles as plugin/capi's draw does, both
-// waiting for their tiles as the CLI's single pictures do.
+// A regional mask (regional(): the 3" Strait of Gibraltar mask) as a
+// layer over the default world, built as `geocean render --mask
+// gibraltar_3s.tif` builds it (issue 12): the host's world by
+// world::loadLayeredWorld (its terrain streams the mask's tiles over the
+// stack's 5' grid), the ocean's from the façade's snapshot by
+// oceanWorld/oceanWaterTiles as plugin/capi's draw does, both waiting for
+// their tiles as the CLI's single pictures do.
 struct Regional {
   std::shared_ptr<WorldTextures> world;
   std::unique_ptr<GlobeRenderer> renderer;
@@ -170,33 +172,35 @@ struct Regional {
   std::shared_ptr<const ocean::LandSea> landSea;  // the façade's layered land/sea
 };
 
+Regional makeRegional(const std::string& maskPath) {
+  scene();  // the session's context
+  Regional c;
+  const std::string cache = ::testing::TempDir() + "/coast_regional_tiles." + std::to_string(::getpid());
+  ::setenv("GEOCEAN_TILE_CACHE", cache.c_str(), 1);
+  world::WorldData d = world::loadLayeredWorld({{world::LayerKind::Mask, maskPath, "", 0}}, true);
+  EXPECT_TRUE(d.waterSource) << "the regional 3\" mask should be streamed";
+  TerrainOptions t;
+  t.waitForTiles = true;  // as geocean render
+  c.world = std::make_shared<WorldTextures>(d);
+  c.renderer = std::make_unique<GlobeRenderer>(c.world, t);
+  ocean::Ocean o;
+  o.setDefaultWorld(ocean::Ocean::defaultWorldDir());
+  o.addMaskLayerFile(maskPath);
+  const auto snap = o.current();
+  ocean_render::OceanOptions oo;
+  oo.waterTiles = ocean_render::oceanWaterTiles(snap->landSea.get(), snap->mask);
+  EXPECT_TRUE(oo.waterTiles) << "the ocean should stream the regional 3\" mask";
+  const auto grids = ocean_render::oceanWorld(snap->mask, snap->elevation, snap->landSea.get(), snap->maskEncoding,
+                                              oo.waterTiles.get());
+  c.ocean = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  c.ocean->setCompleteTiles(true);
+  c.renderer->addLayer(std::make_shared<DirectOceanLayer>(c.ocean));
+  c.landSea = snap->landSea;
+  return c;
+}
+
 Regional& regional() {
-  static Regional s = [] {
-    scene();  // the session's context
-    Regional c;
-    const std::string cache = ::testing::TempDir() + "/coast_regional_tiles." + std::to_string(::getpid());
-    ::setenv("GEOCEAN_TILE_CACHE", cache.c_str(), 1);
-    world::WorldData d = world::loadLayeredWorld({{world::LayerKind::Mask, gibraltarMask(), "", 0}}, true);
-    EXPECT_TRUE(d.waterSource) << "the regional 3\" mask should be streamed";
-    TerrainOptions t;
-    t.waitForTiles = true;  // as geocean render
-    c.world = std::make_shared<WorldTextures>(d);
-    c.renderer = std::make_unique<GlobeRenderer>(c.world, t);
-    ocean::Ocean o;
-    o.setDefaultWorld(ocean::Ocean::defaultWorldDir());
-    o.addMaskLayerFile(gibraltarMask());
-    const auto snap = o.current();
-    ocean_render::OceanOptions oo;
-    oo.waterTiles = ocean_render::oceanWaterTiles(snap->landSea.get(), snap->mask);
-    EXPECT_TRUE(oo.waterTiles) << "the ocean should stream the regional 3\" mask";
-    const auto grids = ocean_render::oceanWorld(snap->mask, snap->elevation, snap->landSea.get(), snap->maskEncoding,
-                                                oo.waterTiles.get());
-    c.ocean = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
-    c.ocean->setCompleteTiles(true);
-    c.renderer->addLayer(std::make_shared<DirectOceanLayer>(c.ocean));
-    c.landSea = snap->landSea;
-    return c;
-  }();
+  static Regional s = makeRegional(gibraltarMask());
   return s;
 }
 
@@ -682,6 +686,58 @@ TEST(Coast, CoastlineFrom500mLiesWithinAPixelAndAQuarterCellOfTheIsoline) {
     coastline += fine.coastline;
   }
   EXPECT_GT(coastline, 300);
+}
+
+// An island that only a regional mask has, in open sea where the 5' grid
+// below it is water for hundreds of km: the host's terrain must refine it
+// like any land. Its all-water rule once read only the grid below (the
+// host's WaterIndex), capped the island's tile at level 7 (2.4 km cells,
+// no vertex on an 800 m island) and drew it as the terrain's sunken sea
+// where the ocean left its hole. 3" cells, 0 ocean and 1 land, over
+// 36.0..36.3 N, 7.5..7.0 W (the Gulf of Cadiz, 80 km from any coast); the
+// island a disc of 0.004 degrees radius at (36.15 N, 7.25 W).
+TEST(Coast, TheTerrainRefinesAnIslandOnlyTheRegionalMaskHas) {
+  constexpr double kIslandLat = 36.15, kIslandLon = -7.25, kRadiusDeg = 0.004;
+  const std::string path = ::testing::TempDir() + "/coast_regional_island." + std::to_string(::getpid()) + ".tif";
+  {
+    const int w = 600, h = 360;
+    std::vector<std::uint8_t> px(std::size_t(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const double lat = 36.3 - (y + 0.5) * kCellDeg, lon = -7.5 + (x + 0.5) * kCellDeg;
+        if (std::hypot(lat - kIslandLat, (lon - kIslandLon) * std::cos(kIslandLat * kDeg)) < kRadiusDeg)
+          px[std::size_t(y) * w + x] = 1;
+      }
+    raster::GeoTiffWriteOptions wo;
+    wo.transform = {-7.5, 36.3, kCellDeg, -kCellDeg, false};
+    raster::writeGeoTiff(path, px.data(), w, h, 1, raster::SampleType::U8, wo);
+  }
+  Regional r = makeRegional(path);
+  ASSERT_NE(r.world->regionalWaterIndex(), nullptr);
+  // The grid below calls the whole tile round the island water.
+  EXPECT_TRUE(r.world->waterIndex().allWaterAround(kIslandLat - 0.5, kIslandLat + 0.5, kIslandLon - 0.5,
+                                                    kIslandLon + 0.5, 1.0));
+  const ViewPose p = pose(kIslandLat, kIslandLon, 3000.0, 0.0, -90.0);
+  FrameSettings fs;
+  fs.sunEcef = sunForView(p, 135.0, 50.0);
+  gl::Framebuffer fb(p.width, p.height, true);
+  fb.bind();
+  const auto t = r.renderer->render(p, fs);
+  gl::writePng(::testing::TempDir() + "/coast_regional_island.png", fb.readColor());
+  std::printf("terrain: %d tiles, max level %d\n", t.terrain.tilesDrawn, t.terrain.maxLevel);
+  // 3 km up the island's tile cells are over a thousand pixels: land
+  // refines to level 10 and beyond, as Render.TerrainRefinesAnIslandBetween
+  // ATilesSamples finds for an island of the grid itself.
+  EXPECT_GT(t.terrain.maxLevel, 8);
+  // The ocean draws the island as land (its hole) and the sea round it.
+  const Frame f = render(p, *r.renderer, r.ocean.get(), "regional_island");
+  EXPECT_FALSE(f.drawn(p.width / 2, p.height / 2));
+  EXPECT_TRUE(f.drawn(10, 10));
+  int w = 0, l = 0;
+  expectQueryFollowsPicture(f, " --mask " + path, w, l);
+  std::printf("regional island: %d water, %d land pixels agree\n", w, l);
+  EXPECT_GT(l, 100);
+  fs::remove(path);
 }
 
 // Golden images of the strait with the 3" mask, looked at: Tarifa's shore

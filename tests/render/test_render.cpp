@@ -162,6 +162,47 @@ TEST(Render, GibraltarFrom50KmShowsLandAndSeaWhereTheyAre) {
   expectMatchesGolden(img, "gibraltar_50km", kGoldenMean, kGoldenOver16);
 }
 
+// An island of one mask texel between the samples a level-7 terrain tile
+// once took (9 x 9 bilinear lookups all above 0.55 water) made that tile
+// "all water", which capped its LOD at level 7 (2.4 km cells). Found in the
+// default world, the island is refined from 3 km up like any land.
+TEST(Render, TerrainRefinesAnIslandBetweenATilesSamples) {
+  Session& s = session();
+  const WorldTextures& w = *s.world;
+  const double span = 90.0 / 128.0;  // level 7
+  double islandLat = 0.0, islandLon = 0.0;
+  bool found = false;
+  const double texel = w.waterIndex().latStepDeg();
+  const auto samplesWater = [&](int tx, int ty) {
+    const double lon0 = -180.0 + tx * span, lat0 = 90.0 - (ty + 1) * span;
+    for (int j = 0; j < 9; ++j)
+      for (int i = 0; i < 9; ++i)
+        if (!(w.waterAt(lat0 + span * j / 8.0, lon0 + span * i / 8.0) > 0.55f)) return false;
+    return true;
+  };
+  for (int ty = 32; ty < 96 && !found; ++ty)  // 67.5 N to 22.5 S
+    for (int tx = 1; tx < 511 && !found; ++tx) {
+      const double lon0 = -180.0 + tx * span, lat1 = 90.0 - ty * span, lat0 = lat1 - span;
+      if (!samplesWater(tx, ty)) continue;
+      // A land texel centre inside the tile, away from its edges.
+      for (double la = lat0 + texel; la < lat1 - texel && !found; la += texel / 2)
+        for (double lo = lon0 + texel; lo < lon0 + span - texel && !found; lo += texel / 2)
+          if (w.waterAt(la, lo) < 0.5f) islandLat = la, islandLon = lo, found = true;
+    }
+  ASSERT_TRUE(found) << "no island between level-7 samples in the default world's mask";
+  std::printf("island at %.4f, %.4f\n", islandLat, islandLon);
+  const ViewPose p = pose(islandLat, islandLon, 3000.0, 0.0, -90.0, 128);
+  FrameSettings fs;
+  fs.sunEcef = sunForView(p);
+  const auto t = s.render(p, fs);
+  std::printf("terrain: %d tiles, max level %d\n", t.terrain.tilesDrawn, t.terrain.maxLevel);
+  // The first such island is Big Diomede (65.78 N, 169.06 W). 3 km up, its
+  // tile's cells are ~1,300 px: land refines to the data's finest level
+  // (10). The 9 x 9 rule drew it at 7; the view's finest tile was then 8,
+  // a coastal neighbour's all-water children.
+  EXPECT_GT(t.terrain.maxLevel, 8);
+}
+
 TEST(Render, DepthWorksFromOrbitTo1mWithoutErrors) {
   Session& s = session();
   for (double alt : {2.0e7, 1.0e6, 1.0e4, 100.0, 1.0}) {

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <tuple>
 #include <vector>
 
 namespace geocean::world {
@@ -75,6 +76,89 @@ TEST(WaterIndex, MapsLonLatToTexelsAndRejectsBadBounds) {
   EXPECT_FALSE(wi.allWater(nan, 1.0, 0.0, 1.0));
   EXPECT_FALSE(wi.allWater(0.0, 1.0, 0.0, nan));
   EXPECT_FALSE(WaterIndex().allWater(0.0, 1.0, 0.0, 1.0));
+}
+
+// A lon/lat rectangle with a margin of m texels is widened by m on every
+// side (latitude steps are negative: widening in texel rows by hand,
+// texelY(lat0) - m and texelY(lat1) + m, narrowed it and saw no land along a
+// rectangle's north and south edges). The ocean's coversOpaquely (which the
+// host's terrain asks before leaving a tile out) must see such land: its
+// margin holds the B-spline's reach.
+TEST(WaterIndex, AMarginAroundALonLatRectangleWidensItOnEverySide) {
+  // 1-degree texels; rectangle lat 5.5..9.5, lon 0.25..0.75 (texel rows
+  // 80..84, column 180); a margin of 1 reaches rows 79..85, columns 179..181.
+  for (const auto& [landLat, landLon, m, expect] :
+       {std::tuple{10.5, 0.5, 1.0, false}, std::tuple{4.5, 0.5, 1.0, false}, std::tuple{7.5, 1.5, 1.0, false},
+        std::tuple{7.5, -0.5, 1.0, false}, std::tuple{11.5, 0.5, 1.0, true}, std::tuple{3.5, 0.5, 1.0, true},
+        std::tuple{12.5, 0.5, 3.0, false}, std::tuple{2.5, 0.5, 3.0, false}, std::tuple{13.5, 0.5, 3.0, true},
+        std::tuple{7.5, 0.5, 0.0, false}}) {
+    WorldLayer l = layer(360, 180, 0.0, 1);
+    const int x = int(std::floor(landLon + 180.0)), y = int(std::floor(90.0 - landLat));
+    l.values[std::size_t(y) * l.width + std::size_t(x)] = 0.0f;
+    const WaterIndex wi(l);
+    EXPECT_EQ(wi.allWaterAround(5.5, 9.5, 0.25, 0.75, m), expect) << landLat << " " << landLon << " margin " << m;
+    EXPECT_EQ(wi.allWaterAround(9.5, 5.5, 0.75, 0.25, m), expect) << "corners in the other order";
+  }
+  // Land in the texel row just north of a tile's edge, within the
+  // B-spline's two texels: the ocean does not cover that tile opaquely.
+  for (const double landLat : {10.5, 4.5, 20.5}) {
+    WorldLayer water = layer(360, 180, 0.0, 1);
+    water.values[std::size_t(90.0 - landLat) * water.width + 180] = 0.0f;
+    const WorldGrids grids(globalGridFor(nullptr), water);
+    const bool covered = ocean_render::coversOpaquely(grids, 8.0, 5.0, 10.0, 0.0, 1.0, 1.0, false);
+    EXPECT_EQ(covered, landLat > 15.0) << "land at " << landLat;
+  }
+}
+
+// A regional mask's index (world::regionalWaterCover, the host terrain's
+// all-water rule over a regional layer): a texel of the level is water
+// only where every mask cell under it that has data is water, and where
+// none has data it is water (the grid below answers there). Brute force
+// over every texel, at level 0 and at the coarser level a small texel
+// budget forces.
+TEST(WaterIndex, ARegionalMasksCoverIsWaterWhereEveryCellWithDataIs) {
+  constexpr int W = 600, H = 300;  // 0.01-degree cells over 10..16 E, 40..37 N
+  std::vector<float> cls(std::size_t(W) * H, 0.0f);
+  const auto at = [&](int x, int y) -> float& { return cls[std::size_t(y) * W + x]; };
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> ux(0, W - 1), uy(0, H - 1);
+  for (int i = 0; i < 300; ++i) at(ux(rng), uy(rng)) = 1.0f;  // one-cell islands
+  for (int y = 100; y < 180; ++y)
+    for (int x = 250; x < 400; ++x) at(x, y) = 255.0f;  // nodata, with islands in it left out
+  raster::GeoTransform t;
+  t.originLonDeg = 10.0, t.originLatDeg = 40.0, t.lonStepDeg = 0.01, t.latStepDeg = -0.01;
+  const auto mask = raster::Raster::fromPixels(cls, W, H, 1, t, 255.0);
+  test::TempDir dir("geocean-regional-cover");
+  raster::PyramidOptions po;
+  po.cacheDir = dir.path.string();
+  po.progress = raster::BuildProgress::Off;
+  const auto pyr = waterPyramid(mask, {}, po);
+  for (const std::size_t budget : {std::size_t(1) << 22, std::size_t(W * H / 16)}) {
+    const WorldLayer l = regionalWaterCover(*pyr, budget);
+    const int s = W / l.width;
+    ASSERT_EQ(l.width * s, W);
+    ASSERT_LE(std::size_t(l.width) * l.height, budget);
+    EXPECT_DOUBLE_EQ(l.originLonDeg, 10.0);
+    EXPECT_DOUBLE_EQ(l.lonStepDeg, 0.01 * s);
+    int land = 0, nodata = 0;
+    for (int y = 0; y < l.height; ++y)
+      for (int x = 0; x < l.width; ++x) {
+        bool anyLand = false, allNodata = true;
+        for (int yy = y * s; yy < std::min((y + 1) * s, H); ++yy)
+          for (int xx = x * s; xx < std::min((x + 1) * s, W); ++xx) {
+            anyLand = anyLand || at(xx, yy) == 1.0f;
+            allNodata = allNodata && at(xx, yy) == 255.0f;
+          }
+        const float v = l.values[std::size_t(y) * l.width + x];
+        ASSERT_EQ(v >= 1.0f, !anyLand) << x << " " << y << " level texel " << s;
+        land += anyLand, nodata += allNodata;
+        if (allNodata) {
+          ASSERT_EQ(v, 1.0f);
+        }
+      }
+    EXPECT_GT(land, 100);
+    EXPECT_GT(nodata, 100);
+  }
 }
 
 // A streamed global mask's open water and the screen grid's near-water
