@@ -242,7 +242,15 @@ class OceanRenderer {
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;
   std::vector<float> mssAbove_;
-  std::vector<waves::DetailWave> detail_;  // the detail normal layer (ocean.frag)
+  std::vector<waves::DetailWave> detail_;  // the detail normal layer (ocean.frag): Gerstner, FFT
+  // Noise: the detail layer is the same noise continued below the model's
+  // finest octave (octaves n..11 of a 12-octave field, scaled to continue
+  // the model's amplitudes), appended to the octave buffer for the fragments.
+  std::optional<waves::WaveField> noiseDetail_;
+  double noiseDetailScale_ = 1.0;
+  int noiseDetailOctaves_ = 0;
+  std::vector<float> octaveHeightVar_;  // the model octaves' crest-field variance (noise foam, noise_bands.glsl)
+  double crestM_ = 0.0;                 // the crest field's level exceeded on W of the sea (noise)
   std::vector<float> foamHeightM_;
   double foamSoftM_ = 0.0, whitecap_ = 0.0;
   double windMps_ = 0.0, windFromRad_ = 0.0;
