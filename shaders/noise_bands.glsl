@@ -51,7 +51,7 @@ uniform float uCrestVar;
 uniform float uOctaveHeightVar[16];
 float noiseCrestWeight(int i) { return exp2(0.75 * float(i)); }
 float noiseCrestFoam(float heightM, float varUnresolved, float softM, float cover) {
-  softM = max(softM, 0.15 * sqrt(uCrestVar));
+  softM = max(softM, 0.3 * sqrt(uCrestVar));
   float u = clamp(varUnresolved / max(uCrestVar, 1e-12), 0.0, 1.0);
   float edge = 1.0 / (1.0 + exp(-1.702 * (heightM - uCrestM * sqrt(1.0 - u)) / max(softM, 1e-6)));
   return mix(edge, cover, u);

@@ -150,6 +150,16 @@ void main() {
       if (i < uOctaveCount) hRes += (f - a) * noiseCrestWeight(i) * h;
     }
   }
+  // The octaves added here replace roughness that is Cox & Munk's
+  // anisotropic: their isotropic slopes are stretched along the wind by
+  // the upwind share (total variance kept), as the roughness's.
+  vec3 gAdd = grad - (upD - nv / dot(nv, upD));
+  vec3 eastD = cross(vec3(0.0, 0.0, 1.0), upD);
+  eastD = dot(eastD, eastD) > 1e-12 ? normalize(eastD) : vec3(0.0, 1.0, 0.0);
+  vec3 windD = sin(uWind.y) * eastD + cos(uWind.y) * cross(upD, eastD);
+  float share = coxMunkUpwindShare(uWind.x);
+  float along = dot(gAdd, windD);
+  grad += windD * along * (sqrt(2.0 * share) - 1.0) + (gAdd - windD * along) * (sqrt(2.0 * (1.0 - share)) - 1.0);
   vec3 nrm = normalize(upD - grad);
   crest = noiseCrestFoam(hRes, varU, uFoamSoftM, uWhitecapCover);
 #else
