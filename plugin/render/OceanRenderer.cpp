@@ -514,9 +514,16 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
         // is complete at every vertex, with 1 % for its float arithmetic.
         bool far = view.farFootprintM > 0.0;
         for (std::size_t k = 0; k < 6 && far; ++k) {
-          const float* e = f.vertices[idx[c + k]].eyeRelM;
-          far = std::sqrt(double(e[0]) * e[0] + double(e[1]) * e[1] + double(e[2]) * e[2]) * view.cellRadians >=
-                1.01 * view.farFootprintM;
+          const grid::GridVertex& gv = f.vertices[idx[c + k]];
+          const float* e = gv.eyeRelM;
+          const double dist = std::sqrt(double(e[0]) * e[0] + double(e[1]) * e[1] + double(e[2]) * e[2]);
+          double footprint = dist * view.cellRadians;
+          if (view.farAlongView) {
+            const glm::dvec3 up = geo::surfaceNormal(gv.latDeg, gv.lonDeg);
+            const double sinE = std::abs(glm::dot(glm::dvec3(e[0], e[1], e[2]), up)) / std::max(dist, 1e-9);
+            footprint /= cellPx * std::max(sinE, 0.02);
+          }
+          far = footprint >= 1.01 * view.farFootprintM && dist >= 1.01 * view.farMinDistM;
         }
         // A wake's foam is drawn per fragment: its cells are not far (the
         // cell's first vertex within the reach widened by the cell's size).
@@ -566,13 +573,15 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   cull.waves = waves_.get();
   // Noise: no octave is left per pixel (the longest under 2 pixels, a
   // pixel 1 / cellPx of a cell); the other models: their fade's end.
-  if (options_.farVertexShading && !octaveWavelengthM_.empty())
-    cull.farFootprintM = (options_.model == waves::Model::Noise ? 0.5 * options_.cellPx : 0.5) * double(octaveWavelengthM_[0]);
+  if (options_.farVertexShading && !octaveWavelengthM_.empty()) {
+    cull.farFootprintM = 0.5 * double(octaveWavelengthM_[0]);
+    cull.farAlongView = options_.model == waves::Model::Noise;
+  }
   // The planar reflection is sampled per pixel out to its reach
   // (ocean_shading.glsl's kReflectionFarM): vertex-shaded cells there drew
   // it in 8 px steps.
   const bool reflect = !bare && inputs_.reflectionColor != 0 && inputs_.reflectionCamera;
-  if (reflect && cull.farFootprintM > 0.0) cull.farFootprintM = std::max(cull.farFootprintM, 40000.0 * cull.cellRadians);
+  if (reflect && cull.farFootprintM > 0.0) cull.farMinDistM = 40000.0;
   cull.timeS = light.timeS;
   // The bodies' foam (wake.glsl): the kMaxWakes nearest the eye of those
   // fast enough to make any (the others would add exactly nothing).

@@ -93,6 +93,12 @@ struct ScreenCull {
   // Grid footprint (|eye-relative| x cellRadians) from which ocean.vert's
   // distance fade is complete; 0: no far group.
   double farFootprintM = 0.0;
+  // Noise (shaders/noise_bands.glsl): farFootprintM is a pixel's footprint
+  // along the view (the cell's over cellPx and the sine of the view's
+  // elevation angle), as the fragments' pixel filter measures it.
+  bool farAlongView = false;
+  // And no nearer than this (the planar reflection's reach: per pixel).
+  double farMinDistM = 0.0;
   // Bodies' foam (wake.glsl, per fragment): eye-relative centre and reach
   // (m); cells within reach stay out of the per-vertex far group.
   std::vector<glm::dvec4> wakeReach;
