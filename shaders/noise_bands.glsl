@@ -3,11 +3,14 @@
 // is roughness where it does not, its slope variance moving continuously
 // between the two (uMssAbove's band, the same spectrum).
 // - geometry: octaves over 3 grid cells (ocean.vert's count, as before);
-// - the vertex normal: octaves over 12 cells along the view (12 vertices a
-//   wavelength: linear interpolation of their normals is smooth), faded in
-//   from 6 (noiseVertexWeight);
+// - the vertex normal: octaves over 6 cells along the view, faded in from
+//   3 (noiseVertexWeight): those of the geometry, so the normal is the
+//   mesh's own;
 // - the fragment normal: the rest, over 4 pixels (the pixel's longer axis),
-//   faded out by 2 (Nyquist), as the detail layer (noisePixelWeight);
+//   faded out by 2 (Nyquist), as the detail layer (noisePixelWeight): one
+//   gradient noise per pixel and octave (the ocean's cost on llvmpipe:
+//   docs/PERFORMANCE.md; a periodic 3D table of it, one texture fetch an
+//   octave, tried, was slower);
 // - roughness: what neither shows, (1 - w^2) of each octave's band.
 // Callers include waves.glsl (wv_solidNoise) first.
 #ifndef NOISE_BANDS_GLSL
@@ -16,20 +19,24 @@
 // cellAlongM: a grid cell's footprint along the view (its footprint over
 // the sine of the view's elevation angle).
 float noiseVertexWeight(float wavelengthM, float cellAlongM) {
-  return smoothstep(6.0, 12.0, wavelengthM / max(cellAlongM, 1e-6));
+  return smoothstep(3.0, 6.0, wavelengthM / max(cellAlongM, 1e-6));
 }
 float noisePixelWeight(float wavelengthM, float pixelM) {
   return smoothstep(2.0, 4.0, wavelengthM / max(pixelM, 1e-6));
 }
 
-// The tangent gradient of octaves [first, first + count) at d (zero for
-// none): wv_solidNoise's normal is normalize(up - g).
-vec3 noiseGradient(int first, int count, vec3 d, WvFrame fr, vec3 up, out float heightM) {
-  heightM = 0.0;
-  if (count <= 0) return vec3(0.0);
-  WvResult r = wv_solidNoise(first, count, d, fr);
-  heightM = r.disp.w;
-  return up - r.normal.xyz / dot(r.normal.xyz, up);
+// Octave i at d: (height, its gradient in ECEF, m/m), the body of
+// wv_solidNoise's loop for one octave (the same operations); the caller
+// takes the tangent part once for all octaves (wv_solidNoise's normal is
+// normalize(up - tangent gradient)).
+vec4 noiseOctave(int i, vec3 d) {
+  WvOctave o = wvOctaves[i];
+  vec3 r0 = o.row0.xyz, r1 = o.row1.xyz, r2 = o.row2.xyz;
+  vec3 q = o.fracO.xyz + vec3(dot(r0, d), dot(r1, d), dot(r2, d));
+  vec3 fl = floor(q);
+  vec4 n = wv_perlin3(o.cellO.xyz + ivec3(fl), q - fl, uint(o.row1.w));
+  float a = o.row0.w;
+  return vec4(a * n.x, a * (r0 * n.y + r1 * n.z + r2 * n.w));
 }
 
 // Whitecaps of the noise sea: where the crest field, the model's octave

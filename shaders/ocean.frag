@@ -135,31 +135,40 @@ void main() {
   vec3 d = vEyeRel - up * vHeightM + uEyeMinusOrigin;
   vec3 upD = wv_upAt(fr0, d);
   vec3 nv = normalize(vNormal);
-  vec3 grad = upD - nv / dot(nv, upD);
+  vec3 grad = upD - nv / dot(nv, upD), gAdd = vec3(0.0);
   float hRes = vHeightA, varU = 0.0;
-  float mss = uMssAbove[min(uFragOctaves, 16)];
-  for (int i = 0; i < uFragOctaves && i < 16; ++i) {
-    float a = noiseVertexWeight(uOctaveWavelengthM[i], vCellAlongM);
+  // Only the octaves between the vertex normal's (a < 1 from 6 cells) and
+  // the pixel's (f > 0 down to 2 pixels) are visited: the wavelengths
+  // halve, so the first is found by a logarithm; before it every octave is
+  // shown whole, after it none (the spectrum from there is roughness).
+  int n = min(uFragOctaves, 16);
+  int i = clamp(int(floor(log2(uOctaveWavelengthM[0] / (6.0 * vCellAlongM)))) + 1, 0, n);
+  float mss = 0.0;
+  for (; i < n; ++i) {
     float f = noisePixelWeight(uOctaveWavelengthM[i], footprint);
+    if (f <= 0.0) break;
+    float a = noiseVertexWeight(uOctaveWavelengthM[i], vCellAlongM);
     float shown = max(a, f);
     mss += (uMssAbove[i] - uMssAbove[i + 1]) * (1.0 - shown * shown);
     if (i < uOctaveCount) varU += uOctaveHeightVar[i] * (1.0 - shown * shown);
     if (f > a) {
-      float h;
-      grad += (f - a) * noiseGradient(i, 1, d, fr0, upD, h);
-      if (i < uOctaveCount) hRes += (f - a) * noiseCrestWeight(i) * h;
+      vec4 o = noiseOctave(i, d);
+      gAdd += (f - a) * o.yzw;
+      if (i < uOctaveCount) hRes += (f - a) * noiseCrestWeight(i) * o.x;
     }
   }
+  mss += uMssAbove[i];
+  for (int k = i; k < uOctaveCount && k < 16; ++k) varU += uOctaveHeightVar[k];
+  gAdd -= dot(gAdd, upD) * upD;
   // The octaves added here replace roughness that is Cox & Munk's
   // anisotropic: their isotropic slopes are stretched along the wind by
   // the upwind share (total variance kept), as the roughness's.
-  vec3 gAdd = grad - (upD - nv / dot(nv, upD));
   vec3 eastD = cross(vec3(0.0, 0.0, 1.0), upD);
   eastD = dot(eastD, eastD) > 1e-12 ? normalize(eastD) : vec3(0.0, 1.0, 0.0);
   vec3 windD = sin(uWind.y) * eastD + cos(uWind.y) * cross(upD, eastD);
   float share = coxMunkUpwindShare(uWind.x);
   float along = dot(gAdd, windD);
-  grad += windD * along * (sqrt(2.0 * share) - 1.0) + (gAdd - windD * along) * (sqrt(2.0 * (1.0 - share)) - 1.0);
+  grad += windD * along * sqrt(2.0 * share) + (gAdd - windD * along) * sqrt(2.0 * (1.0 - share));
   vec3 nrm = normalize(upD - grad);
   crest = noiseCrestFoam(hRes, varU, uFoamSoftM, uWhitecapCover);
 #else

@@ -145,7 +145,7 @@ void main() {
 #else
   WvResult r = wv_solidNoise(0, count, d, fr);
   vFoamM = uFoamHeightM[count];
-  // The normal: the octaves over 6-12 cells along the view
+  // The normal: the octaves over 3-6 cells along the view
   // (noise_bands.glsl), the rest per fragment or roughness.
   float sinE = abs(dot(normalize(aEyeRel), up));
   vCellAlongM = footprint / max(sinE, 0.02);
@@ -158,12 +158,12 @@ void main() {
     mssRest += (uMssAbove[i] - uMssAbove[i + 1]) * (1.0 - a * a);
     if (i < uOctaveCount) noiseVarUnresolved += uOctaveHeightVar[i] * (1.0 - a * a);
     if (a > 0.0) {
-      float h;
-      grad += a * noiseGradient(i, 1, d, fr, up, h);
-      if (i < uOctaveCount) vHeightA += a * noiseCrestWeight(i) * h;
+      vec4 o = noiseOctave(i, d);
+      grad += a * o.yzw;
+      if (i < uOctaveCount) vHeightA += a * noiseCrestWeight(i) * o.x;
     }
   }
-  r.normal.xyz = normalize(up - grad);
+  r.normal.xyz = normalize(up - (grad - dot(grad, up) * up));
   float mssDrawn = 0.0;  // no pull towards the mean (ocean_shading.glsl): the weights filter
 #endif
   // A flat cell between vertices on the ellipsoid sags below it, at its
