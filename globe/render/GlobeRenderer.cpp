@@ -152,7 +152,12 @@ void GlobeRenderer::makeLayerInputs(const camera::Camera& cam, const camera::Lig
     glBindFramebuffer(GL_FRAMEBUFFER, reflection_.fbo());
     glViewport(0, 0, rw, rh);
     FrameTimes scratch;
+    const auto ts = Clock::now();
+    const double cs = cpuMs();
     drawScene(in.reflectionCamera, light, settings, scratch, nullptr, SeaShading::None, &cam);
+    if (settings.timed) glFinish();
+    t.reflectionMs = msSince(ts);
+    t.reflectionCpuMs = cpuMs() - cs;
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     in.reflectionColor = reflection_.color();

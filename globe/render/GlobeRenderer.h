@@ -24,6 +24,9 @@ struct FrameTimes {
   // per pass; with `timed` it is the pass's own work, and unlike wall time
   // it does not grow when other processes share the cores.
   double skyCpuMs = 0.0, terrainCpuMs = 0.0, layersCpuMs = 0.0, totalCpuMs = 0.0;
+  // The mirrored pass of a reflection alone (part of layers*Ms; 0 when the
+  // map was reused or not wanted).
+  double reflectionMs = 0.0, reflectionCpuMs = 0.0;
   TerrainStats terrain;
   bool reflectionDrawn = false;  // the mirrored pass ran this frame (not reused)
 };

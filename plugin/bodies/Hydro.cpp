@@ -192,6 +192,54 @@ double rectangularPlateAddedMassCoefficient(double aspect) {
   return 0.947;
 }
 
+double carlsonRD(double x, double y, double z) {
+  if (!(x >= 0.0 && y >= 0.0 && x + y > 0.0 && z > 0.0) || !std::isfinite(x + y + z))
+    throw std::invalid_argument("geocean::bodies: carlsonRD needs x, y >= 0 (not both 0) and z > 0");
+  // Duplication until the arguments agree to 1e-4: the series' error is then
+  // below 1e-4^6 / (3 (1 - 1e-4)^{3/2}), far under double rounding.
+  constexpr double C1 = 3.0 / 14.0, C2 = 1.0 / 6.0, C3 = 9.0 / 22.0, C4 = 3.0 / 26.0, C5 = 0.25 * C3,
+                   C6 = 1.5 * C4;
+  double sum = 0.0, fac = 1.0, ave, dx, dy, dz;
+  for (;;) {
+    const double sx = std::sqrt(x), sy = std::sqrt(y), sz = std::sqrt(z);
+    const double lambda = sx * (sy + sz) + sy * sz;
+    sum += fac / (sz * (z + lambda));
+    fac *= 0.25;
+    x = 0.25 * (x + lambda), y = 0.25 * (y + lambda), z = 0.25 * (z + lambda);
+    ave = 0.2 * (x + y + 3.0 * z);
+    dx = (ave - x) / ave, dy = (ave - y) / ave, dz = (ave - z) / ave;
+    if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) <= 1e-4) break;
+  }
+  const double ea = dx * dy, eb = dz * dz, ec = ea - eb, ed = ea - 6.0 * eb, ee = ed + ec + ec;
+  const double series = 1.0 + ed * (-C1 + C5 * ed - C6 * dz * ee) + dz * (C2 * ee + dz * (-C3 * ec + dz * C4 * ea));
+  return 3.0 * sum + fac * series / (ave * std::sqrt(ave));
+}
+
+EllipsoidAddedMass ellipsoidAddedMass(double a, double b, double c, double rho) {
+  requirePositive("ellipsoid semi-axis a", a, "m");
+  requirePositive("ellipsoid semi-axis b", b, "m");
+  requirePositive("ellipsoid semi-axis c", c, "m");
+  requirePositive("water density", rho, "kg/m^3");
+  const double abc = a * b * c, a2 = a * a, b2 = b * b, c2 = c * c;
+  // Lamb's alpha0, beta0, gamma0 (they sum to 2).
+  const glm::dvec3 g0(2.0 / 3.0 * abc * carlsonRD(b2, c2, a2), 2.0 / 3.0 * abc * carlsonRD(c2, a2, b2),
+                      2.0 / 3.0 * abc * carlsonRD(a2, b2, c2));
+  const double mf = 4.0 / 3.0 * std::numbers::pi * rho * abc;
+  const glm::dvec3 s2(a2, b2, c2);
+  EllipsoidAddedMass out;
+  for (int i = 0; i < 3; ++i) {
+    out.massKg[i] = g0[i] / (2.0 - g0[i]) * mf;
+    // About axis i: the other two, j and k (cyclic), as Lamb's about x with (b, c).
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    const double d = s2[j] - s2[k];
+    // Axially symmetric about i: turning it moves no water.
+    if (std::abs(d) <= 1e-12 * (s2[j] + s2[k])) continue;
+    const double den = 2.0 * d + (s2[j] + s2[k]) * (g0[j] - g0[k]);
+    out.inertiaKgM2[i] = mf / 5.0 * d * d * (g0[k] - g0[j]) / den;
+  }
+  return out;
+}
+
 // ---- HullForce ---------------------------------------------------------------
 
 HullForce::HullForce(std::shared_ptr<const HullMesh> hull, std::shared_ptr<const SeaSurface> sea,
@@ -207,7 +255,7 @@ HullForce::HullForce(std::shared_ptr<const HullMesh> hull, std::shared_ptr<const
   requireNonNegative("pitch damping ratio", options_.pitchDampingRatio, "");
   requireNonNegative("sea grid points per wavelength", options_.seaGridPointsPerWavelength, "");
   const glm::dvec3 ext = hull_->maxCorner() - hull_->minCorner();
-  lengthM_ = ext.x;
+  lengthM_ = ext.x, beamM_ = ext.y, depthM_ = ext.z;
   const double rho = options_.water.densityKgM3;
   if (hull_->kind() == "cylinder") {
     const double R = std::sqrt(hull_->volumeM3() / (std::numbers::pi * ext.z));
@@ -252,7 +300,10 @@ HullEvaluation HullForce::evaluate(const BodyState& state, const MassProperties&
   } else {
     std::fill(S.t.begin(), S.t.begin() + n, ctx.timeS);
     sea_->sample(S.lat.data(), S.lon.data(), S.t.data(), n, false, S.sea.data());
-    sea_->sample(cLat.data(), cLon.data(), cT.data(), 2, true, c.data());
+    sea_->sample(cLat.data(), cLon.data(), cT.data(), 1, true, c.data());
+    // One step earlier with the slope (the water's horizontal acceleration),
+    // as the grid's query has it.
+    sea_->sampleSlopes(&cLat[1], &cLon[1], &cT[1], 1, &c[1]);
   }
   out.seaHeightM = c[0].heightM;
 
@@ -354,18 +405,27 @@ HullEvaluation HullForce::evaluate(const BodyState& state, const MassProperties&
 
   const double awp = out.waterplaneAreaM2;
   double a33 = 0.0;
+  glm::dvec3 addedRot(0.0);
   if (options_.addedMass && awp > 0.0) {
     const double frac = std::min(1.0, awp / awpFull_);
     a33 = a33Full_ * frac * std::sqrt(frac);
     out.heaveAddedMassKg = a33;
-    out.wrench.addAddedMass(glm::dvec3(0.0, 0.0, a33), glm::dvec3(0.0));
-    // Morison / G.I. Taylor long-wave term: a33 times the water's vertical
-    // acceleration at the keel, along the body's heave axis.
+    // The other modes from the double body's ellipsoid (see Hydro.h).
+    const double shrink = std::sqrt(frac), draft = std::min(vol / awp, depthM_);
+    EllipsoidAddedMass e{};
+    if (draft > 0.0) e = ellipsoidAddedMass(0.5 * lengthM_ * shrink, 0.5 * beamM_ * shrink, draft, rho);
+    const glm::dvec3 am(0.5 * e.massKg.x, 0.5 * e.massKg.y, a33);
+    addedRot = 0.5 * e.inertiaKgM2;
+    out.addedMassKg = am, out.addedInertiaKgM2 = addedRot;
+    out.wrench.addAddedMass(am, addedRot);
+    // Morison / G.I. Taylor long-wave term: the added mass times the
+    // water's acceleration, vertical at the keel, horizontal at half its depth.
     if (!std::isnan(c[0].heightM) && !std::isnan(c[1].heightM)) {
       const double keel = std::max(out.keelDepthM, 0.0);
       const double aw = (c[0].verticalVelocityMps - c[1].verticalVelocityMps) / probe * std::exp(-k * keel);
-      const glm::dvec3 zb = R[2];
-      F += a33 * zb.z * aw * zb;
+      const glm::dvec2 ah = -g * std::exp(-0.5 * k * keel) * c[1].slopeEn;
+      const glm::dvec3 accel(ah, aw);
+      for (int i = 0; i < 3; ++i) F += am[i] * glm::dot(R[i], accel) * R[i];
     }
   }
   // Radiation damping (linear, fractions of critical).
@@ -385,9 +445,11 @@ HullEvaluation HullForce::evaluate(const BodyState& state, const MassProperties&
     const glm::dmat3& I = mass.inertiaBody();
     glm::dvec3 tauBody(0.0);
     if (out.metacentricHeightM.x > 0.0)
-      tauBody.x = -2.0 * options_.rollDampingRatio * std::sqrt(I[0][0] * rhoG * vol * out.metacentricHeightM.x) * wBody.x;
+      tauBody.x = -2.0 * options_.rollDampingRatio *
+                  std::sqrt((I[0][0] + addedRot.x) * rhoG * vol * out.metacentricHeightM.x) * wBody.x;
     if (out.metacentricHeightM.y > 0.0)
-      tauBody.y = -2.0 * options_.pitchDampingRatio * std::sqrt(I[1][1] * rhoG * vol * out.metacentricHeightM.y) * wBody.y;
+      tauBody.y = -2.0 * options_.pitchDampingRatio *
+                  std::sqrt((I[1][1] + addedRot.y) * rhoG * vol * out.metacentricHeightM.y) * wBody.y;
     T += R * tauBody;
   }
   out.wrench.addForce(ctx.enu.toEcef(F));

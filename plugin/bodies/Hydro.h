@@ -30,8 +30,26 @@
 //     one step of the surface's vertical velocity, decayed by e^{-k d_keel})
 //     is a force: the
 //     long-wave diffraction term, which makes the heave follow long swell.
-//     Not modelled: added mass in surge, sway, roll, pitch and yaw; wave
-//     radiation damping (the damping is the drag below).
+//   * added mass in surge, sway, roll, pitch and yaw: half of that of the
+//     double body (the submerged hull and its mirror image in the
+//     waterplane) in unbounded fluid, the double body taken as the
+//     ellipsoid of semi-axes L/2, B/2 and the mean draft T = V / A_wp (L, B
+//     the hull's extents scaled by sqrt(A_wp / A_wp,full) as a33 is):
+//     Lamb's coefficients of the ellipsoid (Lamb, Hydrodynamics, 6th ed.
+//     1932, sec. 114-115, 373; Lamb, The inertia-coefficients of an
+//     ellipsoid moving in fluid, ARC R&M 623, 1918), from Carlson's R_D.
+//     The double body moving as one is the rigid-wall free surface
+//     (d phi/dz = 0, the manoeuvring limit) for surge, sway and yaw, and
+//     phi = 0 (the high-frequency limit, as a33) for roll and pitch. The
+//     rotational terms act about the centre of mass (the coupling of sway
+//     and roll, surge and pitch through the height of the centre of mass
+//     above the waterplane is not modelled), and so does the water's
+//     horizontal acceleration on a11, a22 (the long-wave diffraction term,
+//     as in heave; linear theory at the surface: du/dt = -g grad eta, taken
+//     at the centre one step earlier and decayed to half the keel's depth).
+//     Not modelled: the added mass's velocity terms (Kirchhoff's equations:
+//     the Munk moment (a22 - a11) u v), off-diagonal terms, frequency
+//     dependence and wave radiation damping (the damping is below).
 //   * the sea under the hull: with a sea that states its shortest
 //     wavelength lambda_min (SeaSurface::shortestWavelengthM; OceanSea:
 //     Gerstner), the surface is queried on a grid in the horizontal plane,
@@ -59,8 +77,8 @@
 //   * wave-radiation damping, linear, as fractions of critical damping of
 //     the current hydrostatic stiffness: heave zeta 0.1 on the velocity
 //     relative to the water, c = 2 zeta sqrt((m + a33) rho g A_wp); roll
-//     zeta 0.05 and pitch 0.1 on the body's rates, c = 2 zeta sqrt(I rho g V
-//     GM) with GM = z_B + I_wp / V about the centre of mass (I_wp of the
+//     zeta 0.05 and pitch 0.1 on the body's rates, c = 2 zeta sqrt((I + a44)
+//     rho g V GM) (a55 for pitch) with GM = z_B + I_wp / V about the centre of mass (I_wp of the
 //     clipped waterplane, from the wetted surface: the closed hull's
 //     integral of y^2 n_up dA is 0); none while GM <= 0. Typical ship values
 //     at resonance (Journee & Massie, Offshore Hydromechanics, 2001, ch. 6:
@@ -73,7 +91,8 @@
 // relative to the water (the orbital velocity at the centre decayed to the
 // point's depth, ContactPointOptions), torque from the same points (eq. 4). Gravity acts at
 // the centre of mass (Simulation). Use with MassProperties::isotropicFrom of
-// the hollow-cylinder proxy (eq. 2).
+// the hollow-cylinder proxy (eq. 2). As in the paper: no added mass and no
+// damping but the drag.
 //
 // Thrust: the engine force F_e along the hull's x axis at the centre of mass.
 // Repulsion: F_c between bodies (paper eq. 3-4), springs on the overlap of
@@ -106,7 +125,7 @@ struct HullForceOptions {
   WaterProperties water;
   double pressureDragCoefficient = 1.0;  // on faces advancing into the water (Hoerner)
   bool skinFriction = true;              // ITTC-1957
-  bool addedMass = true;                 // heave a33 (see above)
+  bool addedMass = true;                 // a33 and the other five modes (see above)
   double heaveDampingRatio = 0.1;        // radiation damping, fractions of critical (see above)
   double rollDampingRatio = 0.05;
   double pitchDampingRatio = 0.1;
@@ -123,6 +142,8 @@ struct HullEvaluation {
   double keelDepthM = 0.0;           // lowest vertex below the sea surface at the centre of mass (<0: above)
   double seaHeightM = 0.0;           // sea surface above the ellipsoid at the centre (NaN: no sea)
   double heaveAddedMassKg = 0.0;     // a33 used this step
+  glm::dvec3 addedMassKg{0.0};       // a11, a22, a33 this step (body axes)
+  glm::dvec3 addedInertiaKgM2{0.0};  // a44, a55, a66 this step (about the body axes)
   glm::dvec2 metacentricHeightM{0.0};  // GM transverse (roll, about body x) and longitudinal (pitch)
   int seaGridNodes = 0;              // nodes of the sea grid this step (0: every vertex queried)
 };
@@ -144,13 +165,29 @@ class HullForce final : public ForceModel {
   std::shared_ptr<const HullMesh> hull_;
   std::shared_ptr<const SeaSurface> sea_;
   HullForceOptions options_;
-  double a33Full_ = 0.0, awpFull_ = 0.0, lengthM_ = 0.0;
+  double a33Full_ = 0.0, awpFull_ = 0.0, lengthM_ = 0.0, beamM_ = 0.0, depthM_ = 0.0;
 };
 
 // C_A of a flat rectangular plate of aspect ratio b/a >= 1 (DNV-RP-C205
 // table A-2, linear between its rows; 1 - 0.53 a/b beyond b/a = 10, which
 // meets the table's 0.947 at 10 and its limit 1).
 double rectangularPlateAddedMassCoefficient(double aspect);
+
+// Added mass of an ellipsoid of semi-axes a (along x), b (y), c (z)
+// translating along and turning about its axes in unbounded fluid of density
+// rho (Lamb 1932 sec. 114-115): with alpha0 = abc int_0^inf dl / ((a^2 + l) D),
+// D = sqrt((a^2 + l)(b^2 + l)(c^2 + l)) (= 2/3 abc R_D(b^2, c^2, a^2)) and
+// beta0, gamma0 alike, m_f = 4/3 pi rho abc: along x alpha0 / (2 - alpha0) m_f,
+// about x m_f / 5 (b^2 - c^2)^2 (gamma0 - beta0) / (2 (b^2 - c^2) + (b^2 + c^2)
+// (beta0 - gamma0)), and the others by permutation.
+struct EllipsoidAddedMass {
+  glm::dvec3 massKg{0.0};       // translating along x, y, z
+  glm::dvec3 inertiaKgM2{0.0};  // turning about x, y, z
+};
+EllipsoidAddedMass ellipsoidAddedMass(double a, double b, double c, double rho);
+// Carlson's symmetric elliptic integral R_D(x, y, z) (Carlson, Numerical
+// Algorithms 10, 1995), x, y >= 0 (not both 0), z > 0.
+double carlsonRD(double x, double y, double z);
 
 struct ContactPointOptions {
   WaterProperties water;

@@ -33,8 +33,8 @@ class SeaSurface {
   // theory). 0: hydrostatic under the local surface (long-wave limit).
   virtual double decayWaveNumberPerM() const = 0;
   // The height, d(height)/dt and the slope at each point (horizontal
-  // velocities left 0): what HullForce's sea grid reads (Hydro.h). Only
-  // called when shortestWavelengthM() > 0.
+  // velocities left 0): what HullForce's sea grid reads (Hydro.h), and the
+  // centre one step earlier (the water's acceleration) on any sea.
   virtual void sampleSlopes(const double* latDeg, const double* lonDeg, const double* tS, std::size_t n,
                             SeaSample* out) const = 0;
   // The shortest wavelength (m) the surface carries: it sets the spacing of

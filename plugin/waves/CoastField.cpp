@@ -207,16 +207,54 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
           isl.landSat[std::size_t(j) * (n + 1) + i + 1] + isl.landSat[std::size_t(j + 1) * (n + 1) + i] -
           isl.landSat[std::size_t(j) * (n + 1) + i];
   cf.islands_ = islandTable(isl, &cf.shadow_);
+  cf.reversed_.assign(comps.size(), 0);
+  // How much deep water the inflow edges of travel (dx, dy) have: per node
+  // kEdge / k (1: as deep as the deepest wet edge node; land 0: no wave
+  // comes from land), the mean over each edge weighted by the flux through it.
+  auto edgeDeepness = [&](double dx, double dy, double kEdge) {
+    double num = 0.0, den = 0.0;
+    auto side = [&](double flux, bool xNormal, int fixed) {
+      if (flux <= 0.0) return;
+      double sum = 0.0;
+      for (int m = 0; m < n; ++m) {
+        const std::size_t p = xNormal ? at(fixed, m) : at(m, fixed);
+        if (isl.elevation[p] < 0.0) sum += kEdge / kLoc[p];
+      }
+      num += flux * sum / n, den += flux;
+    };
+    side(std::abs(dx), true, dx > 0.0 ? 0 : n - 1);
+    side(std::abs(dy), false, dy > 0.0 ? 0 : n - 1);
+    return den > 0.0 ? num / den : 0.0;
+  };
   for (std::size_t c = 0; c < comps.size(); ++c) {
     const WaveField::Component& w = comps[c];
     if (atSource[c]) continue;
-    const double s0x = isl.travel[c].x, s0y = isl.travel[c].y;
     const double k0 = w.kRef;
     // The kernel's own dispersion solve (Guo + 2 Newton steps, ~1e-9) and
     // its deep-water cut-off: deep nodes get exactly k_deep, as the kernel.
     const double kDeep = w.omega * w.omega / WV_G;
     for (std::size_t p = 0; p < depth.size(); ++p)
       kLoc[p] = kDeep * depth[p] < WV_DEEP_KH ? kernel.wv_waveNumber(w.omega, depth[p]) : kDeep;
+    // Carried from its deeper side: a component travelling toward deeper
+    // water (offshore) has no deep inflow edge; its rays, traced back, end on
+    // the shore, so a forward solve's phase there would be whatever arrives
+    // first from the region's (moving) edges. Rays are reversible: solve the
+    // time-reversed wave (-s0) from the deep outflow edges, where the phase
+    // is the deep-water phase, and negate its phase (same turning and Kr:
+    // the same rays and tubes). So two regions over one shelf agree
+    // (Ocean::followCoastRegion). Reversed when the outflow edges' deep
+    // water (edgeDeepness) exceeds the inflow's by 5 % of the flux: land
+    // or an island blocking less of the inflow, and ties (deep all round),
+    // keep the forward solve (its island shadows on the lee side).
+    double kEdge = inf;
+    for (int m = 0; m < n; ++m)
+      for (const std::size_t p : {at(0, m), at(n - 1, m), at(m, 0), at(m, n - 1)})
+        if (isl.elevation[p] < 0.0) kEdge = std::min(kEdge, kLoc[p]);
+    const double dIn = edgeDeepness(isl.travel[c].x, isl.travel[c].y, kEdge);
+    const double dOut = edgeDeepness(-isl.travel[c].x, -isl.travel[c].y, kEdge);
+    const double sgn = std::isfinite(kEdge) && dOut > dIn + 0.05 ? -1.0 : 1.0;
+    cf.reversed_[c] = sgn < 0.0;
+    const double s0x = sgn * isl.travel[c].x, s0y = sgn * isl.travel[c].y;
     // Inflow edges: the plane wave of the reference depth (outside the
     // region the kernel has no offset, so none here either). Only the
     // deepest inflow nodes carry it (deep water, or for long waves the
@@ -332,7 +370,7 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
         const std::size_t p = at(i, j);
         if (!std::isfinite(s[p]) || !std::isfinite(q[p])) continue;  // not reached from the inflow edges
         cf.eikonal_[c * std::size_t(n) * n + p] =
-            glm::dvec3(s[p] - k0 * (s0x * x(i) + s0y * x(j)),
+            glm::dvec3(sgn * (s[p] - k0 * (s0x * x(i) + s0y * x(j))),
                        std::atan2(s0x * sy[p] - s0y * sx[p], s0x * sx[p] + s0y * sy[p]),
                        std::clamp(std::exp(-0.5 * q[p]), kKrMin, kKrMax));
       }

@@ -24,6 +24,15 @@
 // wave number along them conserved from deep water) and the matching
 // ray-tube spreading, so a region moved along a straight shore gives the
 // same field in the overlap (Ocean::followCoastRegion).
+// Each component is carried from its deeper side: one travelling toward
+// deeper water (offshore: its outflow edges have more deep water than its
+// inflow edges, land counting as none) is solved as the time-reversed wave (-s0) from its outflow edges,
+// where the phase is the deep-water phase, and its phase negated (rays and
+// ray tubes are reversible: same turning and Kr). Otherwise its rays,
+// traced back, end on the shore, and its phase there is whatever first
+// arrives from the region's own edges (two regions disagree). Near an
+// island such a component's eikonal wraps around it on the up-wave side
+// (the reversed wave's lee); the island table still shades the true lee.
 // Limits: curved contours at a shallow inflow edge start approximately;
 // where no inflow node is deep the phase's constant is the region's own (a
 // moved region shifts it); first arrivals only (no crossing seas behind a
@@ -108,6 +117,8 @@ class CoastField {
   Beach beachAt(double eastM, double northM) const;
 
   bool empty() const { return n_ == 0; }
+  // Whether component c was carried from its outflow edges (the time-reversed solve: it travels offshore).
+  bool reversed(int c) const { return c >= 0 && c < int(reversed_.size()) && reversed_[std::size_t(c)]; }
   const Region& region() const { return region_; }
   int components() const { return components_; }
 
@@ -136,6 +147,7 @@ class CoastField {
   glm::dvec3 centre_{0.0}, east_{0.0}, north_{0.0};
   glm::dvec3 eAxis_{0.0}, nAxis_{0.0};  // east / north per cell, rounded to float
   std::vector<glm::dvec4> texels_;
+  std::vector<char> reversed_;  // per component
   std::vector<glm::dvec4> islands_;
   std::vector<double> shadow_;
   IslandInputs islandInputs_;

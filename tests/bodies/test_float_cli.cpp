@@ -1,7 +1,7 @@
-// `geocean float` end to end: a box at Archimedes' draft, the columns and
-// JSON keys, several bodies (repeated options and a scene file), thrust
-// along the heading, waves moving the draft, and bad input (exit 2, the
-// message naming the option and the value).
+// `geocean float` end to end: a box at Archimedes' draft (sea and fresh
+// water), the columns and JSON keys, several bodies (repeated options and a
+// scene file), thrust along the heading, each wave model moving the draft,
+// and bad input (exit 2, the message naming the option and the value).
 #include "globe/raster/GeoTiffWriter.h"
 #include "tests/support/Subprocess.h"
 
@@ -56,6 +56,15 @@ TEST(FloatCli, BoxFloatsAtArchimedesDraftWithEveryColumn) {
   EXPECT_NEAR(num(rows.back(), "height_m"), 1.0 - draft, 0.005 * draft);
   EXPECT_EQ(rows.back().at("grounded"), "false");
   EXPECT_NEAR(num(rows.back(), "t_s"), 20.0, 1e-9);
+  // Fresh water (--water-density 1000), --waves none said aloud, another
+  // step: the body starts at, and after 20 s still floats at, the draft
+  // (rho_b / rho_w) H of that water (sea water's forces would lift it to 1.17 m).
+  r = run(kGeocean + " float --body box:6x3x2 --density 600 --at 30,-40 --seconds 20 --every 20"
+                     " --water-density 1000 --waves none --dt 0.02");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto fresh = csv(r.out);
+  ASSERT_EQ(fresh.size(), 2u);  // t = 0 and 20
+  EXPECT_NEAR(num(fresh.back(), "draft_m"), 1.2, 0.005 * 1.2);
 }
 
 TEST(FloatCli, JsonSeveralBodiesAndASceneFile) {
@@ -101,6 +110,17 @@ TEST(FloatCli, WavesMoveTheDraft) {
     EXPECT_LT(std::abs(num(row, "roll_deg")), 45.0);
   }
   EXPECT_GT(hi - lo, 0.3);  // a 12 m/s sea (Hs ~3 m) lifts and drops the boat
+  // The other wave models of --waves too (shorter: FFT synthesises its
+  // tables at every step's time).
+  for (const char* model : {"noise", "fft"}) {
+    r = run(kGeocean + " float --body boat:20 --density 400 --at 30,-40 --waves " + model +
+            " --wind 12 --seconds 8 --every 0.5 --no-world");
+    ASSERT_EQ(r.exitCode, 0) << model << ": " << r.err;
+    lo = 1e9, hi = -1e9;
+    for (const auto& row : csv(r.out)) lo = std::min(lo, num(row, "height_m")), hi = std::max(hi, num(row, "height_m"));
+    EXPECT_GT(hi - lo, 0.3) << model;
+    std::printf("[ measured ] %s: the boat's centre of mass rose and fell over %.2f m in 8 s\n", model, hi - lo);
+  }
 }
 
 TEST(FloatCli, BadInputNamesTheOptionAndTheValue) {

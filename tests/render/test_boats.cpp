@@ -36,6 +36,24 @@ struct Scene {
   std::shared_ptr<host::PluginBoats> boats;
 };
 
+// The boats as the renderer sees them, with a switch that leaves them out
+// of the mirrored pass only (the reflection test draws both ways).
+class MirrorSwitch final : public render::SceneObject {
+ public:
+  explicit MirrorSwitch(std::shared_ptr<render::SceneObject> inner) : inner_(std::move(inner)) {}
+  void update(double timeS) override { inner_->update(timeS); }
+  void draw(const camera::Camera& cam, const camera::Lighting& light, bool bare,
+            const camera::Camera* mirroredFrom) override {
+    if (mirroredFrom && !inMirror) return;
+    inner_->draw(cam, light, bare, mirroredFrom);
+  }
+  bool inMirror = true;
+
+ private:
+  std::shared_ptr<render::SceneObject> inner_;
+};
+MirrorSwitch* gMirror = nullptr;
+
 // Mid-Atlantic, 8 boats, a 12 m/s Gerstner sea, 320 x 200 with the data
 // attachment (the boats write their eye-relative position there, w = 2).
 Scene& scene() {
@@ -49,7 +67,11 @@ Scene& scene() {
     std::string e2;
     x->boats = host::PluginBoats::spawn(x->ocean, 8, 30.0, -40.0, 1u, e2);
     EXPECT_NE(x->boats, nullptr) << e2;
-    x->s.renderer->addSceneObject(x->boats);
+    if (x->boats) {
+      auto sw = std::make_shared<MirrorSwitch>(x->boats);
+      gMirror = sw.get();
+      x->s.renderer->addSceneObject(sw);
+    }
     return x;
   }();
   return *sc;
@@ -155,6 +177,78 @@ TEST(RenderBoats, ABoatsPixelsAreItsHullAtThePoseAndItFloatsOnTheQueriedSea) {
   EXPECT_LE(over / n, 0.005) << actual;
 }
 
+// The sea reflects the boats (issue 14 item 5: "meshes that the ocean's
+// foam and reflections see"): the host draws them again in the mirrored
+// pass. From 3 L astern of boat 1 and 0.25 L above the sea, looking at it
+// (looked at: the dark streaks under the hull, flecks on near wave faces),
+// the picture is drawn with the boats in the mirrored pass and without
+// them there: the main pass (so the hulls and the refraction's scene copy)
+// is the same, so every pixel that differs is the reflection. They are sea
+// pixels, and they lie under the hull in the picture, in its columns.
+TEST(RenderBoats, TheSeaReflectsTheBoatsUnderTheirHulls) {
+  Scene& sc = scene();
+  ASSERT_NE(sc.boats, nullptr);
+  ASSERT_NE(gMirror, nullptr);
+  const double t = 12.0;
+  sc.boats->update(t);
+  const geocean_body_pose p = sc.boats->poses()[0];
+  const double L = sc.boats->lengthM(0);
+  camera::ViewPose base;
+  base.width = 320, base.height = 200, base.fovYDeg = 40.0;
+  camera::ViewPose pose = sc.boats->chase(0, base);  // astern, looking along the bow
+  const geo::EnuFrame f = geo::enuFrame({p.lat_deg, p.lon_deg, 0.0});
+  const double h = std::sin(pose.headingDeg * std::numbers::pi / 180.0),
+               c = std::cos(pose.headingDeg * std::numbers::pi / 180.0);
+  const geo::Geodetic eye =
+      geo::fromEcef(vec(p.position_ecef_m) + f.toEcef(glm::dvec3(-3.0 * L * h, -3.0 * L * c, 0.0)) + 0.25 * L * f.up);
+  pose.latDeg = eye.latDeg, pose.lonDeg = eye.lonDeg, pose.altM = eye.heightM;
+  pose.pitchDeg = -std::atan2(0.25 * L, 3.0 * L) * 180.0 / std::numbers::pi;
+  render::FrameSettings fs;
+  fs.timeS = t;
+  fs.sunEcef = render::sunForView(pose, 120.0, 40.0);
+  ASSERT_TRUE(fs.reflections);
+  gMirror->inMirror = true;
+  sc.s.render(pose, fs);
+  const gl::Image with = sc.s.image();
+  const std::vector<float> data = sc.s.target->readData();
+  gMirror->inMirror = false;
+  sc.s.render(pose, fs);
+  const gl::Image without = sc.s.image();
+  gMirror->inMirror = true;
+  if (const char* dir = std::getenv("GEOCEAN_DUMP_DIR")) {
+    gl::writePng(std::string(dir) + "/boats_reflected.png", with);
+    gl::writePng(std::string(dir) + "/boats_not_reflected.png", without);
+  }
+  // The boat's pixels (data w = 2) and the pixels that differ (top row first).
+  int hull = 0, hx0 = 320, hx1 = -1;
+  double hy = 0.0;
+  int changed = 0, onHull = 0, under = 0;
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 320; ++x) {
+      if (data[(std::size_t(y) * 320 + x) * 4 + 3] == 2.0f && std::abs(x - 160) < 40 && std::abs(y - 100) < 30)
+        ++hull, hx0 = std::min(hx0, x), hx1 = std::max(hx1, x), hy += y;
+    }
+  ASSERT_GT(hull, 50) << "boat 1 in the middle of the picture";
+  hy /= hull;
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 320; ++x) {
+      const std::size_t i = std::size_t(y) * 320 + x;
+      int d = 0;
+      for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(int(with.rgba[4 * i + k]) - int(without.rgba[4 * i + k])));
+      if (d == 0) continue;
+      ++changed;
+      onHull += data[4 * i + 3] == 2.0f;
+      under += x >= hx0 - 10 && x <= hx1 + 10 && y > hy;
+    }
+  std::printf("[ measured ] hull %d px (columns %d-%d), reflection %d px, %d of them under it, %d on a hull\n",
+              hull, hx0, hx1, changed, under, onHull);
+  EXPECT_GT(changed, hull / 10) << "the sea reflects the boat";
+  EXPECT_EQ(onHull, 0) << "the reflection is on the water, never on a hull";
+  // The rest: the other boats' reflections, and the stern's in the wave
+  // face behind it (above its centre in the picture).
+  EXPECT_GE(under, changed * 7 / 10) << "under the hull, in its columns (10 px margin)";
+}
+
 TEST(RenderBoats, TheCliRefusesAFollowBeyondTheBoatsAndBoatsWithoutTheOcean) {
   const std::string exe = GEOCEAN_EXE;
   const std::string out = ::testing::TempDir() + "/boats_bad.png";
@@ -198,7 +292,7 @@ Blob yellowPixels(const gl::Image& img) {
   return b;
 }
 
-// `fly --follow I` and `view --follow I` (issue 14 item 5): the camera
+// `fly --follow I`, `render --follow I` and `view --follow I` (issue 14 item 5): the camera
 // chases boat I, 3 L behind and 1.2 L above its centre of mass, looking at
 // it, so the boat stays at the picture's centre while it moves (its engine
 // drives it some metres over the flight) and the camera keeps its height
@@ -244,6 +338,24 @@ TEST(RenderBoats, FlyAndViewFollowKeepTheChasedBoatAtThePictureCentre) {
   const double dn = (cam[3][0] - cam[0][0]) * 111'000.0;
   const double de = (cam[3][1] - cam[0][1]) * 111'000.0 * std::cos(30.0 * M_PI / 180.0);
   EXPECT_GT(std::hypot(dn, de), 5.0);
+
+  // `render --follow 3`: one frame, the camera given by --camera (3 km up)
+  // replaced by the chase; without --follow no boat is in sight.
+  for (const bool follow : {true, false}) {
+    const std::string png = dir + (follow ? "/render_follow.png" : "/render_nofollow.png");
+    const auto rr = geocean::test::run(std::string(GEOCEAN_EXE) + " render --camera 30,-40,3000,0,-60 --boats 3" +
+                                       (follow ? " --follow 3" : "") +
+                                       " --time 10 --waves gerstner --size 200x120 --out " + png);
+    ASSERT_EQ(rr.exitCode, 0) << rr.err;
+    const Blob b = yellowPixels(gl::readImage(png));
+    if (!follow) {
+      EXPECT_LT(b.n, 5) << "from 3 km the boats are specks";
+      continue;
+    }
+    EXPECT_GT(b.n, 80);
+    EXPECT_NEAR(b.x, 100.0, 20.0);
+    EXPECT_NEAR(b.y, 60.0, 12.0);
+  }
 
   // `view --follow 3` in a window (GLFW under Xvfb), its last frame.
   if (!geocean::test::haveTool("xvfb-run")) {

@@ -151,6 +151,10 @@ TEST(Ocean, AReflectionMapReusedForFourFramesKeepsTheReflection) {
     fs.reflectionEvery = every;
     const FrameTimes t = s.render(p, fs);
     if (drawn) *drawn = t.reflectionDrawn;
+    // The mirrored pass's own time (bench_render's `refl`) is there exactly
+    // when the pass ran.
+    EXPECT_EQ(t.reflectionCpuMs > 0.0, t.reflectionDrawn) << "frame " << i;
+    EXPECT_EQ(t.reflectionMs > 0.0, t.reflectionDrawn) << "frame " << i;
     return s.image();
   };
   std::vector<Image> fresh, reused, none;
