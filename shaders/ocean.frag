@@ -53,6 +53,15 @@ layout(std430, binding = 3) readonly buffer WvCoastBuffer { WvCoast wvCoasts[]; 
 layout(std430, binding = 4) readonly buffer WvCoastTexelBuffer { vec4 wvCoastTexels[]; };
 #endif
 #include "waves.glsl"
+#if WV_MODEL == 0
+#include "noise_bands.glsl"
+uniform int uFragOctaves;
+uniform int uOctaveCount;
+uniform float uOctaveWavelengthM[16];
+uniform float uMssAbove[17];
+in float vHeightA;
+in float vCellAlongM;
+#endif
 #ifdef FOAM_TIMES
 #include "foam.glsl"
 #endif
@@ -106,6 +115,8 @@ void main() {
 #elif defined(GEOCEAN_BREAK_FOAM)
   // Issue 15 hook: oceanColor's crest foam, and the breaking waves' on top.
   float crest = max(mix(smoothstep(vFoamM - uFoamSoftM, vFoamM + uFoamSoftM, vHeightM), uWhitecapCover, vFar), vBreakFoam);
+#elif WV_MODEL == 0
+  float crest = 0.0;  // below, with the octaves
 #else
   // oceanColor's crest foam.
   float crest = mix(smoothstep(vFoamM - uFoamSoftM, vFoamM + uFoamSoftM, vHeightM), uWhitecapCover, vFar);
@@ -116,10 +127,56 @@ void main() {
   // roughness.
   vec3 up = normalize(vUp);
   float footprint = max(length(dFdx(vEyeRel)), length(dFdy(vEyeRel)));
+#if WV_MODEL == 0
+  // The noise sea's octaves not in the vertex normal, down to 2 pixels,
+  // at the fragment's rest point (the displacement is vertical), and the
+  // roughness of what is shown neither way (noise_bands.glsl).
+  WvFrame fr0 = wvFrames[0];
+  vec3 d = vEyeRel - up * vHeightM + uEyeMinusOrigin;
+  vec3 upD = wv_upAt(fr0, d);
+  vec3 nv = normalize(vNormal);
+  vec3 grad = upD - nv / dot(nv, upD), gAdd = vec3(0.0);
+  float hRes = vHeightA, varU = 0.0;
+  // Only the octaves between the vertex normal's (a < 1 from 6 cells) and
+  // the pixel's (f > 0 down to 2 pixels) are visited: the wavelengths
+  // halve, so the first is found by a logarithm; before it every octave is
+  // shown whole, after it none (the spectrum from there is roughness).
+  int n = min(uFragOctaves, 16);
+  int i = clamp(int(floor(log2(uOctaveWavelengthM[0] / (6.0 * vCellAlongM)))) + 1, 0, n);
+  float mss = 0.0;
+  for (; i < n; ++i) {
+    float f = noisePixelWeight(uOctaveWavelengthM[i], footprint);
+    if (f <= 0.0) break;
+    float a = noiseVertexWeight(uOctaveWavelengthM[i], vCellAlongM);
+    float shown = max(a, f);
+    mss += (uMssAbove[i] - uMssAbove[i + 1]) * (1.0 - shown * shown);
+    if (i < uOctaveCount) varU += uOctaveHeightVar[i] * (1.0 - shown * shown);
+    if (f > a) {
+      vec4 o = noiseOctave(i, d);
+      gAdd += (f - a) * o.yzw;
+      if (i < uOctaveCount) hRes += (f - a) * noiseCrestWeight(i) * o.x;
+    }
+  }
+  mss += uMssAbove[i];
+  for (int k = i; k < uOctaveCount && k < 16; ++k) varU += uOctaveHeightVar[k];
+  gAdd -= dot(gAdd, upD) * upD;
+  // The octaves added here replace roughness that is Cox & Munk's
+  // anisotropic: their isotropic slopes are stretched along the wind by
+  // the upwind share (total variance kept), as the roughness's.
+  vec3 eastD = cross(vec3(0.0, 0.0, 1.0), upD);
+  eastD = dot(eastD, eastD) > 1e-12 ? normalize(eastD) : vec3(0.0, 1.0, 0.0);
+  vec3 windD = sin(uWind.y) * eastD + cos(uWind.y) * cross(upD, eastD);
+  float share = coxMunkUpwindShare(uWind.x);
+  float along = dot(gAdd, windD);
+  grad += windD * along * sqrt(2.0 * share) + (gAdd - windD * along) * sqrt(2.0 * (1.0 - share));
+  vec3 nrm = normalize(upD - grad);
+  crest = noiseCrestFoam(hRes, varU, uFoamSoftM, uWhitecapCover);
+#else
   vec4 detail = wv_detailSlope(uDetailCount, vEyeRel + uEyeMinusOrigin, footprint);
   vec3 nrm = normalize(normalize(vNormal) - (detail.xyz - up * dot(detail.xyz, up)));
   float farKeep = (1.0 - 0.7 * vFar) * (1.0 - 0.7 * vFar);
   float mss = max(vMss - detail.w * farKeep, 0.0);
+#endif
   outColor = vec4(oceanColorCrest(vEyeRel, nrm, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, mss, max(crest, wake), w, vHeightM), alpha);
 #endif
   outData = uWriteData != 0 ? vec4(vEyeRel, 1.0) : vec4(0.0);

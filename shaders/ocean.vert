@@ -21,6 +21,12 @@ layout(std430, binding = 3) readonly buffer WvCoastBuffer { WvCoast wvCoasts[]; 
 layout(std430, binding = 4) readonly buffer WvCoastTexelBuffer { vec4 wvCoastTexels[]; };
 #endif
 #include "waves.glsl"
+#if WV_MODEL == 0
+#include "noise_bands.glsl"
+uniform int uFragOctaves;  // the model's octaves and the detail octaves after them (OceanRenderer)
+out float vHeightA;        // the height of the octaves in the vertex normal, by their weight (noise foam)
+out float vCellAlongM;     // a grid cell's footprint along the view (noise_bands.glsl)
+#endif
 #include "geo_uv.glsl"
 #include "atmosphere.glsl"
 
@@ -84,6 +90,10 @@ out float vCoverage;
 #endif
 
 void main() {
+#if WV_MODEL == 0
+  vHeightA = 0.0, vCellAlongM = 1.0;
+  float noiseVarUnresolved = 0.0;
+#endif
   // Longitude unwrapped to within 180 degrees of the eye's, so a cell across
   // the antimeridian interpolates across it, not back through 0 (the
   // textures repeat in longitude).
@@ -134,8 +144,27 @@ void main() {
   vFoamM = uFoamHeightM[0];
 #else
   WvResult r = wv_solidNoise(0, count, d, fr);
-  float mssDrawn = uMssAbove[0] - uMssAbove[count], mssRest = uMssAbove[count];
   vFoamM = uFoamHeightM[count];
+  // The normal: the octaves over 3-6 cells along the view
+  // (noise_bands.glsl), the rest per fragment or roughness.
+  float sinE = abs(dot(normalize(aEyeRel), up));
+  vCellAlongM = footprint / max(sinE, 0.02);
+  vec3 grad = vec3(0.0);
+  vHeightA = 0.0;
+  float mssRest = uMssAbove[min(uFragOctaves, 16)];
+  noiseVarUnresolved = 0.0;
+  for (int i = 0; i < uFragOctaves && i < 16; ++i) {
+    float a = noiseVertexWeight(uOctaveWavelengthM[i], vCellAlongM);
+    mssRest += (uMssAbove[i] - uMssAbove[i + 1]) * (1.0 - a * a);
+    if (i < uOctaveCount) noiseVarUnresolved += uOctaveHeightVar[i] * (1.0 - a * a);
+    if (a > 0.0) {
+      vec4 o = noiseOctave(i, d);
+      grad += a * o.yzw;
+      if (i < uOctaveCount) vHeightA += a * noiseCrestWeight(i) * o.x;
+    }
+  }
+  r.normal.xyz = normalize(up - (grad - dot(grad, up) * up));
+  float mssDrawn = 0.0;  // no pull towards the mean (ocean_shading.glsl): the weights filter
 #endif
   // A flat cell between vertices on the ellipsoid sags below it, at its
   // centre, by d^2/(8R) over its diagonal d = sqrt(2) L, i.e. L^2/(4R) (L:
@@ -173,7 +202,10 @@ void main() {
   vMss = mssRest + (1.0 - kept) * mssDrawn;
 #endif
   vLonLat = lonLat;
-#ifdef GEOCEAN_FAR_SHADED
+#if defined(GEOCEAN_FAR_SHADED) && WV_MODEL == 0
+  vColor = oceanColorCrest(vEyeRel, vNormal, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss,
+                           noiseCrestFoam(vHeightA, noiseVarUnresolved, uFoamSoftM, uWhitecapCover), 1.0, vHeightM);
+#elif defined(GEOCEAN_FAR_SHADED)
   vColor = oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, vFoamM, 1.0);
 #endif
 #if defined(GEOCEAN_VERTEX_COVERAGE) && defined(GEOCEAN_WATER_PAGES)

@@ -114,7 +114,12 @@ vec3 oceanColorCrest(vec3 eyeRel, vec3 normal, vec3 upIn, vec3 sun, vec3 hazeTr,
   float depth = max(reliefDepthM, (w - 0.5) * 120.0);
   vec3 up = normalize(upIn);
   vec3 v = normalize(-eyeRel);
+#if WV_MODEL == 0
+  // Noise: the octaves come filtered to the pixel (noise_bands.glsl).
+  vec3 n = normalize(normal);
+#else
   vec3 n = normalize(mix(normalize(normal), up, far * 0.7));
+#endif
   // The whitecaps, and the shore band (eq. 11: water + sum f_i foam)
   // pulsing with the surf.
   float surf = 0.5 + 0.5 * sin(uTimeS * 0.9 - depth * 1.7);

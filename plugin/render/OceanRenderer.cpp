@@ -3,6 +3,7 @@
 #include "plugin/render/CoastIslandsGpu.h"
 #include "plugin/waves/CoastField.h"
 #include "plugin/waves/FftOcean.h"
+#include "plugin/waves/WaveKernel.h"
 #include "plugin/render/OceanWorld.h"
 
 #include "globe/gl/Texture.h"
@@ -129,8 +130,30 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   glEnableVertexArrayAttrib(vao_, 2);
   glVertexArrayAttribLFormat(vao_, 2, 2, GL_DOUBLE, 16);
   glVertexArrayAttribBinding(vao_, 2, 0);
+  // Noise: the detail layer continues the model's octaves down to octave
+  // 12 (the kernel's most), the same rotations and seeds as a 12-octave
+  // sea's and the amplitudes halving on from the model's finest: per-fragment
+  // normals only (the query's heights have the model's octaves).
+  std::vector<waves::WaveField::Octave> allOctaves = waves_->octaves();
+  if (options_.model == waves::Model::Noise && options_.detailNormals && options_.sea.noiseOctaves < 12) {
+    waves::SeaState s12 = options_.sea;
+    s12.noiseOctaves = 12;
+    std::string why;
+    auto made = waves::WaveField::create(waves::Model::Noise, s12, why);
+    if (made && !made->octaves().empty() && !allOctaves.empty()) {
+      noiseDetailScale_ = allOctaves[0].amplitudeM / made->octaves()[0].amplitudeM;
+      noiseDetailOctaves_ = 12 - int(allOctaves.size());
+      for (std::size_t i = allOctaves.size(); i < made->octaves().size(); ++i) allOctaves.push_back(made->octaves()[i]);
+      noiseDetail_.emplace(std::move(*made));
+    }
+  }
+  // The model octaves' height variances (the noise's whitecaps: what the
+  // pixel does not resolve widens the crest's edge). 0.27008: the 3D
+  // gradient noise's standard deviation (WaveField.cpp kPerlin3Std).
+  for (std::size_t i = 0; i < waves_->octaves().size(); ++i)
+    octaveHeightVar_.push_back(float(std::pow(waves_->octaves()[i].amplitudeM * 0.27008, 2.0) * std::exp2(1.5 * double(i))));
   // Octave wavelengths (1 / lattice frequency) for the distance fade.
-  for (const auto& o : waves_->octaves()) octaveWavelengthM_.push_back(float(1.0 / o.frequencyPerM));
+  for (const auto& o : allOctaves) octaveWavelengthM_.push_back(float(1.0 / o.frequencyPerM));
   // Models without octaves fade by the spectrum's peak wavelength.
   if (octaveWavelengthM_.empty()) octaveWavelengthM_.push_back(float(waves_->peakWavelengthM()));
   // Roughness: the slope variance of the spectrum's waves shorter than the
@@ -141,7 +164,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   mssAbove_.assign(17, 0.0f);
   mssAbove_[0] = float(waves::slopeVarianceAbove(sea, 0.0));
   if (options_.model == waves::Model::Noise) {
-    const auto& oc = waves_->octaves();
+    const auto& oc = allOctaves;
     for (std::size_t c = 1; c < 17; ++c)
       mssAbove_[c] = c <= oc.size() ? float(waves::slopeVarianceAbove(sea, kTwoPi * oc[c - 1].frequencyPerM * std::sqrt(2.0)))
                                     : mssAbove_[c - 1];
@@ -152,14 +175,12 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     if (options_.model == waves::Model::Fft) kMax = kTwoPi / waves_->peakWavelengthM() * 7.3 / 5.3 * 64.0;
     mssAbove_[1] = float(waves::slopeVarianceAbove(sea, kMax));
   }
-  // The detail layer starts where the model's shortest wave ends (noise: the
-  // finest octave's band, as uMssAbove), 8 octaves of 4 waves (to 2 cm at
+  // Gerstner and FFT: the detail layer starts where the model's shortest
+  // wave ends, 8 octaves of 4 waves (to 2 cm at
   // U = 10 for Gerstner): ocean.frag keeps those over 2 pixels.
-  if (options_.detailNormals) {
+  if (options_.detailNormals && options_.model != waves::Model::Noise) {
     double kLow = 0.0;
-    if (options_.model == waves::Model::Noise && !waves_->octaves().empty())
-      kLow = kTwoPi * waves_->octaves().back().frequencyPerM * std::sqrt(2.0);
-    else if (options_.model == waves::Model::Fft)
+    if (options_.model == waves::Model::Fft)
       kLow = kTwoPi / waves_->peakWavelengthM() * 7.3 / 5.3 * 64.0;
     else
       for (const auto& c : waves_->components()) kLow = std::max(kLow, c.kRef);
@@ -218,6 +239,30 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
       const auto wc = waves::WaveField::create(options_.model, sc, why);
       foamHeightM_[c] = float(quantile(*wc) / std::sqrt(sumSq(n) / sumSq(c)));
     }
+    // The whitecaps' crest field (noise_bands.glsl): octave i's height
+    // weighted by 2^(3i/4), so shorter crests break the long waves' tops into
+    // patches smaller than they are; its level exceeded on W of the sea, from
+    // the same 16,384 points as the heights' (every octave of each point
+    // from the shader's own kernel).
+    const double spanDeg = 40.0 * waves_->peakWavelengthM() / 111320.0;
+    constexpr std::size_t kN = 16384;
+    std::vector<double> crest(kN);
+    std::uint32_t state = 12345u;
+    const auto uniform = [&] { return double((state = state * 1664525u + 1013904223u) >> 8) / 16777216.0; };
+    waves::WaveField::CpuPatch cp;
+    waves::kd::Kernel k;
+    for (std::size_t i = 0; i < kN; ++i) {
+      const double lat = sea.anchorLatDeg + (uniform() - 0.5) * spanDeg, lon = sea.anchorLonDeg + (uniform() - 0.5) * spanDeg;
+      waves_->cpuPatch(geo::toEcef({lat, lon, 0.0}), double(i & 1) * 300.0, cp);
+      k.wvOctaves = cp.octaves.data();
+      double c = 0.0;
+      for (int o = 0; o < int(cp.octaves.size()); ++o)
+        c += std::exp2(0.75 * o) * k.wv_solidNoise(o, 1, glm::dvec3(0.0), cp.frame).disp.w;
+      crest[i] = c;
+    }
+    const std::size_t q = std::min(kN - 1, std::size_t((1.0 - whitecap_) * double(kN)));
+    std::nth_element(crest.begin(), crest.begin() + std::ptrdiff_t(q), crest.end());
+    crestM_ = crest[q];
   } else
     std::fill(foamHeightM_.begin() + 1, foamHeightM_.end(), foamHeightM_[0]);
   // Soft edge: 2 % of Hs either side (an anti-aliased rim, not a halo).
@@ -469,9 +514,16 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
         // is complete at every vertex, with 1 % for its float arithmetic.
         bool far = view.farFootprintM > 0.0;
         for (std::size_t k = 0; k < 6 && far; ++k) {
-          const float* e = f.vertices[idx[c + k]].eyeRelM;
-          far = std::sqrt(double(e[0]) * e[0] + double(e[1]) * e[1] + double(e[2]) * e[2]) * view.cellRadians >=
-                1.01 * view.farFootprintM;
+          const grid::GridVertex& gv = f.vertices[idx[c + k]];
+          const float* e = gv.eyeRelM;
+          const double dist = std::sqrt(double(e[0]) * e[0] + double(e[1]) * e[1] + double(e[2]) * e[2]);
+          double footprint = dist * view.cellRadians;
+          if (view.farAlongView) {
+            const glm::dvec3 up = geo::surfaceNormal(gv.latDeg, gv.lonDeg);
+            const double sinE = std::abs(glm::dot(glm::dvec3(e[0], e[1], e[2]), up)) / std::max(dist, 1e-9);
+            footprint /= cellPx * std::max(sinE, 0.02);
+          }
+          far = footprint >= 1.01 * view.farFootprintM && dist >= 1.01 * view.farMinDistM;
         }
         // A wake's foam is drawn per fragment: its cells are not far (the
         // cell's first vertex within the reach widened by the cell's size).
@@ -519,13 +571,17 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   cull.cellRadians = 2.0 * cull.tanY / cam.heightPx() * options_.cellPx;
   cull.maxDisplacementM = maxDisplacementM_;
   cull.waves = waves_.get();
-  if (options_.farVertexShading && !octaveWavelengthM_.empty())
+  // Noise: no octave is left per pixel (the longest under 2 pixels, a
+  // pixel 1 / cellPx of a cell); the other models: their fade's end.
+  if (options_.farVertexShading && !octaveWavelengthM_.empty()) {
     cull.farFootprintM = 0.5 * double(octaveWavelengthM_[0]);
+    cull.farAlongView = options_.model == waves::Model::Noise;
+  }
   // The planar reflection is sampled per pixel out to its reach
   // (ocean_shading.glsl's kReflectionFarM): vertex-shaded cells there drew
   // it in 8 px steps.
   const bool reflect = !bare && inputs_.reflectionColor != 0 && inputs_.reflectionCamera;
-  if (reflect && cull.farFootprintM > 0.0) cull.farFootprintM = std::max(cull.farFootprintM, 40000.0 * cull.cellRadians);
+  if (reflect && cull.farFootprintM > 0.0) cull.farMinDistM = 40000.0;
   cull.timeS = light.timeS;
   // The bodies' foam (wake.glsl): the kMaxWakes nearest the eye of those
   // fast enough to make any (the others would add exactly nothing).
@@ -587,6 +643,15 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   if (jacobianFoam() && !bare && glm::length(origin - foamCalibratedAt_) > kFoamCalibrationM)
     calibrateJacobianFoam(g.latDeg, g.lonDeg);
   waves_->gpuPatch(origin, light.timeS, patch_);
+  const int modelOctaves = int(patch_.octaves.size());
+  if (noiseDetail_) {
+    noiseDetail_->gpuPatch(origin, light.timeS, pastPatch_);
+    for (std::size_t i = pastPatch_.octaves.size() - std::size_t(noiseDetailOctaves_); i < pastPatch_.octaves.size(); ++i) {
+      waves::kf::WvOctave o = pastPatch_.octaves[i];
+      o.row0.w = float(o.row0.w * noiseDetailScale_);
+      patch_.octaves.push_back(o);
+    }
+  }
   const int waveCount = int(patch_.waves.size());
   const auto foamT = foamTimes(light.timeS);
   if (jacobianFoam() && !bare) {
@@ -635,7 +700,15 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glUniformMatrix4fv(p.uniform("uViewProj"), 1, GL_FALSE, &cam.gpu().viewProj[0][0]);
     const glm::vec3 eyeMinusO(cam.eyeEcef() - origin);
     glUniform3fv(p.uniform("uEyeMinusOrigin"), 1, &eyeMinusO[0]);
-    glUniform1i(p.uniform("uOctaveCount"), int(patch_.octaves.size()));
+    glUniform1i(p.uniform("uOctaveCount"), modelOctaves);
+    glUniform1i(p.uniform("uFragOctaves"), int(patch_.octaves.size()));
+    if (!octaveHeightVar_.empty())
+      glUniform1fv(p.uniform("uOctaveHeightVar"), GLsizei(std::min<std::size_t>(octaveHeightVar_.size(), 16)),
+                   octaveHeightVar_.data());
+    glUniform1f(p.uniform("uCrestM"), float(crestM_));
+    float crestVar = 0.0f;
+    for (float v : octaveHeightVar_) crestVar += v;
+    glUniform1f(p.uniform("uCrestVar"), crestVar);
     glUniform1i(p.uniform("uWaveCount"), waveCount);
     glUniform1fv(p.uniform("uOctaveWavelengthM"), GLsizei(std::min<std::size_t>(octaveWavelengthM_.size(), 16)),
                  octaveWavelengthM_.data());

@@ -93,6 +93,12 @@ struct ScreenCull {
   // Grid footprint (|eye-relative| x cellRadians) from which ocean.vert's
   // distance fade is complete; 0: no far group.
   double farFootprintM = 0.0;
+  // Noise (shaders/noise_bands.glsl): farFootprintM is a pixel's footprint
+  // along the view (the cell's over cellPx and the sine of the view's
+  // elevation angle), as the fragments' pixel filter measures it.
+  bool farAlongView = false;
+  // And no nearer than this (the planar reflection's reach: per pixel).
+  double farMinDistM = 0.0;
   // Bodies' foam (wake.glsl, per fragment): eye-relative centre and reach
   // (m); cells within reach stay out of the per-vertex far group.
   std::vector<glm::dvec4> wakeReach;
@@ -242,7 +248,15 @@ class OceanRenderer {
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;
   std::vector<float> mssAbove_;
-  std::vector<waves::DetailWave> detail_;  // the detail normal layer (ocean.frag)
+  std::vector<waves::DetailWave> detail_;  // the detail normal layer (ocean.frag): Gerstner, FFT
+  // Noise: the detail layer is the same noise continued below the model's
+  // finest octave (octaves n..11 of a 12-octave field, scaled to continue
+  // the model's amplitudes), appended to the octave buffer for the fragments.
+  std::optional<waves::WaveField> noiseDetail_;
+  double noiseDetailScale_ = 1.0;
+  int noiseDetailOctaves_ = 0;
+  std::vector<float> octaveHeightVar_;  // the model octaves' crest-field variance (noise foam, noise_bands.glsl)
+  double crestM_ = 0.0;                 // the crest field's level exceeded on W of the sea (noise)
   std::vector<float> foamHeightM_;
   double foamSoftM_ = 0.0, whitecap_ = 0.0;
   double windMps_ = 0.0, windFromRad_ = 0.0;

@@ -81,7 +81,8 @@ struct Glitter {
 // / (E F G) (Cox & Munk 1954, eq. 2; F exact Fresnel, G Smith's shadowing). ln p fitted as a
 // Gaussian in the slopes gives the distribution's centre and mean square
 // slope. Pixels: not saturated (< 250), view above grazing (cos > 0.25,
-// where shadowing takes under 10 %), glitter over 5 % of its largest.
+// where shadowing takes under 10 %), glitter over 5 % of its largest, no
+// foam.
 Glitter glitterAt(double u10, int size, double fovDeg, double windFromDeg = 270.0) {
   Session& s = session();
   OceanGuard guard;
@@ -127,6 +128,10 @@ Glitter glitterAt(double u10, int size, double fovDeg, double windFromDeg = 270.
       const std::uint8_t* px = &lit.rgba[(std::size_t(y) * size + x) * 4];
       const double e = excess[std::size_t(y) * size + x];
       if (e < 0.05 * top || std::max({px[0], px[1], px[2]}) >= 250) continue;
+      // Whitecaps hide the facets: pixels with foam in the sun-behind view
+      // (red over 100; this water is 45-60, a whitecap 200 and more) carry no
+      // slope (the noise sea's crests foam patchily from 1 km at U = 15).
+      if (behind.rgba[(std::size_t(y) * size + x) * 4] > 100) continue;
       const double nx = (2.0 * (x + 0.5) / size - 1.0) * tanY, ny = (1.0 - 2.0 * (y + 0.5) / size) * tanY;
       const glm::dvec3 ray = glm::normalize(cam.forward() + cam.right() * nx + cam.up() * ny);
       const glm::dvec3 v = -ray;
