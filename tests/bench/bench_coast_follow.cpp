@@ -20,6 +20,7 @@
 #include "globe/raster/Raster.h"
 #include "plugin/ocean/Ocean.h"
 #include "plugin/waves/CoastField.h"
+#include "tests/support/Median.h"
 
 #include <algorithm>
 #include <chrono>
@@ -36,11 +37,7 @@ using namespace geocean;
 
 namespace {
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using geocean::test::median;
 
 double cpuS() {
   timespec t{};

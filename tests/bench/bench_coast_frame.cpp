@@ -18,6 +18,7 @@
 #include "globe/world/WorldData.h"
 #include "plugin/ocean/Ocean.h"
 #include "tests/render/DirectOcean.h"
+#include "tests/support/Median.h"
 
 #include <algorithm>
 #include <cmath>
@@ -31,11 +32,7 @@ using namespace geocean;
 
 namespace {
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using geocean::test::median;
 
 constexpr int kW = 400, kH = 400;
 // On a tile corner (lat 0, lon 0), as the test: the host terrain sees the island.

@@ -16,6 +16,7 @@
 #include "globe/render/Flight.h"
 #include "globe/render/Session.h"
 #include "tests/render/DirectOcean.h"
+#include "tests/support/Median.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -28,12 +29,7 @@ using namespace geocean;
 
 namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using geocean::test::median;
 
 struct Row {
   double altM;

@@ -1,0 +1,17 @@
+// The median the benchmarks report (robust to the odd frame a loaded
+// machine stretches). Empty: 0.
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+namespace geocean::test {
+
+inline double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace geocean::test
