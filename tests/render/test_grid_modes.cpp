@@ -35,6 +35,7 @@ struct Diff {
   double meanAbs = 0;    // mean over the rows [y0, height) of the largest channel difference
   long differing = 0;    // pixels of those rows whose largest channel difference is > 24
   long leftCorner = 0;   // of those, in the lower-left quarter of the frame's width
+  long changed = 0;      // pixels whose largest channel difference is > 2
 };
 Diff diff(const geocean::gl::Image& a, const geocean::gl::Image& b, int y0) {
   Diff d;
@@ -47,6 +48,7 @@ Diff diff(const geocean::gl::Image& a, const geocean::gl::Image& b, int y0) {
         m = std::max(m, std::abs(int(a.rgba[i]) - int(b.rgba[i])));
       }
       d.meanAbs += m;
+      d.changed += m > 2;
       if (m > 24) {
         ++d.differing;
         if (x < a.width / 4) ++d.leftCorner;
@@ -68,15 +70,22 @@ TEST(GridModes, IspgDrawsTheSameSeaNearItAndLosesTheScreenCornersFromAltitude) {
   // Below the horizon band (the horizon is at ~31 % of the height at 1 km).
   const Diff n = diff(nearD, nearI, nearD.height * 2 / 5);
   const Diff f = diff(farD, farI, 0);
-  std::printf("1 km: mean %.3f, %ld px differ; 1000 km: mean %.3f, %ld px differ (%ld in the left quarter)\n",
-              n.meanAbs, n.differing, f.meanAbs, f.differing, f.leftCorner);
+  std::printf("1 km: mean %.3f, %ld px differ; 1000 km: mean %.3f, %ld px differ (%ld in the left quarter), %ld by > 2\n",
+              n.meanAbs, n.differing, f.meanAbs, f.differing, f.leftCorner, f.changed);
   EXPECT_LT(n.meanAbs, 1.0);
   EXPECT_EQ(n.differing, 0);
-  // The lower-left wedge left to the proxy covers 0.57 % of the frame in the
-  // pictures looked at; a fifth of a percent, nearly all of it in the left
-  // quarter, says the ISPG grid drew (an ignored --grid differs nowhere).
-  EXPECT_GT(f.differing, long(0.002 * farD.width * farD.height));
-  EXPECT_GE(f.leftCorner, long(0.9 * f.differing));
+  // From 1,000 km ISPG's drifted edge vertices leave a lower-left wedge
+  // (0.57 % of the frame). Since the ocean's coversOpaquely widens its
+  // margin on every side (WaterIndex::allWaterAround, 2026-12-03; before, 742
+  // pixels of the wedge differed by > 24), the terrain no longer leaves out
+  // the tiles under the wedge and shades them as distant sea within 8/255 of
+  // the ocean, so the wedge no longer stands out (2 pixels differ by > 24);
+  // what says the ISPG grid drew is
+  // that the pictures differ at all: rendering is deterministic (the 1 km
+  // pair agrees below its horizon band), so an ignored --grid differs
+  // nowhere. Measured: 7,457 pixels (5.8 %) by > 2; bound 1 %.
+  EXPECT_GT(f.changed, long(0.01 * farD.width * farD.height));
+  EXPECT_LE(f.differing, long(0.002 * farD.width * farD.height)) << "the proxy and the ocean no longer match far away";
 }
 
 TEST(GridModes, AGridThatIsNotOneOfTheTwoExits2NamingTheOption) {
