@@ -29,8 +29,7 @@ float noisePixelWeight(float wavelengthM, float pixelM) {
 // wv_solidNoise's loop for one octave (the same operations); the caller
 // takes the tangent part once for all octaves (wv_solidNoise's normal is
 // normalize(up - tangent gradient)).
-vec4 noiseOctave(int i, vec3 d) {
-  WvOctave o = wvOctaves[i];
+vec4 noiseOctaveOf(WvOctave o, vec3 d) {
   vec3 r0 = o.row0.xyz, r1 = o.row1.xyz, r2 = o.row2.xyz;
   vec3 q = o.fracO.xyz + vec3(dot(r0, d), dot(r1, d), dot(r2, d));
   vec3 fl = floor(q);
@@ -38,6 +37,30 @@ vec4 noiseOctave(int i, vec3 d) {
   float a = o.row0.w;
   return vec4(a * n.x, a * (r0 * n.y + r1 * n.z + r2 * n.w));
 }
+vec4 noiseOctave(int i, vec3 d) { return noiseOctaveOf(wvOctaves[i], d); }
+
+#ifdef NOISE_OCTAVE_TEXELS
+// The same octave read through buffer textures (OceanRenderer): the
+// fragments' octave index differs from pixel to pixel, and llvmpipe reads a
+// buffer or a uniform array at such an index lane by lane through the
+// stack, a texel fetch with one gather instruction (AVX2): the octave loop's
+// cost on llvmpipe (docs/PERFORMANCE.md). uOctaveTexels: the octave SSBO
+// itself as RGBA32F, 6 texels per WvOctave (row0, row1, row2, fracO, cellO
+// as bits, vel); uOctaveBands: per octave (wavelength m, uMssAbove,
+// uOctaveHeightVar, 0), the uniform arrays' values.
+layout(binding = 12) uniform samplerBuffer uOctaveTexels;
+layout(binding = 13) uniform samplerBuffer uOctaveBands;
+vec4 noiseOctaveFetched(int i, vec3 d) {
+  WvOctave o;
+  o.row0 = texelFetch(uOctaveTexels, 6 * i);
+  o.row1 = texelFetch(uOctaveTexels, 6 * i + 1);
+  o.row2 = texelFetch(uOctaveTexels, 6 * i + 2);
+  o.fracO = texelFetch(uOctaveTexels, 6 * i + 3);
+  o.cellO = floatBitsToInt(texelFetch(uOctaveTexels, 6 * i + 4));
+  o.vel = vec4(0.0);
+  return noiseOctaveOf(o, d);
+}
+#endif
 
 // Whitecaps of the noise sea: where the crest field, the model's octave
 // heights weighted by 2^(3i/4) (noiseCrestWeight: the shorter crests break

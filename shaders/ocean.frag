@@ -54,6 +54,7 @@ layout(std430, binding = 4) readonly buffer WvCoastTexelBuffer { vec4 wvCoastTex
 #endif
 #include "waves.glsl"
 #if WV_MODEL == 0
+#define NOISE_OCTAVE_TEXELS 1
 #include "noise_bands.glsl"
 uniform int uFragOctaves;
 uniform int uOctaveCount;
@@ -142,23 +143,28 @@ void main() {
   // halve, so the first is found by a logarithm; before it every octave is
   // shown whole, after it none (the spectrum from there is roughness).
   int n = min(uFragOctaves, 16);
+  // The octave index differs between pixels: the octaves' data come as
+  // texel fetches (noiseOctaveFetched, uOctaveBands), the same values.
   int i = clamp(int(floor(log2(uOctaveWavelengthM[0] / (6.0 * vCellAlongM)))) + 1, 0, n);
   float mss = 0.0;
+  vec4 band = texelFetch(uOctaveBands, i);
   for (; i < n; ++i) {
-    float f = noisePixelWeight(uOctaveWavelengthM[i], footprint);
+    float f = noisePixelWeight(band.x, footprint);
     if (f <= 0.0) break;
-    float a = noiseVertexWeight(uOctaveWavelengthM[i], vCellAlongM);
+    float a = noiseVertexWeight(band.x, vCellAlongM);
     float shown = max(a, f);
-    mss += (uMssAbove[i] - uMssAbove[i + 1]) * (1.0 - shown * shown);
-    if (i < uOctaveCount) varU += uOctaveHeightVar[i] * (1.0 - shown * shown);
+    vec4 next = texelFetch(uOctaveBands, i + 1);
+    mss += (band.y - next.y) * (1.0 - shown * shown);
+    if (i < uOctaveCount) varU += band.z * (1.0 - shown * shown);
     if (f > a) {
-      vec4 o = noiseOctave(i, d);
+      vec4 o = noiseOctaveFetched(i, d);
       gAdd += (f - a) * o.yzw;
       if (i < uOctaveCount) hRes += (f - a) * noiseCrestWeight(i) * o.x;
     }
+    band = next;
   }
-  mss += uMssAbove[i];
-  for (int k = i; k < uOctaveCount && k < 16; ++k) varU += uOctaveHeightVar[k];
+  mss += band.y;
+  for (int k = i; k < uOctaveCount && k < 16; ++k) varU += texelFetch(uOctaveBands, k).z;
   gAdd -= dot(gAdd, upD) * upD;
   // The octaves added here replace roughness that is Cox & Munk's
   // anisotropic: their isotropic slopes are stretched along the wind by

@@ -188,7 +188,10 @@ FrameTimes GlobeRenderer::render(const camera::ViewPose& pose, const FrameSettin
   double cs = cpuMs();
   LayerInputs inputs;
   inputs.refraction = settings.refraction;
-  if (!settings.reflections) wants &= ~kLayerWantsReflection;
+  if (!settings.reflections || cam.heightM() >= kReflectionReachM) {
+    wants &= ~kLayerWantsReflection;
+    reflectionCamera_.reset();  // a map from before would be stale when the pass resumes
+  }
   if (wants && !settings.bare) makeLayerInputs(cam, light, settings, wants, inputs, t);
   for (auto& l : layers_) l->draw(cam, light, settings.bare, inputs);
   if (settings.timed) glFinish();

@@ -15,6 +15,14 @@ enum LayerInput : unsigned {
   kLayerWantsSceneCopy = 2u,   // a copy of the scene's colour and depth so far (refraction)
 };
 
+// The reach of a reflection: layers use the mirrored pass's map only for
+// points within this distance of the eye (the ocean fades it out from 20 km
+// to here: ocean_shading.glsl's kReflectionFarM, the same number). No point
+// of the sea is nearer than the eye's height, so above it the host skips the
+// pass (from orbit it cost a third of the frame on llvmpipe and drew nothing
+// the sea shows).
+constexpr double kReflectionReachM = 40000.0;
+
 struct LayerInfo {
   // The layer draws water opaquely where coversOpaquely() says so: the
   // terrain may leave those tiles out.

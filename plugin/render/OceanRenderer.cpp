@@ -175,6 +175,22 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     if (options_.model == waves::Model::Fft) kMax = kTwoPi / waves_->peakWavelengthM() * 7.3 / 5.3 * 64.0;
     mssAbove_[1] = float(waves::slopeVarianceAbove(sea, kMax));
   }
+  // ocean.frag's uOctaveBands (noise_bands.glsl): per octave k <= 16 the
+  // uniform arrays' values (0 past those set), (wavelength, mss above,
+  // height variance, 0); and uOctaveTexels, the octave SSBO as RGBA32F.
+  {
+    std::vector<glm::vec4> bands(17, glm::vec4(0.0f));
+    for (std::size_t k = 0; k < 17; ++k) {
+      if (k < std::min<std::size_t>(octaveWavelengthM_.size(), 16)) bands[k].x = octaveWavelengthM_[k];
+      bands[k].y = mssAbove_[k];
+      if (k < std::min<std::size_t>(octaveHeightVar_.size(), 16)) bands[k].z = octaveHeightVar_[k];
+    }
+    glCreateBuffers(1, &octaveBandBuf_);
+    glNamedBufferData(octaveBandBuf_, GLsizeiptr(bands.size() * sizeof(glm::vec4)), bands.data(), GL_STATIC_DRAW);
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &octaveBandTex_);
+    glTextureBuffer(octaveBandTex_, GL_RGBA32F, octaveBandBuf_);
+    glCreateTextures(GL_TEXTURE_BUFFER, 1, &octaveTexelTex_);
+  }
   // Gerstner and FFT: the detail layer starts where the model's shortest
   // wave ends, 8 octaves of 4 waves (to 2 cm at
   // U = 10 for Gerstner): ocean.frag keeps those over 2 pixels.
@@ -372,8 +388,9 @@ double OceanRenderer::whitecapCover(double windSpeedMps) {
 
 OceanRenderer::~OceanRenderer() {
   if (glAbandoned_) return;
-  const GLuint tex[] = {elevationTex_, waterTex_};
-  glDeleteTextures(2, tex);
+  const GLuint tex[] = {elevationTex_, waterTex_, octaveBandTex_, octaveTexelTex_};
+  glDeleteTextures(4, tex);
+  glDeleteBuffers(1, &octaveBandBuf_);
   glDeleteVertexArrays(1, &vao_);
   glDeleteBuffers(1, &vbo_);
   glDeleteBuffers(1, &ibo_);
@@ -668,6 +685,8 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     }
   }
   upload(ssbo_[0], patch_.octaves);
+  static_assert(sizeof(waves::kf::WvOctave) == 6 * sizeof(glm::vec4), "noise_bands.glsl reads 6 texels an octave");
+  glTextureBuffer(octaveTexelTex_, GL_RGBA32F, ssbo_[0]);  // its storage was just re-made
   upload(ssbo_[1], patch_.waves);
   upload(ssbo_[2], std::vector<waves::kf::WvFrame>{patch_.frame});
   for (int i = 0; i < 3; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, ssbo_[i]);
@@ -793,6 +812,17 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   glBindTextureUnit(1, elevationTex_);
   glBindTextureUnit(2, waterTex_);
   if (reflect) glBindTextureUnit(3, inputs_.reflectionColor);
+  // Units 12, 13 (the terrain's imagery layers use 8-11): the host's buffer
+  // textures there, if any, are put back after the draws.
+  GLint hostActive = 0, hostBufferTex[2] = {0, 0};
+  glGetIntegerv(GL_ACTIVE_TEXTURE, &hostActive);
+  for (int u = 0; u < 2; ++u) {
+    glActiveTexture(GLenum(GL_TEXTURE12 + u));
+    glGetIntegerv(GL_TEXTURE_BINDING_BUFFER, &hostBufferTex[u]);
+  }
+  glActiveTexture(GLenum(hostActive));
+  glBindTextureUnit(12, octaveTexelTex_);
+  glBindTextureUnit(13, octaveBandTex_);
   const std::pair<const gl::GlProgram*, std::size_t> passes[4] = {{bare ? &bare_ : &program_, groups.sharp},
                                                                        {&smoothCoast_, groups.smooth},
                                                                        {&openWater_, groups.open},
@@ -808,6 +838,11 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     first += count;
   }
   glBindVertexArray(0);
+  for (int u = 0; u < 2; ++u) {
+    glActiveTexture(GLenum(GL_TEXTURE12 + u));
+    glBindTexture(GL_TEXTURE_BUFFER, GLuint(hostBufferTex[u]));
+  }
+  glActiveTexture(GLenum(hostActive));
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_BLEND);
   if (pages_) pages_->endFrame();  // finished loads go up after the draws

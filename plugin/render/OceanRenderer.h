@@ -248,6 +248,8 @@ class OceanRenderer {
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;
   std::vector<float> mssAbove_;
+  // ocean.frag's octave data as buffer textures (noise_bands.glsl's NOISE_OCTAVE_TEXELS).
+  GLuint octaveBandBuf_ = 0, octaveBandTex_ = 0, octaveTexelTex_ = 0;
   std::vector<waves::DetailWave> detail_;  // the detail normal layer (ocean.frag): Gerstner, FFT
   // Noise: the detail layer is the same noise continued below the model's
   // finest octave (octaves n..11 of a 12-octave field, scaled to continue

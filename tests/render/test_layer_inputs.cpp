@@ -142,5 +142,36 @@ TEST(LayerInputs, ReflectionIsTheSkySeenByTheMirroredEye) {
 }
 
 
+// Above kReflectionReachM no sea point is within the layers' reach of the
+// eye (it is at least the eye's height away), so the host draws no
+// mirrored pass there; just below, it does, and a map from before is not
+// reused when the pass resumes.
+TEST(LayerInputs, NoReflectionIsMadeForAnEyeAboveItsReach) {
+  Session& s = session();
+  GlobeRenderer renderer(s.world);
+  auto probe = std::make_shared<ProbeLayer>(kLayerWantsReflection);
+  renderer.addLayer(probe);
+  gl::Framebuffer fb(64, 64);
+  fb.bind();
+  glViewport(0, 0, 64, 64);
+  FrameSettings fs;
+  fs.reflectionEvery = 4;
+  const auto drawAt = [&](double altM) {
+    const ViewPose p = level(36.1, -5.35, altM, 250.0, 64);
+    fs.sunEcef = sunForView(p);
+    return renderer.render(p, fs);
+  };
+  FrameTimes t = drawAt(0.99 * kReflectionReachM);
+  EXPECT_TRUE(t.reflectionDrawn);
+  EXPECT_NE(probe->got.reflectionColor, 0u);
+  t = drawAt(1.01 * kReflectionReachM);
+  EXPECT_FALSE(t.reflectionDrawn);
+  EXPECT_EQ(probe->got.reflectionColor, 0u);
+  EXPECT_EQ(t.reflectionCpuMs, 0.0);
+  t = drawAt(0.98 * kReflectionReachM);  // within 4 frames of the last map: drawn anew all the same
+  EXPECT_TRUE(t.reflectionDrawn);
+  EXPECT_NE(probe->got.reflectionColor, 0u);
+}
+
 }  // namespace
 }  // namespace geocean::render::test
