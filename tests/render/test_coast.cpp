@@ -100,6 +100,26 @@ Scene& scene() {
   return s;
 }
 
+// The ocean's side as plugin/capi's draw builds it for `--mask FILE` over
+// the default world: the façade's snapshot, its streamed water tiles and
+// grids (oceanWaterTiles/oceanWorld).
+struct FacadeOcean {
+  std::shared_ptr<const ocean::Snapshot> snap;
+  ocean_render::OceanOptions options;
+  std::shared_ptr<const world::WorldGrids> grids;
+};
+FacadeOcean facadeOcean(const std::string& maskPath) {
+  ocean::Ocean o;
+  o.setDefaultWorld(ocean::Ocean::defaultWorldDir());
+  o.addMaskLayerFile(maskPath);
+  FacadeOcean f;
+  f.snap = o.current();
+  f.options.waterTiles = ocean_render::oceanWaterTiles(f.snap->landSea.get(), f.snap->mask);
+  f.grids = ocean_render::oceanWorld(f.snap->mask, f.snap->elevation, f.snap->landSea.get(), f.snap->maskEncoding,
+                                     f.options.waterTiles.get());
+  return f;
+}
+
 // The bundled 1.25' mask as a layer over the default world, built the way
 // the product builds it (issue 12): the host's world by
 // world::loadLayeredWorld (its terrain streams the mask's tiles), the
@@ -133,14 +153,10 @@ Streamed& streamed() {
     d.waterSource = nullptr;
     c.gridWorld = std::make_shared<WorldTextures>(d);
     c.gridRenderer = std::make_unique<GlobeRenderer>(c.gridWorld, t);
-    ocean::Ocean o;
-    o.setDefaultWorld(ocean::Ocean::defaultWorldDir());
-    o.addMaskLayerFile(fine);
-    const auto snap = o.current();
-    ocean_render::OceanOptions oo;
-    oo.waterTiles = ocean_render::oceanWaterTiles(snap->landSea.get(), snap->mask);
-    const auto grids = ocean_render::oceanWorld(snap->mask, snap->elevation, snap->landSea.get(), snap->maskEncoding,
-                                                oo.waterTiles.get());
+    const FacadeOcean f = facadeOcean(fine);
+    ocean_render::OceanOptions oo = f.options;
+    const auto& grids = f.grids;
+    const auto& snap = f.snap;
     EXPECT_TRUE(oo.waterTiles) << "the ocean should stream the 1.25' mask";
     c.ocean = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
     c.ocean->setCompleteTiles(true);
@@ -183,16 +199,10 @@ Regional makeRegional(const std::string& maskPath) {
   t.waitForTiles = true;  // as geocean render
   c.world = std::make_shared<WorldTextures>(d);
   c.renderer = std::make_unique<GlobeRenderer>(c.world, t);
-  ocean::Ocean o;
-  o.setDefaultWorld(ocean::Ocean::defaultWorldDir());
-  o.addMaskLayerFile(maskPath);
-  const auto snap = o.current();
-  ocean_render::OceanOptions oo;
-  oo.waterTiles = ocean_render::oceanWaterTiles(snap->landSea.get(), snap->mask);
-  EXPECT_TRUE(oo.waterTiles) << "the ocean should stream the regional 3\" mask";
-  const auto grids = ocean_render::oceanWorld(snap->mask, snap->elevation, snap->landSea.get(), snap->maskEncoding,
-                                              oo.waterTiles.get());
-  c.ocean = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  const FacadeOcean f = facadeOcean(maskPath);
+  const auto& snap = f.snap;
+  EXPECT_TRUE(f.options.waterTiles) << "the ocean should stream the regional 3\" mask";
+  c.ocean = std::make_shared<ocean_render::OceanRenderer>(f.grids, snap->landSea, f.options);
   c.ocean->setCompleteTiles(true);
   c.renderer->addLayer(std::make_shared<DirectOceanLayer>(c.ocean));
   c.landSea = snap->landSea;
