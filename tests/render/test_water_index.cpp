@@ -247,5 +247,88 @@ TEST(WaterIndex, AStreamedMasksLevelKeepsEveryOneCellIslandAndLake) {
   std::printf("%d islands, %d lakes; %d of 200000 points classed land\n", islands, lakes, land);
 }
 
+// A streamed global mask whose levels miss the water grid's step (a 1'
+// mask's 4' level for the 5' grid) is resampled onto the step's own grid
+// (waterLayerOf): the grid has the step's size whatever the raster's (the
+// 1' mask's grid was 1.56x the 1.25' one's texels, +75 MB peak RSS on the
+// two sides), and keeps what the shortcuts rely on, checked against the
+// mask's own cells, brute force: a texel is 1 only where no mask cell it
+// overlaps is land (the open-water index), and above 0 wherever one is
+// water (the near-water classes). Masks of 0.09 and 0.18 degree cells (4000
+// and 2000 wide: partial tiles), a 0.9 degree grid step: their 0.72 degree
+// levels are finer than the step by 1.25x, as 4' against 5'.
+TEST(WaterIndex, AStreamedMasksGridHasTheStepsSizeAndKeepsEveryIslandAndLake) {
+  constexpr double kStepDeg = 0.9;
+  for (const int W : {4000, 2000}) {
+    const int H = W / 2;
+    std::vector<float> cls(std::size_t(W) * H, 0.0f);
+    const auto at = [&](int x, int y) -> float& { return cls[std::size_t(y) * W + x]; };
+    const auto inLand = [&](int x, int y, int in) {
+      return x >= W / 5 + in && x < W / 2 - in && y >= H / 5 + in && y < 3 * H / 5 - in;
+    };
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x)
+        if (inLand(x, y, 0)) at(x, y) = 1.0f;
+    std::mt19937 rng(9);
+    std::uniform_int_distribution<int> ux(0, W - 1), uy(0, H - 1);
+    for (int i = 0; i < 3000; ++i) {
+      const int x = ux(rng), y = uy(rng);
+      if (inLand(x, y, 10)) at(x, y) = 0.0f;   // a lake one cell wide
+      else if (!inLand(x, y, 0)) at(x, y) = 1.0f;  // an island one cell wide
+    }
+    raster::GeoTransform t;
+    t.lonStepDeg = 360.0 / W, t.latStepDeg = -180.0 / H, t.global = true;
+    const auto mask = raster::Raster::fromPixels(cls, W, H, 1, t);
+    test::TempDir dir("geocean-water-grid");
+    raster::PyramidOptions po;
+    po.cacheDir = dir.path.string();
+    po.progress = raster::BuildProgress::Off;
+    const auto pyr = waterPyramid(mask, {}, po);
+    const WorldLayer water = waterLayerOf(*pyr, kStepDeg);
+    ASSERT_EQ(water.width, 400) << W;
+    ASSERT_EQ(water.height, 200) << W;
+    const WorldGrids grids(globalGridFor(nullptr), water);
+    EXPECT_TRUE(ocean_render::waterIndexFollowsTiles(grids, *pyr)) << W << ": the shortcuts stay on";
+    int open = 0, wet = 0;
+    for (int gy = 0; gy < water.height; ++gy)
+      for (int gx = 0; gx < water.width; ++gx) {
+        // Mask cells the texel overlaps (not just touches).
+        const double x0 = gx * kStepDeg / t.lonStepDeg, x1 = (gx + 1) * kStepDeg / t.lonStepDeg;
+        const double y0 = gy * kStepDeg / -t.latStepDeg, y1 = (gy + 1) * kStepDeg / -t.latStepDeg;
+        bool anyLand = false, anyWater = false;
+        for (int y = int(std::floor(y0 + 1e-9)); y < int(std::ceil(y1 - 1e-9)); ++y)
+          for (int x = int(std::floor(x0 + 1e-9)); x < int(std::ceil(x1 - 1e-9)); ++x)
+            (at(x, y) != 0.0f ? anyLand : anyWater) = true;
+        const float v = water.values[std::size_t(gy) * water.width + gx];
+        if (v == 1.0f) {
+          ASSERT_FALSE(anyLand) << W << ": texel " << gx << "," << gy << " is 1 over land";
+          ++open;
+        }
+        if (anyWater) {
+          ASSERT_GT(v, 0.0f) << W << ": texel " << gx << "," << gy << " is 0 over water";
+          ++wet;
+        }
+      }
+    EXPECT_GT(open, 20000) << W;  // the open sea is still open (80000 texels)
+    EXPECT_GT(wet, open) << W;
+    // The grid's classes keep every water cell's reach (two mask cells).
+    const auto classify = ocean_render::nearWaterClassifier(water);
+    std::uniform_real_distribution<double> lon(-180.0, 180.0), lat(-90.0, 90.0);
+    for (int i = 0; i < 100000; ++i) {
+      const double la = lat(rng), lo = lon(rng);
+      world::Surface s;
+      classify(&la, &lo, 1, &s);
+      const int x = std::clamp(int((lo + 180.0) / t.lonStepDeg), 0, W - 1);
+      const int y = std::clamp(int((90.0 - la) / -t.latStepDeg), 0, H - 1);
+      bool near = false;
+      for (int dy = -2; dy <= 2 && !near; ++dy)
+        for (int dx = -2; dx <= 2 && !near; ++dx) near = at(((x + dx) % W + W) % W, std::clamp(y + dy, 0, H - 1)) == 0.0f;
+      if (near) {
+        ASSERT_EQ(s, world::Surface::Ocean) << W << ": " << la << " " << lo;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace geocean::world
