@@ -5,12 +5,17 @@
 #include "globe/render/WorldTextures.h"
 #include "globe/world/WaterPyramid.h"
 #include "globe/world/WorldGrids.h"
+#include "globe/raster/GeoTiffWriter.h"
+#include "globe/world/LayerStack.h"
+#include "plugin/landsea/LayeredLandSea.h"
 #include "plugin/render/OceanWorld.h"
 #include "tests/support/TempDir.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <random>
 #include <tuple>
@@ -328,6 +333,64 @@ TEST(WaterIndex, AStreamedMasksGridHasTheStepsSizeAndKeepsEveryIslandAndLake) {
       }
     }
   }
+}
+
+// A global relief finer than the 5' grid, without nodata and with no mask
+// (--no-default-world --elevation): it decides the coast, and its 0 m line
+// is streamed as a water pyramid (world::reliefWaterPyramid) on both sides.
+// The host's grid (loadLayeredWorld) and the ocean's (oceanWaterTiles,
+// oceanWorld) are the same 5' level of it, 1 exactly where every relief
+// cell under a texel is below 0 m and above 0 where any is (checked
+// against the relief's own cells); the ocean's shortcuts accept it; the
+// query classes by the same cells. 2.5' cells: a continent (0.05..90.05 E, 45.05 S
+// ..45.05 N, +100 m: edges inside grid texels), an island of 0.05 degrees radius at (10 N, 150 W),
+// +50 m, sea at -1000 m.
+TEST(WaterIndex, AGlobalReliefDecidingTheCoastIsStreamedAsItsZeroMetreLine) {
+  constexpr int W = 8640, H = 4320;
+  const auto elevation = [](int x, int y) {
+    const double lon = -180.0 + (x + 0.5) * 360.0 / W, lat = 90.0 - (y + 0.5) * 180.0 / H;
+    if (lon >= 0.05 && lon < 90.05 && std::abs(lat) < 45.05) return 100.0f;
+    if (std::hypot(lat - 10.0, (lon + 150.0) * std::cos(10.0 * M_PI / 180.0)) < 0.05) return 50.0f;
+    return -1000.0f;
+  };
+  test::TempDir dir("geocean-relief-water");
+  ::setenv("GEOCEAN_TILE_CACHE", (dir.path / "cache").c_str(), 1);
+  const std::string tif = (dir.path / "relief.tif").string();
+  raster::GeoTiffWriteOptions wo;
+  wo.transform = {-180.0, 90.0, 360.0 / W, -180.0 / H, true};
+  raster::writeGeoTiffTiles(tif, W, H, 1, raster::SampleType::F32, wo, [&](int x0, int y0, void* tile) {
+    float* v = static_cast<float*>(tile);
+    for (int y = 0; y < 256; ++y)
+      for (int x = 0; x < 256; ++x) v[y * 256 + x] = elevation(std::min(x0 + x, W - 1), std::min(y0 + y, H - 1));
+  });
+  const WorldData d = loadLayeredWorld({{LayerKind::Elevation, tif, "", 0}}, false);
+  ASSERT_TRUE(d.waterSource);
+  EXPECT_TRUE(d.waterFromRelief);
+  ASSERT_EQ(d.water.width, 4320);
+  ASSERT_EQ(d.water.height, 2160);
+  int all = 0, some = 0;
+  for (int gy = 0; gy < d.water.height; ++gy)
+    for (int gx = 0; gx < d.water.width; ++gx) {
+      bool anyLand = false, anyWater = false;
+      for (int y = 2 * gy; y < 2 * gy + 2; ++y)
+        for (int x = 2 * gx; x < 2 * gx + 2; ++x) (elevation(x, y) < 0.0f ? anyWater : anyLand) = true;
+      const float v = d.water.values[std::size_t(gy) * d.water.width + gx];
+      ASSERT_EQ(v == 1.0f, !anyLand) << gx << "," << gy;
+      ASSERT_EQ(v > 0.0f, anyWater) << gx << "," << gy;
+      all += !anyLand, some += anyLand && anyWater;
+    }
+  EXPECT_GT(all, 1000000);
+  EXPECT_GT(some, 1000);
+  const ocean::LayeredLandSea ls({{LayerKind::Elevation, raster::Raster::open(tif), {}, 0}});
+  const auto tiles = ocean_render::oceanWaterTiles(&ls, nullptr);
+  ASSERT_TRUE(tiles);
+  const auto grids = ocean_render::oceanWorld(nullptr, ls.stack().drawingElevation(), &ls, {}, tiles.get());
+  EXPECT_TRUE(grids->water().values == d.water.values) << "the ocean's grid is the host's";
+  EXPECT_TRUE(ocean_render::waterIndexFollowsTiles(*grids, *tiles));
+  EXPECT_EQ(ls.classify(10.0, -150.0), Surface::Land);
+  EXPECT_EQ(ls.classify(10.0, -149.9), Surface::Ocean);
+  EXPECT_EQ(ls.classify(0.0, 45.0), Surface::Land);
+  ::unsetenv("GEOCEAN_TILE_CACHE");
 }
 
 }  // namespace
