@@ -30,6 +30,7 @@ struct WvPaper {
 #define WAVES_PAPER_GLSL
 #define WV_WGS84_A 6378137.0
 #define WV_WGS84_E2 0.0066943799901413165
+#define WV_MEAN_RADIUS 6371008.8
 
 // The GPU's own atan, sin and cos are not accurate enough for offsets that
 // the seam's shear multiplies by up to pi (llvmpipe's atan errs by 2e-5
@@ -66,8 +67,10 @@ WR wv_paperAtan2(WR y, WR x) {
 // (WaveField.cpp paperOctaveAt): row0.x f R (lattice units per radian),
 // row0.w amplitude (m), row1.w seed, fracO.xy / cellO.xy the lattice
 // coordinate at O, fracO.zw / cellO.zw at O across the seam, vel.xy the
-// lattice's drift (units per second).
-WvResult wv_paperNoise(int first, int count, WR3 d, WvPaper pp) {
+// lattice's drift (units per second). footprintM > 0 (a pixel's, ocean.frag)
+// keeps each octave at weight smoothstep(2, 4, wavelength / footprintM):
+// none under 2 footprints, so no sub-pixel sparkle; 0 keeps all (the query).
+WvResult wv_paperNoiseFiltered(int first, int count, WR3 d, WvPaper pp, WR footprintM) {
   WR rho0 = pp.horiz.z, z0 = pp.horiz.w;
   // Longitude difference: the angle between the horizontal parts of O and
   // P from their cross and dot products (rho0 u x d, rho0^2 + rho0 u . d):
@@ -111,6 +114,7 @@ WvResult wv_paperNoise(int first, int count, WR3 d, WvPaper pp) {
     ivec2 cell = (across ? ivec2(o.cellO.z, o.cellO.w) : ivec2(o.cellO.x, o.cellO.y)) + ivec2(fl);
     WR3 n = wv_perlin2(cell, q - fl, uint(o.row1.w));
     WR a = o.row0.w;
+    if (footprintM > WR(0)) a *= smoothstep(WR(2), WR(4), WR(WV_MEAN_RADIUS) / (fR * footprintM));
     h += a * n.x;
     g += a * fR * WR2(n.y, n.z);
     dhdt += a * (n.y * o.vel.x + n.z * o.vel.y);
@@ -123,5 +127,9 @@ WvResult wv_paperNoise(int first, int count, WR3 d, WvPaper pp) {
   WR dhdn = (g.y - g.x * lam * sp) / mRad;
   WR3 east = WR3(-sl, cl, WR(0)), north = WR3(-sp * cl, -sp * sl, cp), up = WR3(cp * cl, cp * sl, sp);
   return WvResult(WR4(up * h, h), WR4(normalize(up - dhde * east - dhdn * north), dhdt), WR4(0), WR4(1, 0, 1, 1));
+}
+
+WvResult wv_paperNoise(int first, int count, WR3 d, WvPaper pp) {
+  return wv_paperNoiseFiltered(first, count, d, pp, WR(0));
 }
 #endif

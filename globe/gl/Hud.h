@@ -33,7 +33,7 @@ struct PanelState {
   float sunAzimuthDeg = 135.0f, sunElevationDeg = 40.0f;  // at the camera's nadir
   bool reflections = true, refraction = true;
 };
-inline constexpr const char* kPanelWaveModels[] = {"noise", "gerstner", "fft"};
+inline constexpr const char* kPanelWaveModels[] = {"noise", "gerstner", "fft", "noise-paper"};
 // Beaufort force of a wind speed at 10 m (m/s; WMO No. 8's class limits).
 int beaufortOf(double windMps);
 // What the panel changed in one frame: the sea state only when a control
