@@ -193,20 +193,19 @@ void main() {
 #if WV_MODEL == 4
   // Paper 002's noise: its octaves down to 2 pixels at the fragment's rest
   // point (the displacement is vertical), not only the vertex's over 3
-  // cells; the roughness keeps the rest, and the far pull's share.
+  // cells; the roughness keeps the rest. Filtered to the pixel, so no pull
+  // to the mean far away (ocean_shading.glsl, as the noise's).
   WvResult rp = wv_paperNoiseFiltered(0, uOctaveCount, vEyeRel - up * vHeightM + uEyeMinusOrigin,
                                       WvPaper(uPaper[0], uPaper[1], uPaper[2]), footprint);
   nDrawn = rp.normal.xyz;
-  float shown = 0.0;
   int kept = 0;  // octaves at least half kept: their crest level (OceanRenderer's uFoamHeightM)
   mssDrawn = uMssAbove[min(uOctaveCount, 16)];
   for (int i = 0; i < uOctaveCount && i < 16; ++i) {
     float k = smoothstep(2.0, 4.0, uOctaveWavelengthM[i] / footprint);
     mssDrawn += (uMssAbove[i] - uMssAbove[i + 1]) * (1.0 - k * k);
-    shown += (uMssAbove[i] - uMssAbove[i + 1]) * k * k;
     kept += k >= 0.5 ? 1 : 0;
   }
-  mssDrawn += (1.0 - farKeep) * shown;
+  farKeep = 1.0;
   float foamM = uFoamHeightM[kept];
   crest = mix(smoothstep(foamM - uFoamSoftM, foamM + uFoamSoftM, rp.disp.w), uWhitecapCover, vFar);
 #endif
