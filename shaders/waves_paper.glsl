@@ -38,6 +38,7 @@ struct WvPaper {
 // these, accurate to ~1e-13 in double and to float rounding on the GPU.
 // sin and cos of x for |x| <= pi / 2: Taylor series to x^17 / 17!.
 WR2 wv_paperSinCos(WR x) {
+  if (x == WR(0)) return WR2(0, 1);  // the query's own point: no series
   WR x2 = x * x, s = WR(1), c = WR(1);
   for (int k = 8; k >= 1; --k) {
     s = WR(1) - x2 / WR((2 * k) * (2 * k + 1)) * s;
@@ -57,7 +58,7 @@ WR wv_paperAtan(WR t) {
 // atan2(y, x) in (-pi, pi]; 0 for (0, 0).
 WR wv_paperAtan2(WR y, WR x) {
   WR ax = abs(x), ay = abs(y);
-  if (ax + ay == WR(0)) return WR(0);
+  if (ay == WR(0)) return x < WR(0) ? WR(WV_PI) : WR(0);  // also (0, 0), and the query's own point
   WR a = ay <= ax ? wv_paperAtan(ay / ax) : WR(0.5 * WV_PI) - wv_paperAtan(ax / ay);
   a = x < WR(0) ? WR(WV_PI) - a : a;
   return y < WR(0) ? -a : a;

@@ -470,7 +470,8 @@ void WaveField::cpuPatch(const glm::dvec3& o, double tS, CpuPatch& out) const {
     const double rho = std::hypot(o.x, o.y);
     double lam = std::atan2(o.y, o.x);
     if (kPi - std::abs(lam) < 1e-12) lam = -kPi;
-    paperPatchAt(std::atan2(o.z, (1.0 - kE2) * rho), lam, rho, o.z, tS, out);
+    out.octaves.resize(octaves_.size());
+    paperPatchAt(std::atan2(o.z, (1.0 - kE2) * rho), lam, rho, o.z, tS, out.octaves.data(), out.paper);
   } else if (model_ == Model::Gerstner)
     for (const auto& c : components_) out.waves.push_back(waveAt(c, glm::dvec3(out.frame.radial), tS));
   out.coast = kd::WvCoast{};
@@ -562,14 +563,14 @@ WaveSample toEnu(const kd::WvResult& r, const Enu& f) {
 }
 }  // namespace
 
-void WaveField::paperPatchAt(double phi0, double lam0, double rho0, double z0, double tS, CpuPatch& out) const {
+void WaveField::paperPatchAt(double phi0, double lam0, double rho0, double z0, double tS, kd::WvOctave* octaves,
+                             kd::WvPaper& paper) const {
   // Paper 002, eq. 4-5: h(lambda cos(beta), beta), scaled to metres by the
   // mean radius. Per octave the lattice coordinate at the origin, reduced
   // here in double (cell + fraction), for lambda0 and across the seam.
   const double cp = std::cos(phi0);
   const double lamW = lam0 >= 0.0 ? lam0 - kTwoPi : lam0 + kTwoPi;
   const double x = kMeanRadiusM * lam0 * cp, xW = kMeanRadiusM * lamW * cp, y = kMeanRadiusM * phi0;
-  out.octaves.clear();
   for (const auto& o : octaves_) {
     const double f = o.frequencyPerM;
     const glm::dvec3 q(x * f + o.velocity.x * tS, y * f + o.velocity.y * tS, xW * f + o.velocity.x * tS);
@@ -584,11 +585,11 @@ void WaveField::paperPatchAt(double phi0, double lam0, double rho0, double z0, d
     w.fracO = glm::dvec4(finiteFrac(q.x, fl.x), finiteFrac(q.y, fl.y), finiteFrac(q.z, fl.z), finiteFrac(q.y, fl.y));
     w.cellO = glm::ivec4(c.x, c.y, c.z, c.y);
     w.vel = glm::dvec4(o.velocity, 0.0);
-    out.octaves.push_back(w);
+    *octaves++ = w;
   }
-  out.paper.horiz = glm::dvec4(std::cos(lam0), std::sin(lam0), rho0, z0);
-  out.paper.angles = glm::dvec4(phi0, lam0, lamW, lam0 >= 0.0 ? kPi - lam0 : -kPi - lam0);
-  out.paper.trig = glm::dvec4(std::sin(phi0), cp, 0.0, 0.0);
+  paper.horiz = glm::dvec4(std::cos(lam0), std::sin(lam0), rho0, z0);
+  paper.angles = glm::dvec4(phi0, lam0, lamW, lam0 >= 0.0 ? kPi - lam0 : -kPi - lam0);
+  paper.trig = glm::dvec4(std::sin(phi0), cp, 0.0, 0.0);
 }
 
 WaveSample WaveField::samplePaper(double latDeg, double lonDeg, double tS) const {
@@ -597,12 +598,11 @@ WaveSample WaveField::samplePaper(double latDeg, double lonDeg, double tS) const
   if (lonW >= 180.0) lonW -= 360.0;
   if (lonW < -180.0) lonW += 360.0;
   const Located loc = locate(latDeg, lonDeg);
-  CpuPatch p;
-  p.frame = makeFrame(loc.p);
-  paperPatchAt(deg2rad(latDeg), deg2rad(lonW), std::hypot(loc.p.x, loc.p.y), loc.p.z, tS, p);
-  kd::Kernel k{p.octaves.data(), nullptr};
-  return toEnu(k.wv_paperNoise(0, int(p.octaves.size()), glm::dvec3(0.0), p.paper),
-               Enu{loc.f.e, loc.f.n, loc.f.u});
+  std::array<kd::WvOctave, kMaxOctaves> oc;  // no allocation per query
+  kd::WvPaper paper;
+  paperPatchAt(deg2rad(latDeg), deg2rad(lonW), std::hypot(loc.p.x, loc.p.y), loc.p.z, tS, oc.data(), paper);
+  kd::Kernel k{oc.data(), nullptr};
+  return toEnu(k.wv_paperNoise(0, int(octaves_.size()), glm::dvec3(0.0), paper), Enu{loc.f.e, loc.f.n, loc.f.u});
 }
 
 WaveSample WaveField::sample(double latDeg, double lonDeg, double tS, double depthM) const {

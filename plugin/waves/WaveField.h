@@ -241,8 +241,10 @@ class WaveField {
   void buildBounds();
   WaveSample samplePaper(double latDeg, double lonDeg, double tS) const;
   // The paper model's patch at the origin (phi0, lambda0 in [-pi, pi)) with
-  // distance rho0 from the polar axis and z0 (m).
-  void paperPatchAt(double phi0, double lam0, double rho0, double z0, double tS, CpuPatch& out) const;
+  // distance rho0 from the polar axis and z0 (m): octaves_.size() octaves
+  // into `octaves`, the origin into `paper`.
+  void paperPatchAt(double phi0, double lam0, double rho0, double z0, double tS, kd::WvOctave* octaves,
+                    kd::WvPaper& paper) const;
   void fftPlanesAt(const glm::dvec3& originEcef, std::vector<kd::WvFftPlane>& out) const;
 
   Model model_ = Model::Noise;
