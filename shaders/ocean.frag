@@ -53,6 +53,15 @@ layout(std430, binding = 3) readonly buffer WvCoastBuffer { WvCoast wvCoasts[]; 
 layout(std430, binding = 4) readonly buffer WvCoastTexelBuffer { vec4 wvCoastTexels[]; };
 #endif
 #include "waves.glsl"
+#if WV_MODEL == 4
+// Paper 002's noise per fragment (OceanRenderer: uPaper as ocean.vert's).
+#include "waves_paper.glsl"
+uniform vec4 uPaper[3];
+uniform int uOctaveCount;
+uniform float uOctaveWavelengthM[16];
+uniform float uMssAbove[17];
+uniform float uFoamHeightM[17];
+#endif
 #if WV_MODEL == 0
 #define NOISE_OCTAVE_TEXELS 1
 #include "noise_bands.glsl"
@@ -178,10 +187,31 @@ void main() {
   vec3 nrm = normalize(upD - grad);
   crest = noiseCrestFoam(hRes, varU, uFoamSoftM, uWhitecapCover);
 #else
-  vec4 detail = wv_detailSlope(uDetailCount, vEyeRel + uEyeMinusOrigin, footprint);
-  vec3 nrm = normalize(normalize(vNormal) - (detail.xyz - up * dot(detail.xyz, up)));
+  vec3 nDrawn = normalize(vNormal);
+  float mssDrawn = vMss;
   float farKeep = (1.0 - 0.7 * vFar) * (1.0 - 0.7 * vFar);
-  float mss = max(vMss - detail.w * farKeep, 0.0);
+#if WV_MODEL == 4
+  // Paper 002's noise: its octaves down to 2 pixels at the fragment's rest
+  // point (the displacement is vertical), not only the vertex's over 3
+  // cells; the roughness keeps the rest. Filtered to the pixel, so no pull
+  // to the mean far away (ocean_shading.glsl, as the noise's).
+  WvResult rp = wv_paperNoiseFiltered(0, uOctaveCount, vEyeRel - up * vHeightM + uEyeMinusOrigin,
+                                      WvPaper(uPaper[0], uPaper[1], uPaper[2]), footprint);
+  nDrawn = rp.normal.xyz;
+  int kept = 0;  // octaves at least half kept: their crest level (OceanRenderer's uFoamHeightM)
+  mssDrawn = uMssAbove[min(uOctaveCount, 16)];
+  for (int i = 0; i < uOctaveCount && i < 16; ++i) {
+    float k = smoothstep(2.0, 4.0, uOctaveWavelengthM[i] / footprint);
+    mssDrawn += (uMssAbove[i] - uMssAbove[i + 1]) * (1.0 - k * k);
+    kept += k >= 0.5 ? 1 : 0;
+  }
+  farKeep = 1.0;
+  float foamM = uFoamHeightM[kept];
+  crest = mix(smoothstep(foamM - uFoamSoftM, foamM + uFoamSoftM, rp.disp.w), uWhitecapCover, vFar);
+#endif
+  vec4 detail = wv_detailSlope(uDetailCount, vEyeRel + uEyeMinusOrigin, footprint);
+  vec3 nrm = normalize(nDrawn - (detail.xyz - up * dot(detail.xyz, up)));
+  float mss = max(mssDrawn - detail.w * farKeep, 0.0);
 #endif
   outColor = vec4(oceanColorCrest(vEyeRel, nrm, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, mss, max(crest, wake), w, vHeightM), alpha);
 #endif

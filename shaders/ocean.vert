@@ -21,6 +21,11 @@ layout(std430, binding = 3) readonly buffer WvCoastBuffer { WvCoast wvCoasts[]; 
 layout(std430, binding = 4) readonly buffer WvCoastTexelBuffer { vec4 wvCoastTexels[]; };
 #endif
 #include "waves.glsl"
+#if WV_MODEL == 4
+// Paper 002's noise (OceanRenderer: the patch's WvPaper as 3 vec4).
+#include "waves_paper.glsl"
+uniform vec4 uPaper[3];
+#endif
 #if WV_MODEL == 0
 #include "noise_bands.glsl"
 uniform int uFragOctaves;  // the model's octaves and the detail octaves after them (OceanRenderer)
@@ -142,6 +147,11 @@ void main() {
   float mssDrawn = (uMssAbove[0] - uMssAbove[1]) * fftKeep * fftKeep;
   float mssRest = uMssAbove[0] - mssDrawn;
   vFoamM = uFoamHeightM[0];
+#elif WV_MODEL == 4
+  // The octaves longer than 3 cells, as the noise's; the rest is roughness.
+  WvResult r = wv_paperNoise(0, count, d, WvPaper(uPaper[0], uPaper[1], uPaper[2]));
+  float mssDrawn = uMssAbove[0] - uMssAbove[count], mssRest = uMssAbove[count];
+  vFoamM = uFoamHeightM[count];
 #else
   WvResult r = wv_solidNoise(0, count, d, fr);
   vFoamM = uFoamHeightM[count];

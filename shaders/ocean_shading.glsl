@@ -115,8 +115,9 @@ vec3 oceanColorCrest(vec3 eyeRel, vec3 normal, vec3 upIn, vec3 sun, vec3 hazeTr,
   float depth = max(reliefDepthM, (w - 0.5) * 120.0);
   vec3 up = normalize(upIn);
   vec3 v = normalize(-eyeRel);
-#if WV_MODEL == 0
-  // Noise: the octaves come filtered to the pixel (noise_bands.glsl).
+#if WV_MODEL == 0 || WV_MODEL == 4
+  // Noise, paper 002's noise: the octaves come filtered to the pixel
+  // (noise_bands.glsl; ocean.frag's wv_paperNoiseFiltered).
   vec3 n = normalize(normal);
 #else
   vec3 n = normalize(mix(normalize(normal), up, far * 0.7));

@@ -1,7 +1,8 @@
 // Compute stage that evaluates the wave kernel at a batch of points: the GPU
 // side of tests/waves/test_gpu_parity.cpp, and a GPU batch evaluator.
 // Assemble with shaders::assemble("waves_eval.glsl", {"WV_MODEL 0"}) (0 solid
-// noise, 1 Gerstner, 2 FFT: index.z = cascades, 3 Gerstner with a coast field). Buffers: see the bindings below; uniform uCount.
+// noise, 1 Gerstner, 2 FFT: index.z = cascades, 3 Gerstner with a coast field,
+// 4 paper 002's noise: one WvPaper per patch). Buffers: see the bindings below; uniform uCount.
 layout(local_size_x = 64) in;
 
 #include "waves_types.glsl"
@@ -29,13 +30,19 @@ layout(std430, binding = 8) readonly buffer WvCoastBuffer { WvCoast wvCoasts[]; 
 
 #define WV_FFT 1
 #include "waves.glsl"
+#if WV_MODEL == 4
+#include "waves_paper.glsl"
+layout(std430, binding = 7) readonly buffer WvPaperBuffer { WvPaper wvPapers[]; };
+#endif
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= uCount) return;
   WvPoint p = wvPoints[i];
   WvFrame fr = wvFrames[p.index.x];
-#if WV_MODEL == 3
+#if WV_MODEL == 4
+  wvResults[i] = wv_paperNoise(p.index.y, p.index.z, p.d.xyz, wvPapers[p.index.x]);
+#elif WV_MODEL == 3
   wvResults[i] = wv_gerstnerCoast(p.index.y, p.index.z, p.d.xyz, fr, p.d.w, wvCoasts[p.index.x]);
 #elif WV_MODEL == 2
   wvResults[i] = wv_fft(p.index.y, 3, p.index.z, p.d.xyz, fr);

@@ -33,8 +33,8 @@ std::string g(double v) {
 }  // namespace
 
 std::string checkDrawnSea(const std::string& waves, double windMps, double windFromDeg) {
-  if (waves != "noise" && waves != "gerstner" && waves != "fft")
-    return "--waves '" + waves + "' is not a GPU wave model (noise, gerstner, fft)";
+  if (waves != "noise" && waves != "noise-paper" && waves != "gerstner" && waves != "fft")
+    return "--waves '" + waves + "' is not a GPU wave model (noise, noise-paper, gerstner, fft)";
   if (!(windMps >= 0.2 && windMps <= 60.0)) return "--wind " + g(windMps) + " m/s is outside 0.2 .. 60 m/s";
   if (!std::isfinite(windFromDeg)) return "--wind-dir " + g(windFromDeg) + " is not a finite angle";
   return {};

@@ -223,7 +223,7 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                                    "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
                       sub.add_flag("--no-refraction", a->noRefraction,
                                    "no bottom seen through the water (the depth tint alone)");
-                      sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
+                      sub.add_option("--waves", a->waves, "wave model: noise (default), noise-paper (paper 002, with its seam), gerstner, fft");
                       addWindOptions(sub, a->wind);
                       addReflectionSizeOption(sub, a->reflectionSize);
                       addReflectionEveryOption(sub, a->reflectionEvery);

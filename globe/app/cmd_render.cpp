@@ -134,7 +134,7 @@ const Register reg{{"render", "Render one frame headless to a PNG",
                                    "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
                       sub.add_flag("--no-refraction", a->noRefraction,
                                    "no bottom seen through the water (the depth tint alone)");
-                      sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
+                      sub.add_option("--waves", a->waves, "wave model: noise (default), noise-paper (paper 002, with its seam), gerstner, fft");
                       addWindOptions(sub, a->wind);
                       addReflectionSizeOption(sub, a->reflectionSize);
                       addGridOption(sub, a->grid);

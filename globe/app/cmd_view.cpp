@@ -501,7 +501,7 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                                    "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
                       sub.add_flag("--no-refraction", a->noRefraction,
                                    "no bottom seen through the water (the depth tint alone)");
-                      sub.add_option("--waves", a->waves, "wave model: noise (default) or gerstner");
+                      sub.add_option("--waves", a->waves, "wave model: noise (default), noise-paper (paper 002, with its seam), gerstner, fft");
                       addWindOptions(sub, a->wind);
                       sub.add_option("--sun", a->sun,
                                      "AZ,EL of the sun at the camera's nadir, degrees (default 135,40; it follows "

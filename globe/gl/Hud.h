@@ -38,7 +38,7 @@ struct PanelState {
   std::vector<std::string> layerNames;
   std::vector<char> layerShown;  // char, not bool: ImGui's checkbox takes a bool*
 };
-inline constexpr const char* kPanelWaveModels[] = {"noise", "gerstner", "fft"};
+inline constexpr const char* kPanelWaveModels[] = {"noise", "gerstner", "fft", "noise-paper"};
 // Beaufort force of a wind speed at 10 m (m/s; WMO No. 8's class limits).
 int beaufortOf(double windMps);
 // What the panel changed in one frame: the sea state only when a control

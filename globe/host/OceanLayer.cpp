@@ -83,12 +83,14 @@ std::string seaStateOf(const OceanApi& a, const std::string& modelName, double w
   a.seaStateInit(&s);
   if (modelName == "noise")
     s.model = GEOCEAN_WAVES_NOISE;
+  else if (modelName == "noise-paper")
+    s.model = GEOCEAN_WAVES_NOISE_PAPER;
   else if (modelName == "gerstner")
     s.model = GEOCEAN_WAVES_GERSTNER;
   else if (modelName == "fft")
     s.model = GEOCEAN_WAVES_FFT;
   else
-    return "--waves '" + modelName + "' is not a GPU wave model (noise, gerstner, fft)";
+    return "--waves '" + modelName + "' is not a GPU wave model (noise, noise-paper, gerstner, fft)";
   s.wind_speed_mps = windMps;
   s.wind_from_deg = windFromDeg;
   return {};

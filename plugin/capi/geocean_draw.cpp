@@ -374,9 +374,6 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
     if (!ds.view) fail(GEOCEAN_ERROR_NOT_READY, "no view: call geocean_update first");
     const auto snap = ocean->current();
     if (!snap->waves) fail(GEOCEAN_ERROR_NOT_READY, "no sea state: call geocean_set_sea_state first");
-    if (snap->model == geocean::waves::Model::NoisePaper)
-      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "sea state model GEOCEAN_WAVES_NOISE_PAPER has no GPU form: "
-                                           "draw with GEOCEAN_WAVES_NOISE, GEOCEAN_WAVES_GERSTNER or GEOCEAN_WAVES_FFT");
     if (ds.gl && ds.gl->context != ctx)
       fail(GEOCEAN_ERROR_GL, "the ocean's GL resources belong to another context: call geocean_release_gl "
                              "with that context current first");

@@ -46,8 +46,6 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     waves_ = std::make_shared<const waves::WaveField>(std::move(*made));
   }
   const bool coast = waves_->coastField() != nullptr;
-  if (options_.model == waves::Model::NoisePaper)
-    throw std::invalid_argument("--waves noise-paper has no GPU form; render with noise, gerstner or fft");
   grid::GridOptions go;
   go.cellPx = options_.cellPx;
   // WaveField's bound is the deep-water scan's; the coast field's Kr scales
@@ -67,9 +65,11 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
       ls->classifyNearWaterBatch(lat, lon, n, out);
     };
   grid_ = std::make_unique<grid::ScreenGrid>(go, classifier);
-  std::vector<std::string> model = {options_.model == waves::Model::Gerstner ? "WV_MODEL 1"
-                                    : options_.model == waves::Model::Fft    ? "WV_MODEL 2"
-                                                                             : "WV_MODEL 0"};
+  // WV_MODEL 4: paper 002's noise (shaders/waves_paper.glsl), as waves_eval.glsl numbers it.
+  std::vector<std::string> model = {options_.model == waves::Model::Gerstner     ? "WV_MODEL 1"
+                                    : options_.model == waves::Model::Fft        ? "WV_MODEL 2"
+                                    : options_.model == waves::Model::NoisePaper ? "WV_MODEL 4"
+                                                                                 : "WV_MODEL 0"};
   if (options_.model == waves::Model::Fft) model.push_back("WV_FFT 1");
   if (coast) model.push_back("WV_COAST 1");
   // Gerstner and FFT whitecaps per fragment from the Jacobian (foam.glsl);
@@ -163,7 +163,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   const waves::SeaState& sea = waves_->seaState();
   mssAbove_.assign(17, 0.0f);
   mssAbove_[0] = float(waves::slopeVarianceAbove(sea, 0.0));
-  if (options_.model == waves::Model::Noise) {
+  if (options_.model == waves::Model::Noise || options_.model == waves::Model::NoisePaper) {
     const auto& oc = allOctaves;
     for (std::size_t c = 1; c < 17; ++c)
       mssAbove_[c] = c <= oc.size() ? float(waves::slopeVarianceAbove(sea, kTwoPi * oc[c - 1].frequencyPerM * std::sqrt(2.0)))
@@ -198,6 +198,8 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     double kLow = 0.0;
     if (options_.model == waves::Model::Fft)
       kLow = kTwoPi / waves_->peakWavelengthM() * 7.3 / 5.3 * 64.0;
+    else if (options_.model == waves::Model::NoisePaper && !allOctaves.empty())
+      kLow = kTwoPi * allOctaves.back().frequencyPerM * std::sqrt(2.0);  // the finest octave's band top
     else
       for (const auto& c : waves_->components()) kLow = std::max(kLow, c.kRef);
     if (kLow > 0.0) detail_ = waves::detailWaves(sea, kLow, 8, 4);
@@ -235,7 +237,8 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     return h[q];
   };
   foamHeightM_[0] = float(quantile(*waves_));
-  if (options_.model == waves::Model::Noise) {
+  // Noise models: per number of octaves ocean.vert keeps.
+  if (options_.model == waves::Model::Noise || options_.model == waves::Model::NoisePaper) {
     const int n = sea.noiseOctaves;
     const auto sumSq = [](int c) {
       double s = 0.0;
@@ -255,6 +258,8 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
       const auto wc = waves::WaveField::create(options_.model, sc, why);
       foamHeightM_[c] = float(quantile(*wc) / std::sqrt(sumSq(n) / sumSq(c)));
     }
+  }
+  if (options_.model == waves::Model::Noise) {
     // The whitecaps' crest field (noise_bands.glsl): octave i's height
     // weighted by 2^(3i/4), so shorter crests break the long waves' tops into
     // patches smaller than they are; its level exceeded on W of the sea, from
@@ -279,7 +284,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     const std::size_t q = std::min(kN - 1, std::size_t((1.0 - whitecap_) * double(kN)));
     std::nth_element(crest.begin(), crest.begin() + std::ptrdiff_t(q), crest.end());
     crestM_ = crest[q];
-  } else
+  } else if (options_.model != waves::Model::NoisePaper)
     std::fill(foamHeightM_.begin() + 1, foamHeightM_.end(), foamHeightM_[0]);
   // Soft edge: 2 % of Hs either side (an anti-aliased rim, not a halo).
   foamSoftM_ = 0.02 * waves_->spectrumHsM();
@@ -740,6 +745,8 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glUniform2f(p.uniform("uWind"), float(windMps_ / 1.026), float(windFromRad_));  // U10, from (radians)
     glUniform1i(p.uniform("uDetailCount"), GLint(detailF.size() / 8));
     glUniform1f(p.uniform("uHsM"), float(waves_->spectrumHsM()));
+    // noise-paper: the patch origin as wv_paperNoise takes it (3 vec4, contiguous).
+    if (options_.model == waves::Model::NoisePaper) glUniform4fv(p.uniform("uPaper"), 3, &patch_.paper.horiz.x);
     glUniform1i(p.uniform("uSubsurface"), options_.subsurface ? 1 : 0);
     if (!detailF.empty()) glUniform4fv(p.uniform("wvDetail"), GLsizei(detailF.size() / 4), detailF.data());
     if (jacobianFoam()) {

@@ -462,7 +462,17 @@ void WaveField::cpuPatch(const glm::dvec3& o, double tS, CpuPatch& out) const {
   }
   if (model_ == Model::Noise)
     for (const auto& oc : octaves_) out.octaves.push_back(octaveAt(oc, o, tS));
-  else if (model_ == Model::Gerstner)
+  else if (model_ == Model::NoisePaper) {
+    // O's longitude and its latitude as the kernel takes P's (atan of
+    // z / ((1 - e^2) rho), the geodetic latitude on the ellipsoid); an origin
+    // within 1e-12 rad (6 um) of the seam is on its west side, as the
+    // query's wrap puts 180 degrees at -180.
+    const double rho = std::hypot(o.x, o.y);
+    double lam = std::atan2(o.y, o.x);
+    if (kPi - std::abs(lam) < 1e-12) lam = -kPi;
+    out.octaves.resize(octaves_.size());
+    paperPatchAt(std::atan2(o.z, (1.0 - kE2) * rho), lam, rho, o.z, tS, out.octaves.data(), out.paper);
+  } else if (model_ == Model::Gerstner)
     for (const auto& c : components_) out.waves.push_back(waveAt(c, glm::dvec3(out.frame.radial), tS));
   out.coast = kd::WvCoast{};
   out.coastTexels = nullptr;
@@ -486,6 +496,7 @@ void WaveField::gpuPatch(const glm::dvec3& o, double tS, GpuPatch& out) const {
     out.octaves.push_back({toF(w.row0), toF(w.row1), toF(w.row2), toF(w.fracO), w.cellO, toF(w.vel)});
   for (const auto& w : p.waves) out.waves.push_back({toF(w.dirO), toF(w.binO), toF(w.phase), toF(w.extra)});
   out.coast = {toF(p.coast.eAxis), toF(p.coast.nAxis), p.coast.cell};
+  out.paper = {toF(p.paper.horiz), toF(p.paper.angles), toF(p.paper.trig)};
   out.fftPlanes.clear();
   out.fftTexels.clear();
   out.fftCascades = 0;
@@ -523,6 +534,7 @@ kd::WvResult WaveField::evaluate(const CpuPatch& p, const glm::dvec3& d, double 
                p.coastTexels};
   if (model_ == Model::Fft) return k.wv_fft(0, FftOcean::kPlanes, FftOcean::kCascades, d, p.frame);
   if (model_ == Model::Gerstner) return k.wv_gerstnerCoast(0, int(p.waves.size()), d, p.frame, depthM, p.coast);
+  if (model_ == Model::NoisePaper) return k.wv_paperNoise(0, int(p.octaves.size()), d, p.paper);
   return k.wv_solidNoise(0, int(p.octaves.size()), d, p.frame);
 }
 
@@ -551,37 +563,46 @@ WaveSample toEnu(const kd::WvResult& r, const Enu& f) {
 }
 }  // namespace
 
+void WaveField::paperPatchAt(double phi0, double lam0, double rho0, double z0, double tS, kd::WvOctave* octaves,
+                             kd::WvPaper& paper) const {
+  // Paper 002, eq. 4-5: h(lambda cos(beta), beta), scaled to metres by the
+  // mean radius. Per octave the lattice coordinate at the origin, reduced
+  // here in double (cell + fraction), for lambda0 and across the seam.
+  const double cp = std::cos(phi0);
+  const double lamW = lam0 >= 0.0 ? lam0 - kTwoPi : lam0 + kTwoPi;
+  const double x = kMeanRadiusM * lam0 * cp, xW = kMeanRadiusM * lamW * cp, y = kMeanRadiusM * phi0;
+  for (const auto& o : octaves_) {
+    const double f = o.frequencyPerM;
+    const glm::dvec3 q(x * f + o.velocity.x * tS, y * f + o.velocity.y * tS, xW * f + o.velocity.x * tS);
+    const glm::dvec3 fl = glm::floor(q);
+    const glm::ivec3 c = wrapCells(fl);
+    kd::WvOctave w;
+    // f R as a float: the CPU's double kernel and the GPU scale the
+    // offsets by the same number (at the query's own point the offset is 0).
+    w.row0 = glm::dvec4(roundToFloat(f * kMeanRadiusM), 0.0, 0.0, o.amplitudeM);
+    w.row1 = glm::dvec4(0.0, 0.0, 0.0, double(o.seed));
+    w.row2 = glm::dvec4(0.0);
+    w.fracO = glm::dvec4(finiteFrac(q.x, fl.x), finiteFrac(q.y, fl.y), finiteFrac(q.z, fl.z), finiteFrac(q.y, fl.y));
+    w.cellO = glm::ivec4(c.x, c.y, c.z, c.y);
+    w.vel = glm::dvec4(o.velocity, 0.0);
+    *octaves++ = w;
+  }
+  paper.horiz = glm::dvec4(std::cos(lam0), std::sin(lam0), rho0, z0);
+  paper.angles = glm::dvec4(phi0, lam0, lamW, lam0 >= 0.0 ? kPi - lam0 : -kPi - lam0);
+  paper.trig = glm::dvec4(std::sin(phi0), cp, 0.0, 0.0);
+}
+
 WaveSample WaveField::samplePaper(double latDeg, double lonDeg, double tS) const {
-  const double phi = deg2rad(latDeg);
+  // The kernel at the point itself (d = 0), as the GPU evaluates it at offsets.
   double lonW = std::fmod(lonDeg, 360.0);
   if (lonW >= 180.0) lonW -= 360.0;
   if (lonW < -180.0) lonW += 360.0;
-  const double lam = deg2rad(lonW);
-  const double sp = std::sin(phi), cp = std::cos(phi);
-  // Paper 002, eq. 4-5: h(lambda cos(beta), beta), scaled to metres.
-  const double x = kMeanRadiusM * lam * cp, y = kMeanRadiusM * phi;
-  kd::Kernel k;
-  double h = 0.0, hx = 0.0, hy = 0.0, dhdt = 0.0;
-  for (const auto& o : octaves_) {
-    const double f = o.frequencyPerM;
-    const glm::dvec2 q(x * f + o.velocity.x * tS, y * f + o.velocity.y * tS);
-    const glm::dvec2 fl = glm::floor(q);
-    const glm::dvec3 nz = k.wv_perlin2(glm::ivec2(int(wrapCell32(fl.x)), int(wrapCell32(fl.y))),
-                                      glm::dvec2(finiteFrac(q.x, fl.x), finiteFrac(q.y, fl.y)), o.seed);
-    h += o.amplitudeM * nz.x;
-    hx += o.amplitudeM * nz.y * f;
-    hy += o.amplitudeM * nz.z * f;
-    dhdt += o.amplitudeM * (nz.y * o.velocity.x + nz.z * o.velocity.y);
-  }
-  const double w = std::sqrt(1.0 - kE2 * sp * sp);
-  const double nRad = kA / w, mRad = kA * (1.0 - kE2) / (w * w * w);
-  const double dhde = hx * kMeanRadiusM / nRad;
-  const double dhdn = hx * (-kMeanRadiusM * lam * sp / mRad) + hy * kMeanRadiusM / mRad;
-  WaveSample s;
-  s.displacementEnuM = {0.0, 0.0, h};
-  s.normalEnu = glm::normalize(glm::dvec3(-dhde, -dhdn, 1.0));
-  s.verticalVelocityMps = dhdt;
-  return s;
+  const Located loc = locate(latDeg, lonDeg);
+  std::array<kd::WvOctave, kMaxOctaves> oc;  // no allocation per query
+  kd::WvPaper paper;
+  paperPatchAt(deg2rad(latDeg), deg2rad(lonW), std::hypot(loc.p.x, loc.p.y), loc.p.z, tS, oc.data(), paper);
+  kd::Kernel k{oc.data(), nullptr};
+  return toEnu(k.wv_paperNoise(0, int(octaves_.size()), glm::dvec3(0.0), paper), Enu{loc.f.e, loc.f.n, loc.f.u});
 }
 
 WaveSample WaveField::sample(double latDeg, double lonDeg, double tS, double depthM) const {

@@ -19,6 +19,8 @@
 //      ellipsoid call, with d = P - O as float (metres, ECEF axes):
 //        model kNoise:    WvResult r = wv_solidNoise(0, patch.octaveCount, d, frame);
 //        model kGerstner: WvResult r = wv_gerstner(0, patch.waveCount, d, frame, depthM);
+//        model kNoisePaper: WvResult r = wv_paperNoise(0, patch.octaveCount, d, patch.paper);
+//          (after #include "waves_paper.glsl"; P on the ellipsoid)
 //      (depthM: water depth at the vertex in metres, e.g. from a depth texture;
 //      1e30 for deep water). Displaced position = P + r.disp.xyz; normal =
 //      r.normal.xyz (ECEF). Accuracy: within 1 mm of the CPU for |d| up to
@@ -49,7 +51,7 @@ class CoastField;
 
 enum class Model : std::uint8_t {
   Noise,       // "noise": solid fractal noise on the 3D surface point (the default)
-  NoisePaper,  // "noise-paper": paper 002, 2D fractal noise at (lon*cos(lat), lat); CPU only
+  NoisePaper,  // "noise-paper": paper 002, 2D fractal noise at (lon*cos(lat), lat), with its seam at 180 deg
   Gerstner,    // "gerstner": paper 003, trochoidal waves from the sea spectrum
   Fft,         // "fft": paper 001, Tessendorf's FFT ocean (2 cascades, choppy), triplanar on the ellipsoid
 };
@@ -127,6 +129,8 @@ struct GpuPatch {
   // coastField()->gpuTexels() (uploaded once per field, not per patch).
   // coast.cell.z == 0 without a field.
   kf::WvCoast coast{};
+  // Model NoisePaper: the origin as wv_paperNoise takes it (shaders/waves_paper.glsl).
+  kf::WvPaper paper{};
 };
 
 class WaveField {
@@ -173,8 +177,9 @@ class WaveField {
   double maxHorizontalM() const { return maxHorizontalM_; }
   double maxDisplacementM() const { return maxVerticalM_ + maxHorizontalM_; }
 
-  // GPU patch data for origin O (ECEF, m) at time tS. Model NoisePaper has no
-  // GPU form: the patch is then empty.
+  // GPU patch data for origin O (ECEF, m) at time tS. NoisePaper: an origin
+  // within 6 um (1e-12 rad) of the 180 degree seam is taken on its west
+  // side (-180, as the query wraps longitudes).
   void gpuPatch(const glm::dvec3& originEcef, double tS, GpuPatch& out) const;
 
   // Double-precision patch data (what the CPU path evaluates; tests use it).
@@ -186,6 +191,7 @@ class WaveField {
     std::shared_ptr<const std::vector<glm::dvec4>> fftTexels;
     kd::WvCoast coast{};
     const glm::dvec4* coastTexels = nullptr;
+    kd::WvPaper paper{};
   };
   void cpuPatch(const glm::dvec3& originEcef, double tS, CpuPatch& out) const;
 
@@ -234,6 +240,11 @@ class WaveField {
   void buildGerstner();
   void buildBounds();
   WaveSample samplePaper(double latDeg, double lonDeg, double tS) const;
+  // The paper model's patch at the origin (phi0, lambda0 in [-pi, pi)) with
+  // distance rho0 from the polar axis and z0 (m): octaves_.size() octaves
+  // into `octaves`, the origin into `paper`.
+  void paperPatchAt(double phi0, double lam0, double rho0, double z0, double tS, kd::WvOctave* octaves,
+                    kd::WvPaper& paper) const;
   void fftPlanesAt(const glm::dvec3& originEcef, std::vector<kd::WvFftPlane>& out) const;
 
   Model model_ = Model::Noise;

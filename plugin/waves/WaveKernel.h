@@ -1,4 +1,5 @@
-// The shared wave source (shaders/waves_types.glsl + shaders/waves.glsl)
+// The shared wave source (shaders/waves_types.glsl + shaders/waves.glsl +
+// shaders/waves_paper.glsl)
 // compiled as C++ through GLM, which names its types and functions after
 // GLSL. Two instantiations:
 //  - kd: WR = double, the functions too: the CPU query path.
@@ -49,6 +50,9 @@ using glm::tanh;
 #define WR3 glm::dvec3
 #define WR4 glm::dvec4
 #include "shaders/waves_types.glsl"
+#define WV_PAPER_TYPES_ONLY 1
+#include "shaders/waves_paper.glsl"
+#undef WV_PAPER_TYPES_ONLY
 
 // The GLSL functions become members so that they see the patch arrays under
 // the same names the shader's SSBOs have.
@@ -67,6 +71,7 @@ struct Kernel {
   // The detail normal layer's patch (WaveField.h, detailPatch): 2 per wave.
   const WR4* wvDetail = nullptr;
 #include "shaders/waves.glsl"
+#include "shaders/waves_paper.glsl"
 #include "shaders/coast_islands.glsl"
 };
 #undef WR
@@ -75,6 +80,8 @@ struct Kernel {
 #undef WR4
 #undef WAVES_TYPES_GLSL
 #undef WAVES_GLSL
+#undef WAVES_PAPER_TYPES
+#undef WAVES_PAPER_GLSL
 #undef COAST_ISLANDS_GLSL
 }  // namespace kd
 
@@ -85,11 +92,15 @@ using glm::ivec4;
 #define WR3 glm::vec3
 #define WR4 glm::vec4
 #include "shaders/waves_types.glsl"
+#define WV_PAPER_TYPES_ONLY 1
+#include "shaders/waves_paper.glsl"
+#undef WV_PAPER_TYPES_ONLY
 #undef WR
 #undef WR2
 #undef WR3
 #undef WR4
 #undef WAVES_TYPES_GLSL
+#undef WAVES_PAPER_TYPES
 #undef WV_CPU
 #undef WV_FFT
 #undef WV_COAST
@@ -101,6 +112,7 @@ static_assert(sizeof(WvWave) == 64 && offsetof(WvWave, phase) == 32);
 static_assert(sizeof(WvResult) == 64);
 static_assert(sizeof(WvCoast) == 48 && offsetof(WvCoast, cell) == 32);
 static_assert(sizeof(WvFftPlane) == 64 && offsetof(WvFftPlane, cell) == 48);
+static_assert(sizeof(WvPaper) == 48 && offsetof(WvPaper, trig) == 32);
 }  // namespace kf
 
 }  // namespace geocean::waves

@@ -51,8 +51,7 @@ inline std::string addDirectOcean(GlobeRenderer& renderer, std::shared_ptr<const
                                   std::shared_ptr<DirectOceanLayer>* layer = nullptr,
                                   ocean_render::OceanOptions oo = {}) {
   const auto model = waves::parseModel(modelName);
-  if (!model || *model == waves::Model::NoisePaper)
-    return "--waves '" + modelName + "' is not a GPU wave model (noise, gerstner, fft)";
+  if (!model) return "--waves '" + modelName + "' is not a GPU wave model (noise, noise-paper, gerstner, fft)";
   oo.model = *model;
   oo.sea.windSpeedMps = windMps;
   oo.sea.windFromDeg = windFromDeg;

@@ -65,6 +65,7 @@ void runParity(Model model) {
   std::vector<kf::WvOctave> octaves;
   std::vector<kf::WvWave> waves;
   std::vector<kf::WvFftPlane> fftPlanes;
+  std::vector<kf::WvPaper> papers;  // noise-paper: one per patch
   std::vector<glm::vec4> fftTexels;
   std::vector<double> fftTimes;  // one uploaded table per distinct time
   std::vector<GpuPoint> points;
@@ -80,6 +81,7 @@ void runParity(Model model) {
     const glm::dvec3 origin = geo::toEcef({lat0, lon0, 0.0});
     field->gpuPatch(origin, t, gp);
     frames.push_back(gp.frame);
+    papers.push_back(gp.paper);
     int first = int(model == Model::Gerstner ? waves.size() : octaves.size());
     int count = int(model == Model::Gerstner ? gp.waves.size() : gp.octaves.size());
     if (model == Model::Fft) {
@@ -116,12 +118,14 @@ void runParity(Model model) {
   }
 
   const geocean::gl::GlProgram program = geocean::gl::GlProgram::compute(
-      "waves_eval.glsl",
-      {model == Model::Fft ? "WV_MODEL 2" : model == Model::Gerstner ? "WV_MODEL 1" : "WV_MODEL 0"});
+      "waves_eval.glsl", {model == Model::Fft          ? "WV_MODEL 2"
+                          : model == Model::Gerstner   ? "WV_MODEL 1"
+                          : model == Model::NoisePaper ? "WV_MODEL 4"
+                                                       : "WV_MODEL 0"});
   const GLuint prog = program.id();
   std::vector<kf::WvResult> results(points.size());
   const GLuint b0 = ssbo(0, octaves), b1 = ssbo(1, waves), b2 = ssbo(2, frames), b3 = ssbo(3, points),
-               b4 = ssbo(4, results), b5 = ssbo(5, fftPlanes), b6 = ssbo(6, fftTexels);
+               b4 = ssbo(4, results), b5 = ssbo(5, fftPlanes), b6 = ssbo(6, fftTexels), b7 = ssbo(7, papers);
   glUseProgram(prog);
   glUniform1ui(glGetUniformLocation(prog, "uCount"), GLuint(points.size()));
   glDispatchCompute(GLuint((points.size() + 63) / 64), 1, 1);
@@ -129,10 +133,19 @@ void runParity(Model model) {
   glGetNamedBufferSubData(b4, 0, GLsizeiptr(results.size() * sizeof(kf::WvResult)), results.data());
   ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 
-  double worstDisp = 0, worstNormal = 0, meanDisp = 0;
+  double worstDisp = 0, worstNormal = 0, meanDisp = 0, poleDisp = 0;
   int facetFlips = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const Case& c = cases[i];
+    // Paper 002's model is singular at the poles (x = R lambda cos(phi):
+    // every longitude meets there, the normal at the pole depends on the
+    // longitude named): within 0.1 degree of a pole the float offsets
+    // cannot tell the longitudes apart; measured, not bounded (README).
+    if (model == Model::NoisePaper && std::abs(c.latDeg) > 89.9) {
+      const WaveSample s = field->sample(c.latDeg, c.lonDeg, c.tS, c.depthM);
+      poleDisp = std::max(poleDisp, std::abs(s.displacementEnuM.z - double(results[i].disp.w)));
+      continue;
+    }
     const WaveSample s = field->sample(c.latDeg, c.lonDeg, c.tS, c.depthM);
     const geo::EnuFrame f = geo::enuFrame({c.latDeg, c.lonDeg, 0.0});
     const glm::dvec3 dispCpu = f.toEcef(s.displacementEnuM), nCpu = f.toEcef(s.normalEnu);
@@ -151,6 +164,12 @@ void runParity(Model model) {
     if (model == Model::Fft && dn >= 1e-4) {
       ++facetFlips;
       ASSERT_LT(dn, 0.05) << "point " << i;
+    } else if (model == Model::NoisePaper) {
+      // The seam's shear multiplies the offsets' float error (~3e-7 of
+      // them after the angle arithmetic) by up to lambda0 sin(phi) ~ 3:
+      // ~4 mm at 5 km, and the finest octave (1.5 m cells at 15 m/s)
+      // turns the normal by ~0.3 rad per metre of offset: ~1.2e-3.
+      ASSERT_LT(dn, 2e-3) << "point " << i << " lat " << c.latDeg << " lon " << c.lonDeg;
     } else {
       ASSERT_LT(dn, 1e-4) << "point " << i;
     }
@@ -158,8 +177,9 @@ void runParity(Model model) {
   EXPECT_LE(facetFlips, 20) << "normals on a neighbouring facet";
   std::printf("%s: %zu points, displacement |gpu - cpu| max %.3g m mean %.3g m; normal max %.3g (%d facet flips)\n",
               toString(model), cases.size(), worstDisp, meanDisp, worstNormal, facetFlips);
-  GLuint bufs[] = {b0, b1, b2, b3, b4, b5, b6};
-  glDeleteBuffers(7, bufs);
+  if (model == Model::NoisePaper) std::printf("noise-paper within 0.1 deg of a pole: height |gpu - cpu| max %.3g m\n", poleDisp);
+  GLuint bufs[] = {b0, b1, b2, b3, b4, b5, b6, b7};
+  glDeleteBuffers(8, bufs);
 }
 
 // Issue 15 item 5: the coast field's phase, turning and Kr in the shared
@@ -362,3 +382,6 @@ TEST(WavesGpuParity, IslandTableGpuEqualsCpu) {
 TEST(WavesGpuParity, SolidNoiseAgreesWithinOneMillimetre) { runParity(Model::Noise); }
 TEST(WavesGpuParity, GerstnerAgreesWithinOneMillimetre) { runParity(Model::Gerstner); }
 TEST(WavesGpuParity, FftAgreesWithinOneMillimetre) { runParity(Model::Fft); }
+// Paper 002's model (shaders/waves_paper.glsl): 20 of the 100 patches sit on
+// the 180 degree seam with points on both sides, where the model jumps.
+TEST(WavesGpuParity, PaperNoiseAgreesWithinOneMillimetre) { runParity(Model::NoisePaper); }

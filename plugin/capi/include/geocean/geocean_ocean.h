@@ -110,7 +110,7 @@ typedef struct geocean_grid_placement {
 /* Wave models (docs/ARCHITECTURE.md, plugin/waves). */
 typedef enum geocean_wave_model {
   GEOCEAN_WAVES_NOISE = 0,       /* solid fractal noise on the 3D surface point (default) */
-  GEOCEAN_WAVES_NOISE_PAPER = 1, /* paper 002's 2D noise at (lon cos(lat), lat); CPU only, has a seam */
+  GEOCEAN_WAVES_NOISE_PAPER = 1, /* paper 002's 2D noise at (lon cos(lat), lat); has a seam at 180 deg */
   GEOCEAN_WAVES_GERSTNER = 2,    /* trochoidal waves from the sea spectrum, depth-aware */
   GEOCEAN_WAVES_FFT = 3          /* ABI 1.1: Tessendorf FFT ocean (paper 001), 2 cascades, choppy */
 } geocean_wave_model;
