@@ -33,10 +33,12 @@
 // arrives from the region's own edges (two regions disagree). Near an
 // island such a component's eikonal wraps around it on the up-wave side
 // (the reversed wave's lee); the island table still shades the true lee.
+// Where no inflow node is deep for a component, its phase comes from an
+// OuterPhase (below) given to build(), the same for every region inside it.
 // Limits: curved contours at a shallow inflow edge start approximately;
-// where no inflow node is deep the phase's constant is the region's own (a
-// moved region shifts it); first arrivals only (no crossing seas behind a
-// shoal).
+// without an outer phase (or outside its reach) a region with no deep
+// inflow fixes the phase's constant at its own deepest edge node (a moved
+// region shifts it); first arrivals only (no crossing seas behind a shoal).
 //
 // Islands (paper 003 sec. 3): the table (D_blo, theta_blo, D_obs, theta_def)
 // per component and node from the same elevation (shaders/coast_islands.glsl,
