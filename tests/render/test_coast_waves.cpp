@@ -729,3 +729,39 @@ TEST(OceanCoast, FollowedRegionsAgreeWhereTheyOverlap) {
 
 }  // namespace
 }  // namespace geocean::render::test
+
+namespace geocean::render::test {
+namespace {
+// The outer phase is drawn as queried (issue 15 item 5's parity over
+// waves::OuterPhase's offsets, hundreds of radians before whole turns are
+// taken off, tens after): off the Dutch coast, the region re-centred 2.8
+// km north as a follow build does, drawn from 10 m up looking steeply
+// down with the query's own field (as the C ABI's draw); |drawn - query|
+// within 1 cm, DrawnSurfaceIsTheQueryOverAShelf's bound.
+TEST(OceanCoast, OuterPhaseIsDrawnAsQueriedOffTheDutchCoast) {
+  Session& s = session();
+  Shelf shelf(52.6, 4.45, true);
+  ocean::Ocean& o = shelf.o;
+  ASSERT_EQ(o.followCoastRegion(52.625, 4.45), ocean::Ocean::CoastFollow::Started);
+  o.waitForCoastBuild();
+  ASSERT_EQ(o.followCoastRegion(52.625, 4.45), ocean::Ocean::CoastFollow::Swapped);
+  const auto snap = o.current();
+  ASSERT_NE(snap->coastOuter, nullptr);
+  ASSERT_GT(snap->waves->coastField()->outerComponents(), 0);
+  ocean_render::OceanOptions oo;
+  oo.cellPx = 2.0;
+  oo.waves = snap->waves;
+  auto renderer = std::make_shared<ocean_render::OceanRenderer>(s.world->grids(), snap->landSea, oo);
+  ViewPose p;
+  p.latDeg = 52.62, p.lonDeg = 4.44, p.altM = 10.0, p.headingDeg = 70.0, p.pitchDeg = -60.0;
+  p.width = p.height = 64;
+  const double t = 41.5;
+  const Drawn d = draw(renderer, p, t, "dutch_outer");
+  int checked = 0;
+  const double worst = worstDrawnVsQuery(d, p, *snap, t, checked);
+  std::printf("worst |drawn - query| %.5f m over %d pixels\n", worst, checked);
+  EXPECT_GT(checked, 40);
+  EXPECT_LT(worst, 0.01);
+}
+}  // namespace
+}  // namespace geocean::render::test
