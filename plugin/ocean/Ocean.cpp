@@ -336,10 +336,12 @@ namespace {
 // The coast field from a snapshot's water depth over a region (as the
 // query's: -elevation where the mask says ocean, 0 on land). Throws
 // std::invalid_argument naming a bad region.
-std::shared_ptr<const waves::CoastField> buildCoastField(const Snapshot& s, const waves::CoastField::Region& r) {
-  const auto ls = s.landSea;
-  const geo::EnuFrame f = geo::enuFrame({r.latDeg, r.lonDeg, 0.0});
-  auto depthAt = [&](double e, double n) {
+// The water depth (m) at (east, north) of the tangent plane at (latDeg,
+// lonDeg), as the query's: -elevation where the mask says ocean, 0 on land.
+std::function<double(double, double)> depthAbout(const std::shared_ptr<const LandSea>& ls, double latDeg,
+                                                 double lonDeg) {
+  const geo::EnuFrame f = geo::enuFrame({latDeg, lonDeg, 0.0});
+  return [ls, f](double e, double n) {
     const geo::Geodetic g = geo::fromEcef(f.originEcef + f.east * e + f.north * n);
     Surface c;
     ls->classifyBatch(&g.latDeg, &g.lonDeg, 1, &c);
@@ -348,8 +350,28 @@ std::shared_ptr<const waves::CoastField> buildCoastField(const Snapshot& s, cons
     ls->elevationBatch(&g.latDeg, &g.lonDeg, 1, &el);
     return std::isnan(el) ? waves::kDeepWaterM : std::max(-double(el), 1.0);
   };
+}
+
+// The coast field from a snapshot's water depth over a region. `outer`:
+// the outer phase to read if a component has no deep inflow; kept if it
+// covers the region, else (re)built at the lattice point nearest the
+// region's centre. Throws std::invalid_argument naming a bad region.
+std::shared_ptr<const waves::CoastField> buildCoastField(const Snapshot& s, const waves::CoastField::Region& r,
+                                                         std::shared_ptr<const waves::OuterPhase>& outer) {
+  auto outerFor = [&]() -> const waves::OuterPhase* {
+    const double halfM = 0.5 * r.cellM * (r.nodes - 1);
+    if (outer && outer->covers(geo::toEcef({r.latDeg, r.lonDeg, 0.0}), halfM)) return outer.get();
+    double lat = 0.0, lon = 0.0;
+    waves::OuterPhase::latticePoint(r.latDeg, r.lonDeg, lat, lon);
+    std::string error;
+    auto built = std::make_shared<const waves::OuterPhase>(
+        waves::OuterPhase::build(*s.waves, lat, lon, depthAbout(s.landSea, lat, lon), error));
+    outer = built->empty() ? nullptr : std::move(built);
+    return outer.get();
+  };
   std::string error;
-  auto coast = std::make_shared<const waves::CoastField>(waves::CoastField::build(*s.waves, r, depthAt, error));
+  auto coast = std::make_shared<const waves::CoastField>(
+      waves::CoastField::build(*s.waves, r, depthAbout(s.landSea, r.latDeg, r.lonDeg), error, outerFor));
   if (coast->empty()) throw std::invalid_argument(error);
   return coast;
 }
@@ -395,10 +417,11 @@ void Ocean::update(const std::function<void(Snapshot&)>& edit) {
                                                       next->coastRegion->islandRadiusM ==
                                                           prev->coastRegion->islandRadiusM &&
                                                       next->coastRegion->breaking == prev->coastRegion->breaking)));
+  if (rastersChanged || next->waves != prev->waves) next->coastOuter.reset();  // another depth or sea
   if (next->waves && next->model == waves::Model::Gerstner &&
       (rastersChanged || coastChanged || next->waves != prev->waves)) {
     std::shared_ptr<const waves::CoastField> coast;
-    if (next->coastRegion && next->landSea) coast = buildCoastField(*next, *next->coastRegion);
+    if (next->coastRegion && next->landSea) coast = buildCoastField(*next, *next->coastRegion, next->coastOuter);
     if (coast || next->waves->coastField()) {
       auto copy = std::make_shared<waves::WaveField>(*next->waves);
       copy->setCoast(coast);
@@ -451,7 +474,7 @@ Ocean::CoastFollow Ocean::followCoastRegion(double nadirLatDeg, double nadirLonD
       auto s = std::make_shared<Snapshot>(*snap);
       s->coastRegion = next;
       auto copy = std::make_shared<waves::WaveField>(*snap->waves);
-      copy->setCoast(buildCoastField(*snap, next));
+      copy->setCoast(buildCoastField(*snap, next, s->coastOuter));
       s->waves = std::move(copy);
       s->sea = std::make_shared<const waves::SeaQuery>(*s->waves, s->landSea);
       built = std::move(s);

@@ -111,6 +111,11 @@ struct Snapshot {
   // snapshot's water depth there (waves::CoastField), so queries take
   // depth-dependent phase and refraction inside it.
   std::optional<waves::CoastField::Region> coastRegion;
+  // The coarse phase around it (waves::OuterPhase) when the region has no
+  // deep inflow: built on the fixed lattice, kept by the follow builds
+  // while their regions lie inside it (so they read the same phase), reset
+  // when the rasters or the sea state change.
+  std::shared_ptr<const waves::OuterPhase> coastOuter;
 
   // Nearest-cell class. Calling thread only. Throws NotReady without rasters.
   void classify(const double* latDeg, const double* lonDeg, std::size_t n, Surface* out) const;

@@ -118,10 +118,240 @@ void inflowEdgePhase(int n, double cellM, double s0x, double s0y, double k0, con
     if (cos0 > 1e-3 && kg > 0.0) qEdge[at(path[c])] = std::log(kg / (k * cos0));
   }
 }
+
+// The grid one component is solved on: CoastField's region or an OuterPhase.
+struct Grid {
+  int n;
+  double cellM;
+  const std::vector<double>* depth;      // >= kMinDepthM
+  const std::vector<double>* elevation;  // < 0: water (land counts as no deep water)
+  // Land is no path (OuterPhase: coarse cells, waves go round the land);
+  // CoastField's fine grid keeps crossing it slowly (its island table shades the lee).
+  bool blockLand = false;
+};
+
+struct Solved {
+  double sgn = 1.0;          // -1: the time-reversed wave, from the outflow edges
+  double s0x = 0.0, s0y = 0.0;  // the solved wave's travel (sgn times the component's)
+  bool fromOuter = false;    // the inflow edges were fixed by the outer phase
+  std::vector<double> s, sx, sy, q;  // phase (inf: not reached), direction, ray-tube spreading
+};
+
+// The phase deep enough at the fixed inflow nodes: the plane wave there
+// differs from the deep-water one by (k - k_deep) over the grid's diagonal,
+// at most this (rad); else the phase's constant depends on where the edges lie.
+constexpr double kDeepInflowRad = 0.01;
+
+// One component with travel (tx, ty) (unit, x east, y north) on a grid
+// centred on node (n - 1) / 2: its inflow edges, the fast-sweeping eikonal,
+// directions and ray-tube spreading. If the deepest inflow node is not
+// deep (kDeepInflowRad) and outerAt is given, every node at least
+// OuterPhase::kMinDepthM deep where outerAt(i, j) = (phase offset, ray-tube
+// spreading) is finite is fixed to it (the region then only solves the
+// rest); otherwise (or where none is) the deepest inflow nodes carry the
+// plane wave k_ref s0 . x and the rest of the edges is carried from them by
+// Snell's law (inflowEdgePhase).
+using OuterAt = std::function<glm::dvec2(int i, int j)>;
+Solved solveComponent(const Grid& g, double k0, double omega, double tx, double ty, const OuterAt& outerAt) {
+  const int n = g.n;
+  const double cellM = g.cellM;
+  const std::vector<double>& depth = *g.depth;
+  const std::vector<double>& elevation = *g.elevation;
+  const double inf = std::numeric_limits<double>::infinity();
+  auto at = [n](int i, int j) { return std::size_t(j) * n + i; };
+  const double half = 0.5 * (n - 1);
+  auto x = [&](int i) { return (i - half) * cellM; };
+  kd::Kernel kernel{};
+  Solved out;
+  std::vector<double> kLoc(depth.size()), div(depth.size()), qEdge(depth.size());
+  std::vector<double>&s = out.s, &sx = out.sx, &sy = out.sy, &q = out.q;
+  s.resize(depth.size()), sx.resize(depth.size()), sy.resize(depth.size()), q.resize(depth.size());
+  std::vector<char> fixedNode(depth.size());
+  // The kernel's own dispersion solve (Guo + 2 Newton steps, ~1e-9) and
+  // its deep-water cut-off: deep nodes get exactly k_deep, as the kernel.
+  const double kDeep = omega * omega / WV_G;
+  for (std::size_t p = 0; p < depth.size(); ++p)
+    kLoc[p] = kDeep * depth[p] < WV_DEEP_KH ? kernel.wv_waveNumber(omega, depth[p]) : kDeep;
+  // How much deep water the inflow edges of travel (dx, dy) have: per node
+  // kEdge / k (1: as deep as the deepest wet edge node; land 0: no wave
+  // comes from land), the mean over each edge weighted by the flux through it.
+  auto edgeDeepness = [&](double dx, double dy, double kEdge) {
+    double num = 0.0, den = 0.0;
+    auto side = [&](double flux, bool xNormal, int fixed) {
+      if (flux <= 0.0) return;
+      double sum = 0.0;
+      for (int m = 0; m < n; ++m) {
+        const std::size_t p = xNormal ? at(fixed, m) : at(m, fixed);
+        if (elevation[p] < 0.0) sum += kEdge / kLoc[p];
+      }
+      num += flux * sum / n, den += flux;
+    };
+    side(std::abs(dx), true, dx > 0.0 ? 0 : n - 1);
+    side(std::abs(dy), false, dy > 0.0 ? 0 : n - 1);
+    return den > 0.0 ? num / den : 0.0;
+  };
+  // Carried from its deeper side: a component travelling toward deeper
+  // water (offshore) has no deep inflow edge; its rays, traced back, end on
+  // the shore, so a forward solve's phase there would be whatever arrives
+  // first from the region's (moving) edges. Rays are reversible: solve the
+  // time-reversed wave (-s0) from the deep outflow edges, where the phase
+  // is the deep-water phase, and negate its phase (same turning and Kr:
+  // the same rays and tubes). So two regions over one shelf agree
+  // (Ocean::followCoastRegion). Reversed when the outflow edges' deep
+  // water (edgeDeepness) exceeds the inflow's by 5 % of the flux: land
+  // or an island blocking less of the inflow, and ties (deep all round),
+  // keep the forward solve (its island shadows on the lee side).
+  double kEdge = inf;
+  for (int m = 0; m < n; ++m)
+    for (const std::size_t p : {at(0, m), at(n - 1, m), at(m, 0), at(m, n - 1)})
+      if (elevation[p] < 0.0) kEdge = std::min(kEdge, kLoc[p]);
+  const double dIn = edgeDeepness(tx, ty, kEdge);
+  const double dOut = edgeDeepness(-tx, -ty, kEdge);
+  const double sgn = std::isfinite(kEdge) && dOut > dIn + 0.05 ? -1.0 : 1.0;
+  out.sgn = sgn;
+  const double s0x = sgn * tx, s0y = sgn * ty;
+  out.s0x = s0x, out.s0y = s0y;
+  // Inflow edges: the plane wave of the reference depth (outside the
+  // region the kernel has no offset, so none here either). Only the
+  // deepest inflow nodes carry it (deep water, or for long waves the
+  // deepest the edge has): a shallower one would inject an early arrival;
+  // there the sweeps continue the interior.
+  std::fill(s.begin(), s.end(), inf);
+  std::fill(fixedNode.begin(), fixedNode.end(), 0);
+  auto inflow = [&](int i, int j) {
+    return (i == 0 && s0x > 0) || (i == n - 1 && s0x < 0) || (j == 0 && s0y > 0) || (j == n - 1 && s0y < 0);
+  };
+  auto open = [&](std::size_t p) { return !g.blockLand || elevation[p] < 0.0; };
+  double kIn = inf;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      if (inflow(i, j) && open(at(i, j))) kIn = std::min(kIn, kLoc[at(i, j)]);
+  const double kFix = std::max(kIn, k0) * (1.0 + 1e-3);
+  std::fill(qEdge.begin(), qEdge.end(), std::numeric_limits<double>::quiet_NaN());
+  // No deep inflow node: the outer phase (same for every region) fixes the edges.
+  const double diag = std::sqrt(2.0) * (n - 1) * cellM;
+  if (outerAt && (kIn - kDeep) * diag > kDeepInflowRad)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (elevation[at(i, j)] >= 0.0 || depth[at(i, j)] < OuterPhase::kMinDepthM) continue;
+        const glm::dvec2 o = outerAt(i, j);
+        if (!std::isfinite(o.x) || !std::isfinite(o.y)) continue;
+        s[at(i, j)] = k0 * (s0x * x(i) + s0y * x(j)) + sgn * o.x;
+        qEdge[at(i, j)] = o.y;
+        fixedNode[at(i, j)] = 1;
+        out.fromOuter = true;
+      }
+  if (!out.fromOuter)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (!inflow(i, j) || kLoc[at(i, j)] > kFix || !open(at(i, j))) continue;
+        s[at(i, j)] = k0 * (s0x * x(i) + s0y * x(j));
+        fixedNode[at(i, j)] = 1;
+      }
+  // The other inflow nodes: the phase carried along the inflow edges from
+  // the nearest deep node by Snell's law across the edge (the wave number
+  // normal to the edge, k_ref s0 . n, conserved; the one along it
+  // sqrt(k^2 - k_n^2)), exact where the contours cross the edge at right
+  // angles, as a straight shore does for a region moved along it. So the
+  // phase no longer depends on where the edge lies (issue 15 item 1: a
+  // re-centred region agrees with the old one). Not fixed: the sweeps may
+  // still lower them (an earlier arrival through the interior); land ends a run.
+  inflowEdgePhase(n, cellM, s0x, s0y, k0, kLoc, depth, fixedNode, s, qEdge);
+  // Fast sweeping, four orderings, until nothing changes.
+  for (int iter = 0; iter < 12; ++iter) {
+    double change = 0.0;
+    for (int sweep = 0; sweep < 4; ++sweep) {
+      const bool fx = sweep & 1, fy = sweep & 2;
+      for (int jj = 0; jj < n; ++jj)
+        for (int ii = 0; ii < n; ++ii) {
+          const int i = fx ? n - 1 - ii : ii, j = fy ? n - 1 - jj : jj;
+          const std::size_t p = at(i, j);
+          if (fixedNode[p] || !open(p)) continue;
+          const double a = std::min(i > 0 ? s[at(i - 1, j)] : inf, i < n - 1 ? s[at(i + 1, j)] : inf);
+          const double b = std::min(j > 0 ? s[at(i, j - 1)] : inf, j < n - 1 ? s[at(i, j + 1)] : inf);
+          if (a == inf && b == inf) continue;
+          // Godunov update, then once more with k at the middle of the step
+          // (weights: the step's share along each axis, cos^2 / sin^2), so
+          // the phase gradient between nodes is second order where depth
+          // changes along the ray (first order otherwise).
+          const int ia = i > 0 && (i == n - 1 || s[at(i - 1, j)] <= s[at(i + 1, j)]) ? i - 1 : i + 1;
+          const int jb = j > 0 && (j == n - 1 || s[at(i, j - 1)] <= s[at(i, j + 1)]) ? j - 1 : j + 1;
+          auto update = [&](double k) {
+            const double f = k * cellM;
+            if (std::abs(a - b) >= f) return std::min(a, b) + f;
+            return 0.5 * (a + b + std::sqrt(2.0 * f * f - (a - b) * (a - b)));
+          };
+          double v = update(kLoc[p]);
+          {
+            const double da = a < inf ? std::max(v - a, 0.0) : 0.0, db = b < inf ? std::max(v - b, 0.0) : 0.0;
+            const double wsum = da * da + db * db;
+            if (wsum > 0.0) {
+              const double wa = da * da / wsum, wb = db * db / wsum;
+              const double km = kLoc[p] + 0.5 * (wa * (kLoc[at(ia, j)] - kLoc[p]) + wb * (kLoc[at(i, jb)] - kLoc[p]));
+              v = update(km);
+            }
+          }
+          if (v < s[p]) {
+            if (s[p] < inf) change = std::max(change, s[p] - v);
+            s[p] = v;
+          }
+        }
+    }
+    if (iter > 0 && change < 1e-12) break;
+  }
+  // Direction (central differences, one-sided at edges) and its divergence.
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, n - 1);
+      int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, n - 1);
+      if (g.blockLand) {  // one-sided beside land (not reached: inf)
+        if (!std::isfinite(s[at(i0, j)])) i0 = i;
+        if (!std::isfinite(s[at(i1, j)])) i1 = i;
+        if (!std::isfinite(s[at(i, j0)])) j0 = j;
+        if (!std::isfinite(s[at(i, j1)])) j1 = j;
+        if (i0 == i1 || j0 == j1 || !std::isfinite(s[at(i, j)])) {
+          sx[at(i, j)] = s0x, sy[at(i, j)] = s0y;
+          continue;
+        }
+      }
+      const double gx = (s[at(i1, j)] - s[at(i0, j)]) / ((i1 - i0) * cellM);
+      const double gy = (s[at(i, j1)] - s[at(i, j0)]) / ((j1 - j0) * cellM);
+      const double len = std::hypot(gx, gy);
+      sx[at(i, j)] = len > 0 && std::isfinite(len) ? gx / len : s0x;
+      sy[at(i, j)] = len > 0 && std::isfinite(len) ? gy / len : s0y;
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, n - 1);
+      const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, n - 1);
+      div[at(i, j)] = (sx[at(i1, j)] - sx[at(i0, j)]) / ((i1 - i0) * cellM) +
+                      (sy[at(i, j1)] - sy[at(i, j0)]) / ((j1 - j0) * cellM);
+    }
+  // Ray-tube spreading: s . grad q = div s, q = 0 on the inflow edges
+  // (upwind Gauss-Seidel in the same four orderings).
+  for (std::size_t p = 0; p < q.size(); ++p) q[p] = std::isnan(qEdge[p]) ? 0.0 : qEdge[p];
+  for (int iter = 0; iter < 4; ++iter)
+    for (int sweep = 0; sweep < 4; ++sweep) {
+      const bool fx = sweep & 1, fy = sweep & 2;
+      for (int jj = 0; jj < n; ++jj)
+        for (int ii = 0; ii < n; ++ii) {
+          const int i = fx ? n - 1 - ii : ii, j = fy ? n - 1 - jj : jj;
+          const std::size_t p = at(i, j);
+          if (fixedNode[p] || !std::isnan(qEdge[p])) continue;
+          const double ax = std::abs(sx[p]), ay = std::abs(sy[p]);
+          const int iu = i - (sx[p] > 0 ? 1 : -1), ju = j - (sy[p] > 0 ? 1 : -1);
+          const double qx = iu >= 0 && iu < n ? q[at(iu, j)] : 0.0;
+          const double qy = ju >= 0 && ju < n ? q[at(i, ju)] : 0.0;
+          q[p] = (div[p] * cellM + ax * qx + ay * qy) / std::max(ax + ay, 1e-30);
+        }
+    }
+  return out;
+}
 }  // namespace
 
 CoastField CoastField::build(const WaveField& field, const Region& r,
-                             const std::function<double(double, double)>& depthAt, std::string& error) {
+                             const std::function<double(double, double)>& depthAt, std::string& error,
+                             const std::function<const OuterPhase*()>& outer) {
   CoastField cf;
   auto bad = [&](const char* name, double v, const char* want) {
     std::ostringstream os;
@@ -173,13 +403,7 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
   cf.texels_.assign((comps.size() + 1) * std::size_t(n) * n, glm::dvec4(0.0));
   // NaN: the component does not reach the node (or has no travel here); its texel stays 0.
   cf.eikonal_.assign(comps.size() * std::size_t(n) * n, glm::dvec3(std::numeric_limits<double>::quiet_NaN()));
-  const double inf = std::numeric_limits<double>::infinity();
-  std::vector<double> kLoc(depth.size()), s(depth.size()), q(depth.size()), sx(depth.size()), sy(depth.size()),
-      div(depth.size());
-  std::vector<char> fixedNode(depth.size());
-  std::vector<double> qEdge(depth.size());
   auto at = [n](int i, int j) { return std::size_t(j) * n + i; };
-  kd::Kernel kernel{};
   // Travel directions at the centre (as the kernel's great circles there).
   isl.nodes = n;
   isl.components = int(comps.size());
@@ -208,171 +432,46 @@ CoastField CoastField::build(const WaveField& field, const Region& r,
           isl.landSat[std::size_t(j) * (n + 1) + i];
   cf.islands_ = islandTable(isl, &cf.shadow_);
   cf.reversed_.assign(comps.size(), 0);
-  // How much deep water the inflow edges of travel (dx, dy) have: per node
-  // kEdge / k (1: as deep as the deepest wet edge node; land 0: no wave
-  // comes from land), the mean over each edge weighted by the flux through it.
-  auto edgeDeepness = [&](double dx, double dy, double kEdge) {
-    double num = 0.0, den = 0.0;
-    auto side = [&](double flux, bool xNormal, int fixed) {
-      if (flux <= 0.0) return;
-      double sum = 0.0;
-      for (int m = 0; m < n; ++m) {
-        const std::size_t p = xNormal ? at(fixed, m) : at(m, fixed);
-        if (isl.elevation[p] < 0.0) sum += kEdge / kLoc[p];
-      }
-      num += flux * sum / n, den += flux;
-    };
-    side(std::abs(dx), true, dx > 0.0 ? 0 : n - 1);
-    side(std::abs(dy), false, dy > 0.0 ? 0 : n - 1);
-    return den > 0.0 ? num / den : 0.0;
-  };
+  // Per component: the eikonal (solveComponent), the outer phase on the
+  // inflow edges where the region has no deep node (OuterPhase).
+  const OuterPhase* outerPhase = nullptr;
+  bool outerAsked = false;
+  const Grid grid{n, r.cellM, &depth, &isl.elevation};
   for (std::size_t c = 0; c < comps.size(); ++c) {
     const WaveField::Component& w = comps[c];
     if (atSource[c]) continue;
     const double k0 = w.kRef;
-    // The kernel's own dispersion solve (Guo + 2 Newton steps, ~1e-9) and
-    // its deep-water cut-off: deep nodes get exactly k_deep, as the kernel.
-    const double kDeep = w.omega * w.omega / WV_G;
-    for (std::size_t p = 0; p < depth.size(); ++p)
-      kLoc[p] = kDeep * depth[p] < WV_DEEP_KH ? kernel.wv_waveNumber(w.omega, depth[p]) : kDeep;
-    // Carried from its deeper side: a component travelling toward deeper
-    // water (offshore) has no deep inflow edge; its rays, traced back, end on
-    // the shore, so a forward solve's phase there would be whatever arrives
-    // first from the region's (moving) edges. Rays are reversible: solve the
-    // time-reversed wave (-s0) from the deep outflow edges, where the phase
-    // is the deep-water phase, and negate its phase (same turning and Kr:
-    // the same rays and tubes). So two regions over one shelf agree
-    // (Ocean::followCoastRegion). Reversed when the outflow edges' deep
-    // water (edgeDeepness) exceeds the inflow's by 5 % of the flux: land
-    // or an island blocking less of the inflow, and ties (deep all round),
-    // keep the forward solve (its island shadows on the lee side).
-    double kEdge = inf;
-    for (int m = 0; m < n; ++m)
-      for (const std::size_t p : {at(0, m), at(n - 1, m), at(m, 0), at(m, n - 1)})
-        if (isl.elevation[p] < 0.0) kEdge = std::min(kEdge, kLoc[p]);
-    const double dIn = edgeDeepness(isl.travel[c].x, isl.travel[c].y, kEdge);
-    const double dOut = edgeDeepness(-isl.travel[c].x, -isl.travel[c].y, kEdge);
-    const double sgn = std::isfinite(kEdge) && dOut > dIn + 0.05 ? -1.0 : 1.0;
-    cf.reversed_[c] = sgn < 0.0;
-    const double s0x = sgn * isl.travel[c].x, s0y = sgn * isl.travel[c].y;
-    // Inflow edges: the plane wave of the reference depth (outside the
-    // region the kernel has no offset, so none here either). Only the
-    // deepest inflow nodes carry it (deep water, or for long waves the
-    // deepest the edge has): a shallower one would inject an early arrival;
-    // there the sweeps continue the interior.
-    std::fill(s.begin(), s.end(), inf);
-    std::fill(fixedNode.begin(), fixedNode.end(), 0);
-    auto inflow = [&](int i, int j) {
-      return (i == 0 && s0x > 0) || (i == n - 1 && s0x < 0) || (j == 0 && s0y > 0) || (j == n - 1 && s0y < 0);
+    // The outer phase at inflow node (i, j), asked for once (the first component without deep inflow).
+    double turns = std::numeric_limits<double>::quiet_NaN();
+    auto outerAt = [&](int i, int j) {
+      if (!outerAsked) outerPhase = outer ? outer() : nullptr, outerAsked = true;
+      if (!outerPhase || outerPhase->empty() || outerPhase->components() != int(comps.size()))
+        return glm::dvec2(std::numeric_limits<double>::quiet_NaN());
+      glm::dvec2 o = outerPhase->sample(int(c), cf.centre_ + cf.east_ * x(i) + cf.north_ * x(j));
+      // Less whole turns (the waves are the same): the outer offset is the
+      // excess phase from deep water 100 km away (hundreds of rad), which
+      // the margin's blend to 0 would squeeze into 400 m; so the first node
+      // read sets the turns taken off (then a few tens of rad, as the fine
+      // field's own).
+      if (std::isfinite(o.x)) {
+        if (std::isnan(turns)) turns = 2.0 * kPi * std::round(o.x / (2.0 * kPi));
+        o.x -= turns;
+      }
+      return o;
     };
-    double kIn = inf;
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        if (inflow(i, j)) kIn = std::min(kIn, kLoc[at(i, j)]);
-    const double kFix = std::max(kIn, k0) * (1.0 + 1e-3);
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        if (!inflow(i, j) || kLoc[at(i, j)] > kFix) continue;
-        s[at(i, j)] = k0 * (s0x * x(i) + s0y * x(j));
-        fixedNode[at(i, j)] = 1;
-      }
-    // The other inflow nodes: the phase carried along the inflow edges from
-    // the nearest deep node by Snell's law across the edge (the wave number
-    // normal to the edge, k_ref s0 . n, conserved; the one along it
-    // sqrt(k^2 - k_n^2)), exact where the contours cross the edge at right
-    // angles, as a straight shore does for a region moved along it. So the
-    // phase no longer depends on where the edge lies (issue 15 item 1: a
-    // re-centred region agrees with the old one). Not fixed: the sweeps may
-    // still lower them (an earlier arrival through the interior); land ends a run.
-    std::fill(qEdge.begin(), qEdge.end(), std::numeric_limits<double>::quiet_NaN());
-    inflowEdgePhase(n, r.cellM, s0x, s0y, k0, kLoc, depth, fixedNode, s, qEdge);
-    // Fast sweeping, four orderings, until nothing changes.
-    for (int iter = 0; iter < 12; ++iter) {
-      double change = 0.0;
-      for (int sweep = 0; sweep < 4; ++sweep) {
-        const bool fx = sweep & 1, fy = sweep & 2;
-        for (int jj = 0; jj < n; ++jj)
-          for (int ii = 0; ii < n; ++ii) {
-            const int i = fx ? n - 1 - ii : ii, j = fy ? n - 1 - jj : jj;
-            const std::size_t p = at(i, j);
-            if (fixedNode[p]) continue;
-            const double a = std::min(i > 0 ? s[at(i - 1, j)] : inf, i < n - 1 ? s[at(i + 1, j)] : inf);
-            const double b = std::min(j > 0 ? s[at(i, j - 1)] : inf, j < n - 1 ? s[at(i, j + 1)] : inf);
-            if (a == inf && b == inf) continue;
-            // Godunov update, then once more with k at the middle of the step
-            // (weights: the step's share along each axis, cos^2 / sin^2), so
-            // the phase gradient between nodes is second order where depth
-            // changes along the ray (first order otherwise).
-            const int ia = i > 0 && (i == n - 1 || s[at(i - 1, j)] <= s[at(i + 1, j)]) ? i - 1 : i + 1;
-            const int jb = j > 0 && (j == n - 1 || s[at(i, j - 1)] <= s[at(i, j + 1)]) ? j - 1 : j + 1;
-            auto update = [&](double k) {
-              const double f = k * r.cellM;
-              if (std::abs(a - b) >= f) return std::min(a, b) + f;
-              return 0.5 * (a + b + std::sqrt(2.0 * f * f - (a - b) * (a - b)));
-            };
-            double v = update(kLoc[p]);
-            {
-              const double da = a < inf ? std::max(v - a, 0.0) : 0.0, db = b < inf ? std::max(v - b, 0.0) : 0.0;
-              const double wsum = da * da + db * db;
-              if (wsum > 0.0) {
-                const double wa = da * da / wsum, wb = db * db / wsum;
-                const double km = kLoc[p] + 0.5 * (wa * (kLoc[at(ia, j)] - kLoc[p]) + wb * (kLoc[at(i, jb)] - kLoc[p]));
-                v = update(km);
-              }
-            }
-            if (v < s[p]) {
-              if (s[p] < inf) change = std::max(change, s[p] - v);
-              s[p] = v;
-            }
-          }
-      }
-      if (iter > 0 && change < 1e-12) break;
-    }
-    // Direction (central differences, one-sided at edges) and its divergence.
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, n - 1);
-        const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, n - 1);
-        const double gx = (s[at(i1, j)] - s[at(i0, j)]) / ((i1 - i0) * r.cellM);
-        const double gy = (s[at(i, j1)] - s[at(i, j0)]) / ((j1 - j0) * r.cellM);
-        const double len = std::hypot(gx, gy);
-        sx[at(i, j)] = len > 0 && std::isfinite(len) ? gx / len : s0x;
-        sy[at(i, j)] = len > 0 && std::isfinite(len) ? gy / len : s0y;
-      }
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, n - 1);
-        const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, n - 1);
-        div[at(i, j)] = (sx[at(i1, j)] - sx[at(i0, j)]) / ((i1 - i0) * r.cellM) +
-                        (sy[at(i, j1)] - sy[at(i, j0)]) / ((j1 - j0) * r.cellM);
-      }
-    // Ray-tube spreading: s . grad q = div s, q = 0 on the inflow edges
-    // (upwind Gauss-Seidel in the same four orderings).
-    for (std::size_t p = 0; p < q.size(); ++p) q[p] = std::isnan(qEdge[p]) ? 0.0 : qEdge[p];
-    for (int iter = 0; iter < 4; ++iter)
-      for (int sweep = 0; sweep < 4; ++sweep) {
-        const bool fx = sweep & 1, fy = sweep & 2;
-        for (int jj = 0; jj < n; ++jj)
-          for (int ii = 0; ii < n; ++ii) {
-            const int i = fx ? n - 1 - ii : ii, j = fy ? n - 1 - jj : jj;
-            const std::size_t p = at(i, j);
-            if (fixedNode[p] || !std::isnan(qEdge[p])) continue;
-            const double ax = std::abs(sx[p]), ay = std::abs(sy[p]);
-            const int iu = i - (sx[p] > 0 ? 1 : -1), ju = j - (sy[p] > 0 ? 1 : -1);
-            const double qx = iu >= 0 && iu < n ? q[at(iu, j)] : 0.0;
-            const double qy = ju >= 0 && ju < n ? q[at(i, ju)] : 0.0;
-            q[p] = (div[p] * r.cellM + ax * qx + ay * qy) / std::max(ax + ay, 1e-30);
-          }
-      }
+    const Solved sol = solveComponent(grid, k0, w.omega, isl.travel[c].x, isl.travel[c].y, outer ? OuterAt(outerAt) : OuterAt());
+    cf.reversed_[c] = sol.sgn < 0.0;
+    cf.outerComponents_ += sol.fromOuter;
+    const double sgn = sol.sgn, s0x = sol.s0x, s0y = sol.s0y;
     // The eikonal's phase offset, turning and Kr per node, before the island table is folded in.
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
         const std::size_t p = at(i, j);
-        if (!std::isfinite(s[p]) || !std::isfinite(q[p])) continue;  // not reached from the inflow edges
+        if (!std::isfinite(sol.s[p]) || !std::isfinite(sol.q[p])) continue;  // not reached from the inflow edges
         cf.eikonal_[c * std::size_t(n) * n + p] =
-            glm::dvec3(sgn * (s[p] - k0 * (s0x * x(i) + s0y * x(j))),
-                       std::atan2(s0x * sy[p] - s0y * sx[p], s0x * sx[p] + s0y * sy[p]),
-                       std::clamp(std::exp(-0.5 * q[p]), kKrMin, kKrMax));
+            glm::dvec3(sgn * (sol.s[p] - k0 * (s0x * x(i) + s0y * x(j))),
+                       std::atan2(s0x * sol.sy[p] - s0y * sol.sx[p], s0x * sol.sx[p] + s0y * sol.sy[p]),
+                       std::clamp(std::exp(-0.5 * sol.q[p]), kKrMin, kKrMax));
       }
   }
   cf.fold(cf.islands_, cf.shadow_, cf.texels_);
@@ -518,6 +617,100 @@ std::vector<glm::vec4> CoastField::gpuTexels() const {
   v.reserve(texels_.size());
   for (const auto& t : texels_) v.push_back(glm::vec4(t));
   return v;
+}
+
+}  // namespace geocean::waves
+
+namespace geocean::waves {
+
+void OuterPhase::latticePoint(double latDeg, double lonDeg, double& latOut, double& lonOut) {
+  latOut = std::clamp(std::round(latDeg / kLatticeDeg) * kLatticeDeg, -89.0, 89.0);
+  lonOut = std::round(lonDeg / kLatticeDeg) * kLatticeDeg;
+}
+
+OuterPhase OuterPhase::build(const WaveField& field, double latDeg, double lonDeg,
+                             const std::function<double(double, double)>& depthAt, std::string& error) {
+  OuterPhase op;
+  if (field.model() != Model::Gerstner) {
+    error = std::string("outer phase: model ") + toString(field.model()) + " has no phase field (gerstner only)";
+    return op;
+  }
+  if (!(latDeg >= -89.0 && latDeg <= 89.0) || !std::isfinite(lonDeg)) {
+    std::ostringstream os;
+    os << "outer phase: centre " << latDeg << ", " << lonDeg << " is invalid (expected latitude -89 .. 89, finite longitude)";
+    error = os.str();
+    return op;
+  }
+  const int n = kNodes;
+  op.latDeg_ = latDeg, op.lonDeg_ = lonDeg;
+  const double phi = latDeg * kPi / 180.0, lam = lonDeg * kPi / 180.0;
+  const double sp = std::sin(phi), cp = std::cos(phi), sl = std::sin(lam), cl = std::cos(lam);
+  const double nr = kA / std::sqrt(1.0 - kE2 * sp * sp);
+  op.centre_ = {nr * cp * cl, nr * cp * sl, nr * (1.0 - kE2) * sp};
+  op.east_ = {-sl, cl, 0.0};
+  op.north_ = {-sp * cl, -sp * sl, cp};
+  const glm::dvec3 radial = glm::normalize(op.centre_);
+  const double half = 0.5 * (n - 1);
+  auto x = [&](int i) { return (i - half) * kCellM; };
+  std::vector<double> depth(std::size_t(n) * n), elevation(depth.size());
+  // Rows on all cores: depthAt is the façade's query (thread-safe).
+  tbb::parallel_for(0, n, [&](int j) {
+    for (int i = 0; i < n; ++i) {
+      const double h = depthAt(x(i), x(j));
+      depth[std::size_t(j) * n + i] = std::isfinite(h) ? std::max(h, kMinDepthM) : kMinDepthM;
+      elevation[std::size_t(j) * n + i] = std::isfinite(h) ? -h : -kMinDepthM;
+    }
+  });
+  const auto& comps = field.components();
+  op.n_ = n;
+  op.components_ = int(comps.size());
+  op.nodes_.assign(comps.size() * std::size_t(n) * n, glm::dvec2(std::numeric_limits<double>::quiet_NaN()));
+  const Grid grid{n, kCellM, &depth, &elevation, true};
+  op.reversed_.assign(comps.size(), 0);
+  // Components in parallel: each solve is independent (its own buffers).
+  tbb::parallel_for(std::size_t(0), comps.size(), [&](std::size_t c) {
+    const WaveField::Component& w = comps[c];
+    glm::dvec3 g = radial * glm::dot(w.source, radial) - w.source;
+    if (glm::length(g) < 1e-12) return;  // at its source: no travel (the fine field skips it too)
+    g = glm::normalize(g);
+    const Solved sol = solveComponent(grid, w.kRef, w.omega, glm::dot(g, op.east_), glm::dot(g, op.north_), {});
+    op.reversed_[c] = sol.sgn < 0.0;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const std::size_t p = std::size_t(j) * n + i;
+        if (!std::isfinite(sol.s[p]) || !std::isfinite(sol.q[p]) || elevation[p] >= 0.0) continue;
+        op.nodes_[c * std::size_t(n) * n + p] =
+            glm::dvec2(sol.sgn * (sol.s[p] - w.kRef * (sol.s0x * x(i) + sol.s0y * x(j))), sol.q[p]);
+      }
+  });
+  return op;
+}
+
+bool OuterPhase::covers(const glm::dvec3& centreEcef, double halfM) const {
+  if (n_ == 0) return false;
+  const glm::dvec3 d = centreEcef - centre_;
+  const double lim = 0.5 * (n_ - 1) * kCellM - kReachM - halfM;
+  return std::abs(glm::dot(d, east_)) <= lim && std::abs(glm::dot(d, north_)) <= lim;
+}
+
+glm::dvec2 OuterPhase::sample(int c, const glm::dvec3& p) const {
+  const glm::dvec2 none(std::numeric_limits<double>::quiet_NaN());
+  if (n_ == 0 || c < 0 || c >= components_) return none;
+  const double half = 0.5 * (n_ - 1);
+  const glm::dvec3 d = p - centre_;
+  const double tx = glm::dot(d, east_) / kCellM + half, ty = glm::dot(d, north_) / kCellM + half;
+  const double fx = std::floor(tx), fy = std::floor(ty);
+  if (!(fx >= 0.0 && fy >= 0.0 && fx < n_ - 1 && fy < n_ - 1)) return none;
+  const int i = int(fx), j = int(fy);
+  const double ax = tx - fx, ay = ty - fy;
+  glm::dvec2 sum(0.0);
+  for (int dj = 0; dj < 2; ++dj)
+    for (int di = 0; di < 2; ++di) {
+      const glm::dvec2 v = nodes_[(std::size_t(c) * n_ + std::size_t(j + dj)) * n_ + std::size_t(i + di)];
+      if (std::isnan(v.x)) return none;
+      sum += (di ? ax : 1.0 - ax) * (dj ? ay : 1.0 - ay) * v;
+    }
+  return sum;
 }
 
 }  // namespace geocean::waves

@@ -33,10 +33,12 @@
 // arrives from the region's own edges (two regions disagree). Near an
 // island such a component's eikonal wraps around it on the up-wave side
 // (the reversed wave's lee); the island table still shades the true lee.
+// Where no inflow node is deep for a component, its phase comes from an
+// OuterPhase (below) given to build(), the same for every region inside it.
 // Limits: curved contours at a shallow inflow edge start approximately;
-// where no inflow node is deep the phase's constant is the region's own (a
-// moved region shifts it); first arrivals only (no crossing seas behind a
-// shoal).
+// without an outer phase (or outside its reach) a region with no deep
+// inflow fixes the phase's constant at its own deepest edge node (a moved
+// region shifts it); first arrivals only (no crossing seas behind a shoal).
 //
 // Islands (paper 003 sec. 3): the table (D_blo, theta_blo, D_obs, theta_def)
 // per component and node from the same elevation (shaders/coast_islands.glsl,
@@ -74,6 +76,56 @@ namespace geocean::waves {
 
 class WaveField;
 
+// The outer phase (issue 15 item 1, a shelf with no deep water in reach):
+// the same eikonal as CoastField's, solved coarsely (500 m cells, 200 km,
+// land blocking) over the sea around a region, on a lattice fixed on the
+// ellipsoid (the centre at whole multiples of kLatticeDeg in latitude and
+// longitude), so every fine region that reads it reads the same phase. A
+// fine region with no deep inflow node for a component takes that
+// component's phase offset and ray-tube spreading from here at every node
+// at least kMinDepthM deep inside an all-water coarse cell, and solves only
+// the rest (the shore, shoals) from them: re-solving the whole region from
+// its edges would add the coarse solve's first-order drift (measured up to
+// 1.9 rad over 10 km at 500 m cells, half that at 250 m) from edges that
+// move with the region. Before, the plane wave at the region's own deepest
+// edge node fixed the phase, and two regions 2.8 km apart off the Dutch
+// coast had unrelated phases.
+// Offsets as the fine field's: the phase minus the grid's plane wave, i.e.
+// the integral of k - k_ref along the rays from deep water (0 there), which
+// the kernel adds to its own deep-water phase.
+class OuterPhase {
+ public:
+  static constexpr double kLatticeDeg = 0.25, kCellM = 500.0;
+  static constexpr int kNodes = 401;
+  static constexpr double kMinDepthM = 10.0;
+  // Fine regions read it while they lie this far inside its edges (their
+  // inflow edges then take phases the coarse solve carried >= 10 km).
+  static constexpr double kReachM = 10e3;
+  // The lattice point nearest (latDeg, lonDeg).
+  static void latticePoint(double latDeg, double lonDeg, double& latOut, double& lonOut);
+  // depthAt(eastM, northM) as CoastField::build's, about the lattice point.
+  static OuterPhase build(const WaveField& field, double latDeg, double lonDeg,
+                          const std::function<double(double eastM, double northM)>& depthAt, std::string& error);
+  bool empty() const { return n_ == 0; }
+  double latDeg() const { return latDeg_; }
+  double lonDeg() const { return lonDeg_; }
+  // Whether a square of half-size halfM about centreEcef lies kReachM inside the grid.
+  bool covers(const glm::dvec3& centreEcef, double halfM) const;
+  // Component c at ECEF point p: (phase offset, ray-tube spreading
+  // q = ln(b / b0)), bilinear; NaN unless the cell's four nodes are reached water.
+  glm::dvec2 sample(int c, const glm::dvec3& p) const;
+  int components() const { return components_; }
+  // Whether component c was solved from its outflow edges (as CoastField::reversed).
+  bool reversed(int c) const { return c >= 0 && c < int(reversed_.size()) && reversed_[std::size_t(c)]; }
+
+ private:
+  double latDeg_ = 0.0, lonDeg_ = 0.0;
+  std::vector<char> reversed_;
+  int n_ = 0, components_ = 0;
+  glm::dvec3 centre_{0.0}, east_{0.0}, north_{0.0};
+  std::vector<glm::dvec2> nodes_;  // per component and node: (offset, q); NaN: not reached
+};
+
 class CoastField {
  public:
   struct Region {
@@ -101,8 +153,13 @@ class CoastField {
   // The refraction coefficient's clamp: amplitudes scale by at most this
   // over the deep-water ones before the breaking and Miche caps, which only lower them.
   static constexpr double kMaxKr = 4.0, kMinKr = 0.25;
+  // outer (optional): asked for at most once, when a component has no deep
+  // inflow node; its phase then fixes that component's inflow edges (null: as without).
   static CoastField build(const WaveField& field, const Region& region,
-                          const std::function<double(double eastM, double northM)>& depthAt, std::string& error);
+                          const std::function<double(double eastM, double northM)>& depthAt, std::string& error,
+                          const std::function<const OuterPhase*()>& outer = {});
+  // How many components took their inflow edges from an OuterPhase.
+  int outerComponents() const { return outerComponents_; }
 
   enum class Breaker { Spilling, Plunging, Surging };
   // Battjes (1974)'s classes by the Iribarren number (bounds 0.4 and 2).
@@ -148,6 +205,7 @@ class CoastField {
   glm::dvec3 eAxis_{0.0}, nAxis_{0.0};  // east / north per cell, rounded to float
   std::vector<glm::dvec4> texels_;
   std::vector<char> reversed_;  // per component
+  int outerComponents_ = 0;
   std::vector<glm::dvec4> islands_;
   std::vector<double> shadow_;
   IslandInputs islandInputs_;

@@ -14,8 +14,13 @@
 // alike. A second reference, in each round too: 4096 deep-water Gerstner
 // heights (WaveField::surfaceAt, the scalar query of bench_coast's
 // BM_DeepQuery/0), so a build reads as so many queries' CPU time on any
-// machine. Not run by ctest; figures in docs/PERFORMANCE.md.
-//   bench_coast_follow [--rounds N] [--components N]
+// machine. --dutch instead: the bundled world off the Dutch coast (no deep
+// inflow, so the region reads waves::OuterPhase): the outer phase's build
+// alone (200 km, 401^2 nodes, components on TBB), the first region
+// (setCoastRegion: outer + field), the follow rebuilds that reuse the outer,
+// and the field alone without it on this thread (the reference).
+// Not run by ctest; figures in docs/PERFORMANCE.md.
+//   bench_coast_follow [--rounds N] [--components N] [--dutch 1]
 #include "globe/geo/Ellipsoid.h"
 #include "globe/raster/Raster.h"
 #include "plugin/ocean/Ocean.h"
@@ -28,6 +33,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -55,10 +61,85 @@ constexpr int kW = 400, kH = 2000;
 const raster::GeoTransform kPlace{-0.3, 1.5, 0.001, -0.001, false};
 double lonOf(int x) { return -0.3 + (x + 0.5) * 0.001; }
 
+// The depth as the façade samples it (plugin/ocean/Ocean.cpp, depthAbout).
+std::function<double(double, double)> depthAbout(const std::shared_ptr<const ocean::Snapshot>& snap, double latDeg,
+                                                 double lonDeg) {
+  const geo::EnuFrame f = geo::enuFrame({latDeg, lonDeg, 0.0});
+  return [snap, f](double e, double n) {
+    const geo::Geodetic g = geo::fromEcef(f.originEcef + f.east * e + f.north * n);
+    world::Surface s;
+    snap->landSea->classifyBatch(&g.latDeg, &g.lonDeg, 1, &s);
+    if (s != world::Surface::Ocean) return 0.0;
+    float el = std::numeric_limits<float>::quiet_NaN();
+    snap->landSea->elevationBatch(&g.latDeg, &g.lonDeg, 1, &el);
+    return std::isnan(el) ? waves::kDeepWaterM : std::max(-double(el), 1.0);
+  };
+}
+
+int benchDutch(int rounds, int components) {
+  std::vector<double> ow, oc, sw, sc, fw, fc, bw, bc;
+  int outerComps = 0;
+  for (int k = 0; k < rounds; ++k) {
+    ocean::Ocean o;
+    o.setDefaultWorld(ocean::Ocean::defaultWorldDir());
+    waves::SeaState sea;
+    sea.windSpeedMps = 12.0;
+    sea.windFromDeg = 270.0;
+    sea.gerstnerComponents = components;
+    o.setSeaState(waves::Model::Gerstner, sea);
+    waves::CoastField::Region r;
+    r.latDeg = 52.6, r.lonDeg = 4.45, r.nodes = 201, r.cellM = 50.0;
+    const auto snap0 = o.current();
+    double lat = 0.0, lon = 0.0;
+    waves::OuterPhase::latticePoint(r.latDeg, r.lonDeg, lat, lon);
+    std::string err;
+    const double w0 = wallS(), c0 = cpuS();
+    const waves::OuterPhase op = waves::OuterPhase::build(*snap0->waves, lat, lon, depthAbout(snap0, lat, lon), err);
+    const double w1 = wallS(), c1 = cpuS();
+    if (op.empty()) {
+      std::fprintf(stderr, "bench_coast_follow: %s\n", err.c_str());
+      return 1;
+    }
+    o.setCoastRegion(r);
+    const double w2 = wallS(), c2 = cpuS();
+    const auto snap = o.current();
+    outerComps = snap->waves->coastField()->outerComponents();
+    // One follow rebuild 0.6 sizes north (the outer kept).
+    if (o.followCoastRegion(r.latDeg + 0.054, r.lonDeg) != ocean::Ocean::CoastFollow::Started) return 1;
+    o.waitForCoastBuild();
+    const double w3 = wallS(), c3 = cpuS();
+    if (o.followCoastRegion(r.latDeg + 0.054, r.lonDeg) != ocean::Ocean::CoastFollow::Swapped) return 1;
+    if (o.current()->coastOuter != snap->coastOuter) {
+      std::fprintf(stderr, "bench_coast_follow: the follow build did not keep the outer phase\n");
+      return 1;
+    }
+    // The reference: the first region's field without the outer, this thread.
+    const double w4 = wallS(), c4 = cpuS();
+    const waves::CoastField cf =
+        waves::CoastField::build(*snap->waves, r, depthAbout(snap, r.latDeg, r.lonDeg), err);
+    const double w5 = wallS(), c5 = cpuS();
+    if (cf.empty()) return 1;
+    if (k == 0) continue;
+    ow.push_back(1e3 * (w1 - w0)), oc.push_back(1e3 * (c1 - c0));
+    sw.push_back(1e3 * (w2 - w1)), sc.push_back(1e3 * (c2 - c1));
+    fw.push_back(1e3 * (w3 - w2)), fc.push_back(1e3 * (c3 - c2));
+    bw.push_back(1e3 * (w5 - w4)), bc.push_back(1e3 * (c5 - c4));
+  }
+  std::printf("bench_coast_follow --dutch: 52.6 N 4.45 E, 12 m/s from 270, %d components (%d read the outer), "
+              "region 201^2 x 50 m; medians of %d rounds (first dropped), wall / CPU ms\n",
+              components, outerComps, rounds - 1);
+  std::printf("outer phase alone (401^2 x 500 m)      %8.0f / %7.0f\n", median(ow), median(oc));
+  std::printf("setCoastRegion (outer + field)         %8.0f / %7.0f\n", median(sw), median(sc));
+  std::printf("follow rebuild (outer kept)            %8.0f / %7.0f\n", median(fw), median(fc));
+  std::printf("field alone, no outer (reference)      %8.0f / %7.0f\n", median(bw), median(bc));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int rounds = 5, components = 16;
+  bool dutch = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (i + 1 >= argc) {
@@ -67,6 +148,7 @@ int main(int argc, char** argv) {
     }
     if (a == "--rounds") rounds = std::atoi(argv[++i]);
     else if (a == "--components") components = std::atoi(argv[++i]);
+    else if (a == "--dutch") dutch = std::atoi(argv[++i]) != 0;
     else {
       std::fprintf(stderr, "bench_coast_follow: unknown option '%s'\n", a.c_str());
       return 2;
@@ -77,6 +159,7 @@ int main(int argc, char** argv) {
                  components);
     return 2;
   }
+  if (dutch) return benchDutch(rounds, components);
   std::vector<float> elev(std::size_t(kW) * kH), land(std::size_t(kW) * kH);
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
