@@ -5,6 +5,7 @@
 #include "globe/raster/World.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 namespace geocean::app {
@@ -97,6 +98,34 @@ int loadDrawnWorld(const char* command, const LayerOptions& o, std::vector<world
     return kExitDataError;
   }
   return kExitOk;
+}
+
+std::vector<std::string> layerLabels(const LayerOptions& o) {
+  std::vector<std::string> labels;
+  auto add = [&](const char* kind, const std::vector<std::string>& files) {
+    for (const std::string& f : files) labels.push_back(std::string(kind) + std::filesystem::path(f).filename().string());
+  };
+  add("mask  ", o.masks);
+  add("elevation  ", o.elevations);
+  add("imagery  ", o.imagery);
+  return labels;
+}
+
+LayerOptions shownLayers(const LayerOptions& o, const std::vector<char>& shown) {
+  LayerOptions s = o;
+  std::size_t i = 0;
+  auto keep = [&](const std::vector<std::string>& files, std::vector<std::string>& out) {
+    out.clear();
+    for (const std::string& f : files) {
+      if (i >= shown.size() || shown[i]) out.push_back(f);
+      ++i;
+    }
+  };
+  keep(o.masks, s.masks);
+  keep(o.elevations, s.elevations);
+  keep(o.imagery, s.imagery);
+  if (s.masks.empty()) s.maskEncoding.clear();  // the encoding is the masks': none shown, none to apply
+  return s;
 }
 
 }  // namespace geocean::app

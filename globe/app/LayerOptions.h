@@ -49,4 +49,11 @@ std::vector<world::LayerSource> layerSources(const LayerOptions& o);
 int loadDrawnWorld(const char* command, const LayerOptions& o, std::vector<world::LayerSource>& sources,
                    world::WorldData& data);
 
+// The viewer panel's layer list (gl::PanelState::layerNames): one label per
+// --mask, --elevation and --imagery file, in that order ("mask  name.tif").
+std::vector<std::string> layerLabels(const LayerOptions& o);
+// The same options with only the layers whose `shown` entry (in
+// layerLabels' order) is non-zero; missing entries count as shown.
+LayerOptions shownLayers(const LayerOptions& o, const std::vector<char>& shown);
+
 }  // namespace geocean::app

@@ -37,6 +37,7 @@ namespace {
 
 struct ViewArgs {
   std::string flyTo;  // LAT,LON
+  std::string camera;  // LAT,LON,ALT,HEADING,PITCH: the first view (as render's)
   std::string size = "1280x720";
   double flightS = 30.0;   // interactive --fly-to duration
   int frames = 0;          // > 0: draw this many frames, then exit
@@ -171,6 +172,10 @@ int runView(const ViewArgs& a) {
   try {
     render::parseSize(a.size, c.pose);
     c.pose.latDeg = 20.0, c.pose.lonDeg = -30.0, c.pose.altM = 2.0e7;
+    if (!a.camera.empty()) {
+      if (!a.flyTo.empty()) throw render::ArgError("--camera and --fly-to: give one (both set the first view)");
+      render::parseCamera(a.camera, c.pose);
+    }
     if (!a.flyTo.empty()) {
       const auto v = render::parseNumbers(a.flyTo, 2, "--fly-to LAT,LON");
       if (auto e = checkLatLon(v[0], v[1], "--fly-to"); !e.empty()) throw render::ArgError(e);
@@ -248,11 +253,12 @@ int runView(const ViewArgs& a) {
   gl::enableGlDebug();
   int rc = kExitOk;
   {
-    auto world = std::make_shared<render::WorldTextures>(data);
-    render::GlobeRenderer renderer(world);
+    // A pointer: hiding or showing a raster layer (panel, keys 1-9) makes a
+    // new world and so a new renderer with the same ocean and boats.
+    auto renderer = std::make_unique<render::GlobeRenderer>(std::make_shared<render::WorldTextures>(data));
     // The ocean through the plugin's C ABI, as any host engine loads it.
     std::shared_ptr<host::PluginOceanLayer> ocean;
-    if (const std::string oceanErr = host::addPluginOcean(renderer, a.waves, windMps, a.windFromDeg, &ocean, sources,
+    if (const std::string oceanErr = host::addPluginOcean(*renderer, a.waves, windMps, a.windFromDeg, &ocean, sources,
                                                                     !a.layers.noDefaultWorld);
         !oceanErr.empty()) {
       std::fprintf(stderr, "geocean view: %s\n", oceanErr.c_str());
@@ -274,7 +280,7 @@ int runView(const ViewArgs& a) {
     if (rc == kExitOk) {
       double tLat = plan.toLatDeg, tLon = plan.toLonDeg;
       if (!flying) host::viewTarget(c.pose, tLat, tLon);
-      if (const int brc = addBoats("view", a.boats, renderer, ocean, tLat, tLon, boats); brc != kExitOk) {
+      if (const int brc = addBoats("view", a.boats, *renderer, ocean, tLat, tLon, boats); brc != kExitOk) {
         rc = brc;
         glfwSetWindowShouldClose(win, GLFW_TRUE);
       }
@@ -293,6 +299,35 @@ int runView(const ViewArgs& a) {
     panel.windMps = float(windMps), panel.windFromDeg = float(a.windFromDeg);
     panel.sunAzimuthDeg = float(sunAzEl[0]), panel.sunElevationDeg = float(sunAzEl[1]);
     panel.reflections = !a.noReflections, panel.refraction = !a.noRefraction;
+    panel.layerNames = layerLabels(a.layers);
+    panel.layerShown.assign(panel.layerNames.size(), 1);
+    // The layers as the panel shows them, drawn and queried alike: the host's
+    // world from the shown files and the ocean's stack from the same (a
+    // failure keeps the picture as it was and says why).
+    std::vector<char> layersDrawn = panel.layerShown;
+    auto applyShownLayers = [&] {
+      const LayerOptions shown = shownLayers(a.layers, panel.layerShown);
+      std::vector<world::LayerSource> s;
+      world::WorldData d;
+      if (loadDrawnWorld("view", shown, s, d) != kExitOk) {
+        panel.layerShown = layersDrawn;
+        return;
+      }
+      if (ocean) {
+        if (const std::string err = host::setPluginLayers(*ocean, s); !err.empty()) {
+          std::fprintf(stderr, "geocean view: %s\n", err.c_str());
+          // Back to what is drawn, so query and picture stay one stack.
+          (void)host::setPluginLayers(*ocean, layerSources(shownLayers(a.layers, layersDrawn)));
+          panel.layerShown = layersDrawn;
+          return;
+        }
+      }
+      renderer = std::make_unique<render::GlobeRenderer>(std::make_shared<render::WorldTextures>(d));
+      if (ocean) renderer->addLayer(ocean);
+      if (boats) renderer->addSceneObject(boats);
+      layersDrawn = panel.layerShown;
+    };
+    bool digitWasDown[9] = {};
     bool showPanel = a.panel && hud, pKeyWasDown = false;
     glfwSetWindowUserPointer(win, &c);
     glfwSetScrollCallback(win, [](GLFWwindow* w, double, double dy) {
@@ -335,6 +370,14 @@ int runView(const ViewArgs& a) {
       const bool pKey = key(GLFW_KEY_P);
       if (pKey && !pKeyWasDown && hud) showPanel = !showPanel;  // P toggles the control panel
       pKeyWasDown = pKey;
+      bool layerKey = false;  // 1-9 show or hide the panel's layer of that number
+      for (int i = 0; i < 9; ++i) {
+        const bool d = key(GLFW_KEY_1 + i);
+        if (d && !digitWasDown[i] && i < int(panel.layerShown.size()))
+          panel.layerShown[size_t(i)] = !panel.layerShown[size_t(i)], layerKey = true;
+        digitWasDown[i] = d;
+      }
+      if (layerKey) applyShownLayers();
       const bool fKey = key(GLFW_KEY_F);
       if (fKey && !fKeyWasDown && boats) follow = (follow + 1) % (int(boats->count()) + 1);
       fKeyWasDown = fKey;
@@ -363,7 +406,7 @@ int runView(const ViewArgs& a) {
       fs.refraction = panel.refraction;
       fs.reflectionSize = a.reflectionSize;
       fs.reflectionEvery = a.reflectionEvery;
-      const render::FrameTimes times = renderer.render(c.pose, fs);
+      const render::FrameTimes times = renderer->render(c.pose, fs);
       tilesBuilt += times.terrain.tilesBuilt;
       // The float-depth target is blitted to the window (its own depth is fixed point).
       glBindFramebuffer(GL_READ_FRAMEBUFFER, fb->id());
@@ -389,6 +432,7 @@ int runView(const ViewArgs& a) {
                                                           panel.windFromDeg);
           if (!err.empty()) std::fprintf(stderr, "geocean view: %s\n", err.c_str());
         }
+        if (change.layers) applyShownLayers();
       } else if (hud && showHud) {
         glViewport(0, 0, w, h);
         hud->draw(w, h, dt, hv);
@@ -432,6 +476,10 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                       auto a = std::make_shared<ViewArgs>();
                       sub.add_option("--fly-to", a->flyTo, "LAT,LON: fly from orbit to 2 m above this sea point")
                           ->check(nonEmpty);
+                      sub.add_option("--camera", a->camera,
+                                     "LAT,LON,ALT,HEADING,PITCH: the first view, as render's (default: orbit over "
+                                     "20,-30)")
+                          ->allow_extra_args(false);
                       sub.add_option("--size", a->size, "window WIDTHxHEIGHT");
                       sub.add_option("--flight-seconds", a->flightS, "duration of the --fly-to flight (default 30)");
                       sub.add_option("--frames", a->frames,
@@ -448,7 +496,7 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                       sub.add_flag("--no-hud", a->noHud, "no HUD panel (H toggles it in the window)");
                       sub.add_flag("--panel", a->panel,
                                    "open the control panel (P toggles it): wave model, wind, sun, reflections and "
-                                   "refraction, changed live");
+                                   "refraction, raster layers shown (also keys 1-9), changed live");
                       sub.add_flag("--no-reflections", a->noReflections,
                                    "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
                       sub.add_flag("--no-refraction", a->noRefraction,

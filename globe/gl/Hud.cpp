@@ -159,6 +159,25 @@ PanelChange Hud::frame(int widthPx, int heightPx, double dtS, const HudValues& v
         layout_.reflections = lastItem();
         change.light |= ImGui::Checkbox("refraction", &panel->refraction);
         layout_.refraction = lastItem();
+        ImGui::Separator();
+        if (panel->layerNames.empty()) {
+          ImGui::TextDisabled("no raster layers (--mask, --elevation, --imagery)");
+        } else {
+          ImGui::TextUnformatted("raster layers shown (keys 1-9)");
+          panel->layerShown.resize(panel->layerNames.size(), 1);
+          layout_.layers.resize(panel->layerNames.size());
+          for (std::size_t i = 0; i < panel->layerNames.size(); ++i) {
+            ImGui::PushID(int(i));
+            bool shown = panel->layerShown[i] != 0;
+            const std::string label = (i < 9 ? std::to_string(i + 1) + " " : std::string("  ")) + panel->layerNames[i];
+            if (ImGui::Checkbox(label.c_str(), &shown)) {
+              panel->layerShown[i] = shown ? 1 : 0;
+              change.layers = true;
+            }
+            layout_.layers[i] = lastItem();
+            ImGui::PopID();
+          }
+        }
         ImGui::PopItemWidth();
         const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
         layout_.window = {at.x, at.y, at.x + size.x, at.y + size.y};

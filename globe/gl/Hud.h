@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 struct ImGuiContext;
 
@@ -32,6 +33,10 @@ struct PanelState {
   float windMps = 10.0f, windFromDeg = 270.0f;
   float sunAzimuthDeg = 135.0f, sunElevationDeg = 40.0f;  // at the camera's nadir
   bool reflections = true, refraction = true;
+  // The user's raster layers (--mask, --elevation, --imagery; the viewer
+  // fills them), each drawn and queried only while shown; keys 1-9 too.
+  std::vector<std::string> layerNames;
+  std::vector<char> layerShown;  // char, not bool: ImGui's checkbox takes a bool*
 };
 inline constexpr const char* kPanelWaveModels[] = {"noise", "gerstner", "fft"};
 // Beaufort force of a wind speed at 10 m (m/s; WMO No. 8's class limits).
@@ -40,6 +45,7 @@ int beaufortOf(double windMps);
 // is released (a new sea state rebuilds the waves), the rest at once.
 struct PanelChange {
   bool sea = false, light = false;
+  bool layers = false;  // a layer was shown or hidden: the world is rebuilt
 };
 // Where the panel's controls were last drawn (window pixels, y down): tests
 // click them.
@@ -49,6 +55,7 @@ struct PanelLayout {
   };
   Rect window;  // the whole panel
   Rect waveModel, wind, windFrom, sunAzimuth, sunElevation, reflections, refraction;  // sliders: their frames
+  std::vector<Rect> layers;  // PanelState::layerNames' checkboxes
   bool shown = false;
 };
 // The mouse as the window sees it this frame (pixels, y down).

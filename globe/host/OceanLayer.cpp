@@ -104,6 +104,26 @@ std::string setPluginSeaState(PluginOceanLayer& ocean, const std::string& modelN
   return {};
 }
 
+namespace {
+std::string addLayers(const OceanApi& a, geocean_ocean* ocean, const std::vector<world::LayerSource>& layers) {
+  for (const world::LayerSource& l : layers) {
+    const geocean_status st =
+        l.kind == world::LayerKind::Mask
+            ? a.addMaskLayerFile(ocean, l.path.c_str(), l.priority, l.encoding.c_str(), nullptr)
+            : a.addElevationLayerFile(ocean, l.path.c_str(), l.priority, nullptr);
+    if (st != GEOCEAN_OK) return a.lastError();
+  }
+  return {};
+}
+}  // namespace
+
+std::string setPluginLayers(PluginOceanLayer& ocean, const std::vector<world::LayerSource>& layers) {
+  const OceanApi& a = ocean.plugin().api();
+  if (!a.clearLayers) return ocean.plugin().path() + ": plugin ABI below 1.3 takes no raster layers";
+  if (a.clearLayers(ocean.ocean()) != GEOCEAN_OK) return a.lastError();
+  return addLayers(a, ocean.ocean(), layers);
+}
+
 std::string addPluginOcean(render::GlobeRenderer& renderer, const std::string& modelName, double windMps,
                            double windFromDeg, std::shared_ptr<PluginOceanLayer>* created,
                            const std::vector<world::LayerSource>& layers, bool defaultWorld) {
@@ -119,13 +139,7 @@ std::string addPluginOcean(render::GlobeRenderer& renderer, const std::string& m
   if (defaultWorld && a.setDefaultWorld(ocean) != GEOCEAN_OK) return a.lastError();
   if (!layers.empty() && !a.addMaskLayerFile)
     return plugin->path() + ": plugin ABI below 1.3 takes no raster layers (--mask, --elevation)";
-  for (const world::LayerSource& l : layers) {
-    const geocean_status st =
-        l.kind == world::LayerKind::Mask
-            ? a.addMaskLayerFile(ocean, l.path.c_str(), l.priority, l.encoding.c_str(), nullptr)
-            : a.addElevationLayerFile(ocean, l.path.c_str(), l.priority, nullptr);
-    if (st != GEOCEAN_OK) return a.lastError();
-  }
+  if (std::string err = addLayers(a, ocean, layers); !err.empty()) return err;
   if (a.setSeaState(ocean, &s) != GEOCEAN_OK) return a.lastError();
   renderer.addLayer(layer);
   if (created) *created = layer;

@@ -72,4 +72,10 @@ std::string addPluginOcean(render::GlobeRenderer& renderer, const std::string& m
 std::string setPluginSeaState(PluginOceanLayer& ocean, const std::string& modelName, double windMps,
                               double windFromDeg);
 
+// Replaces a running ocean's raster layers (the viewer's panel hides and
+// shows them): every layer removed, then `layers` added as addPluginOcean
+// adds them; the base (default world) stays. Returns the error (empty on
+// success); on error the ocean may hold some of the new layers.
+std::string setPluginLayers(PluginOceanLayer& ocean, const std::vector<world::LayerSource>& layers);
+
 }  // namespace geocean::host

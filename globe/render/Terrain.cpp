@@ -425,14 +425,20 @@ bool TerrainRenderer::bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, c
 
 TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const camera::Camera& selectFrom,
                                            const camera::Lighting& light) {
-  if (mirrored_.id() == 0)  // compiled on the first reflection a layer asks for
-    mirrored_ = gl::GlProgram::graphics(
-        "terrain.vert", "terrain.frag",
-        !world_.elevationTiles() ? std::vector<std::string>{"GEOCEAN_CLIP_SEA 1", imageryDefine()}
-        : world_.elevationTiles()->pyramid().source().transform().global
-            ? std::vector<std::string>{"GEOCEAN_CLIP_SEA 1", imageryDefine(), "GEOCEAN_ELEVATION_TILES 1"}
-            : std::vector<std::string>{"GEOCEAN_CLIP_SEA 1", imageryDefine(), "GEOCEAN_ELEVATION_TILES 1",
-                                       "GEOCEAN_ELEVATION_REGIONAL 1"});
+  if (mirrored_.id() == 0) {  // compiled on the first reflection a layer asks for
+    // Clipped by the streamed water too: a regional layer's grid below knows
+    // none of its islands (the whole island was clipped, none reflected).
+    std::vector<std::string> d = {"GEOCEAN_CLIP_SEA 1", imageryDefine()};
+    if (const gl::TilePool* w = world_.waterTiles()) {
+      d.push_back("GEOCEAN_WATER_TILES 1");
+      if (!w->pyramid().source().transform().global) d.push_back("GEOCEAN_WATER_REGIONAL 1");
+    }
+    if (const gl::TilePool* e = world_.elevationTiles()) {
+      d.push_back("GEOCEAN_ELEVATION_TILES 1");
+      if (!e->pyramid().source().transform().global) d.push_back("GEOCEAN_ELEVATION_REGIONAL 1");
+    }
+    mirrored_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", d);
+  }
   TerrainStats stats;
   std::vector<Key> tiles;
   std::vector<const Slot*> slots;

@@ -49,7 +49,9 @@ WorldTextures::WorldTextures(const world::WorldData& data)
     o.nodataValue = NAN;  // the shader falls back to the elevation grid there
     elevationTiles_ = std::make_unique<gl::TilePool>(data.elevationTiles, o);
   }
-  if (data.waterSource) waterTiles_ = std::make_unique<gl::TilePool>(world::waterPyramid(data.waterSource, data.waterEncoding));
+  if (data.waterSource)
+    waterTiles_ = std::make_unique<gl::TilePool>(data.waterFromRelief ? world::reliefWaterPyramid(data.waterSource)
+                                                                       : world::waterPyramid(data.waterSource, data.waterEncoding));
   indexRegionalWater();
 }
 

@@ -329,20 +329,21 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
     d.elevation = elevationLayerOf(stack);
   }
   // The first mask to answer, when it covers the Earth and is finer than the
-  // drawn grid (at most 5'), is drawn from its tiles (issue 12 item 2); a
-  // finer elevation layer (drawingMask null) decides the coast instead. Its
+  // drawn grid (at most 5'), is drawn from its tiles (issue 12 item 2); where
+  // a finer elevation layer (drawingMask null) decides the coast, its 0 m
+  // line is, the same way (streamedWaterLayer). Its
   // water grid is then the pyramid's coarse level, as the ocean's
   // (plugin/render/OceanWorld): one level's tiles from the disk cache instead
   // of classifying every grid cell through the stack.
   const auto m = stack.drawingMask();
   const double gridStep =
       m && globalInMemory(*m) ? m->transform().lonStepDeg : globalGridFor((m ? m : stack.drawingElevation()).get()).lonStepDeg;
-  if (const RasterLayer* l = streamedMaskLayer(stack, gridStep)) {
+  if (const RasterLayer* l = streamedWaterLayer(stack, gridStep)) {
     d.waterSource = l->raster;
+    d.waterFromRelief = l->kind == LayerKind::Elevation;
     d.waterEncoding = l->encoding;
-    // A regional mask is drawn over the grid of the layers below it.
-    d.water = isStreamedRegional(*l->raster) ? waterLayerBelow(stack, *l->raster)
-                                             : waterLayerOf(*waterPyramid(l->raster, l->encoding), gridStep);
+    // A regional mask (or relief) is drawn over the grid of the layers below it.
+    d.water = isStreamedRegional(*l->raster) ? waterLayerBelow(stack, *l->raster) : waterLayerOf(*waterPyramid(*l), gridStep);
   } else {
     d.water = waterLayerOf(stack);
   }

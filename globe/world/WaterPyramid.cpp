@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 #include <string>
 
 namespace geocean::world {
@@ -24,6 +26,26 @@ std::shared_ptr<const raster::TilePyramid> waterPyramid(std::shared_ptr<const ra
     }
   };
   return raster::TilePyramid::open(std::move(mask), std::move(options));
+}
+
+std::shared_ptr<const raster::TilePyramid> reliefWaterPyramid(std::shared_ptr<const raster::Raster> relief,
+                                                              raster::PyramidOptions options) {
+  const bool keepNodata = !relief->transform().global;
+  options.valueMapId = keepNodata ? "water-from-relief-regional" : "water-from-relief";
+  options.valueMap = [keepNodata](float* v, std::size_t n, int channels) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const float x = v[i * channels];
+      // NaN < 0 is false: a global relief's nodata would be land (not streamed: streamedWaterLayer).
+      const float w = keepNodata && std::isnan(x) ? NAN : x < 0.0f ? 1.0f : 0.0f;
+      for (int c = 0; c < channels; ++c) v[i * channels + c] = w;
+    }
+  };
+  return raster::TilePyramid::open(std::move(relief), std::move(options));
+}
+
+std::shared_ptr<const raster::TilePyramid> waterPyramid(const RasterLayer& layer, raster::PyramidOptions options) {
+  return layer.kind == LayerKind::Elevation ? reliefWaterPyramid(layer.raster, std::move(options))
+                                            : waterPyramid(layer.raster, layer.encoding, std::move(options));
 }
 
 namespace {
@@ -67,14 +89,138 @@ const RasterLayer* streamedMaskLayer(const LayerStack& stack, double gridLonStep
   return stack.drawingMask() ? firstIfStreamed(stack, LayerKind::Mask, gridLonStepDeg) : nullptr;
 }
 
+const RasterLayer* streamedWaterLayer(const LayerStack& stack, double gridLonStepDeg) {
+  if (stack.drawingMask()) return streamedMaskLayer(stack, gridLonStepDeg);
+  const RasterLayer* l = firstIfStreamed(stack, LayerKind::Elevation, gridLonStepDeg);
+  if (!l || (l->raster->transform().global && l->raster->nodata())) return nullptr;
+  for (const RasterLayer& o : stack.layers())  // it must answer first where it has data
+    if (o.kind != LayerKind::Imagery) return &o == l ? l : nullptr;
+  return nullptr;
+}
+
 const RasterLayer* streamedElevationLayer(const LayerStack& stack, double gridLonStepDeg) {
   return firstIfStreamed(stack, LayerKind::Elevation, gridLonStepDeg);
 }
 
+namespace {
+int levelFor(const raster::TilePyramid& p, double stepDeg) {
+  const raster::GeoTransform& t = p.source().transform();
+  int level = 0;
+  while (level + 1 < p.levels() && std::abs(t.lonStepDeg) * double(2 << level) <= stepDeg * (1.0 + 1e-9)) ++level;
+  while (level + 1 < p.levels() && p.levelWidth(level) > 16384) ++level;
+  return level;
+}
+
+// One level's rows, a band of tile rows at a time (the last two kept: the
+// rows are asked for in order), NaN as 0.
+class LevelRows {
+ public:
+  LevelRows(const raster::TilePyramid& p, int level) : p_(p), level_(level), w_(p.levelWidth(level)) {}
+  const float* row(int y) {
+    const int T = p_.tileSize(), ty = y / T;
+    for (Band& b : bands_)
+      if (b.ty == ty) return &b.v[std::size_t(y - ty * T) * w_];
+    Band& b = bands_[next_];
+    next_ ^= 1;
+    b.ty = ty;
+    b.v.assign(std::size_t(T) * w_, 0.0f);
+    const int c = p_.channels();
+    for (int tx = 0; tx < p_.tilesX(level_); ++tx) {
+      const auto tile = p_.interior({level_, tx, ty});
+      for (int yy = 0; yy < T; ++yy)
+        for (int x = 0; x < T && tx * T + x < w_; ++x) {
+          const float v = (*tile)[(std::size_t(yy) * T + x) * c];
+          b.v[std::size_t(yy) * w_ + tx * T + x] = std::isnan(v) ? 0.0f : v;
+        }
+    }
+    return &b.v[std::size_t(y - ty * T) * w_];
+  }
+
+ private:
+  struct Band {
+    int ty = -1;
+    std::vector<float> v;
+  };
+  const raster::TilePyramid& p_;
+  int level_, w_;
+  Band bands_[2];
+  int next_ = 0;
+};
+}  // namespace
+
 WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg) {
-  WorldLayer l = levelLayerOf(water, stepDeg);
-  for (float& v : l.values)
-    if (std::isnan(v)) v = 0.0f;
+  const int level = levelFor(water, stepDeg);
+  const raster::GeoTransform lt = water.levelTransform(level);
+  const raster::GeoTransform& t = water.source().transform();
+  const bool fullGlobe = t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * water.source().height() + 180.0) < 1e-6;
+  const int W = int(std::lround(360.0 / stepDeg)), H = int(std::lround(180.0 / stepDeg));
+  // The level is the grid (its texel is the step) or not global: the level itself.
+  if (!fullGlobe || std::abs(lt.lonStepDeg) * (1.0 + 1e-9) >= 360.0 / W || W < 1 || H < 1) {
+    WorldLayer l = levelLayerOf(water, stepDeg);
+    for (float& v : l.values)
+      if (std::isnan(v)) v = 0.0f;
+    return l;
+  }
+  // A level finer than the step (by less than 2x): resampled onto the
+  // step's own grid, so the grid's size is the step's whatever the
+  // raster's (peak memory independent of the raster's size). A texel is 1
+  // exactly when every level texel it overlaps is (so every mask cell under
+  // it is water: the open-water index stays exact, waterIndexFollowsTiles),
+  // above 0 when any is above 0 (nearWaterClassifier's "any water"), else
+  // the overlap-weighted mean.
+  WorldLayer l;
+  l.width = W, l.height = H;
+  l.originLonDeg = lt.originLonDeg, l.originLatDeg = lt.originLatDeg;
+  l.lonStepDeg = 360.0 / W, l.latStepDeg = -180.0 / H;
+  l.values.assign(std::size_t(W) * H, 0.0f);
+  const int LW = water.levelWidth(level), LH = water.levelHeight(level);
+  const double rx = l.lonStepDeg / std::abs(lt.lonStepDeg), ry = -l.latStepDeg / std::abs(lt.latStepDeg);
+  if (rx >= 2.0 || ry >= 2.0) {  // the pyramid's top is finer than half the step: that level
+    WorldLayer top = levelLayerOf(water, stepDeg);
+    for (float& v : top.values)
+      if (std::isnan(v)) v = 0.0f;
+    return top;
+  }
+  // Level texels [first, last] under [a, b) with their overlaps (none below 1e-9 of a texel).
+  struct Span {
+    int first, last;
+    double w[4];
+  };
+  const auto span = [](double a, double b) {
+    Span s;
+    s.first = int(std::floor(a + 1e-9));
+    s.last = std::max(s.first, int(std::ceil(b - 1e-9)) - 1);
+    for (int i = s.first; i <= s.last && i - s.first < 4; ++i)
+      s.w[i - s.first] = std::min(b, double(i + 1)) - std::max(a, double(i));
+    return s;
+  };
+  std::vector<Span> cols(W);
+  for (int x = 0; x < W; ++x) cols[std::size_t(x)] = span(x * rx, (x + 1) * rx);
+  LevelRows rows(water, level);
+  std::vector<double> sum(W), wsum(W);
+  std::vector<std::uint8_t> all(W);
+  for (int y = 0; y < H; ++y) {
+    const Span r = span(y * ry, (y + 1) * ry);
+    std::fill(sum.begin(), sum.end(), 0.0), std::fill(wsum.begin(), wsum.end(), 0.0);
+    std::fill(all.begin(), all.end(), std::uint8_t(1));
+    for (int j = r.first; j <= r.last; ++j) {
+      const float* row = rows.row(std::min(j, LH - 1));
+      const double wy = r.w[j - r.first];
+      for (int x = 0; x < W; ++x) {
+        const Span& c = cols[std::size_t(x)];
+        for (int i = c.first; i <= c.last; ++i) {
+          const float v = row[std::min(i, LW - 1)];
+          const double w = wy * c.w[i - c.first];
+          sum[std::size_t(x)] += w * v, wsum[std::size_t(x)] += w;
+          all[std::size_t(x)] &= v == 1.0f;
+        }
+      }
+    }
+    float* out = &l.values[std::size_t(y) * W];
+    for (int x = 0; x < W; ++x)
+      out[x] = all[std::size_t(x)] ? 1.0f
+                                   : std::min(float(sum[std::size_t(x)] / wsum[std::size_t(x)]), std::nextafter(1.0f, 0.0f));
+  }
   return l;
 }
 
@@ -91,10 +237,7 @@ WorldLayer regionalWaterCover(const raster::TilePyramid& water, std::size_t maxT
 }
 
 WorldLayer levelLayerOf(const raster::TilePyramid& water, double stepDeg) {
-  const raster::GeoTransform& t = water.source().transform();
-  int level = 0;
-  while (level + 1 < water.levels() && std::abs(t.lonStepDeg) * double(2 << level) <= stepDeg * (1.0 + 1e-9)) ++level;
-  while (level + 1 < water.levels() && water.levelWidth(level) > 16384) ++level;
+  const int level = levelFor(water, stepDeg);
   const raster::GeoTransform lt = water.levelTransform(level);
   WorldLayer l;
   l.width = water.levelWidth(level), l.height = water.levelHeight(level);

@@ -17,6 +17,14 @@ namespace geocean::world {
 std::shared_ptr<const raster::TilePyramid> waterPyramid(std::shared_ptr<const raster::Raster> mask,
                                                         const MaskEncoding& encoding = {},
                                                         raster::PyramidOptions options = {});
+// A relief's water, for a coast the relief decides (an elevation layer finer
+// than every mask, LayerStack::drawingMask() null): 1 below 0 m (ocean, as
+// LayerStack::classifyBatch), 0 at and above; a regional relief keeps its
+// nodata (NaN), where the layers below answer, as a regional mask's.
+std::shared_ptr<const raster::TilePyramid> reliefWaterPyramid(std::shared_ptr<const raster::Raster> relief,
+                                                              raster::PyramidOptions options = {});
+// The water pyramid of a layer streamedWaterLayer gave: a mask's or a relief's.
+std::shared_ptr<const raster::TilePyramid> waterPyramid(const RasterLayer& layer, raster::PyramidOptions options = {});
 
 // The mask layer drawn from its tiles: the first mask to answer, when it
 // is north up and finer than the drawn water grid's step (gridLonStepDeg,
@@ -26,13 +34,27 @@ std::shared_ptr<const raster::TilePyramid> waterPyramid(std::shared_ptr<const ra
 // which is then the whole stack's resample and answers outside the layer's
 // extent and where it has no data, as the query's layers do.
 const RasterLayer* streamedMaskLayer(const LayerStack& stack, double gridLonStepDeg);
+// The layer the drawn water streams from (the host's terrain and the
+// ocean alike): streamedMaskLayer, or, where a relief decides the coast
+// (drawingMask() null), the first elevation layer when it answers first of
+// all the mask and elevation layers, is north up and finer than the grid,
+// and is regional or has no nodata (a global pyramid's texels are drawn
+// alone: a nodata hole has no layer below in its programs). Its coast is
+// then the relief's own 0 m line at its cells (reliefWaterPyramid), as the
+// query's, instead of its resample on the grid. Null otherwise.
+const RasterLayer* streamedWaterLayer(const LayerStack& stack, double gridLonStepDeg);
 
 // A global water grid read from a water pyramid's coarse level: the
 // coarsest level whose texel is at most stepDeg (and at most 16384 wide),
 // its texels (the mean water of the mask cells under them) as coverage;
 // nodata is land, as MaskEncoding::classify. Reads one level's tiles
 // (from the disk cache) instead of classifying every grid cell through
-// the stack.
+// the stack. When that level is finer than stepDeg (a 1' mask's 4' level
+// for a 5' step) it is resampled, a band of tiles at a time, onto the
+// step's own grid: the grid (and the memory it and what is built from it
+// take) does not grow with the raster. A texel is 1 exactly where every
+// level texel it overlaps is, so where every mask cell under it is water;
+// above 0 where any of them has water.
 WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg);
 // Any pyramid's level chosen as above as a global grid of its first
 // channel, NaN where it has no data.

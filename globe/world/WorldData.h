@@ -61,6 +61,9 @@ struct WorldData {
   // the host draws it streamed as tiles (globe/render/WorldTextures), the
   // grids above stay for the CPU. Null: `water` is what is drawn.
   std::shared_ptr<const raster::Raster> waterSource;
+  // waterSource is a relief that decides the coast (world::streamedWaterLayer),
+  // streamed as its 0 m line (world::reliefWaterPyramid), not a mask.
+  bool waterFromRelief = false;
   MaskEncoding waterEncoding;
   // A global elevation layer finer than `elevation` that answers first: the
   // host draws it streamed (NaN texels fall back to `elevation`), the grid

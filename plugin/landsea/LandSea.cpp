@@ -128,6 +128,36 @@ Surface LandSea::fromElevation(float elevationM) const {
   return (!std::isnan(elevationM) && elevationM < 0.0f) ? Surface::Ocean : Surface::Land;
 }
 
+world::CoverageClass LandSea::reliefCoverage(double latDeg, double lonDeg, float e) const {
+  if (std::isnan(e)) return {};
+  if (std::abs(latDeg) >= 90.0) {
+    world::CoverageClass c;
+    c.surface = fromElevation(e);
+    c.coverage = c.surface == Surface::Land ? 0.0f : 1.0f;
+    return c;
+  }
+  const auto& t = elevation_->transform();
+  const int w = elevation_->width(), h = elevation_->height();
+  double px = t.pixelX(lonDeg);
+  if (t.global) px -= std::floor(px / w) * w;
+  const double py = t.pixelY(latDeg);
+  double la[16], lo[16];
+  float v[16];
+  const world::BSplineTaps tx(px), ty(py);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      int cx = tx.first + i;
+      cx = t.global ? ((cx % w) + w) % w : std::clamp(cx, 0, w - 1);
+      const int cy = std::clamp(ty.first + j, 0, h - 1);
+      la[j * 4 + i] = t.latOf(cy + 0.5), lo[j * 4 + i] = t.lonOf(cx + 0.5);
+    }
+  elevation_->sampleNearestBatch(la, lo, 16, v);
+  return world::coverageClassAt(px, py, [&](int cx, int cy) {
+    const float x = v[(cy - ty.first) * 4 + (cx - tx.first)];
+    return !std::isnan(x) && x < 0.0f ? Surface::Ocean : Surface::Land;
+  });
+}
+
 Surface LandSea::classify(double latDeg, double lonDeg) const {
   if (!std::isfinite(latDeg) || !std::isfinite(lonDeg)) return Surface::Land;
   if (Surface p; poleClass(latDeg, p)) return p;
@@ -144,7 +174,7 @@ Surface LandSea::classify(double latDeg, double lonDeg) const {
     if (!std::isnan(v)) return coverageClass(latDeg, lonDeg).surface;
   }
   // No mask here: the elevation decides.
-  return elevation_ ? fromElevation(elevation_->sampleBilinear(latDeg, lonDeg)) : Surface::Land;
+  return elevation_ ? reliefClass(latDeg, lonDeg, elevation_->sampleBilinear(latDeg, lonDeg)) : Surface::Land;
 }
 
 namespace {
@@ -246,7 +276,7 @@ void LandSea::classifyBatch(const double* lat, const double* lon, std::size_t n,
     if (allInside || !elevation_) return;
     for (std::size_t i = 0; i < n; ++i)
       if (fast_.index(lat[i], lon[i]) < 0 && std::isfinite(lat[i]) && std::isfinite(lon[i]))
-        out[i] = fromElevation(elevation_->sampleBilinear(lat[i], lon[i]));
+        out[i] = reliefClass(lat[i], lon[i], elevation_->sampleBilinear(lat[i], lon[i]));
     return;
   }
   std::vector<float> v(n);
@@ -272,10 +302,21 @@ void LandSea::classifyBatch(const double* lat, const double* lon, std::size_t n,
     }
   std::vector<float> e(where.size());
   elevation_->sampleBilinearBatch(la.data(), lo.data(), where.size(), e.data());
-  for (std::size_t j = 0; j < where.size(); ++j) out[where[j]] = fromElevation(e[j]);
+  for (std::size_t j = 0; j < where.size(); ++j) out[where[j]] = reliefClass(la[j], lo[j], e[j]);
 }
 
 void LandSea::classifyNearWaterBatch(const double* lat, const double* lon, std::size_t n, Surface* out) const {
+  if (classes_.empty() && !mask_ && elevation_) {
+    // A relief alone: water wherever any of the 4 x 4 cells the drawn
+    // coast is filtered from is (coverage above 0), as a mask's two-cell reach.
+    std::vector<float> e(n);
+    elevation_->sampleBilinearBatch(lat, lon, n, e.data());
+    for (std::size_t i = 0; i < n; ++i)
+      out[i] = std::isfinite(lat[i]) && std::isfinite(lon[i]) && reliefCoverage(lat[i], lon[i], e[i]).coverage > 0.0f
+                   ? Surface::Ocean
+                   : Surface::Land;
+    return;
+  }
   if (classes_.empty()) {
     classifyBatch(lat, lon, n, out);
     return;

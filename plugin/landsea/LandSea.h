@@ -72,6 +72,13 @@ class LandSea {
   void markCoast(bool global);
   static constexpr std::uint8_t kCoast = 0x80, kClassBits = 0x7F;
   Surface fromElevation(float elevationM) const;
+  // Where the relief decides (e: its bilinear value at the point, NaN: no
+  // data, Land): the coverage rule on its own cells' water (below 0 m), as
+  // a coast a relief decides is drawn (world::reliefWaterPyramid's cells,
+  // B-spline filtered), so the query follows the picture; within a cell of
+  // the bilinear 0 m line. A pole is one point: the sign of its value.
+  Surface reliefClass(double latDeg, double lonDeg, float e) const { return reliefCoverage(latDeg, lonDeg, e).surface; }
+  world::CoverageClass reliefCoverage(double latDeg, double lonDeg, float e) const;
   // Poles are single points (issue 12 item 5): at a pole (|lat| >= 90) of a
   // global mask whose polar row ends there, the class of the row's one pole
   // value (raster::Raster::sampleNearest: the row's upper median, for two

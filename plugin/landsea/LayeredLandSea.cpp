@@ -17,7 +17,7 @@ Surface LayeredLandSea::classify(double latDeg, double lonDeg) const {
   return s;
 }
 
-void LayeredLandSea::byLayer(const double* lat, const double* lon, std::size_t n, Surface* out, bool masksOnly,
+void LayeredLandSea::byLayer(const double* lat, const double* lon, std::size_t n, Surface* out,
                              void (LandSea::*test)(const double*, const double*, std::size_t, Surface*) const) const {
   std::vector<std::int32_t> by(n);
   stack_.classifyBatch(lat, lon, n, out, by.data());
@@ -26,7 +26,6 @@ void LayeredLandSea::byLayer(const double* lat, const double* lon, std::size_t n
   std::vector<std::size_t> where;
   std::vector<Surface> s;
   for (std::size_t li = 0; li < perLayer_.size(); ++li) {
-    if (masksOnly && stack_.layers()[li].kind != world::LayerKind::Mask) continue;
     la.clear(), lo.clear(), where.clear();
     for (std::size_t i = 0; i < n; ++i)
       if (by[i] == std::int32_t(li)) la.push_back(lat[i]), lo.push_back(lon[i]), where.push_back(i);
@@ -38,13 +37,14 @@ void LayeredLandSea::byLayer(const double* lat, const double* lon, std::size_t n
 }
 
 void LayeredLandSea::classifyBatch(const double* lat, const double* lon, std::size_t n, Surface* out) const {
-  // The stack picks the layer by its nearest cell; a mask's class is then
-  // its coverage rule (LandSea::classify), an elevation's the sign.
-  byLayer(lat, lon, n, out, true, &LandSea::classifyBatch);
+  // The stack picks the layer by its nearest cell; its class is then its
+  // coverage rule (LandSea::classify): a mask's, or a relief's on the sign
+  // of its cells.
+  byLayer(lat, lon, n, out, &LandSea::classifyBatch);
 }
 
 void LayeredLandSea::classifyNearWaterBatch(const double* lat, const double* lon, std::size_t n, Surface* out) const {
-  byLayer(lat, lon, n, out, false, &LandSea::classifyNearWaterBatch);
+  byLayer(lat, lon, n, out, &LandSea::classifyNearWaterBatch);
 }
 
 float LayeredLandSea::waterCoverage(double latDeg, double lonDeg) const {

@@ -31,8 +31,8 @@ class LayeredLandSea final : public LandSea {
 
  private:
   // The stack's answer, then each point again through its answering
-  // layer's `test` (masks only, or every layer).
-  void byLayer(const double* lat, const double* lon, std::size_t n, Surface* out, bool masksOnly,
+  // layer's `test`.
+  void byLayer(const double* lat, const double* lon, std::size_t n, Surface* out,
                void (LandSea::*test)(const double*, const double*, std::size_t, Surface*) const) const;
   world::LayerStack stack_;
   // One single-raster LandSea per layer, in stack order: coverage and

@@ -50,7 +50,7 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
     // the host terrain's (world::loadLayeredWorld).
     d.water = world::waterLayerBelow(layered->stack(), waterTiles->source());
   } else if (waterTiles && !world::isStreamedRegional(waterTiles->source())) {
-    d.water = world::waterLayerOf(*waterTiles, world::globalGridFor(mask.get()).lonStepDeg);
+    d.water = world::waterLayerOf(*waterTiles, world::globalGridFor((mask ? mask : elevation).get()).lonStepDeg);
   } else if (mask && directly(mask)) {
     d.water = world::waterLayerOf(*mask, encoding);
   } else if (landSea) {
@@ -70,9 +70,11 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
 std::shared_ptr<const raster::TilePyramid> oceanWaterTiles(const ocean::LandSea* landSea,
                                                            const std::shared_ptr<const raster::Raster>& mask) {
   const auto* layered = dynamic_cast<const ocean::LayeredLandSea*>(landSea);
-  if (!layered || !mask) return nullptr;
-  const world::RasterLayer* l = world::streamedMaskLayer(layered->stack(), world::globalGridFor(mask.get()).lonStepDeg);
-  return l ? world::waterPyramid(l->raster, l->encoding) : nullptr;
+  // No drawing mask: a relief finer than every mask decides the coast, on its grid.
+  const auto grid = layered && mask ? mask : layered ? layered->stack().drawingElevation() : nullptr;
+  if (!grid) return nullptr;
+  const world::RasterLayer* l = world::streamedWaterLayer(layered->stack(), world::globalGridFor(grid.get()).lonStepDeg);
+  return l ? world::waterPyramid(*l) : nullptr;
 }
 
 bool waterIndexFollowsTiles(const world::WorldGrids& world, const raster::TilePyramid& water) {
@@ -89,6 +91,19 @@ bool waterIndexFollowsTiles(const world::WorldGrids& world, const raster::TilePy
         std::abs(t.originLonDeg - w.originLonDeg) < 1e-9 && std::abs(t.originLatDeg - w.originLatDeg) < 1e-9 &&
         std::abs(t.lonStepDeg - w.lonStepDeg) < 1e-12 && std::abs(t.latStepDeg - w.latStepDeg) < 1e-12)
       return true;
+  }
+  // Or such a level (finer than the grid's step by under 2x) resampled
+  // onto the step's grid by world::waterLayerOf: 1 only where every level
+  // texel it overlaps is 1.
+  const raster::GeoTransform& t0 = water.source().transform();
+  const double s = w.lonStepDeg;
+  if (!t0.global || s <= 0.0 || w.width != int(std::lround(360.0 / s)) || std::abs(w.width * s - 360.0) > 1e-9 ||
+      w.height != int(std::lround(180.0 / s)) || std::abs(w.latStepDeg * w.height + 180.0) > 1e-9 ||
+      std::abs(t0.originLonDeg - w.originLonDeg) > 1e-9 || std::abs(t0.originLatDeg - w.originLatDeg) > 1e-9)
+    return false;
+  for (int level = 0; level < water.levels() && level <= 12; ++level) {
+    const double texel = std::abs(water.levelTransform(level).lonStepDeg);
+    if (texel <= s * (1.0 + 1e-9) && 2.0 * texel > s) return true;
   }
   return false;
 }

@@ -23,18 +23,19 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
                                                     const world::MaskEncoding& encoding = {},
                                                     const raster::TilePyramid* waterTiles = nullptr);
 
-// The streamed mask's coverage pyramid when the land/sea is a layer stack
-// whose first mask is drawn from tiles (world::streamedMaskLayer at the
-// water grid's step for `mask`, the snapshot's drawing mask: the host
-// terrain's rule, pyramid and disk cache); null
+// The streamed water's pyramid when the land/sea is a layer stack whose
+// coast is drawn from tiles (world::streamedWaterLayer at the water grid's
+// step for `mask`, the snapshot's drawing mask, or without one the stack's
+// drawing elevation: the host terrain's rule, pyramid and disk cache): a
+// mask's coverage, or the 0 m line of a relief that decides the coast; null
 // otherwise.
 std::shared_ptr<const raster::TilePyramid> oceanWaterTiles(const ocean::LandSea* landSea,
                                                            const std::shared_ptr<const raster::Raster>& mask);
 
 // True when `world`'s water index says where `water` (a streamed global
-// mask's pyramid) is water: its water grid is one of the pyramid's levels
-// (oceanWorld's waterLayerOf), whose texels are 1 exactly where every mask
-// cell under them is water. So open water drawn without the per-pixel
+// mask's pyramid) is water: its water grid is one of the pyramid's levels,
+// or one resampled onto the grid's step (oceanWorld's waterLayerOf), whose
+// texels are 1 only where every mask cell under them is water. So open water drawn without the per-pixel
 // coverage, and terrain left out under it, keep every island of the mask.
 bool waterIndexFollowsTiles(const world::WorldGrids& world, const raster::TilePyramid& water);
 

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <memory>
+#include <vector>
 
 namespace geocean::gl {
 namespace {
@@ -111,6 +112,33 @@ TEST(HudPanel, ThePanelIsDrawnAtTheTopRightAndTheHudAlone) {
   EXPECT_NEAR(r.x1, 950.0f, 1.0f) << "10 px from the right edge";
   EXPECT_GT(inside, 5000) << "the panel covers its window";
   EXPECT_EQ(outside, 0) << "and nothing else changes (the HUD is the same)";
+}
+
+// The user's raster layers (issue 13 item 8: "raster layers shown"): one
+// checkbox each, all shown at first; a click hides that one layer alone and
+// asks for the world to be rebuilt (PanelChange::layers), nothing else.
+TEST(HudPanel, EachRasterLayerHasACheckboxThatHidesItAlone) {
+  Panel p;
+  ASSERT_TRUE(p.hud);
+  p.state.layerNames = {"mask       gibraltar_3s.tif", "elevation  island.tif", "imagery    bay.tif"};
+  p.state.layerShown.assign(3, 1);
+  p.frame(-1, -1, false);
+  p.frame(-1, -1, false);
+  const PanelLayout lay = p.hud->panelLayout();
+  ASSERT_EQ(lay.layers.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_GT(lay.layers[i].y0, lay.refraction.y1) << "listed below the light's controls";
+    EXPECT_LT(lay.layers[i].y1, lay.window.y1) << "inside the panel";
+    if (i) {
+      EXPECT_GT(lay.layers[i].y0, lay.layers[i - 1].y1 - 1.0f) << "one under the other";
+    }
+  }
+  auto [press, release] = p.click(lay.layers[1], 0.05);  // the box at the label's left
+  EXPECT_EQ(p.state.layerShown, (std::vector<char>{1, 0, 1}));
+  EXPECT_TRUE(press.layers || release.layers);
+  EXPECT_FALSE(press.sea || release.sea || press.light || release.light);
+  p.click(p.hud->panelLayout().layers[1], 0.05);
+  EXPECT_EQ(p.state.layerShown, (std::vector<char>{1, 1, 1})) << "a second click shows it again";
 }
 
 TEST(HudPanel, BeaufortForcesAreTheWmoClasses) {

@@ -108,10 +108,11 @@ struct FacadeOcean {
   ocean_render::OceanOptions options;
   std::shared_ptr<const world::WorldGrids> grids;
 };
-FacadeOcean facadeOcean(const std::string& maskPath) {
+FacadeOcean facadeOcean(const std::string& maskPath, world::LayerKind kind = world::LayerKind::Mask) {
   ocean::Ocean o;
   o.setDefaultWorld(ocean::Ocean::defaultWorldDir());
-  o.addMaskLayerFile(maskPath);
+  if (kind == world::LayerKind::Elevation) o.addElevationLayerFile(maskPath);
+  else o.addMaskLayerFile(maskPath);
   FacadeOcean f;
   f.snap = o.current();
   f.options.waterTiles = ocean_render::oceanWaterTiles(f.snap->landSea.get(), f.snap->mask);
@@ -188,18 +189,20 @@ struct Regional {
   std::shared_ptr<const ocean::LandSea> landSea;  // the façade's layered land/sea
 };
 
-Regional makeRegional(const std::string& maskPath) {
+// kind Elevation: a relief finer than every mask, whose 0 m line is the coast.
+Regional makeRegional(const std::string& maskPath, world::LayerKind kind = world::LayerKind::Mask) {
   scene();  // the session's context
   Regional c;
   const std::string cache = ::testing::TempDir() + "/coast_regional_tiles." + std::to_string(::getpid());
   ::setenv("GEOCEAN_TILE_CACHE", cache.c_str(), 1);
-  world::WorldData d = world::loadLayeredWorld({{world::LayerKind::Mask, maskPath, "", 0}}, true);
+  world::WorldData d = world::loadLayeredWorld({{kind, maskPath, "", 0}}, true);
+  EXPECT_EQ(d.waterFromRelief, kind == world::LayerKind::Elevation);
   EXPECT_TRUE(d.waterSource) << "the regional 3\" mask should be streamed";
   TerrainOptions t;
   t.waitForTiles = true;  // as geocean render
   c.world = std::make_shared<WorldTextures>(d);
   c.renderer = std::make_unique<GlobeRenderer>(c.world, t);
-  const FacadeOcean f = facadeOcean(maskPath);
+  const FacadeOcean f = facadeOcean(maskPath, kind);
   const auto& snap = f.snap;
   EXPECT_TRUE(f.options.waterTiles) << "the ocean should stream the regional 3\" mask";
   c.ocean = std::make_shared<ocean_render::OceanRenderer>(f.grids, snap->landSea, f.options);
@@ -747,6 +750,83 @@ TEST(Coast, TheTerrainRefinesAnIslandOnlyTheRegionalMaskHas) {
   expectQueryFollowsPicture(f, " --mask " + path, w, l);
   std::printf("regional island: %d water, %d land pixels agree\n", w, l);
   EXPECT_GT(l, 100);
+  fs::remove(path);
+}
+
+// A relief finer than every mask decides the coast (issue 12 item 1: its
+// 0 m line is land's edge), and a regional one is streamed like a mask: its
+// 0 m line drawn at its own cells on both sides (world::reliefWaterPyramid),
+// not resampled on the 5' grid, which misses this island. A 3" F32 relief
+// over 36.0..36.3 N, 7.5..7.0 W (the Gulf of Cadiz, 80 km from any coast):
+// a sea floor at -60 m and a Gaussian island 300 exp(-(r/s)^2) - 60 m, s =
+// 0.00315 degrees, whose coast is the circle r0 = s sqrt(ln 5) = 0.0040
+// degrees (445 m north-south) round (36.15 N, 7.25 W). The truth is that
+// circle: every pixel whose ground point is farther from it than its own
+// footprint plus one 3" cell (the binary cells' B-spline puts the 0.5
+// contour within half a cell of the cells' edge, and the edge within half a
+// cell of the 0 m line) must be drawn on its side; and `geocean query
+// --elevation` follows the picture at every pixel away from the shore.
+// Looking straight down: no ray is shallower than 56 degrees, steeper than
+// the island's flank (23 degrees at the coast), so no sea hides behind it.
+TEST(Coast, AReliefFinerThanEveryMaskDrawsItsOwnCoastStreamed) {
+  constexpr double kIslandLat = 36.15, kIslandLon = -7.25, kS = 0.00315;
+  const double r0 = kS * std::sqrt(std::log(300.0 / 60.0));
+  const std::string path = ::testing::TempDir() + "/coast_regional_relief." + std::to_string(::getpid()) + ".tif";
+  const double cosLat = std::cos(kIslandLat * kDeg);
+  const auto rDeg = [&](double lat, double lon) { return std::hypot(lat - kIslandLat, (lon - kIslandLon) * cosLat); };
+  {
+    const int w = 600, h = 360;
+    std::vector<float> px(std::size_t(w) * h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const double r = rDeg(36.3 - (y + 0.5) * kCellDeg, -7.5 + (x + 0.5) * kCellDeg);
+        px[std::size_t(y) * w + x] = float(300.0 * std::exp(-(r / kS) * (r / kS)) - 60.0);
+      }
+    raster::GeoTiffWriteOptions wo;
+    wo.transform = {-7.5, 36.3, kCellDeg, -kCellDeg, false};
+    raster::writeGeoTiff(path, px.data(), w, h, 1, raster::SampleType::F32, wo);
+  }
+  // The 5' grid below (the default world) is open sea round the island.
+  {
+    const world::WorldData d = world::loadLayeredWorld({{world::LayerKind::Elevation, path, "", 0}}, true);
+    ASSERT_TRUE(d.waterSource) << "the relief's coast should be streamed";
+    EXPECT_TRUE(d.waterFromRelief);
+    EXPECT_EQ(d.waterSource->path(), path);
+    const world::WorldGrids g(d.elevation, d.water);
+    EXPECT_TRUE(g.waterIndex().allWaterAround(kIslandLat - 0.1, kIslandLat + 0.1, kIslandLon - 0.1, kIslandLon + 0.1, 1.0));
+  }
+  Regional r = makeRegional(path, world::LayerKind::Elevation);
+  ASSERT_TRUE(r.world->waterTiles());
+  ASSERT_NE(r.world->regionalWaterIndex(), nullptr);
+  const double cellM = kCellDeg * kDeg * geo::kWgs84B;
+  int water = 0, land = 0, checked = 0, wrong = 0;
+  for (const auto& [name, p] : {std::pair{std::string("relief_island_3km"), pose(kIslandLat, kIslandLon, 3000.0, 0.0, -90.0)},
+                                std::pair{std::string("relief_island_east_1200m"), pose(kIslandLat, kIslandLon + r0 / cosLat, 1200.0, 0.0, -90.0)}}) {
+    const Frame f = render(p, *r.renderer, r.ocean.get(), name);
+    for (int y = 0; y + 1 < p.height; ++y)
+      for (int x = 0; x + 1 < p.width; ++x) {
+        geo::Geodetic g, gx, gy;
+        if (!groundPoint(f, x, y, g) || !groundPoint(f, x + 1, y, gx) || !groundPoint(f, x, y + 1, gy)) continue;
+        auto metres = [&](const geo::Geodetic& a) { return glm::length(geo::toEcef(a) - geo::toEcef(g)); };
+        const double marginM = std::max(metres(gx), metres(gy)) + cellM;
+        const double offM = (rDeg(g.latDeg, g.lonDeg) - r0) * kDeg * geo::kWgs84B;
+        if (std::abs(offM) <= marginM) continue;
+        ++checked;
+        if (f.drawn(x, y) != (offM > 0.0) && ++wrong <= 10)
+          ADD_FAILURE() << name << " pixel " << x << "," << y << " drawn " << (f.drawn(x, y) ? "water" : "land") << " "
+                        << offM << " m from the 0 m circle";
+      }
+    int w = 0, l = 0;
+    expectQueryFollowsPicture(f, " --elevation " + path, w, l);
+    std::printf("%s: %d water, %d land pixels agree with the query\n", name.c_str(), w, l);
+    water += w, land += l;
+  }
+  std::printf("relief island: %d pixels off the 0 m circle by more than a pixel and a cell, %d drawn on the wrong side\n",
+              checked, wrong);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(checked, 50000);
+  EXPECT_GT(water, 2000);
+  EXPECT_GT(land, 2000);
   fs::remove(path);
 }
 

@@ -33,9 +33,12 @@ const std::string kCamera = " --camera " + kView + " --size 320x200 --fov 50 --s
 
 // A 290 m peak at (0.25, 0.25) in a 200 m deep sea, 15" cells over -0.5 .. 1
 // degrees. Its relief is drawn from its own tiles (a regional layer finer
-// than the grid streams: the dome's smooth silhouette); its coast, which the
-// relief's sign decides, from the 5' water grid: an island about 30 km
-// across, three or four cells.
+// than the grid streams: the dome's smooth silhouette), and so is its
+// coast, which the relief's sign decides (world::reliefWaterPyramid): the
+// 0 m circle, r = 0.15 sqrt(ln 2.45) = 0.142 degrees (31.6 km across), in
+// the golden from x 15 to 305 and down to row 128 (computed from the view:
+// 12..308, 128.6), where the 5' water grid drew a blob of 3-4 cells out to
+// the frame's edges and row 148.
 std::string islandTif() {
   static const std::string path = [] {
     const std::string p = ::testing::TempDir() + "/render_island.tif";
@@ -84,6 +87,24 @@ TEST(RenderLayers, AnIslandInTheUsersReliefIsDrawnAndPickedAsLand) {
   p = geocean::test::run(pick);
   ASSERT_EQ(p.exitCode, 0) << p.err;
   EXPECT_NE(p.out.find(",ocean"), std::string::npos) << p.out;
+
+  // The drawn coast is the relief's 0 m circle (r = 0.142 degrees round
+  // the peak, 15.8 km): straight ahead (column 160) its near edge is 12.0 km
+  // off, atan(5 / 12.0) = 22.6 degrees down, 7.6 below the view's axis:
+  // row 100 + 100 tan(7.6) / tan(25) = 128.6; the centre row meets the sea
+  // 19.32 km off (slant), where the circle is 12.87 km either side: columns
+  // 160 -+ 160 (12.87 / 19.32) / tan(36.7) = 160 -+ 143 (the horizontal
+  // half-field atan(1.6 tan 25)). Tolerance 2 px: the 15" cells' B-spline
+  // (within half a cell, 0.46 km, of the line: 0.5-1.5 px here) and a pixel.
+  // The island is dark (the Blue Marble's sea on the terrain), the sea light.
+  const auto dark = [&](int x, int y) { return island.rgba[(std::size_t(y) * island.width + x) * 4] < 55; };
+  int bottom = 0, left = 320, right = 0;
+  for (int y = 100; y < 200 && dark(160, y); ++y) bottom = y;  // the island's run from the centre
+  for (int x = 160; x >= 0 && dark(x, 100); --x) left = x;
+  for (int x = 160; x < 320 && dark(x, 100); ++x) right = x;
+  EXPECT_NEAR(bottom + 0.5, 128.6, 2.0);
+  EXPECT_NEAR(left + 0.0, 160.0 - 143.0, 2.0);
+  EXPECT_NEAR(right + 1.0, 160.0 + 143.0, 2.0);
 
   const std::string golden = std::string(GEOCEAN_GOLDEN_DIR) + "/island_5km.png";
   if (std::getenv("GEOCEAN_UPDATE_GOLDEN")) {

@@ -5,12 +5,17 @@
 #include "globe/render/WorldTextures.h"
 #include "globe/world/WaterPyramid.h"
 #include "globe/world/WorldGrids.h"
+#include "globe/raster/GeoTiffWriter.h"
+#include "globe/world/LayerStack.h"
+#include "plugin/landsea/LayeredLandSea.h"
 #include "plugin/render/OceanWorld.h"
 #include "tests/support/TempDir.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <random>
 #include <tuple>
@@ -245,6 +250,147 @@ TEST(WaterIndex, AStreamedMasksLevelKeepsEveryOneCellIslandAndLake) {
   EXPECT_GT(nearWater, 1000);
   EXPECT_GT(land, 1000);
   std::printf("%d islands, %d lakes; %d of 200000 points classed land\n", islands, lakes, land);
+}
+
+// A streamed global mask whose levels miss the water grid's step (a 1'
+// mask's 4' level for the 5' grid) is resampled onto the step's own grid
+// (waterLayerOf): the grid has the step's size whatever the raster's (the
+// 1' mask's grid was 1.56x the 1.25' one's texels, +75 MB peak RSS on the
+// two sides), and keeps what the shortcuts rely on, checked against the
+// mask's own cells, brute force: a texel is 1 only where no mask cell it
+// overlaps is land (the open-water index), and above 0 wherever one is
+// water (the near-water classes). Masks of 0.09 and 0.18 degree cells (4000
+// and 2000 wide: partial tiles), a 0.9 degree grid step: their 0.72 degree
+// levels are finer than the step by 1.25x, as 4' against 5'.
+TEST(WaterIndex, AStreamedMasksGridHasTheStepsSizeAndKeepsEveryIslandAndLake) {
+  constexpr double kStepDeg = 0.9;
+  for (const int W : {4000, 2000}) {
+    const int H = W / 2;
+    std::vector<float> cls(std::size_t(W) * H, 0.0f);
+    const auto at = [&](int x, int y) -> float& { return cls[std::size_t(y) * W + x]; };
+    const auto inLand = [&](int x, int y, int in) {
+      return x >= W / 5 + in && x < W / 2 - in && y >= H / 5 + in && y < 3 * H / 5 - in;
+    };
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x)
+        if (inLand(x, y, 0)) at(x, y) = 1.0f;
+    std::mt19937 rng(9);
+    std::uniform_int_distribution<int> ux(0, W - 1), uy(0, H - 1);
+    for (int i = 0; i < 3000; ++i) {
+      const int x = ux(rng), y = uy(rng);
+      if (inLand(x, y, 10)) at(x, y) = 0.0f;   // a lake one cell wide
+      else if (!inLand(x, y, 0)) at(x, y) = 1.0f;  // an island one cell wide
+    }
+    raster::GeoTransform t;
+    t.lonStepDeg = 360.0 / W, t.latStepDeg = -180.0 / H, t.global = true;
+    const auto mask = raster::Raster::fromPixels(cls, W, H, 1, t);
+    test::TempDir dir("geocean-water-grid");
+    raster::PyramidOptions po;
+    po.cacheDir = dir.path.string();
+    po.progress = raster::BuildProgress::Off;
+    const auto pyr = waterPyramid(mask, {}, po);
+    const WorldLayer water = waterLayerOf(*pyr, kStepDeg);
+    ASSERT_EQ(water.width, 400) << W;
+    ASSERT_EQ(water.height, 200) << W;
+    const WorldGrids grids(globalGridFor(nullptr), water);
+    EXPECT_TRUE(ocean_render::waterIndexFollowsTiles(grids, *pyr)) << W << ": the shortcuts stay on";
+    int open = 0, wet = 0;
+    for (int gy = 0; gy < water.height; ++gy)
+      for (int gx = 0; gx < water.width; ++gx) {
+        // Mask cells the texel overlaps (not just touches).
+        const double x0 = gx * kStepDeg / t.lonStepDeg, x1 = (gx + 1) * kStepDeg / t.lonStepDeg;
+        const double y0 = gy * kStepDeg / -t.latStepDeg, y1 = (gy + 1) * kStepDeg / -t.latStepDeg;
+        bool anyLand = false, anyWater = false;
+        for (int y = int(std::floor(y0 + 1e-9)); y < int(std::ceil(y1 - 1e-9)); ++y)
+          for (int x = int(std::floor(x0 + 1e-9)); x < int(std::ceil(x1 - 1e-9)); ++x)
+            (at(x, y) != 0.0f ? anyLand : anyWater) = true;
+        const float v = water.values[std::size_t(gy) * water.width + gx];
+        if (v == 1.0f) {
+          ASSERT_FALSE(anyLand) << W << ": texel " << gx << "," << gy << " is 1 over land";
+          ++open;
+        }
+        if (anyWater) {
+          ASSERT_GT(v, 0.0f) << W << ": texel " << gx << "," << gy << " is 0 over water";
+          ++wet;
+        }
+      }
+    EXPECT_GT(open, 20000) << W;  // the open sea is still open (80000 texels)
+    EXPECT_GT(wet, open) << W;
+    // The grid's classes keep every water cell's reach (two mask cells).
+    const auto classify = ocean_render::nearWaterClassifier(water);
+    std::uniform_real_distribution<double> lon(-180.0, 180.0), lat(-90.0, 90.0);
+    for (int i = 0; i < 100000; ++i) {
+      const double la = lat(rng), lo = lon(rng);
+      world::Surface s;
+      classify(&la, &lo, 1, &s);
+      const int x = std::clamp(int((lo + 180.0) / t.lonStepDeg), 0, W - 1);
+      const int y = std::clamp(int((90.0 - la) / -t.latStepDeg), 0, H - 1);
+      bool near = false;
+      for (int dy = -2; dy <= 2 && !near; ++dy)
+        for (int dx = -2; dx <= 2 && !near; ++dx) near = at(((x + dx) % W + W) % W, std::clamp(y + dy, 0, H - 1)) == 0.0f;
+      if (near) {
+        ASSERT_EQ(s, world::Surface::Ocean) << W << ": " << la << " " << lo;
+      }
+    }
+  }
+}
+
+// A global relief finer than the 5' grid, without nodata and with no mask
+// (--no-default-world --elevation): it decides the coast, and its 0 m line
+// is streamed as a water pyramid (world::reliefWaterPyramid) on both sides.
+// The host's grid (loadLayeredWorld) and the ocean's (oceanWaterTiles,
+// oceanWorld) are the same 5' level of it, 1 exactly where every relief
+// cell under a texel is below 0 m and above 0 where any is (checked
+// against the relief's own cells); the ocean's shortcuts accept it; the
+// query classes by the same cells. 2.5' cells: a continent (0.05..90.05 E, 45.05 S
+// ..45.05 N, +100 m: edges inside grid texels), an island of 0.05 degrees radius at (10 N, 150 W),
+// +50 m, sea at -1000 m.
+TEST(WaterIndex, AGlobalReliefDecidingTheCoastIsStreamedAsItsZeroMetreLine) {
+  constexpr int W = 8640, H = 4320;
+  const auto elevation = [](int x, int y) {
+    const double lon = -180.0 + (x + 0.5) * 360.0 / W, lat = 90.0 - (y + 0.5) * 180.0 / H;
+    if (lon >= 0.05 && lon < 90.05 && std::abs(lat) < 45.05) return 100.0f;
+    if (std::hypot(lat - 10.0, (lon + 150.0) * std::cos(10.0 * M_PI / 180.0)) < 0.05) return 50.0f;
+    return -1000.0f;
+  };
+  test::TempDir dir("geocean-relief-water");
+  ::setenv("GEOCEAN_TILE_CACHE", (dir.path / "cache").c_str(), 1);
+  const std::string tif = (dir.path / "relief.tif").string();
+  raster::GeoTiffWriteOptions wo;
+  wo.transform = {-180.0, 90.0, 360.0 / W, -180.0 / H, true};
+  raster::writeGeoTiffTiles(tif, W, H, 1, raster::SampleType::F32, wo, [&](int x0, int y0, void* tile) {
+    float* v = static_cast<float*>(tile);
+    for (int y = 0; y < 256; ++y)
+      for (int x = 0; x < 256; ++x) v[y * 256 + x] = elevation(std::min(x0 + x, W - 1), std::min(y0 + y, H - 1));
+  });
+  const WorldData d = loadLayeredWorld({{LayerKind::Elevation, tif, "", 0}}, false);
+  ASSERT_TRUE(d.waterSource);
+  EXPECT_TRUE(d.waterFromRelief);
+  ASSERT_EQ(d.water.width, 4320);
+  ASSERT_EQ(d.water.height, 2160);
+  int all = 0, some = 0;
+  for (int gy = 0; gy < d.water.height; ++gy)
+    for (int gx = 0; gx < d.water.width; ++gx) {
+      bool anyLand = false, anyWater = false;
+      for (int y = 2 * gy; y < 2 * gy + 2; ++y)
+        for (int x = 2 * gx; x < 2 * gx + 2; ++x) (elevation(x, y) < 0.0f ? anyWater : anyLand) = true;
+      const float v = d.water.values[std::size_t(gy) * d.water.width + gx];
+      ASSERT_EQ(v == 1.0f, !anyLand) << gx << "," << gy;
+      ASSERT_EQ(v > 0.0f, anyWater) << gx << "," << gy;
+      all += !anyLand, some += anyLand && anyWater;
+    }
+  EXPECT_GT(all, 1000000);
+  EXPECT_GT(some, 1000);
+  const ocean::LayeredLandSea ls({{LayerKind::Elevation, raster::Raster::open(tif), {}, 0}});
+  const auto tiles = ocean_render::oceanWaterTiles(&ls, nullptr);
+  ASSERT_TRUE(tiles);
+  const auto grids = ocean_render::oceanWorld(nullptr, ls.stack().drawingElevation(), &ls, {}, tiles.get());
+  EXPECT_TRUE(grids->water().values == d.water.values) << "the ocean's grid is the host's";
+  EXPECT_TRUE(ocean_render::waterIndexFollowsTiles(*grids, *tiles));
+  EXPECT_EQ(ls.classify(10.0, -150.0), Surface::Land);
+  EXPECT_EQ(ls.classify(10.0, -149.9), Surface::Ocean);
+  EXPECT_EQ(ls.classify(0.0, 45.0), Surface::Land);
+  ::unsetenv("GEOCEAN_TILE_CACHE");
 }
 
 }  // namespace

@@ -224,6 +224,12 @@ TEST(ViewWindow, BadOptionsExit2NamingTheOption) {
   r = view("--screenshot x.png");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("--screenshot"), std::string::npos) << r.err;
+  r = view("--frames 2 --camera 36,-5.6,500,0,-30 --fly-to 36,-5.6");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--camera and --fly-to"), std::string::npos) << r.err;
+  r = view("--frames 2 --camera 36,-5.6,-5,0,-30");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--camera: altitude"), std::string::npos) << r.err;
   r = view("--frames 2 --stats /nonexistent-dir/s.csv");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.err.find("/nonexistent-dir/s.csv"), std::string::npos) << r.err;
@@ -402,4 +408,59 @@ TEST(ViewWindow, TheUsersMaskAndReliefDecideWhatIsSeaUnderTheCamera) {
     ASSERT_TRUE(std::isfinite(without));
     EXPECT_NEAR(without, std::stod(qWithout[5]), 5.1e-5);  // the CSV's 4 decimals
   }
+}
+
+// The panel's "raster layers shown" (issue 13 item 8) as a user drives it:
+// key 1 (the panel's first layer, a checkbox there too) hides the user's
+// mask and key 1 again shows it, while the camera hangs 2 km over a point
+// the 5' default world calls open sea and the user's mask patch calls land.
+// The sea under the camera (the plugin's query of the drawn stack, in
+// --stats and the window's title) goes land -> the queried sea of the
+// default world -> land: the ocean's stack and the host's world change
+// together. The keys wait on the title (xdotool search --sync), so a slow
+// machine only takes longer.
+TEST(ViewWindow, KeyOneHidesAndShowsTheUsersMaskInTheQueriedSea) {
+  REQUIRE_XVFB();
+  if (!geocean::test::haveTool("xdotool")) GTEST_SKIP() << "xdotool is not installed (Debian xdotool, in quickstart.sh)";
+  namespace gr = geocean::raster;
+  const std::string dir = tempPath("toggle");
+  std::filesystem::create_directories(dir);
+  const std::string mask = dir + "/land_patch.tif", stats = dir + "/stats.csv";
+  {
+    const double step = 1.0 / 240.0;
+    std::vector<std::uint8_t> px(48 * 48, 1);  // land, 0.2 degrees square from (0.1 N, 0.5 E)
+    gr::GeoTiffWriteOptions wo;
+    wo.transform = {0.5, 0.1, step, -step, false};
+    gr::writeGeoTiff(mask, px.data(), 48, 48, 1, gr::SampleType::U8, wo);
+  }
+  std::filesystem::remove(stats);
+  const std::string script =
+      kGeocean + " view --camera 0.0,0.6,2000,0,-90 --mask " + mask +
+      " --frames 100000 --size 96x54 --no-hud --stats " + stats +
+      " & v=$!; "
+      "timeout 120 xdotool search --sync --onlyvisible --name Geocean >/dev/null; "
+      "timeout 120 xdotool search --sync --name \"sea +land\" >/dev/null; xdotool key 1; "
+      "timeout 120 xdotool search --sync --name \"sea +[-+][0-9]\" >/dev/null; xdotool key 1; "
+      "timeout 120 xdotool search --sync --name \"sea +land\" >/dev/null; sleep 1; "
+      "xdotool key Escape; wait $v";
+  const auto r = geocean::test::runUnderXvfb("640x480x24", "sh -c '" + script + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto rows = readStats(stats);
+  ASSERT_GT(rows.size(), 3u);
+  // Runs of land (NaN) and sea (finite) frames, in order.
+  std::vector<bool> runs;
+  const StatsRow* sea = nullptr;
+  for (const StatsRow& row : rows) {
+    const bool isSea = std::isfinite(row.seaM);
+    if (runs.empty() || runs.back() != isSea) runs.push_back(isSea);
+    if (isSea && !sea) sea = &row;
+  }
+  EXPECT_EQ(runs, (std::vector<bool>{false, true, false})) << "land, then sea with the mask hidden, then land";
+  ASSERT_NE(sea, nullptr);
+  // The hidden mask's frame answers what `geocean query` without it does.
+  char t[32];
+  std::snprintf(t, sizeof t, "%.17g", sea->frame / 30.0);
+  const auto q = queryRow(std::string("--time ") + t + " 0.0 0.6");
+  EXPECT_EQ(q[2], "ocean");
+  EXPECT_NEAR(sea->seaM, std::stod(q[5]), 5.1e-5);  // the CSV's 4 decimals
 }
