@@ -157,9 +157,10 @@ void main() {
   int i = clamp(int(floor(log2(uOctaveWavelengthM[0] / (6.0 * vCellAlongM)))) + 1, 0, n);
   float mss = 0.0;
   vec4 band = texelFetch(uOctaveBands, i);
-  for (; i < n; ++i) {
-    float f = noisePixelWeight(band.x, footprint);
-    if (f <= 0.0) break;
+  // A do-while tested at the end: llvmpipe runs a loop's body once more,
+  // masked, when every pixel leaves it at the top (an octave's noise).
+  float f = i < n ? noisePixelWeight(band.x, footprint) : 0.0;
+  if (f > 0.0) do {
     float a = noiseVertexWeight(band.x, vCellAlongM);
     float shown = max(a, f);
     vec4 next = texelFetch(uOctaveBands, i + 1);
@@ -171,7 +172,9 @@ void main() {
       if (i < uOctaveCount) hRes += (f - a) * noiseCrestWeight(i) * o.x;
     }
     band = next;
-  }
+    ++i;
+    f = i < n ? noisePixelWeight(band.x, footprint) : 0.0;
+  } while (f > 0.0);
   mss += band.y;
   for (int k = i; k < uOctaveCount && k < 16; ++k) varU += texelFetch(uOctaveBands, k).z;
   gAdd -= dot(gAdd, upD) * upD;

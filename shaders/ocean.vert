@@ -163,15 +163,25 @@ void main() {
   vHeightA = 0.0;
   float mssRest = uMssAbove[min(uFragOctaves, 16)];
   noiseVarUnresolved = 0.0;
-  for (int i = 0; i < uFragOctaves && i < 16; ++i) {
-    float a = noiseVertexWeight(uOctaveWavelengthM[i], vCellAlongM);
+  // The octaves in the normal (a > 0) come first, the wavelengths
+  // decreasing: their noise in a loop of their own, tested at its end
+  // (llvmpipe runs a masked-off branch, and a loop's body once more when
+  // every vertex leaves at the top), the others' bands after it.
+  int nv = min(uFragOctaves, 16), i = 0;
+  float a = nv > 0 ? noiseVertexWeight(uOctaveWavelengthM[0], vCellAlongM) : 0.0;
+  if (a > 0.0) do {
     mssRest += (uMssAbove[i] - uMssAbove[i + 1]) * (1.0 - a * a);
     if (i < uOctaveCount) noiseVarUnresolved += uOctaveHeightVar[i] * (1.0 - a * a);
-    if (a > 0.0) {
-      vec4 o = noiseOctave(i, d);
-      grad += a * o.yzw;
-      if (i < uOctaveCount) vHeightA += a * noiseCrestWeight(i) * o.x;
-    }
+    vec4 o = noiseOctave(i, d);
+    grad += a * o.yzw;
+    if (i < uOctaveCount) vHeightA += a * noiseCrestWeight(i) * o.x;
+    ++i;
+    a = i < nv ? noiseVertexWeight(uOctaveWavelengthM[i], vCellAlongM) : 0.0;
+  } while (a > 0.0);
+  for (; i < nv; ++i) {
+    a = noiseVertexWeight(uOctaveWavelengthM[i], vCellAlongM);
+    mssRest += (uMssAbove[i] - uMssAbove[i + 1]) * (1.0 - a * a);
+    if (i < uOctaveCount) noiseVarUnresolved += uOctaveHeightVar[i] * (1.0 - a * a);
   }
   r.normal.xyz = normalize(up - (grad - dot(grad, up) * up));
   float mssDrawn = 0.0;  // no pull towards the mean (ocean_shading.glsl): the weights filter

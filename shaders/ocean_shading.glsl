@@ -4,6 +4,7 @@
 // whitecaps and the shore foam band of paper 000 (eq. 9-11), then the
 // aerial perspective.
 // Callers declare uSunDir before including this.
+#define SEA_WIND_AXIS 1  // oceanColorCrest gives the wind's axis (sea_shading.glsl)
 #include "sea_shading.glsl"
 
 uniform float uTimeS;
@@ -56,6 +57,9 @@ vec3 fromDisplay(vec3 x) {
 // reach, towards the sun's disc, which the glitter draws, and where the
 // perturbed ray dips below the horizon).
 vec4 planarReflection(vec3 eyeRel, vec3 n, vec3 up, vec3 sunDir) {
+#ifdef GEOCEAN_NO_REFLECTION
+  return vec4(0.0);  // a program for draws without the map (OceanRenderer)
+#endif
   if (uReflection == 0) return vec4(0.0);
   float above = dot(eyeRel, uNadirUp) + uEyeHeightM;
   vec3 pPlane = eyeRel - above * uNadirUp;

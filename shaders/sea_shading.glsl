@@ -115,7 +115,15 @@ vec3 seaColorOptics(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM
   float ndh = max(dot(n, h), 1e-3), ndl = dot(n, sunDir);
   float ndh2 = ndh * ndh;
   float D, G;
-  if (upShare == 0.5) {
+#ifdef SEA_WIND_AXIS
+  // Every caller gives the wind's axis (ocean_shading.glsl): the anisotropic
+  // form alone, which at a share of 0.5 is the isotropic one (llvmpipe runs
+  // both sides of a branch that is not known when compiling).
+  const bool isotropic = false;
+#else
+  bool isotropic = upShare == 0.5;
+#endif
+  if (isotropic) {
     D = exp((ndh2 - 1.0) / (ndh2 * m)) / (3.14159265 * m * ndh2 * ndh2);
     G = 1.0 / (1.0 + smithLambda(ndv, m) + smithLambda(max(ndl, 1e-3), m));
   } else {

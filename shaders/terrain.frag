@@ -25,8 +25,12 @@ layout(binding = 2) uniform sampler2D uWater;
 // The user's imagery layers (--imagery), first on top: premultiplied sRGB,
 // alpha 0 where a layer has no data or outside it (its border). Four named
 // samplers, not an array: llvmpipe's LLVM 15 crashed compiling the indexed
-// array in the streamed-water variant.
-uniform int uImageryLayers;
+// array in the streamed-water variant. Their count is the program's
+// (TerrainRenderer): llvmpipe runs both sides of a branch on a uniform, so
+// an uncalled layer still cost every pixel its textureGrad.
+#ifndef GEOCEAN_IMAGERY_LAYERS
+#define GEOCEAN_IMAGERY_LAYERS 0
+#endif
 uniform vec4 uImageryLayerGeo[4];
 layout(binding = 8) uniform sampler2D uImageryLayer0;
 layout(binding = 9) uniform sampler2D uImageryLayer1;
@@ -50,10 +54,18 @@ layout(location = 0) out vec4 outColor;
 void main() {
   vec3 up = normalize(vNormal);
   vec3 albedo = texture(uImagery, geoUv(vLonLat, uImageryGeo)).rgb;
-  if (uImageryLayers > 3) albedo = overImagery(uImageryLayer3, uImageryLayerGeo[3], albedo);
-  if (uImageryLayers > 2) albedo = overImagery(uImageryLayer2, uImageryLayerGeo[2], albedo);
-  if (uImageryLayers > 1) albedo = overImagery(uImageryLayer1, uImageryLayerGeo[1], albedo);
-  if (uImageryLayers > 0) albedo = overImagery(uImageryLayer0, uImageryLayerGeo[0], albedo);
+#if GEOCEAN_IMAGERY_LAYERS > 3
+  albedo = overImagery(uImageryLayer3, uImageryLayerGeo[3], albedo);
+#endif
+#if GEOCEAN_IMAGERY_LAYERS > 2
+  albedo = overImagery(uImageryLayer2, uImageryLayerGeo[2], albedo);
+#endif
+#if GEOCEAN_IMAGERY_LAYERS > 1
+  albedo = overImagery(uImageryLayer1, uImageryLayerGeo[1], albedo);
+#endif
+#if GEOCEAN_IMAGERY_LAYERS > 0
+  albedo = overImagery(uImageryLayer0, uImageryLayerGeo[0], albedo);
+#endif
   float sunMu = dot(uSunDir, up);
   // Skylight fades out on the night side.
   vec3 c = albedo * (vSun * max(dot(normalize(vRelief), uSunDir), 0.0) * 1.6 +

@@ -58,8 +58,12 @@ float wakePatches(float amount, vec2 water) {
   return min(1.0, 2.0 * amount) * smoothstep(0.9 - 1.5 * amount, 1.1 - 1.5 * amount, n);
 }
 
+// Only programs made with GEOCEAN_WAKES (OceanRenderer: frames with a
+// wake) have the loop: llvmpipe runs a loop's body once even when it makes
+// no iteration, so without a wake it cost every pixel an iteration.
 float wakeFoam(vec3 eyeRel, vec3 up) {
   float foam = 0.0;
+#ifdef GEOCEAN_WAKES
   for (int i = 0; i < uWakeCount; ++i) {
     float a = uWakeCentre[i].w, b = uWakeBow[i].w, u = uWakeTrack[i].w;
     vec3 d = eyeRel - uWakeCentre[i].xyz;
@@ -98,6 +102,7 @@ float wakeFoam(vec3 eyeRel, vec3 up) {
       foam = max(foam, wakePatches(stirred * inWake * exp(-behindStern / (u * uWakeDecayS)), water));
     }
   }
+#endif
   return foam;
 }
 

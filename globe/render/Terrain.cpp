@@ -37,6 +37,10 @@ glm::dvec3 sunFromLocal(double latDeg, double lonDeg, double azimuthDeg, double 
   return glm::normalize(f.toEcef({std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), std::sin(el)}));
 }
 
+std::string TerrainRenderer::imageryDefine() const {
+  return "GEOCEAN_IMAGERY_LAYERS " + std::to_string(world_.imageryLayers());
+}
+
 TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions options)
     : world_(world), options_(options) {
   if (options_.poolTiles < 64) throw std::invalid_argument("terrain pool must hold at least 64 tiles");
@@ -50,6 +54,7 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
     --maxLevel_;
   // Streamed water (WorldTextures::waterTiles): the same programs reading the tile pool.
   const auto with = [&](std::vector<std::string> d) {
+    d.push_back(imageryDefine());
     if (world_.waterTiles()) d.push_back("GEOCEAN_WATER_TILES 1");
     if (world_.elevationTiles()) d.push_back("GEOCEAN_ELEVATION_TILES 1");
     // A regional pyramid falls through to the grid (geo_uv.glsl).
@@ -310,12 +315,10 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
   world_.bind();
   glUniformMatrix4fv(prog.uniform("uViewProj"), 1, GL_FALSE, &cam.gpu().viewProj[0][0]);
   glUniform4fv(prog.uniform("uImageryGeo"), 1, &world_.imageryGeo()[0]);
-  if (const GLint loc = prog.uniform("uImageryLayers"); loc >= 0) {
-    glUniform1i(loc, world_.imageryLayers());
-    for (int i = 0; i < world_.imageryLayers(); ++i)
-      glUniform4fv(prog.uniform(("uImageryLayerGeo[" + std::to_string(i) + "]").c_str()), 1,
-                   &world_.imageryLayerGeo(i)[0]);
-  }
+  // The layers' count is compiled in (imageryDefine); absent uniforms are -1, ignored.
+  for (int i = 0; i < world_.imageryLayers(); ++i)
+    glUniform4fv(prog.uniform(("uImageryLayerGeo[" + std::to_string(i) + "]").c_str()), 1,
+                 &world_.imageryLayerGeo(i)[0]);
   glUniform4fv(prog.uniform("uElevationGeo"), 1, &world_.elevationGeo()[0]);
   glUniform4fv(prog.uniform("uWaterGeo"), 1, &world_.waterGeo()[0]);
   glUniform1f(prog.uniform("uExaggeration"), float(options_.exaggeration));
@@ -425,7 +428,7 @@ TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const
   if (mirrored_.id() == 0) {  // compiled on the first reflection a layer asks for
     // Clipped by the streamed water too: a regional layer's grid below knows
     // none of its islands (the whole island was clipped, none reflected).
-    std::vector<std::string> d = {"GEOCEAN_CLIP_SEA 1"};
+    std::vector<std::string> d = {"GEOCEAN_CLIP_SEA 1", imageryDefine()};
     if (const gl::TilePool* w = world_.waterTiles()) {
       d.push_back("GEOCEAN_WATER_TILES 1");
       if (!w->pyramid().source().transform().global) d.push_back("GEOCEAN_WATER_REGIONAL 1");

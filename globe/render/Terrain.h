@@ -16,6 +16,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <string>
 #include <list>
 #include <unordered_map>
 #include <vector>
@@ -122,6 +123,8 @@ class TerrainRenderer {
   bool underOpenWater(double lat0, double lat1, double lon0, double lon1, const Bounds& b, double dist,
                       const camera::Camera& cam, double pxPerM) const;
   void tileRange(const Key& k, double& lat0, double& lat1, double& lon0, double& lon1) const;
+  // terrain.frag's GEOCEAN_IMAGERY_LAYERS: the world's imagery layers, compiled in.
+  std::string imageryDefine() const;
   // Streamed water: the pool tiles this terrain tile samples, as uniforms
   // (none with a null prog: only the requests). True when they are of the
   // level the tile wants.

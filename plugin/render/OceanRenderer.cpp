@@ -85,17 +85,17 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     auto paged = shaded;
     paged.push_back("GEOCEAN_WATER_PAGES 1");
     if (!options_.waterTiles->source().transform().global) paged.push_back("GEOCEAN_WATER_PAGES_REGIONAL 1");
-    program_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", paged);
+    sharpDefines_ = paged;
   } else {
-    program_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", shaded);
+    sharpDefines_ = shaded;
   }
   {
-    auto open = shaded;
-    open.push_back("GEOCEAN_OPEN_WATER 1");
-    openWater_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", open);
-    open.back() = "GEOCEAN_VERTEX_COVERAGE 1";
-    if (pages_) open.push_back("GEOCEAN_WATER_PAGES 1");  // read per vertex from the pages
-    smoothCoast_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", open);
+    openDefines_ = shaded;
+    openDefines_.push_back("GEOCEAN_OPEN_WATER 1");
+    smoothDefines_ = shaded;
+    smoothDefines_.push_back("GEOCEAN_VERTEX_COVERAGE 1");
+    if (pages_) smoothDefines_.push_back("GEOCEAN_WATER_PAGES 1");  // read per vertex from the pages
+    pixelPrograms(false, true);
     auto far = model;
     far.push_back("GEOCEAN_FAR_SHADED 1");
     farShaded_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", far);
@@ -404,7 +404,9 @@ OceanRenderer::~OceanRenderer() {
 
 void OceanRenderer::abandonGl() {
   glAbandoned_ = true;
-  for (gl::GlProgram* p : {&program_, &smoothCoast_, &openWater_, &farShaded_, &bare_}) p->abandon();
+  for (gl::GlProgram* p : {&farShaded_, &bare_}) p->abandon();
+  for (PixelPrograms& v : pixel_)
+    for (gl::GlProgram* p : {&v.sharp, &v.smooth, &v.open}) p->abandon();
   if (pages_) pages_->abandonGl();
 }
 
@@ -830,16 +832,17 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   glActiveTexture(GLenum(hostActive));
   glBindTextureUnit(12, octaveTexelTex_);
   glBindTextureUnit(13, octaveBandTex_);
-  const std::pair<const gl::GlProgram*, std::size_t> passes[4] = {{bare ? &bare_ : &program_, groups.sharp},
-                                                                       {&smoothCoast_, groups.smooth},
-                                                                       {&openWater_, groups.open},
+  const PixelPrograms& pixel = pixelPrograms(!wakes.empty(), reflect || bare);  // no variant made for a bare draw
+  const std::pair<const gl::GlProgram*, std::size_t> passes[4] = {{bare ? &bare_ : &pixel.sharp, groups.sharp},
+                                                                       {&pixel.smooth, groups.smooth},
+                                                                       {&pixel.open, groups.open},
                                                                        {&farShaded_, groups.farOpen}};
   std::size_t first = 0;
   for (const auto& [prog, count] : passes) {
     if (count == 0) continue;
     prog->use();
     setUniforms(*prog);
-    if (pages_ && (prog == &program_ || prog == &smoothCoast_)) pages_->bind(*prog);
+    if (pages_ && (prog == &pixel.sharp || prog == &pixel.smooth)) pages_->bind(*prog);
     glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
     first += count;
@@ -861,6 +864,21 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
       else
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(3 + i), GLuint(hostSsbo[i]));
     }
+}
+
+const OceanRenderer::PixelPrograms& OceanRenderer::pixelPrograms(bool wakes, bool reflection) {
+  PixelPrograms& v = pixel_[(wakes ? 1 : 0) | (reflection ? 0 : 2)];
+  if (v.sharp.id() == 0) {
+    const auto make = [&](std::vector<std::string> d) {
+      if (wakes) d.push_back("GEOCEAN_WAKES 1");
+      if (!reflection) d.push_back("GEOCEAN_NO_REFLECTION 1");
+      return gl::GlProgram::graphics("ocean.vert", "ocean.frag", d);
+    };
+    v.sharp = make(sharpDefines_);
+    v.smooth = make(smoothDefines_);
+    v.open = make(openDefines_);
+  }
+  return v;
 }
 
 bool OceanRenderer::swapCoast(std::shared_ptr<const waves::WaveField> w) {

@@ -243,7 +243,19 @@ class OceanRenderer {
   std::unique_ptr<grid::ScreenGrid> grid_;
   grid::GridFrame frame_;
   waves::GpuPatch patch_;
-  gl::GlProgram program_, smoothCoast_, openWater_, farShaded_, bare_;
+  gl::GlProgram farShaded_, bare_;
+  // The per-pixel programs (coast cut, smooth coast, open water) by what a
+  // draw needs: [1] the bodies' foam (wake.glsl's GEOCEAN_WAKES), [2] no
+  // planar reflection (GEOCEAN_NO_REFLECTION); [0] made with the renderer,
+  // the others at their first draw. llvmpipe runs both sides of a branch
+  // on a uniform and a loop's body once even for no iteration, so a term
+  // not drawn still cost every pixel (docs/PERFORMANCE.md).
+  struct PixelPrograms {
+    gl::GlProgram sharp, smooth, open;
+  };
+  PixelPrograms pixel_[4];
+  std::vector<std::string> sharpDefines_, smoothDefines_, openDefines_;
+  const PixelPrograms& pixelPrograms(bool wakes, bool reflection);
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0, ssbo_[5] = {0, 0, 0, 0, 0};  // octaves, waves, frame, FFT planes | coast, FFT | coast texels
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;
