@@ -259,6 +259,8 @@ TEST(Shadows, ABoxShadowFallsOnTheSeaWhereRaysToTheSunMeetItDarkenedByThePapersH
   }
   EXPECT_GT(outside, 10000);
   EXPECT_EQ(changed, 0);
+  // Looked at: the box's shadow west of it, a parallelogram on the calm sea.
+  expectMatchesGolden(paper.img, "shadow_box_paper", 2.0, 0.005);
 }
 
 // Looking towards a low sun: the box's shadow lies on the glitter. By
