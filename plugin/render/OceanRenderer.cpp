@@ -785,7 +785,6 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
                            glm::translate(glm::dmat4(1.0), cam.eyeEcef() - inputs_.shadowOriginEcef);
       const glm::mat4 mf(m);
       glUniformMatrix4fv(p.uniform("uShadowMatrix"), 1, GL_FALSE, &mf[0][0]);
-      glUniform1f(p.uniform("uShadowTexel"), float(1.0 / inputs_.shadowSize));
       // 0.3 m in the map's depth units (its z row is depth per metre along the sun).
       const double perM = glm::length(glm::dvec3(inputs_.shadowMatrix[0][2], inputs_.shadowMatrix[1][2],
                                                  inputs_.shadowMatrix[2][2]));

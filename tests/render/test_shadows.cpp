@@ -222,13 +222,13 @@ TEST(Shadows, ABoxShadowFallsOnTheSeaWhereRaysToTheSunMeetItDarkenedByThePapersH
               m.drawnN, m.geometricN, m.both, m.dx, m.dy, m.gx, m.gy, texel);
   ASSERT_GT(m.geometricN, 150) << "the box's shadow is in view";
   // Where geometry says: the centroids agree within a map texel (PCF
-  // spreads an edge over about 2 texels either way, symmetrically) plus a
-  // pixel, and the two masks overlap for 80 % of either.
+  // spreads an edge over a texel, symmetrically) plus a pixel, and the two
+  // masks overlap for 80 % of either.
   EXPECT_LT(std::hypot(m.dx - m.gx, m.dy - m.gy), texel + 1.0);
   EXPECT_GT(m.both, 0.8 * m.geometricN);
   EXPECT_GT(m.both, 0.8 * m.drawnN);
   // Paper 001's m = 0.5: the pixels in full shadow (the geometric mask
-  // less PCF's reach, 2 texels) are half the unshadowed picture's, to the
+  // less 2 texels, twice PCF's reach) are half the unshadowed picture's, to the
   // display's rounding (1 of 255 and the half of an odd value).
   const int r = int(std::ceil(2.0 * texel)) + 1;
   int n = 0, off = 0;
