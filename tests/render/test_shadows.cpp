@@ -10,7 +10,9 @@
 #include "globe/geo/Ellipsoid.h"
 #include "globe/gl/Framebuffer.h"
 #include "globe/render/Boats.h"
+#include "globe/raster/GeoTiffWriter.h"
 #include "globe/render/Terrain.h"
+#include "tests/support/Subprocess.h"
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -18,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -437,5 +440,139 @@ TEST(Shadows, AnIslandsCliffShadowAtALowSunFallsWhereGeometrySays) {
   // this grazing view, where the mirrored sky is most of the water's light).
   expectMatchesGolden(paper.img, "shadow_island_low_sun_paper", 2.0, 0.005);
 }
+
+// A cliff at a low sun, drawn by `geocean render` through the plugin (ABI
+// 1.8's shadow map and flag): a global 1' elevation raster (streamed at its
+// own cells; a regional one is drawn resampled to 5'), nodata but for a
+// 1 x 1 degree block of 4000 m deep sea around (30 N, 40 W) with a 300 m
+// plateau of 15 x 15 cells (0.25 degrees) at its centre, land in a 1' mask
+// of the block (without it the 5' default mask calls it sea and the host
+// draws the ground under the sea there, casting nothing): its edge falls to
+// the deep sea within one cell, crossing the sea level 130 m out (a 66
+// degree cliff). The sun 6 degrees high in the east throws the plateau's
+// shadow about 2.9 km over the sea west of it. Truth: for each sea pixel
+// the ray from its point on the (calm, 1 m/s) sea towards the sun, marched
+// over the raster's bilinear surface; the picture's shadow: the pixels the
+// paper's model darkens (ratio < 0.8 against --no-shadows).
+double plateauElevation(double lat, double lon) {
+  if (std::abs(lat - 30.0) < 0.5 && std::abs(lon + 40.0) < 0.5)
+    return std::abs(lat - 30.0) < 7.5 / 60.0 && std::abs(lon + 40.0) < 7.5 / 60.0 ? 300.0 : -4000.0;
+  return -32768.0;
+}
+std::string plateauTif() {
+  constexpr int W = 21600, H = 10800;
+  static const std::string p = [] {
+    const std::string path = ::testing::TempDir() + "/shadow_plateau.tif";
+    std::filesystem::remove(path);
+    std::filesystem::remove_all(::testing::TempDir() + "/shadow_tile_cache");
+    raster::GeoTiffWriteOptions wo;
+    wo.transform = {-180.0, 90.0, 360.0 / W, -180.0 / H, true};
+    wo.nodata = -32768.0;
+    raster::writeGeoTiffTiles(path, W, H, 1, raster::SampleType::F32, wo, [&](int x0, int y0, void* tile) {
+      float* v = static_cast<float*>(tile);
+      for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x)
+          v[y * 256 + x] = float(plateauElevation(90.0 - (y0 + y + 0.5) / 60.0, -180.0 + (x0 + x + 0.5) / 60.0));
+    });
+    return path;
+  }();
+  return p;
+}
+// Its mask (the host's and the ocean's land and sea): 1' cells over the
+// 1 x 1 degree block, land (1) where the relief is above the sea.
+std::string plateauMask() {
+  static const std::string p = [] {
+    const std::string path = ::testing::TempDir() + "/shadow_plateau_mask.tif";
+    std::vector<float> px(60 * 60);
+    for (int y = 0; y < 60; ++y)
+      for (int x = 0; x < 60; ++x) px[std::size_t(y) * 60 + x] = plateauElevation(30.5 - (y + 0.5) / 60.0, -40.5 + (x + 0.5) / 60.0) > 0.0 ? 1.0f : 0.0f;
+    raster::GeoTiffWriteOptions wo;
+    wo.transform = {-40.5, 30.5, 1.0 / 60.0, -1.0 / 60.0, false};
+    raster::writeGeoTiff(path, px.data(), 60, 60, 1, raster::SampleType::F32, wo);
+    return path;
+  }();
+  return p;
+}
+// The raster's bilinear surface (cell centres on the 1' grid).
+double bilinear(double lat, double lon) {
+  const double fx = (lon + 180.0) * 60.0 - 0.5, fy = (90.0 - lat) * 60.0 - 0.5;
+  const double x0 = std::floor(fx), y0 = std::floor(fy), tx = fx - x0, ty = fy - y0;
+  const auto at = [](double col, double row) {
+    return plateauElevation(90.0 - (row + 0.5) / 60.0, -180.0 + (col + 0.5) / 60.0);
+  };
+  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) + ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+}
+
+Image renderCli(const std::string& args, const std::string& name) {
+  std::string out = ::testing::TempDir() + "/" + name + ".png";
+  if (const char* dir = std::getenv("GEOCEAN_DUMP_DIR")) out = std::string(dir) + "/" + name + ".png";
+  std::filesystem::remove(out);
+  const auto r = geocean::test::run(std::string(GEOCEAN_EXE) + " render " + args + " --out " + out);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  return readImage(out);
+}
+
+TEST(Shadows, ACliffsShadowAtALowSunFallsWhereItsReliefSays) {
+  setenv("GEOCEAN_TILE_CACHE", (::testing::TempDir() + "/shadow_tile_cache").c_str(), 1);
+  // 150 m up, 2.5 km west of the plateau's west side, in its shadow, looking north-east at the cliff.
+  ViewPose pose;
+  pose.latDeg = 29.93, pose.lonDeg = -40.0 - 7.0 / 60.0 - 0.026, pose.altM = 150.0;
+  pose.headingDeg = 45.0, pose.pitchDeg = -6.0, pose.fovYDeg = 50.0, pose.width = kW, pose.height = kH;
+  char cam[160];
+  std::snprintf(cam, sizeof cam, " --camera %.6f,%.6f,%.1f,%.1f,%.1f --size %dx%d --fov %.1f --sun 90,6 --wind 1",
+                pose.latDeg, pose.lonDeg, pose.altM, pose.headingDeg, pose.pitchDeg, kW, kH, pose.fovYDeg);
+  const std::string view = std::string(cam) + " --elevation " + plateauTif() + " --mask " + plateauMask();
+  const Image none = renderCli(view + " --no-shadows", "shadow_cliff_none");
+  const Image paper = renderCli(view + " --shadow-model paper", "shadow_cliff_paper");
+  const Image physical = renderCli(view, "shadow_cliff");
+  unsetenv("GEOCEAN_TILE_CACHE");
+  ASSERT_EQ(none.width, kW);
+  ASSERT_EQ(paper.width, kW);
+  const camera::Camera c = camera::Camera::fromView(pose);
+  const glm::dvec3 sun = sunForView(pose, 90.0, 6.0);
+  const double reach = std::clamp(kShadowReachPerHeight * pose.altM, kShadowReachMinM, kShadowReachMaxM);
+  int sea = 0, drawn = 0, geometric = 0, both = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const glm::dvec3 ray = c.pixelRay(x + 0.5, y + 0.5);
+      const geo::RayHit hit = geo::intersectEllipsoid(c.eyeEcef(), ray);
+      if (!hit.hit) continue;
+      const glm::dvec3 p = c.eyeEcef() + hit.tFirst() * ray;
+      // Sea points within 0.8 of the map's reach, clear of the cliff's cell
+      // (deeper than 1000 m: the terrain there is the sea floor or its edge).
+      if (hit.tFirst() > 0.8 * reach) continue;
+      const geo::Geodetic g = geo::fromEcef(p);
+      if (bilinear(g.latDeg, g.lonDeg) > -1000.0) continue;
+      // The view of it must not cross the plateau (it does not: the eye is
+      // south-west of it, looking past its west side).
+      bool shaded = false;
+      for (double t = 20.0; t < 8000.0 && !shaded; t += 20.0) {
+        const geo::Geodetic q = geo::fromEcef(p + t * sun);
+        shaded = bilinear(q.latDeg, q.lonDeg) > q.heightM;
+      }
+      const std::size_t i = std::size_t(y) * kW + x;
+      const bool dark = grey(paper, i) < 0.8 * grey(none, i);
+      ++sea, drawn += dark, geometric += shaded, both += dark && shaded;
+    }
+  std::printf("[ measured ] cliff: %d sea px within reach, shadow drawn %d, by the relief %d, both %d\n", sea, drawn,
+              geometric, both);
+  ASSERT_GT(geometric, 500) << "the cliff's shadow is in view";
+  // The terrain's mesh draws the cliff's cell as a ramp over its vertices
+  // (cells of ~115 m at its finest level) and the map's texels are ~3 m
+  // here: the shadow's edge moves by up to 115 m / tan(6 deg) ~ 1 km only
+  // where the ramp's top is cut, so 80 % agreement each way.
+  EXPECT_GT(both, 0.8 * geometric);
+  EXPECT_GT(both, 0.8 * drawn);
+  // The default model removes the sun's direct light there: darker too.
+  int darker = 0, n = 0;
+  for (std::size_t i = 0; i < std::size_t(kW) * kH; ++i)
+    if (grey(paper, i) < 0.6 * grey(none, i)) ++n, darker += grey(physical, i) < grey(none, i);
+  EXPECT_GT(darker, 0.9 * n);
+  // Looked at: the cliff's dark face and its shadow band over the sea to
+  // the eye (the paper's model; the default's is faint, the sky's
+  // reflection being most of the water's light at this grazing view).
+  expectMatchesGolden(paper, "shadow_cliff_low_sun_paper", 2.0, 0.005);
+}
+
 }  // namespace
 }  // namespace geocean::render::test
