@@ -88,6 +88,7 @@ layout(location = 1) out vec4 outData;
 #include "ocean_shading.glsl"
 #ifndef GEOCEAN_FAR_SHADED
 #include "wake.glsl"
+#include "shadow.glsl"
 #endif
 
 void main() {
@@ -216,7 +217,12 @@ void main() {
   vec3 nrm = normalize(nDrawn - (detail.xyz - up * dot(detail.xyz, up)));
   float mss = max(mssDrawn - detail.w * farKeep, 0.0);
 #endif
-  outColor = vec4(oceanColorCrest(vEyeRel, nrm, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, mss, max(crest, wake), w, vHeightM), alpha);
+  // The sun's shadow (shadow.glsl): its direct light removed, or paper 001's
+  // darkening of the pixel by 0.5.
+  float sunVis = sunVisibility(vEyeRel);
+  gSunVisible = uShadow == 2 ? 1.0 : sunVis;
+  vec3 col = oceanColorCrest(vEyeRel, nrm, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, mss, max(crest, wake), w, vHeightM);
+  outColor = vec4(uShadow == 2 ? col * mix(0.5, 1.0, sunVis) : col, alpha);
 #endif
   outData = uWriteData != 0 ? vec4(vEyeRel, 1.0) : vec4(0.0);
 }

@@ -104,7 +104,7 @@ vec3 crestSubsurface(vec3 n, vec3 v, vec3 sunDir, vec3 sun, float heightM, float
   float h = clamp(heightM / max(0.5 * uHsM, 1e-3), 0.0, 1.0) * (1.0 - far);
   float back = max(dot(v, -sunDir), 0.0), away = 0.5 - 0.5 * dot(sunDir, n);
   float back2 = back * back;
-  return sun * kSubsurface * exp(-kWaterAttenuation) * (h * back2 * back2 * away * away * away);
+  return sun * kSubsurface * exp(-kWaterAttenuation) * (h * back2 * back2 * away * away * away * gSunVisible);
 }
 
 // w: water coverage (0.5 = coast); far: how far the waves have faded into

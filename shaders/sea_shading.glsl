@@ -20,6 +20,17 @@ const float kSunIrradiance = 1.0;
 // reflects the disc, so the disc widens the slope distribution by (r/2)^2.
 const float kSunDiscMss = 0.0000054;
 
+// The share of the sun's direct light that reaches the point (shadow.glsl;
+// the ocean sets it per fragment, 1 elsewhere): glitter, the sun-lit body
+// and foam; the sky's light stays.
+float gSunVisible = 1.0;
+// The sun's specular: 0 the microfacet glitter (default), 1 paper 001's
+// Phong term (eq. 19), exponent uPhongExponent (0: 1 / (2 mss), the lobe of
+// the same slopes: facets tilted by b reflect the ray by 2b, so Beckmann's
+// exp(-b^2 / mss) is exp(-phi^2 / (4 mss)) and cos^n(phi) ~ exp(-n phi^2 / 2)).
+uniform int uSunPhong;
+uniform float uPhongExponent;
+
 // Fresnel reflectance of sea water (n = 1.34), unpolarised, exact: the
 // glitter is seen at 50-80 degrees of incidence, where Schlick's form is
 // 10-15 % high.
@@ -90,7 +101,7 @@ vec3 seaColorOptics(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM
   float F = fresnelSchlick(ndv);
   vec3 sky = skyLow(r, up, sunDir, sun);
   if (reflected.a > 0.0) sky = mix(sky, reflected.rgb, reflected.a);
-  vec3 light = sun + vec3(0.03);
+  vec3 light = sun * gSunVisible + vec3(0.03);
   vec3 deep = vec3(0.004, 0.025, 0.06);
   float lit = 0.35 + 0.65 * max(dot(sunDir, up), 0.0);
   vec3 body;
@@ -98,7 +109,7 @@ vec3 seaColorOptics(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM
     // The bottom lit by the sun through the surface (Fresnel) and the sky,
     // its radiance divided by n^2 leaving the water.
     float sunUp = max(dot(sunDir, up), 0.0);
-    vec3 e = sun * sunUp * (1.0 - fresnelWater(sunUp)) + vec3(0.03);
+    vec3 e = sun * (sunUp * (1.0 - fresnelWater(sunUp)) * gSunVisible) + vec3(0.03);
     vec3 bottom = kBottomAlbedo / 3.14159265 * e / (kWaterIndex * kWaterIndex);
     body = mix(deep * lit * light, bottom, waterPathTransmittance(n, v, up, sunDir, depthM));
   } else {
@@ -112,6 +123,15 @@ vec3 seaColorOptics(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM
   // G / (4 n.v (n.h)^4), p the Beckmann density of mean square slope mss.
   float m = max(mss, 1e-4) + kSunDiscMss;
   vec3 h = normalize(sunDir + v);
+  if (uSunPhong != 0) {
+    // Paper 001 eq. 19's I_s = k_s I cos^n(phi), phi between the mirrored
+    // view ray and the sun; k_s = F (n + 2) / 2 pi (normalised: the lobe
+    // keeps the reflected energy F E whatever n).
+    float e = uPhongExponent > 0.0 ? uPhongExponent : 0.5 / m;
+    float cosPhi = max(dot(reflect(-v, n), sunDir), 0.0);
+    c += kSunIrradiance * sun * gSunVisible * (fresnelWater(ndv) * (e + 2.0) / 6.2831853 * pow(cosPhi, e)) *
+         step(0.0, dot(n, sunDir));
+  } else {
   float ndh = max(dot(n, h), 1e-3), ndl = dot(n, sunDir);
   float ndh2 = ndh * ndh;
   float D, G;
@@ -140,7 +160,8 @@ vec3 seaColorOptics(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM
     G = 1.0 / (1.0 + smithLambda(ndv, mssAlong(v, n, tu, tc, aU, aC)) +
                smithLambda(max(ndl, 1e-3), mssAlong(sunDir, n, tu, tc, aU, aC)));
   }
-  c += kSunIrradiance * sun * (fresnelWater(dot(v, h)) * D * G / (4.0 * ndv)) * step(0.0, ndl);
+  c += kSunIrradiance * sun * gSunVisible * (fresnelWater(dot(v, h)) * D * G / (4.0 * ndv)) * step(0.0, ndl);
+  }
   vec3 foamColor = vec3(0.85, 0.9, 0.92) * (light * 0.9 + 0.1);
   return mix(c, foamColor, clamp(foam, 0.0, 1.0));
 }

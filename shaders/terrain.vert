@@ -71,7 +71,7 @@ void main() {
   vNormal = aNormal;
   vLonLat = aLonLat;
   vHeightM = h;
-#ifdef GEOCEAN_BARE
+#if defined(GEOCEAN_BARE) || defined(GEOCEAN_DEPTH_ONLY)  // the sun's depth map: the relief's height alone
   vRelief = aNormal, vSun = vec3(1.0), vHazeTr = vec3(1.0), vHazeIn = vec3(0.0), vDepthM = 0.0, vSeaColor = vec3(0.0), vWater = 0.0;
 #else
   // Relief: the elevation gradient tilts the normal (east/north tangents).

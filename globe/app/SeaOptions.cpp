@@ -2,6 +2,7 @@
 
 #include "globe/app/Command.h"
 #include "globe/render/CliParse.h"
+#include "globe/render/GlobeRenderer.h"
 #include "plugin/ocean/Ocean.h"  // waves::SeaState through the façade
 
 #include <cmath>
@@ -51,6 +52,24 @@ void addGridOption(CLI::App& sub, std::string& grid) {
                  "ocean grid projector: direct (default: each vertex's ray meets the ellipsoid) or ispg (paper "
                  "000's projected grid, for comparison)")
       ->check(CLI::IsMember({"direct", "ispg"}));
+}
+
+void addLightOptions(CLI::App& sub, LightOptions& o) {
+  sub.add_flag("--no-shadows", o.noShadows, "no sun shadows of terrain and boats on the water");
+  sub.add_option("--shadow-model", o.shadowModel,
+                 "the water in shadow: physical (default: the sun's direct light removed, the sky's kept) or "
+                 "paper (paper 001: the pixel darkened by 0.5)")
+      ->check(CLI::IsMember({"physical", "paper"}));
+  sub.add_option("--sun-model", o.sunModel,
+                 "the sun's specular on the water: microfacet (default: Cox-Munk glitter) or phong (paper 001 "
+                 "eq. 19)")
+      ->check(CLI::IsMember({"microfacet", "phong"}));
+}
+
+void applyLightOptions(const LightOptions& o, render::FrameSettings& fs) {
+  fs.shadows = !o.noShadows;
+  fs.shadowModel = o.shadowModel == "paper" ? render::ShadowModel::Paper : render::ShadowModel::Physical;
+  fs.sunModel = o.sunModel == "phong" ? render::SunModel::Phong : render::SunModel::Microfacet;
 }
 
 }  // namespace geocean::app

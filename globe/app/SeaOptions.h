@@ -7,6 +7,10 @@
 
 #include <string>
 
+namespace geocean::render {
+struct FrameSettings;
+}
+
 namespace geocean::app {
 
 struct WindOptions {
@@ -33,5 +37,16 @@ void addReflectionEveryOption(CLI::App& sub, int& every);
 // Adds --grid direct|ispg: the ocean's screen grid projector (issue 13
 // item 8: paper 000's ISPG drawable beside the default, for comparison).
 void addGridOption(CLI::App& sub, std::string& grid);
+
+// The sun's light on the water (issue 13 item 6): --no-shadows,
+// --shadow-model physical|paper, --sun-model microfacet|phong.
+struct LightOptions {
+  bool noShadows = false;
+  std::string shadowModel = "physical";
+  std::string sunModel = "microfacet";
+};
+void addLightOptions(CLI::App& sub, LightOptions& o);
+// Into a frame's settings (the values are checked by the options).
+void applyLightOptions(const LightOptions& o, render::FrameSettings& fs);
 
 }  // namespace geocean::app

@@ -36,6 +36,7 @@ struct FlyArgs {
   bool noImages = false;
   bool noOcean = false;
   bool noReflections = false, noRefraction = false;
+  LightOptions light;
   std::string waves = "noise";
   WindOptions wind;
   double windFromDeg = 270.0;
@@ -164,6 +165,7 @@ int runFly(const FlyArgs& a) {
     fs.reflections = !a.noReflections;
     fs.refraction = !a.noRefraction;
     fs.reflectionSize = a.reflectionSize;
+    applyLightOptions(a.light, fs);
     fs.reflectionEvery = a.reflectionEvery;
     const auto t = s.render(pose, fs);
 #if GEOCEAN_WITH_HUD
@@ -226,6 +228,7 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                       sub.add_option("--waves", a->waves, "wave model: noise (default), noise-paper (paper 002, with its seam), gerstner, fft");
                       addWindOptions(sub, a->wind);
                       addReflectionSizeOption(sub, a->reflectionSize);
+                      addLightOptions(sub, a->light);
                       addReflectionEveryOption(sub, a->reflectionEvery);
                       addGridOption(sub, a->grid);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");

@@ -26,6 +26,7 @@ struct RenderArgs {
   double exaggeration = 1.0;
   bool noOcean = false;
   bool noReflections = false, noRefraction = false;
+  LightOptions light;
   std::string waves = "noise";
   WindOptions wind;
   double windFromDeg = 270.0;
@@ -109,6 +110,7 @@ int runRender(const RenderArgs& a) {
   fs.reflections = !a.noReflections;
   fs.refraction = !a.noRefraction;
   fs.reflectionSize = a.reflectionSize;
+  applyLightOptions(a.light, fs);
   const auto t = s.render(pose, fs);
   gl::writePng(a.out, s.image());
   std::fprintf(stderr, "geocean render: wrote %s (%dx%d, %d terrain tiles, %.1f ms)\n", a.out.c_str(), pose.width,
@@ -137,6 +139,7 @@ const Register reg{{"render", "Render one frame headless to a PNG",
                       sub.add_option("--waves", a->waves, "wave model: noise (default), noise-paper (paper 002, with its seam), gerstner, fft");
                       addWindOptions(sub, a->wind);
                       addReflectionSizeOption(sub, a->reflectionSize);
+                      addLightOptions(sub, a->light);
                       addGridOption(sub, a->grid);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
                       addCoastOption(sub, a->coastRegion);

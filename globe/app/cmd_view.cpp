@@ -47,6 +47,7 @@ struct ViewArgs {
   bool noHud = false;
   bool panel = false;  // the control panel open from the start (P toggles it)
   bool noReflections = false, noRefraction = false;
+  LightOptions light;
   LayerOptions layers;
   BoatOptions boats;
   std::string waves = "noise";  // as render and fly
@@ -405,6 +406,7 @@ int runView(const ViewArgs& a) {
       fs.reflections = panel.reflections;
       fs.refraction = panel.refraction;
       fs.reflectionSize = a.reflectionSize;
+      applyLightOptions(a.light, fs);
       fs.reflectionEvery = a.reflectionEvery;
       const render::FrameTimes times = renderer->render(c.pose, fs);
       tilesBuilt += times.terrain.tilesBuilt;
@@ -508,6 +510,7 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                                      "the camera)");
                       sub.add_option("--time", a->timeS, "simulation time of the first frame, seconds");
                       addReflectionSizeOption(sub, a->reflectionSize);
+                      addLightOptions(sub, a->light);
                       addReflectionEveryOption(sub, a->reflectionEvery);
                       addGridOption(sub, a->grid);
                       sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees (default 270)");

@@ -36,6 +36,9 @@ class PluginBoats : public render::SceneObject {
   void update(double timeS) override;
   void draw(const camera::Camera& cam, const camera::Lighting& light, bool bare,
             const camera::Camera* mirroredFrom) override;
+  void drawDepth(const glm::mat4& viewProj, const glm::dvec3& originEcef) override {
+    renderer_->drawDepth(viewProj, originEcef);
+  }
 
   std::size_t count() const { return poses_.size(); }
   // The poses of the last update (interpolated), in spawn order.

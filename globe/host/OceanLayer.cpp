@@ -15,7 +15,8 @@ PluginOceanLayer::PluginOceanLayer(std::shared_ptr<const OceanPlugin> plugin, ge
   info_.opaqueWater = (li.flags & GEOCEAN_LAYER_OPAQUE_WATER) != 0 && a.coversOpaquely;
   info_.cellPx = li.cell_px;
   info_.wants = ((li.flags & GEOCEAN_LAYER_WANTS_REFLECTION) ? render::kLayerWantsReflection : 0u) |
-                ((li.flags & GEOCEAN_LAYER_WANTS_SCENE_COPY) ? render::kLayerWantsSceneCopy : 0u);
+                ((li.flags & GEOCEAN_LAYER_WANTS_SCENE_COPY) ? render::kLayerWantsSceneCopy : 0u) |
+                ((li.flags & GEOCEAN_LAYER_WANTS_SHADOW_MAP) ? render::kLayerWantsShadowMap : 0u);
 }
 
 PluginOceanLayer::~PluginOceanLayer() { plugin_->api().destroy(ocean_); }
@@ -60,7 +61,9 @@ void PluginOceanLayer::draw(const camera::Camera& cam, const camera::Lighting& l
   geocean_view v = hostView(defaults, cam, light);
   v.draw_flags = (bare ? GEOCEAN_DRAW_REFERENCE : 0u) | (inputs.refraction ? 0u : GEOCEAN_DRAW_NO_REFRACTION) |
                  (completeTiles_ ? GEOCEAN_DRAW_COMPLETE_TILES : 0u) | (gridIspg_ ? GEOCEAN_DRAW_GRID_ISPG : 0u) |
-                 (followCoast_ ? GEOCEAN_DRAW_FOLLOW_COAST : 0u);
+                 (followCoast_ ? GEOCEAN_DRAW_FOLLOW_COAST : 0u) |
+                 (inputs.sunModel == render::SunModel::Phong ? GEOCEAN_DRAW_SUN_PHONG : 0u) |
+                 (inputs.shadowModel == render::ShadowModel::Paper ? GEOCEAN_DRAW_SHADOW_PAPER : 0u);
   if (a.setLayerInputs && info_.wants) {
     geocean_layer_inputs in{};
     in.struct_size = sizeof in;
@@ -68,6 +71,12 @@ void PluginOceanLayer::draw(const camera::Camera& cam, const camera::Lighting& l
     in.scene_color_texture = inputs.sceneColor;
     in.scene_depth_texture = inputs.sceneDepth;
     in.reflection_view = hostView(defaults, inputs.reflectionCamera, light);
+    in.shadow_depth_texture = inputs.shadowDepth;
+    in.shadow_size_px = uint32_t(inputs.shadowSize);
+    for (int i = 0; i < 3; ++i) in.shadow_origin_ecef_m[i] = inputs.shadowOriginEcef[i];
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) in.shadow_matrix[4 * c + r] = inputs.shadowMatrix[c][r];
+    in.shadow_reach_m = inputs.shadowReachM;
     if (a.setLayerInputs(ocean_, &in) != GEOCEAN_OK)
       throw std::runtime_error(std::string("ocean plugin: ") + a.lastError());
   }

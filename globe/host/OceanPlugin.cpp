@@ -137,9 +137,10 @@ std::unique_ptr<OceanPlugin> OceanPlugin::load(const std::string& path, std::str
                       resolve(handle, "geocean_clear_coast_region", a.clearCoastRegion, file, error);
     if (!ok15) return nullptr;
   }
-  // ABI 1.6 and 1.7 add no symbols: geocean_bodies_config's repulsion field,
-  // the GEOCEAN_DRAW_COMPLETE_TILES, GEOCEAN_DRAW_FOLLOW_COAST and
-  // GEOCEAN_DRAW_GRID_ISPG flags (a 1.7 host gets no older plugin).
+  // ABI 1.6 to 1.8 add no symbols: geocean_bodies_config's repulsion field,
+  // the GEOCEAN_DRAW_COMPLETE_TILES, GEOCEAN_DRAW_FOLLOW_COAST,
+  // GEOCEAN_DRAW_GRID_ISPG, GEOCEAN_DRAW_SUN_PHONG and GEOCEAN_DRAW_SHADOW_PAPER
+  // flags, the shadow map's layer flag and inputs (a 1.8 host gets no older plugin).
   return p;
 }
 

@@ -45,11 +45,6 @@ int BoatRenderer::addMesh(const std::vector<double>& xyz, const std::vector<std:
 
 void BoatRenderer::draw(const camera::Camera& cam, const camera::Lighting& light,
                         const camera::Camera* mirroredFrom) const {
-  if (instances_.empty()) return;
-  program_.use();
-  glUniformMatrix4fv(program_.uniform("uViewProj"), 1, GL_FALSE, glm::value_ptr(cam.gpu().viewProj));
-  const glm::vec3 sun(light.sunEcef);
-  glUniform3fv(program_.uniform("uSunDir"), 1, &sun[0]);
   glm::vec4 plane(0.0f, 0.0f, 0.0f, 1.0f);
   if (mirroredFrom) {
     // The sea-level plane under the real eye, in the mirrored eye's frame:
@@ -57,6 +52,21 @@ void BoatRenderer::draw(const camera::Camera& cam, const camera::Lighting& light
     const glm::dvec3 n = geo::surfaceNormal(mirroredFrom->latDeg(), mirroredFrom->lonDeg());
     plane = glm::vec4(glm::vec3(n), float(-mirroredFrom->heightM()));
   }
+  drawWith(cam.gpu().viewProj, cam.eyeEcef(), glm::vec3(light.sunEcef), plane);
+}
+
+void BoatRenderer::drawDepth(const glm::mat4& viewProj, const glm::dvec3& originEcef) const {
+  // The whole hull: what is under the water is farther from the sun than
+  // the water above it, so it shades nothing there.
+  drawWith(viewProj, originEcef, glm::vec3(0.0f, 0.0f, 1.0f), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+}
+
+void BoatRenderer::drawWith(const glm::mat4& viewProj, const glm::dvec3& originEcef, const glm::vec3& sun,
+                            const glm::vec4& plane) const {
+  if (instances_.empty()) return;
+  program_.use();
+  glUniformMatrix4fv(program_.uniform("uViewProj"), 1, GL_FALSE, glm::value_ptr(viewProj));
+  glUniform3fv(program_.uniform("uSunDir"), 1, &sun[0]);
   glUniform4fv(program_.uniform("uClipPlane"), 1, &plane[0]);
   glEnable(GL_CLIP_DISTANCE0);
   glEnable(GL_DEPTH_TEST);
@@ -64,7 +74,7 @@ void BoatRenderer::draw(const camera::Camera& cam, const camera::Lighting& light
   glDepthMask(GL_TRUE);
   for (const BoatInstance& b : instances_) {
     if (b.mesh < 0 || b.mesh >= int(meshes_.size())) continue;
-    const glm::vec3 offset(b.positionEcef - cam.eyeEcef());  // difference in double, then float
+    const glm::vec3 offset(b.positionEcef - originEcef);  // difference in double, then float
     const glm::mat3 rot(glm::mat3_cast(b.orientation));
     const geo::Geodetic g = geo::fromEcef(b.positionEcef);
     const glm::vec3 up(geo::surfaceNormal(g.latDeg, g.lonDeg));

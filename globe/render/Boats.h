@@ -38,12 +38,16 @@ class BoatRenderer {
 
   // See SceneObject::draw.
   void draw(const camera::Camera& cam, const camera::Lighting& light, const camera::Camera* mirroredFrom) const;
+  // See SceneObject::drawDepth (the sun's shadow map).
+  void drawDepth(const glm::mat4& viewProj, const glm::dvec3& originEcef) const;
 
  private:
   struct Mesh {
     unsigned vao = 0, vbo = 0, ibo = 0;
     int indexCount = 0;
   };
+  void drawWith(const glm::mat4& viewProj, const glm::dvec3& originEcef, const glm::vec3& sun,
+                const glm::vec4& clipPlane) const;
   gl::GlProgram program_;
   std::vector<Mesh> meshes_;
   std::vector<BoatInstance> instances_;

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <vector>
 
 namespace geocean::render {
 
@@ -29,6 +30,119 @@ GlobeRenderer::GlobeRenderer(std::shared_ptr<const WorldTextures> world, Terrain
 
 GlobeRenderer::~GlobeRenderer() {
   glDeleteVertexArrays(1, &emptyVao_);
+  if (shadowFbo_) glDeleteFramebuffers(1, &shadowFbo_);
+  if (shadowDepth_) glDeleteTextures(1, &shadowDepth_);
+}
+
+bool shadowView(const camera::Camera& cam, const glm::dvec3& sunEcef, ShadowView& out) {
+  const glm::dvec3 up = geo::surfaceNormal(cam.latDeg(), cam.lonDeg());
+  const glm::dvec3 sun = glm::normalize(sunEcef);
+  const double sinSun = glm::dot(sun, up), h = cam.heightM();
+  if (sinSun <= 0.0 || h >= kShadowReachMaxM) return false;
+  const double reach = std::clamp(kShadowReachPerHeight * std::max(h, 0.0), kShadowReachMinM, kShadowReachMaxM);
+  // The sea the view sees within the reach, on the tangent plane at the
+  // nadir (relative to the eye): the nadir and where the rays through the
+  // screen's corners and edge midpoints meet the plane, or their points at
+  // the reach brought down onto it.
+  std::vector<glm::dvec3> pts{-h * up};
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j) {
+      const glm::dvec3 r = glm::normalize(cam.rayThroughNdc(i, j));
+      const double down = -glm::dot(r, up);
+      const double t = down > 0.0 ? std::min(h / down, reach) : reach;
+      const glm::dvec3 p = t * r;
+      pts.push_back(p - (glm::dot(p, up) + h) * up);
+    }
+  // The light's axes: z towards the sun, x level.
+  glm::dvec3 lx = glm::cross(sun, up);
+  lx = glm::dot(lx, lx) > 1e-12 ? glm::normalize(lx) : glm::normalize(glm::cross(sun, glm::dvec3(0.0, 0.0, 1.0)));
+  const glm::dvec3 ly = glm::cross(sun, lx);
+  glm::dvec3 lo(1e30), hi(-1e30);
+  for (const glm::dvec3& p : pts) {
+    const glm::dvec3 q(glm::dot(p, lx), glm::dot(p, ly), glm::dot(p, sun));
+    lo = glm::min(lo, q), hi = glm::max(hi, q);
+  }
+  // 5 % margins across (the reach's arc bulges past the chords between the
+  // rays' points); in depth from 200 m under the sea (troughs, hulls' keels)
+  // up to the highest terrain (9 km) towards the sun.
+  const glm::dvec2 pad = 0.05 * glm::dvec2(hi - lo) + 10.0;
+  lo.x -= pad.x, hi.x += pad.x, lo.y -= pad.y, hi.y += pad.y;
+  lo.z -= 200.0, hi.z += 9000.0;
+  glm::dmat4 rot(1.0);
+  for (int i = 0; i < 3; ++i) rot[i][0] = lx[i], rot[i][1] = ly[i], rot[i][2] = sun[i];
+  glm::dmat4 ortho(1.0);
+  ortho[0][0] = 2.0 / (hi.x - lo.x), ortho[3][0] = -(hi.x + lo.x) / (hi.x - lo.x);
+  ortho[1][1] = 2.0 / (hi.y - lo.y), ortho[3][1] = -(hi.y + lo.y) / (hi.y - lo.y);
+  ortho[2][2] = 1.0 / (hi.z - lo.z), ortho[3][2] = -lo.z / (hi.z - lo.z);
+  out.matrix = ortho * rot;
+  out.reachM = reach;
+  // The region casters may stand in: the covered sea widened towards the
+  // sun by a 1 km high caster's shadow (at most 20 km).
+  const double cosSun = std::sqrt(std::max(0.0, 1.0 - sinSun * sinSun));
+  const double widen = std::min(1000.0 * cosSun / std::max(sinSun, 1e-3), 20000.0) + 100.0;
+  double lat0 = 90.0, lat1 = -90.0, lon0 = 1e9, lon1 = -1e9;
+  const glm::dvec3 sunLevel = glm::length(sun - sinSun * up) > 1e-9 ? glm::normalize(sun - sinSun * up) : glm::dvec3(0.0);
+  for (const glm::dvec3& p : pts)
+    for (double w : {0.0, widen}) {
+      const geo::Geodetic g = geo::fromEcef(cam.eyeEcef() + p + w * sunLevel);
+      double lon = g.lonDeg;
+      if (lon - cam.lonDeg() > 180.0) lon -= 360.0;
+      if (lon - cam.lonDeg() < -180.0) lon += 360.0;
+      lat0 = std::min(lat0, g.latDeg), lat1 = std::max(lat1, g.latDeg);
+      lon0 = std::min(lon0, lon), lon1 = std::max(lon1, lon);
+    }
+  out.region[0] = lat0, out.region[1] = lat1, out.region[2] = lon0, out.region[3] = lon1;
+  return true;
+}
+
+void GlobeRenderer::makeShadowMap(const camera::Camera& cam, const camera::Lighting& light, const Layer* waterLayer,
+                                  LayerInputs& in, FrameTimes& t) {
+  ShadowView sv;
+  if (!shadowView(cam, light.sunEcef, sv)) return;
+  // Nothing can cast onto the sea in view: no scene object and open water
+  // all over the region (the layer's own answer, as the terrain asks it).
+  if (objects_.empty() && waterLayer &&
+      waterLayer->coversOpaquely(sv.region[0], sv.region[1], sv.region[2], sv.region[3], 1.0))
+    return;
+  const auto ts = Clock::now();
+  const double cs = cpuMs();
+  if (!shadowDepth_) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &shadowDepth_);
+    glTextureStorage2D(shadowDepth_, 1, GL_DEPTH_COMPONENT32F, kShadowMapSize, kShadowMapSize);
+    glTextureParameteri(shadowDepth_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(shadowDepth_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(shadowDepth_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(shadowDepth_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glCreateFramebuffers(1, &shadowFbo_);
+    glNamedFramebufferTexture(shadowFbo_, GL_DEPTH_ATTACHMENT, shadowDepth_, 0);
+    glNamedFramebufferDrawBuffer(shadowFbo_, GL_NONE);
+    glNamedFramebufferReadBuffer(shadowFbo_, GL_NONE);
+  }
+  GLint target = 0, viewport[4] = {};
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo_);
+  glViewport(0, 0, kShadowMapSize, kShadowMapSize);
+  glClearDepth(0.0);
+  glDepthMask(GL_TRUE);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDisable(GL_CULL_FACE);
+  const glm::mat4 m(sv.matrix);
+  terrain_.drawDepth(m, cam, waterLayer);
+  for (const auto& o : objects_) o->drawDepth(m, cam.eyeEcef());
+  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
+  glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+  in.shadowDepth = shadowDepth_;
+  in.shadowSize = kShadowMapSize;
+  in.shadowMatrix = sv.matrix;
+  in.shadowOriginEcef = cam.eyeEcef();
+  in.shadowReachM = sv.reachM;
+  t.shadowDrawn = true;
+  if (settingsTimed_) glFinish();
+  t.shadowMs = msSince(ts);
+  t.shadowCpuMs = cpuMs() - cs;
 }
 
 double GlobeRenderer::altitudeAboveSurfaceM(const camera::ViewPose& pose) const {
@@ -192,6 +306,12 @@ FrameTimes GlobeRenderer::render(const camera::ViewPose& pose, const FrameSettin
     wants &= ~kLayerWantsReflection;
     reflectionCamera_.reset();  // a map from before would be stale when the pass resumes
   }
+  inputs.shadowModel = settings.shadowModel;
+  inputs.sunModel = settings.sunModel;
+  if (!settings.shadows) wants &= ~kLayerWantsShadowMap;
+  settingsTimed_ = settings.timed;
+  if ((wants & kLayerWantsShadowMap) && !settings.bare) makeShadowMap(cam, light, waterLayer, inputs, t);
+  wants &= ~kLayerWantsShadowMap;
   if (wants && !settings.bare) makeLayerInputs(cam, light, settings, wants, inputs, t);
   for (auto& l : layers_) l->draw(cam, light, settings.bare, inputs);
   if (settings.timed) glFinish();

@@ -27,8 +27,11 @@ struct FrameTimes {
   // The mirrored pass of a reflection alone (part of layers*Ms; 0 when the
   // map was reused or not wanted).
   double reflectionMs = 0.0, reflectionCpuMs = 0.0;
+  // The sun's shadow map pass alone (part of layers*Ms; 0 when skipped).
+  double shadowMs = 0.0, shadowCpuMs = 0.0;
   TerrainStats terrain;
   bool reflectionDrawn = false;  // the mirrored pass ran this frame (not reused)
+  bool shadowDrawn = false;      // the shadow map pass ran this frame
 };
 
 struct FrameSettings {
@@ -48,7 +51,25 @@ struct FrameSettings {
   // the camera it was drawn with (so it stays where it was in the world; what
   // moved since is m - 1 frames late). 1: every frame.
   int reflectionEvery = 1;
+  // The sun's shadows on the water (issue 13 item 6; --no-shadows,
+  // --shadow-model) and its specular (--sun-model), for layers that want them.
+  bool shadows = true;
+  ShadowModel shadowModel = ShadowModel::Physical;
+  SunModel sunModel = SunModel::Microfacet;
 };
+
+// The sun's shadow map's view for a camera (Layer.h's reach and rules):
+// false when no pass is needed (sun below the horizon at the nadir, eye
+// above the largest reach). matrix: positions relative to the eye -> clip
+// (x, y in -1..1, z 0..1 reversed: 1 nearest the sun); reachM: the sea
+// covered, from the eye; region: the covered sea's geodetic rectangle
+// (lat0, lat1, lon0, lon1) widened by what a 1 km high caster's shadow spans.
+struct ShadowView {
+  glm::dmat4 matrix{1.0};
+  double reachM = 0.0;
+  double region[4] = {0.0, 0.0, 0.0, 0.0};
+};
+bool shadowView(const camera::Camera& cam, const glm::dvec3& sunEcef, ShadowView& out);
 
 class GlobeRenderer {
  public:
@@ -88,6 +109,11 @@ class GlobeRenderer {
   GLuint emptyVao_ = 0;
   // The layers' inputs (made on first need, per size).
   gl::TextureTarget sceneCopy_, reflection_;
+  // The sun's depth map (made on first need).
+  GLuint shadowFbo_ = 0, shadowDepth_ = 0;
+  bool settingsTimed_ = false;
+  void makeShadowMap(const camera::Camera& cam, const camera::Lighting& light, const Layer* waterLayer,
+                     LayerInputs& in, FrameTimes& t);
   // The last mirrored pass (FrameSettings::reflectionEvery): its camera
   // (and so the map's size) and the frames since; a change of
   // reflectionEvery starts a new cycle (the next frame draws).

@@ -13,7 +13,29 @@ namespace geocean::render {
 enum LayerInput : unsigned {
   kLayerWantsReflection = 1u,  // sky and terrain mirrored in the sea-level plane under the eye
   kLayerWantsSceneCopy = 2u,   // a copy of the scene's colour and depth so far (refraction)
+  kLayerWantsShadowMap = 4u,   // the sun's depth map of terrain and scene objects near the eye
 };
+
+// The sun's shadow map (issue 13 item 6): an orthographic depth pass along
+// the sun over the sea the eye sees out to a reach that grows with the eye's
+// height above the surface, kShadowReachPerHeight x it, within
+// kShadowReachMinM..kShadowReachMaxM; no pass for an eye higher than the
+// largest reach (no sea point within it), for the sun below the horizon or
+// when nothing can cast onto the region (all open water, no scene object).
+constexpr double kShadowReachPerHeight = 30.0;
+constexpr double kShadowReachMinM = 500.0;
+constexpr double kShadowReachMaxM = 5000.0;
+// The map's side (texels): over a 5 km reach about 3.7 m a texel (a 12 m
+// boat's shadow 3 texels wide), 0.4 m for an eye 17 m up.
+constexpr int kShadowMapSize = 2048;
+
+// What the water does in shadow: the sun's direct light removed (glitter,
+// sun-lit body, subsurface and foam; the sky's light stays), or paper 001's
+// darkening of the shadowed pixel by m = 0.5.
+enum class ShadowModel { Physical, Paper };
+// The sun's specular on the water: the microfacet glitter (Cox-Munk
+// slopes), or paper 001's Phong term (eq. 19).
+enum class SunModel { Microfacet, Phong };
 
 // The reach of a reflection: layers use the mirrored pass's map only for
 // points within this distance of the eye (the ocean fades it out from 20 km
@@ -43,6 +65,19 @@ struct LayerInputs {
   // what is seen through its water. (--no-reflections: the host makes no
   // reflection, reflectionColor is 0.)
   bool refraction = true;
+  // The sun's shadow map (kLayerWantsShadowMap; 0: none this frame):
+  // DEPTH32F, reversed (1 nearest the sun), shadowSize square;
+  // shadowMatrix maps a position relative to shadowOriginEcef to clip
+  // space (x, y in -1..1 over the map, z its depth); the map covers the sea
+  // out to shadowReachM from that origin (the eye).
+  GLuint shadowDepth = 0;
+  int shadowSize = 0;
+  glm::dmat4 shadowMatrix{1.0};
+  glm::dvec3 shadowOriginEcef{0.0};
+  double shadowReachM = 0.0;
+  // The frame's light options (--shadow-model, --sun-model).
+  ShadowModel shadowModel = ShadowModel::Physical;
+  SunModel sunModel = SunModel::Microfacet;
 };
 
 class Layer {

@@ -18,6 +18,10 @@ class SceneObject {
   // plane under its eye; draw only what is above that plane.
   virtual void draw(const camera::Camera& cam, const camera::Lighting& light, bool bare,
                     const camera::Camera* mirroredFrom) = 0;
+  // Depth only, into the sun's shadow map (reversed Z, GL_GREATER):
+  // viewProj takes positions relative to originEcef. Objects that cast no
+  // shadow leave it empty.
+  virtual void drawDepth(const glm::mat4& viewProj, const glm::dvec3& originEcef) { (void)viewProj, (void)originEcef; }
 };
 
 }  // namespace geocean::render

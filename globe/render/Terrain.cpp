@@ -70,6 +70,7 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
   underOcean_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", with({"GEOCEAN_UNDER_OCEAN 1"}));
   seaProxy_ = gl::GlProgram::graphics("terrain.vert", "sea_proxy.frag");
   bare_ = gl::GlProgram::graphics("terrain.vert", "bare.frag", {"GEOCEAN_BARE 1"});
+  depthDefines_ = with({"GEOCEAN_DEPTH_ONLY 1", "GEOCEAN_CLIP_SEA 1"});
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
   glNamedBufferStorage(vbo_, GLsizeiptr(options_.poolTiles) * kVertsPerTile * kFloatsPerVertex * sizeof(float),
@@ -310,10 +311,10 @@ void TerrainRenderer::selectTiles(const camera::Camera& cam, std::vector<Key>& t
 
 void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera& cam, const camera::Lighting& light,
                               SeaShading sea, double oceanCellPx, const std::vector<Key>& tiles,
-                              const std::vector<const Slot*>& slots) {
+                              const std::vector<const Slot*>& slots, const glm::mat4* viewProj) {
   prog.use();
   world_.bind();
-  glUniformMatrix4fv(prog.uniform("uViewProj"), 1, GL_FALSE, &cam.gpu().viewProj[0][0]);
+  glUniformMatrix4fv(prog.uniform("uViewProj"), 1, GL_FALSE, viewProj ? &(*viewProj)[0][0] : &cam.gpu().viewProj[0][0]);
   glUniform4fv(prog.uniform("uImageryGeo"), 1, &world_.imageryGeo()[0]);
   // The layers' count is compiled in (imageryDefine); absent uniforms are -1, ignored.
   for (int i = 0; i < world_.imageryLayers(); ++i)
@@ -448,6 +449,42 @@ TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const
   selectTiles(selectFrom, tiles, slots, stats);
   glEnable(GL_CLIP_DISTANCE0);
   drawTiles(mirrored_, mirrored, light, SeaShading::None, 0.0, tiles, slots);
+  glDisable(GL_CLIP_DISTANCE0);
+  stats.tilesDrawn = int(tiles.size());
+  glBindVertexArray(0);
+  return stats;
+}
+
+TerrainStats TerrainRenderer::drawDepth(const glm::mat4& viewProj, const camera::Camera& selectFrom,
+                                        const Layer* waterLayer) {
+  TerrainStats stats;
+  std::vector<Key> tiles;
+  std::vector<const Slot*> slots;
+  if (depth_.id() == 0)  // compiled on the first shadow map a layer asks for
+    depth_ = gl::GlProgram::graphics("terrain.vert", "bare.frag", depthDefines_);
+  waterLayer_ = options_.skipOpenWater && waterLayer && waterLayer->info().opaqueWater ? waterLayer : nullptr;
+  selectTiles(selectFrom, tiles, slots, stats);
+  // Only the tiles whose bounding sphere (corners at sea level, 9 km of
+  // relief) meets the map's box: the view's tiles reach to its horizon.
+  const glm::dmat4 m(viewProj);
+  const double sx = glm::length(glm::dvec3(m[0][0], m[1][0], m[2][0])), sy = glm::length(glm::dvec3(m[0][1], m[1][1], m[2][1]));
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    double lat0, lat1, lon0, lon1;
+    tileRange(tiles[i], lat0, lat1, lon0, lon1);
+    const glm::dvec3 c = geo::toEcef({0.5 * (lat0 + lat1), 0.5 * (lon0 + lon1), 0.0});
+    double r = 0.0;
+    for (double la : {lat0, lat1})
+      for (double lo : {lon0, lon1}) r = std::max(r, glm::length(geo::toEcef({la, lo, 0.0}) - c));
+    r += 9000.0;
+    const glm::dvec4 q = m * glm::dvec4(c - selectFrom.eyeEcef(), 1.0);
+    if (std::abs(q.x) > 1.0 + r * sx || std::abs(q.y) > 1.0 + r * sy) continue;
+    tiles[kept] = tiles[i], slots[kept] = slots[i], ++kept;
+  }
+  tiles.resize(kept), slots.resize(kept);
+  // Only what stands above the sea casts onto it (water areas 30 m under it, skirts).
+  glEnable(GL_CLIP_DISTANCE0);
+  drawTiles(depth_, selectFrom, camera::Lighting{}, SeaShading::None, 0.0, tiles, slots, &viewProj);
   glDisable(GL_CLIP_DISTANCE0);
   stats.tilesDrawn = int(tiles.size());
   glBindVertexArray(0);

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <string>
 #include <list>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -86,6 +87,12 @@ class TerrainRenderer {
   TerrainStats drawMirrored(const camera::Camera& mirrored, const camera::Camera& selectFrom,
                             const camera::Lighting& light);
 
+  // Depth only into the sun's shadow map: the terrain above the sea drawn
+  // with viewProj (positions relative to selectFrom's eye), its tiles chosen
+  // from the real camera; tiles that waterLayer covers opaquely (open
+  // water, nothing above the sea) are left out.
+  TerrainStats drawDepth(const glm::mat4& viewProj, const camera::Camera& selectFrom, const Layer* waterLayer);
+
   const TerrainOptions& options() const { return options_; }
   void setSkipOpenWater(bool on) { options_.skipOpenWater = on; }
 
@@ -118,7 +125,8 @@ class TerrainRenderer {
   void selectTiles(const camera::Camera& cam, std::vector<Key>& tiles, std::vector<const Slot*>& slots,
                    TerrainStats& stats);
   void drawTiles(const gl::GlProgram& prog, const camera::Camera& cam, const camera::Lighting& light, SeaShading sea,
-                 double oceanCellPx, const std::vector<Key>& tiles, const std::vector<const Slot*>& slots);
+                 double oceanCellPx, const std::vector<Key>& tiles, const std::vector<const Slot*>& slots,
+                 const glm::mat4* viewProj = nullptr);  // instead of cam's (the shadow pass)
   // pxPerM: pixels per metre at 1 m distance.
   bool underOpenWater(double lat0, double lat1, double lon0, double lon1, const Bounds& b, double dist,
                       const camera::Camera& cam, double pxPerM) const;
@@ -134,7 +142,8 @@ class TerrainRenderer {
 
   const WorldTextures& world_;
   TerrainOptions options_;
-  gl::GlProgram program_, underOcean_, bare_, seaProxy_, mirrored_;
+  gl::GlProgram program_, underOcean_, bare_, seaProxy_, mirrored_, depth_;
+  std::vector<std::string> depthDefines_;  // depth_'s (made on first use)
   const Layer* waterLayer_ = nullptr;  // this draw: leave out tiles it covers opaquely
   int maxLevel_ = 16;           // options_.maxLevel capped by the data's resolution
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;

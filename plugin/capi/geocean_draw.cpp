@@ -10,7 +10,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -121,6 +123,9 @@ class GlStateGuard {
     glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &pageTextures_[0]);
     glActiveTexture(GL_TEXTURE7);
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &pageTextures_[1]);
+    // Unit 14 (2D): the sun's shadow map (ABI 1.8; its sampler binding is put back by the draw).
+    glActiveTexture(GL_TEXTURE14);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &shadowTexture_);
     glActiveTexture(GLenum(activeTexture_));
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &ssboGeneric_);
     for (int i = 0; i < kSsbos; ++i) {
@@ -151,6 +156,8 @@ class GlStateGuard {
     glBindTexture(GL_TEXTURE_2D_ARRAY, GLuint(pageTextures_[0]));
     glActiveTexture(GL_TEXTURE7);
     glBindTexture(GL_TEXTURE_2D, GLuint(pageTextures_[1]));
+    glActiveTexture(GL_TEXTURE14);
+    glBindTexture(GL_TEXTURE_2D, GLuint(shadowTexture_));
     glActiveTexture(GLenum(activeTexture_));
     for (int i = 0; i < kSsbos; ++i) {
       if (ssbo_[i] != 0 && ssboSize_[i] > 0)
@@ -181,7 +188,7 @@ class GlStateGuard {
  private:
   static constexpr int kUnits = 4, kSsbos = 5, kDrawBuffers = 2;  // SSBOs 3-4: the FFT tables
   GLint program_ = 0, vao_ = 0, activeTexture_ = GL_TEXTURE0, texture_[kUnits] = {}, ssboGeneric_ = 0;
-  GLint ssbo_[kSsbos] = {}, pageTextures_[2] = {};
+  GLint ssbo_[kSsbos] = {}, pageTextures_[2] = {}, shadowTexture_ = 0;
   GLint64 ssboStart_[kSsbos] = {}, ssboSize_[kSsbos] = {};
   GLboolean blend_[kDrawBuffers] = {}, polygonOffsetFill_ = GL_FALSE;
   GLint blendFunc_[kDrawBuffers][4] = {};
@@ -204,7 +211,14 @@ struct FrameView {
   bool completeTiles = false;
   bool ispg = false;
   bool followCoast = false;
+  bool sunPhong = false;     // GEOCEAN_DRAW_SUN_PHONG (ABI 1.8)
+  bool shadowPaper = false;  // GEOCEAN_DRAW_SHADOW_PAPER (ABI 1.8)
 };
+
+// geocean_layer_inputs as 1.2-1.7 hosts know it (up to reflection_view),
+// and with ABI 1.8's shadow map.
+constexpr std::size_t kLayerInputsSize12 = offsetof(geocean_layer_inputs, reflection_view) + sizeof(geocean_view);
+constexpr std::size_t kLayerInputsSize18 = sizeof(geocean_layer_inputs);
 
 FrameView frameViewOf(const geocean_view* v) {
   if (v->struct_size < sizeof(geocean_view))
@@ -252,13 +266,16 @@ FrameView frameViewOf(const geocean_view* v) {
   f.light.sunEcef = glm::normalize(sun);
   f.light.timeS = v->time_s;
   if (v->draw_flags & ~(GEOCEAN_DRAW_REFERENCE | GEOCEAN_DRAW_NO_REFRACTION | GEOCEAN_DRAW_COMPLETE_TILES |
-                        GEOCEAN_DRAW_FOLLOW_COAST | GEOCEAN_DRAW_GRID_ISPG))
+                        GEOCEAN_DRAW_FOLLOW_COAST | GEOCEAN_DRAW_GRID_ISPG | GEOCEAN_DRAW_SUN_PHONG |
+                        GEOCEAN_DRAW_SHADOW_PAPER))
     bad("draw_flags " + std::to_string(v->draw_flags) + " has bits that are not GEOCEAN_DRAW_*");
   f.reference = (v->draw_flags & GEOCEAN_DRAW_REFERENCE) != 0;
   f.refraction = (v->draw_flags & GEOCEAN_DRAW_NO_REFRACTION) == 0;
   f.completeTiles = (v->draw_flags & GEOCEAN_DRAW_COMPLETE_TILES) != 0;
   f.ispg = (v->draw_flags & GEOCEAN_DRAW_GRID_ISPG) != 0;
   f.followCoast = (v->draw_flags & GEOCEAN_DRAW_FOLLOW_COAST) != 0;
+  f.sunPhong = (v->draw_flags & GEOCEAN_DRAW_SUN_PHONG) != 0;
+  f.shadowPaper = (v->draw_flags & GEOCEAN_DRAW_SHADOW_PAPER) != 0;
   return f;
 }
 
@@ -412,6 +429,17 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
         oi.reflectionCamera = ds.reflectionCamera;
       }
       oi.refraction = ds.view->refraction;
+      oi.sunPhong = ds.view->sunPhong;
+      oi.shadowPaper = ds.view->shadowPaper;
+      if (ds.inputs && ds.inputs->struct_size >= kLayerInputsSize18 && ds.inputs->shadow_depth_texture) {
+        const geocean_layer_inputs& in = *ds.inputs;
+        oi.shadowDepth = in.shadow_depth_texture;
+        oi.shadowSize = int(in.shadow_size_px);
+        for (int c = 0; c < 4; ++c)
+          for (int r = 0; r < 4; ++r) oi.shadowMatrix[c][r] = in.shadow_matrix[4 * c + r];
+        oi.shadowOriginEcef = {in.shadow_origin_ecef_m[0], in.shadow_origin_ecef_m[1], in.shadow_origin_ecef_m[2]};
+        oi.shadowReachM = in.shadow_reach_m;
+      }
       gl.renderer->setInputs(oi);
       std::vector<geocean::ocean_render::Wake> wakes;
       {
@@ -452,7 +480,7 @@ GEOCEAN_API geocean_status geocean_get_layer_info(const geocean_ocean* ocean, ge
                                                " is smaller than " + std::to_string(sizeof(geocean_layer_info)));
     // The reflection of sky and terrain (item 4 of issue 13); refraction reads
     // the ocean's own relief, not the scene copy.
-    out->flags = GEOCEAN_LAYER_OPAQUE_WATER | GEOCEAN_LAYER_WANTS_REFLECTION;
+    out->flags = GEOCEAN_LAYER_OPAQUE_WATER | GEOCEAN_LAYER_WANTS_REFLECTION | GEOCEAN_LAYER_WANTS_SHADOW_MAP;
     out->cell_px = geocean::ocean_render::OceanOptions{}.cellPx;
   });
 }
@@ -495,12 +523,18 @@ GEOCEAN_API geocean_status geocean_set_layer_inputs(geocean_ocean* ocean, const 
       ds.reflectionCamera.reset();
       return;
     }
-    if (inputs->struct_size < sizeof(geocean_layer_inputs))
+    // A 1.2-1.7 host's struct ends at reflection_view: only that much is read.
+    if (inputs->struct_size < kLayerInputsSize12)
       fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "inputs->struct_size " + std::to_string(inputs->struct_size) +
-                                               " is smaller than " + std::to_string(sizeof(geocean_layer_inputs)));
-    const std::pair<uint32_t, const char*> names[] = {{inputs->reflection_color_texture, "reflection_color_texture"},
-                                                      {inputs->scene_color_texture, "scene_color_texture"},
-                                                      {inputs->scene_depth_texture, "scene_depth_texture"}};
+                                               " is smaller than " + std::to_string(kLayerInputsSize12));
+    geocean_layer_inputs in{};
+    std::memcpy(&in, inputs, std::min<std::size_t>(inputs->struct_size, sizeof in));
+    in.struct_size = uint32_t(std::min<std::size_t>(inputs->struct_size, sizeof in));
+    const bool has18 = in.struct_size >= kLayerInputsSize18;
+    const std::pair<uint32_t, const char*> names[] = {{in.reflection_color_texture, "reflection_color_texture"},
+                                                      {in.scene_color_texture, "scene_color_texture"},
+                                                      {in.scene_depth_texture, "scene_depth_texture"},
+                                                      {has18 ? in.shadow_depth_texture : 0u, "shadow_depth_texture"}};
     for (const auto& [name, field] : names) {
       if (name == 0) continue;
       if (!currentGlContext())
@@ -509,9 +543,24 @@ GEOCEAN_API geocean_status geocean_set_layer_inputs(geocean_ocean* ocean, const 
         fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
              std::string("inputs->") + field + " " + std::to_string(name) + " is not a texture of the current context");
     }
+    if (has18 && in.shadow_depth_texture) {
+      if (!(in.shadow_size_px >= 1 && in.shadow_size_px <= 16384))
+        fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
+             "inputs->shadow_size_px " + std::to_string(in.shadow_size_px) + " is not in 1..16384");
+      for (int i = 0; i < 16; ++i)
+        if (!std::isfinite(in.shadow_matrix[i]))
+          fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "inputs->shadow_matrix[" + std::to_string(i) + "] is not finite");
+      for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(in.shadow_origin_ecef_m[i]))
+          fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
+               "inputs->shadow_origin_ecef_m[" + std::to_string(i) + "] is not finite");
+      if (!(in.shadow_reach_m >= 0.0 && std::isfinite(in.shadow_reach_m)))
+        fail(GEOCEAN_ERROR_INVALID_ARGUMENT,
+             "inputs->shadow_reach_m " + std::to_string(in.shadow_reach_m) + " is not finite and >= 0");
+    }
     std::optional<geocean::camera::Camera> mirrored;
-    if (inputs->reflection_color_texture) mirrored = frameViewOf(&inputs->reflection_view).cam;  // validates it
-    ds.inputs = *inputs;
+    if (in.reflection_color_texture) mirrored = frameViewOf(&in.reflection_view).cam;  // validates it
+    ds.inputs = in;
     ds.reflectionCamera = mirrored;
   });
 }

@@ -10,6 +10,7 @@
 
 #include "globe/camera/Camera.h"
 #include "globe/raster/World.h"
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -400,6 +401,7 @@ OceanRenderer::~OceanRenderer() {
   glDeleteBuffers(1, &vbo_);
   glDeleteBuffers(1, &ibo_);
   glDeleteBuffers(5, ssbo_);
+  if (shadowSampler_) glDeleteSamplers(1, &shadowSampler_);
 }
 
 void OceanRenderer::abandonGl() {
@@ -606,6 +608,9 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   // it in 8 px steps.
   const bool reflect = !bare && inputs_.reflectionColor != 0 && inputs_.reflectionCamera;
   if (reflect && cull.farFootprintM > 0.0) cull.farMinDistM = 40000.0;
+  // The same for the sun's shadow map, per pixel out to its reach.
+  const bool shadow = !bare && inputs_.shadowDepth != 0 && inputs_.shadowSize > 0;
+  if (shadow && cull.farFootprintM > 0.0) cull.farMinDistM = std::max(cull.farMinDistM, inputs_.shadowReachM);
   cull.timeS = light.timeS;
   // The bodies' foam (wake.glsl): the kMaxWakes nearest the eye of those
   // fast enough to make any (the others would add exactly nothing).
@@ -777,6 +782,23 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
       glUniform4f(p.uniform("uWakeEdges"), float(kWakeBreakingFroude[0]), float(kWakeBreakingFroude[1]),
                   float(kWakeStirredMps[0]), float(kWakeStirredMps[1]));
     }
+    glUniform1i(p.uniform("uSunPhong"), inputs_.sunPhong ? 1 : 0);
+    glUniform1f(p.uniform("uPhongExponent"), float(inputs_.phongExponent));
+    glUniform1i(p.uniform("uShadow"), shadow ? (inputs_.shadowPaper ? 2 : 1) : 0);
+    if (shadow) {
+      // Eye-relative positions to the map's [0, 1]^3: the host's matrix
+      // after the move from its origin to this eye (double, then float).
+      glm::dmat4 toUv(0.5);
+      toUv[2][2] = 1.0, toUv[3] = glm::dvec4(0.5, 0.5, 0.0, 1.0);
+      const glm::dmat4 m = toUv * inputs_.shadowMatrix *
+                           glm::translate(glm::dmat4(1.0), cam.eyeEcef() - inputs_.shadowOriginEcef);
+      const glm::mat4 mf(m);
+      glUniformMatrix4fv(p.uniform("uShadowMatrix"), 1, GL_FALSE, &mf[0][0]);
+      // 0.3 m in the map's depth units (its z row is depth per metre along the sun).
+      const double perM = glm::length(glm::dvec3(inputs_.shadowMatrix[0][2], inputs_.shadowMatrix[1][2],
+                                                 inputs_.shadowMatrix[2][2]));
+      glUniform1f(p.uniform("uShadowBias"), float(0.3 * perM));
+    }
     glUniform1i(p.uniform("uRefraction"), inputs_.refraction ? 1 : 0);
     glUniform1i(p.uniform("uReflection"), reflect ? 1 : 0);
     if (reflect) {
@@ -821,6 +843,27 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   glBindTextureUnit(1, elevationTex_);
   glBindTextureUnit(2, waterTex_);
   if (reflect) glBindTextureUnit(3, inputs_.reflectionColor);
+  // Unit 14: the sun's depth map through the ocean's own sampler (reversed
+  // depth: lit where the point is at least as near the sun as the map).
+  GLint hostSampler14 = 0;
+  if (shadow) {
+    if (!shadowSampler_) {
+      glCreateSamplers(1, &shadowSampler_);
+      glSamplerParameteri(shadowSampler_, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+      glSamplerParameteri(shadowSampler_, GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
+      glSamplerParameteri(shadowSampler_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glSamplerParameteri(shadowSampler_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glSamplerParameteri(shadowSampler_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glSamplerParameteri(shadowSampler_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    GLint active = 0;
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+    glActiveTexture(GL_TEXTURE14);
+    glGetIntegerv(GL_SAMPLER_BINDING, &hostSampler14);
+    glActiveTexture(GLenum(active));
+    glBindTextureUnit(14, inputs_.shadowDepth);
+    glBindSampler(14, shadowSampler_);
+  }
   // Units 12, 13 (the terrain's imagery layers use 8-11): the host's buffer
   // textures there, if any, are put back after the draws.
   GLint hostActive = 0, hostBufferTex[2] = {0, 0};
@@ -853,6 +896,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glBindTexture(GL_TEXTURE_BUFFER, GLuint(hostBufferTex[u]));
   }
   glActiveTexture(GLenum(hostActive));
+  if (shadow) glBindSampler(14, GLuint(hostSampler14));
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_BLEND);
   if (pages_) pages_->endFrame();  // finished loads go up after the draws

@@ -122,6 +122,21 @@ struct OceanInputs {
   GLuint reflectionColor = 0;
   std::optional<camera::Camera> reflectionCamera;
   bool refraction = true;  // the bottom through the water (Snell, Beer-Lambert)
+  // The host's sun depth map (0: no shadows; render::LayerInputs' fields):
+  // reversed DEPTH32F, shadowMatrix from positions relative to
+  // shadowOriginEcef to clip space, the sea within shadowReachM of the eye.
+  GLuint shadowDepth = 0;
+  int shadowSize = 0;
+  glm::dmat4 shadowMatrix{1.0};
+  glm::dvec3 shadowOriginEcef{0.0};
+  double shadowReachM = 0.0;
+  // In shadow: false, the sun's direct light removed (the sky's stays);
+  // true, paper 001's darkening of the pixel by 0.5.
+  bool shadowPaper = false;
+  // The sun's specular: paper 001's Phong term (eq. 19) instead of the
+  // microfacet glitter; exponent 0: from the slopes not drawn (1 / 2 mss).
+  bool sunPhong = false;
+  double phongExponent = 0.0;
 };
 
 // A floating body at the waterline, for the foam it makes on the sea
@@ -281,6 +296,7 @@ class OceanRenderer {
   std::vector<Wake> wakes_;
   bool writeData_ = false;
   bool glAbandoned_ = false;
+  GLuint shadowSampler_ = 0;  // the shadow map's comparison and filter, whatever the host's texture says
   std::unique_ptr<WaterPages> pages_;
   // The world's water index is the streamed pyramid's (waterIndexFollowsTiles):
   // open water and coversOpaquely as without pages.

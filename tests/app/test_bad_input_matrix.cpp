@@ -72,6 +72,8 @@ const Row kRows[] = {
     {"render --out x.png --wind 5 --beaufort 3", "give either --wind or --beaufort, not both"},
     {"render --out x.png --reflection-size 8", "--reflection-size: 8 must be in 16..8192 pixels"},
     {"render --out x.png --grid spherical", "--grid: spherical not in {direct,ispg}"},
+    {"render --out x.png --shadow-model half", "--shadow-model: half not in {physical,paper}"},
+    {"render --out x.png --sun-model blinn", "--sun-model: blinn not in {microfacet,phong}"},
     // fly
     {"fly --out o --frames 1", "--frames: 1 must be in 2..1000000"},
     {"fly --out o --frames 1e9", "--frames"},
@@ -84,6 +86,7 @@ const Row kRows[] = {
     {"fly --out o --reflection-size 99999", "--reflection-size: 99999 must be in 16..8192 pixels"},
     {"fly --out o --grid ''", "--grid:  not in {direct,ispg}"},
     {"fly --out o --reflection-every 0", "--reflection-every: 0 must be in 1..1000 frames"},
+    {"fly --out o --shadow-model ''", "--shadow-model:  not in {physical,paper}"},
     // pick
     {"pick --ray nan,0,0,1,0,0", "--ray: 'nan' in 'nan,0,0,1,0,0' is not a finite number"},
     {"pick --ray 0,0,0,0,0,0", "--ray direction 0,0,0 is zero"},

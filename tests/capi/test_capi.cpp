@@ -37,10 +37,10 @@ TEST(CapiLoader, LoadsTheBuiltPluginAndChecksItsVersion) {
 TEST(CapiLoader, RefusesAHostOfAnotherMajorOrANewerMinor) {
   std::string error;
   EXPECT_EQ(OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error, 2u << 16), nullptr);
-  EXPECT_NE(error.find("plugin ABI 1.7 cannot serve a host built for ABI 2.0"), std::string::npos) << error;
+  EXPECT_NE(error.find("plugin ABI 1.8 cannot serve a host built for ABI 2.0"), std::string::npos) << error;
   error.clear();
   EXPECT_EQ(OceanPlugin::load(GEOCEAN_PLUGIN_BUILD_PATH, error, GEOCEAN_ABI_VERSION + 1), nullptr);
-  EXPECT_NE(error.find("ABI 1.7"), std::string::npos) << error;
+  EXPECT_NE(error.find("ABI 1.8"), std::string::npos) << error;
   // An older minor of the same major is served.
   EXPECT_TRUE(OceanPlugin::compatible(1u << 16, (1u << 16) | 3u));
   EXPECT_FALSE(OceanPlugin::compatible((1u << 16) | 3u, 1u << 16));
@@ -56,7 +56,7 @@ TEST(CapiMisuse, CreateRefusesAWrongAbiVersion) {
   geocean_ocean* h = reinterpret_cast<geocean_ocean*>(&h);  // garbage that must be overwritten
   EXPECT_EQ(plugin().api().create(0, &h), GEOCEAN_ERROR_ABI_VERSION);
   EXPECT_EQ(h, nullptr);
-  EXPECT_NE(lastError().find("host ABI 0.0 is not served by this plugin (ABI 1.7)"), std::string::npos);
+  EXPECT_NE(lastError().find("host ABI 0.0 is not served by this plugin (ABI 1.8)"), std::string::npos);
   EXPECT_EQ(plugin().api().create(GEOCEAN_ABI_VERSION, nullptr), GEOCEAN_ERROR_NULL_ARGUMENT);
   EXPECT_NE(lastError().find("geocean_create: out is NULL"), std::string::npos) << lastError();
 }

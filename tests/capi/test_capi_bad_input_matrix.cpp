@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -591,6 +592,22 @@ std::vector<Row> rows() {
          return geocean_set_layer_inputs(f.o, &in);
        },
        GEOCEAN_ERROR_NO_GL_CONTEXT, "inputs->reflection_color_texture is set but no GL context is current"},
+      {"geocean_set_layer_inputs", "shadow map without a GL context (ABI 1.8)",
+       [](F& f) {
+         geocean_layer_inputs in{};
+         in.struct_size = sizeof in;
+         in.shadow_depth_texture = 9;
+         in.shadow_size_px = 2048;
+         return geocean_set_layer_inputs(f.o, &in);
+       },
+       GEOCEAN_ERROR_NO_GL_CONTEXT, "inputs->shadow_depth_texture is set but no GL context is current"},
+      {"geocean_set_layer_inputs", "struct_size between 1.7's and 1.8's",
+       [](F& f) {
+         geocean_layer_inputs in{};
+         in.struct_size = offsetof(geocean_layer_inputs, reflection_view) + sizeof(geocean_view) - 8;
+         return geocean_set_layer_inputs(f.o, &in);
+       },
+       BAD, "is smaller than"},
       {"geocean_set_layer_inputs", "ocean NULL", [](F&) { return geocean_set_layer_inputs(nullptr, nullptr); }, NUL,
        "ocean is NULL"},
       // ---- floating bodies

@@ -205,6 +205,73 @@ TEST(CapiGl, TheHostsGlStateIsLeftAsItWas) {
   glDeleteBuffers(1, &buf);
 }
 
+// ABI 1.8: a host's shadow map. Filled with 1 (everything nearer the sun
+// than the sea: the whole view in shadow) and GEOCEAN_DRAW_SHADOW_PAPER,
+// every drawn pixel is paper 001's half of the unshadowed one (to the
+// display's rounding); cleared to 0 (nothing casts), the picture is the
+// unshadowed one. The host's texture and sampler on unit 14 are put back.
+TEST(CapiGl, AHostsShadowMapDarkensTheSeaByThePapersHalfAndUnit14IsLeftAsItWas) {
+  Host host;
+  ASSERT_TRUE(host.ctx);
+  Ocean o;
+  GLuint depth = 0, hostTex = 0, hostSampler = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &depth);
+  glTextureStorage2D(depth, 1, GL_DEPTH_COMPONENT32F, 64, 64);
+  glCreateTextures(GL_TEXTURE_2D, 1, &hostTex);
+  glCreateSamplers(1, &hostSampler);
+  const geocean_view v = nadir(30.0, -40.0, 500.0);
+  // The map over the whole view: an orthographic box along the sun (the
+  // view's default, over the nadir) 4 km across around the eye.
+  geocean_layer_inputs in{};
+  in.struct_size = sizeof in;
+  in.shadow_depth_texture = depth;
+  in.shadow_size_px = 64;
+  for (int i = 0; i < 3; ++i) in.shadow_origin_ecef_m[i] = v.eye_ecef_m[i];
+  for (int c = 0; c < 4; ++c) in.shadow_matrix[5 * c] = c < 2 ? 1.0 / 2000.0 : c == 2 ? 0.0 : 1.0;
+  in.shadow_matrix[14] = 0.5;  // every point at depth 0.5
+  in.shadow_reach_m = 2000.0;
+  const auto frame = [&](float fill, uint32_t flags) {
+    glClearTexImage(depth, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &fill);
+    host.beginFrame();
+    glBindTextureUnit(14, hostTex);
+    glBindSampler(14, hostSampler);
+    geocean_view w = v;
+    w.draw_flags = flags;
+    EXPECT_EQ(api().setLayerInputs(o.h, &in), GEOCEAN_OK) << lastError();
+    EXPECT_EQ(api().update(o.h, &w), GEOCEAN_OK) << lastError();
+    EXPECT_EQ(api().draw(o.h), GEOCEAN_OK) << lastError();
+    std::vector<unsigned char> px(std::size_t(kSize) * kSize * 4);
+    glReadPixels(0, 0, kSize, kSize, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+    return px;
+  };
+  const auto lit = frame(0.0f, GEOCEAN_DRAW_SHADOW_PAPER);
+  const auto shaded = frame(1.0f, GEOCEAN_DRAW_SHADOW_PAPER);
+  int drawn = 0, off = 0;
+  for (std::size_t i = 0; i < lit.size(); i += 4) {
+    if (lit[i] == 255 && lit[i + 1] == 0 && lit[i + 2] == 0) continue;
+    ++drawn;
+    for (int c = 0; c < 3; ++c) off += std::abs(2 * int(shaded[i + c]) - int(lit[i + c])) > 2;
+  }
+  EXPECT_GT(drawn, kSize * kSize / 2);
+  EXPECT_EQ(off, 0) << "of " << drawn << " pixels";
+  GLint i = 0;
+  glActiveTexture(GL_TEXTURE14);
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &i);
+  EXPECT_EQ(GLuint(i), hostTex);
+  glGetIntegerv(GL_SAMPLER_BINDING, &i);
+  EXPECT_EQ(GLuint(i), hostSampler);
+  glActiveTexture(GL_TEXTURE0);
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+  // A bad map size is named.
+  in.shadow_size_px = 0;
+  EXPECT_EQ(api().setLayerInputs(o.h, &in), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("shadow_size_px 0"), std::string::npos) << lastError();
+  EXPECT_EQ(api().releaseGl(o.h), GEOCEAN_OK);
+  glDeleteTextures(1, &depth);
+  glDeleteTextures(1, &hostTex);
+  glDeleteSamplers(1, &hostSampler);
+}
+
 TEST(CapiGl, ResourcesBelongToTheContextOfTheFirstDraw) {
   Host a, b;  // b was made last, so it is current
   ASSERT_TRUE(a.ctx && b.ctx);

@@ -19,7 +19,7 @@ class DirectOceanLayer : public Layer {
   // wants: LayerInput bits; by default what the plugin's layer info asks
   // for (geocean_get_layer_info), so both draw the same picture.
   explicit DirectOceanLayer(std::shared_ptr<ocean_render::OceanRenderer> ocean,
-                            unsigned wants = kLayerWantsReflection)
+                            unsigned wants = kLayerWantsReflection | kLayerWantsShadowMap)
       : ocean_(std::move(ocean)), wants_(wants) {}
   const char* name() const override { return "ocean"; }
   LayerInfo info() const override { return {true, ocean_->cellPx(), wants_}; }
@@ -31,12 +31,22 @@ class DirectOceanLayer : public Layer {
     oi.reflectionColor = in.reflectionColor;
     if (in.reflectionColor) oi.reflectionCamera = in.reflectionCamera;
     oi.refraction = in.refraction;
+    oi.shadowDepth = in.shadowDepth;
+    oi.shadowSize = in.shadowSize;
+    oi.shadowMatrix = in.shadowMatrix;
+    oi.shadowOriginEcef = in.shadowOriginEcef;
+    oi.shadowReachM = in.shadowReachM;
+    oi.shadowPaper = in.shadowModel == ShadowModel::Paper;
+    oi.sunPhong = in.sunModel == SunModel::Phong;
+    oi.phongExponent = phongExponent;
     ocean_->setInputs(oi);
     ocean_->draw(cam, light, bare);
   }
   // Tests draw other sea states in the same session (one GL context).
   void setOcean(std::shared_ptr<ocean_render::OceanRenderer> ocean) { ocean_ = std::move(ocean); }
   const std::shared_ptr<ocean_render::OceanRenderer>& ocean() const { return ocean_; }
+  // Phong's exponent for the next draws (0: from the slopes not drawn, as the plugin).
+  double phongExponent = 0.0;
 
  private:
   std::shared_ptr<ocean_render::OceanRenderer> ocean_;

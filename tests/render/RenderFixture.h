@@ -28,6 +28,8 @@ Session& session();
 // The ocean layer of session().
 ocean_render::OceanRenderer& sessionOcean();
 
+// The session's ocean layer (its phongExponent).
+DirectOceanLayer& directLayer();
 // Draws `ocean` instead of the session's own until the guard goes (null:
 // back to the default ocean).
 void useOcean(std::shared_ptr<ocean_render::OceanRenderer> ocean);

@@ -11,6 +11,9 @@
 //                [--reflection-size N] [--no-reflections] [--no-refraction]
 //                (the optics' switches, issue 13 item 7; `refl` is the
 //                mirrored pass alone, inside `ocean`)
+//                [--no-shadows] [--shadow-model paper] [--sun-model phong]
+//                (issue 13 item 6; `shadow` is the sun's depth pass alone,
+//                inside `ocean`, over the frames that drew it)
 // Set LP_NUM_THREADS to choose llvmpipe's thread count.
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
@@ -38,20 +41,22 @@ struct Row {
 };
 
 void report(const char* label, const std::vector<Row>& rows, double lo, double hi) {
-  std::vector<double> c[9];
+  std::vector<double> c[9], shadow;
   for (const Row& r : rows) {
     if (r.altM < lo || r.altM >= hi) continue;
     const double v[9] = {r.t.terrainCpuMs, r.t.layersCpuMs, r.t.skyCpuMs, r.t.totalCpuMs,
                          r.bare.terrainCpuMs, r.bare.layersCpuMs, r.bare.totalCpuMs, r.t.totalMs,
                          r.t.reflectionCpuMs};
     for (int i = 0; i < 9; ++i) c[i].push_back(v[i]);
+    if (r.t.shadowDrawn) shadow.push_back(r.t.shadowCpuMs);
   }
   if (c[0].empty()) return;
   const double bt = median(c[6]);
   std::printf("%-14s %3zu frames | cpu ms: terrain %7.1f ocean %7.1f (refl %6.1f) sky %5.1f total %7.1f | bare: "
-              "terrain %6.1f ocean %6.1f total %6.1f | ratio %5.2f | wall total %7.1f\n",
+              "terrain %6.1f ocean %6.1f total %6.1f | ratio %5.2f | wall total %7.1f | shadow %6.1f in %zu\n",
               label, c[0].size(), median(c[0]), median(c[1]), median(c[8]), median(c[2]), median(c[3]), median(c[4]),
-              median(c[5]), bt, bt > 0 ? median(c[3]) / bt : 0.0, median(c[7]));
+              median(c[5]), bt, bt > 0 ? median(c[3]) / bt : 0.0, median(c[7]), shadow.empty() ? 0.0 : median(shadow),
+              shadow.size());
 }
 
 }  // namespace
@@ -63,7 +68,9 @@ int main(int argc, char** argv) {
   int repeat = 1;  // draws per frame before the timed one
   bool detail = true;
   int reflectionSize = 0;
-  bool reflections = true, refraction = true;
+  bool reflections = true, refraction = true, shadows = true;
+  render::ShadowModel shadowModel = render::ShadowModel::Physical;
+  render::SunModel sunModel = render::SunModel::Microfacet;
   render::TerrainOptions terrain;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -85,6 +92,9 @@ int main(int argc, char** argv) {
     else if (a == "--no-detail") detail = false;  // the ocean without its detail normal layer
     else if (a == "--reflection-size") reflectionSize = std::atoi(next().c_str());
     else if (a == "--no-reflections") reflections = false;
+    else if (a == "--no-shadows") shadows = false;
+    else if (a == "--shadow-model") shadowModel = next() == "paper" ? render::ShadowModel::Paper : render::ShadowModel::Physical;
+    else if (a == "--sun-model") sunModel = next() == "phong" ? render::SunModel::Phong : render::SunModel::Microfacet;
     else if (a == "--no-refraction") refraction = false;
     else {
       std::fprintf(stderr, "bench_render: unknown option '%s'\n", a.c_str());
@@ -124,7 +134,7 @@ int main(int argc, char** argv) {
   if (!csvPath.empty()) {
     csv.open(csvPath);
     csv << "frame,alt_m,tiles,terrain_ms,ocean_ms,sky_ms,total_ms,terrain_cpu_ms,ocean_cpu_ms,sky_cpu_ms,"
-           "total_cpu_ms,grid_ms,bare_terrain_cpu_ms,bare_ocean_cpu_ms,bare_total_cpu_ms,reflection_cpu_ms\n";
+           "total_cpu_ms,grid_ms,bare_terrain_cpu_ms,bare_ocean_cpu_ms,bare_total_cpu_ms,reflection_cpu_ms,shadow_cpu_ms\n";
   }
   for (int f = 0; f < frames; ++f) {
     const camera::ViewPose pose = render::flightPose(plan, double(f) / (frames - 1), base);
@@ -135,6 +145,9 @@ int main(int argc, char** argv) {
     fs.reflectionSize = reflectionSize;
     fs.reflections = reflections;
     fs.refraction = refraction;
+    fs.shadows = shadows;
+    fs.shadowModel = shadowModel;
+    fs.sunModel = sunModel;
     Row r;
     r.altM = pose.altM;
     for (int k = 1; k < repeat; ++k) s.render(pose, fs);
@@ -145,10 +158,10 @@ int main(int argc, char** argv) {
     if (f > 0) rows.push_back(r);  // frame 0 compiles shaders
     if (csv.is_open()) {
       char line[512];
-      std::snprintf(line, sizeof line, "%d,%.1f,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f\n",
+      std::snprintf(line, sizeof line, "%d,%.1f,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f\n",
                     f, pose.altM, r.t.terrain.tilesDrawn, r.t.terrainMs, r.t.layersMs, r.t.skyMs, r.t.totalMs,
                     r.t.terrainCpuMs, r.t.layersCpuMs, r.t.skyCpuMs, r.t.totalCpuMs, r.gridMs, r.bare.terrainCpuMs,
-                    r.bare.layersCpuMs, r.bare.totalCpuMs, r.t.reflectionCpuMs);
+                    r.bare.layersCpuMs, r.bare.totalCpuMs, r.t.reflectionCpuMs, r.t.shadowCpuMs);
       csv << line;
     }
   }

@@ -33,6 +33,11 @@ ocean_render::OceanRenderer& sessionOcean() {
   return *g_ocean;
 }
 
+DirectOceanLayer& directLayer() {
+  session();
+  return *g_layer;
+}
+
 void useOcean(std::shared_ptr<ocean_render::OceanRenderer> ocean) {
   session();
   g_layer->setOcean(ocean ? std::move(ocean) : g_ocean);

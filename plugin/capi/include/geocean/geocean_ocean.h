@@ -53,7 +53,7 @@ extern "C" {
  * A host built against MAJOR.MINOR runs with a plugin of the same MAJOR and
  * a MINOR at least as high. */
 #define GEOCEAN_ABI_VERSION_MAJOR 1
-#define GEOCEAN_ABI_VERSION_MINOR 7
+#define GEOCEAN_ABI_VERSION_MINOR 8
 #define GEOCEAN_ABI_VERSION ((uint32_t)((GEOCEAN_ABI_VERSION_MAJOR << 16) | GEOCEAN_ABI_VERSION_MINOR))
 
 /* Enums that cross the boundary as values have int32_t as their C++
@@ -421,6 +421,19 @@ typedef struct geocean_view {
  * bit (INVALID_ARGUMENT naming draw_flags). */
 #define GEOCEAN_DRAW_GRID_ISPG 16u
 
+/* ABI 1.8: the sun's specular on the water from paper 001's Phong term
+ * (eq. 19: k_s I cos^n(phi), phi between the mirrored view ray and the
+ * sun, n = 1 / (2 mss) of the slopes not drawn, k_s = F (n + 2) / 2 pi)
+ * instead of the default microfacet glitter (Cox-Munk slopes). A 1.7
+ * plugin rejects the bit (INVALID_ARGUMENT naming draw_flags). */
+#define GEOCEAN_DRAW_SUN_PHONG 32u
+/* ABI 1.8: in the sun's shadow (geocean_layer_inputs' shadow map), paper
+ * 001's darkening: the shadowed pixel times 0.5. Without it (default) the
+ * sun's direct light is removed there (glitter, sun-lit water body,
+ * subsurface light, sun-lit foam) and the sky's light stays. A 1.7 plugin
+ * rejects the bit. */
+#define GEOCEAN_DRAW_SHADOW_PAPER 64u
+
 /* Fills *view with defaults: struct_size, a 1280x720 view 10,000 km above
  * (0 N, 0 E) looking down, 45 deg field of view, reversed-Z projection,
  * time 0, sun over (0 N, 0 E). Errors: NULL_ARGUMENT. Thread-safe. */
@@ -468,6 +481,10 @@ GEOCEAN_API geocean_status geocean_release_gl(geocean_ocean* ocean);
 #define GEOCEAN_LAYER_OPAQUE_WATER 1u       /* geocean_covers_opaquely answers */
 #define GEOCEAN_LAYER_WANTS_REFLECTION 2u   /* sky and terrain mirrored in the sea plane */
 #define GEOCEAN_LAYER_WANTS_SCENE_COPY 4u   /* the scene's colour and depth before the ocean */
+/* ABI 1.8: the sun's depth map of what casts shadows onto the water near
+ * the eye (terrain, floating bodies): geocean_layer_inputs' shadow_* fields.
+ * A 1.2-1.7 host ignores the bit and gives none: the water is then unshadowed. */
+#define GEOCEAN_LAYER_WANTS_SHADOW_MAP 8u
 typedef struct geocean_layer_info {
   uint32_t struct_size; /* sizeof(geocean_layer_info), set by the caller */
   uint32_t flags;       /* GEOCEAN_LAYER_* */
@@ -495,6 +512,15 @@ typedef struct geocean_layer_inputs {
   uint32_t scene_color_texture;      /* RGBA8 copy of the scene before the ocean */
   uint32_t scene_depth_texture;      /* DEPTH32F copy, reversed Z */
   geocean_view reflection_view;      /* valid with reflection_color_texture */
+  /* ABI 1.8 (read only when struct_size covers them; a 1.7 host's shorter
+   * struct is accepted and draws without shadows): the sun's depth map. */
+  uint32_t shadow_depth_texture;     /* DEPTH32F (or any depth format), square, 0 = none; REVERSED:
+                                        1 nearest the sun, cleared to 0 (nothing) */
+  uint32_t shadow_size_px;           /* its side, 1 .. 16384 */
+  double shadow_origin_ecef_m[3];    /* the origin shadow_matrix's positions are relative to */
+  double shadow_matrix[16];          /* (ECEF - origin) -> clip: x, y in -1..1 over the map, z its
+                                        depth in 0..1 (orthographic along the sun); column-major */
+  double shadow_reach_m;             /* the map covers the sea out to this distance from the eye */
 } geocean_layer_inputs;
 /* Sets (or with NULL clears) the inputs of the next draws. Call with the
  * draw's context current when a texture name is non-zero. Errors:
