@@ -161,7 +161,7 @@ PanelChange Hud::frame(int widthPx, int heightPx, double dtS, const HudValues& v
         layout_.refraction = lastItem();
         ImGui::Separator();
         if (panel->layerNames.empty()) {
-          ImGui::TextDisabled("no raster layers (--mask, --elevation, --imagery)");
+          ImGui::TextDisabled("no raster layers (--mask ...)");
         } else {
           ImGui::TextUnformatted("raster layers shown (keys 1-9)");
           panel->layerShown.resize(panel->layerNames.size(), 1);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 #include <filesystem>
@@ -25,6 +26,11 @@ Session& session() {
     if (!err.empty()) throw std::runtime_error(err);
     return p;
   }();
+  // The session's own references go before the session (atexit handlers
+  // registered after a static's construction run before its destructor):
+  // their last OceanRenderer must be deleted while the context lives.
+  static const bool released = (std::atexit([] { g_layer.reset(), g_ocean.reset(); }), true);
+  (void)released;
   return *s;
 }
 
