@@ -43,7 +43,12 @@ struct BSplineTaps {
   int first = 0;
   float w[4] = {0, 0, 0, 0};
   explicit BSplineTaps(double p) {
-    const double q = p - 0.5, i = std::floor(q);
+    // Far outside any raster every tap lands on the clamped edge cell
+    // anyway; bounding q keeps int(i) defined for any placement (NaN too).
+    double q = p - 0.5;
+    if (!(q > -1e9)) q = -1e9;
+    if (!(q < 1e9)) q = 1e9;
+    const double i = std::floor(q);
     const float f = float(q - i), f2 = f * f, f3 = f2 * f;
     first = int(i) - 1;
     w[0] = (1.0f - 3.0f * f + 3.0f * f2 - f3) / 6.0f;
