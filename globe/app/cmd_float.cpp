@@ -191,7 +191,7 @@ int runFloat(const FloatOptions& o) {
       throw Error{"--seed '" + o.seed + "' is not an integer 0 .. 4294967295"};
     const bool noSea = o.waves == "none";
     const auto model = waves::parseModel(o.waves);
-    if (!noSea && !model) throw Error{"--waves '" + o.waves + "' is not none, noise, gerstner or fft"};
+    if (!noSea && !model) throw Error{"--waves '" + o.waves + "' is not none, noise, noise-paper, gerstner or fft"};
 
     std::vector<BodySpec> specs;
     if (!o.scene.empty()) {
@@ -376,7 +376,7 @@ const Register kRegister{
        sub.add_option("--seconds", o->seconds, "simulated time, s (default 60)");
        sub.add_option("--dt", o->dt, "fixed step, s (default 1/60)");
        sub.add_option("--every", o->every, "output interval, s (default 1)");
-       sub.add_option("--waves", o->waves, "none (flat sea, default), noise, gerstner, fft");
+       sub.add_option("--waves", o->waves, "none (flat sea, default), noise, noise-paper (paper 002), gerstner, fft");
        sub.add_option("--wind", o->wind, "wind speed at 19.5 m, m/s (default 10)");
        sub.add_option("--wind-dir", o->windDir, "direction the wind blows FROM, deg (default 270)");
        sub.add_option("--seed", o->seed, "random seed of the sea (default 1)");

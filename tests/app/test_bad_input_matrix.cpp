@@ -105,7 +105,7 @@ const Row kRows[] = {
     {"float --body box:1x1x1 --density 500 --at 0,0 --dt 1", "--dt 1 s is above 0.5 s"},
     {"float --body box:1x1x1 --density 500 --at 0,0 --every 0", "--every 0 s must be > 0"},
     {"float --body box:1x1x1 --density 500 --at 0,0 --wind inf", "--wind 'inf' is not a finite number"},
-    {"float --body box:1x1x1 --density 500 --at 0,0 --waves foam", "--waves 'foam' is not none, noise, gerstner or fft"},
+    {"float --body box:1x1x1 --density 500 --at 0,0 --waves foam", "--waves 'foam' is not none, noise, noise-paper, gerstner or fft"},
     {"float --body box:1x1x1 --density 500 --at 0,0 --mask ''", "--mask: the file name is empty"},
     // mask (argument checks come before GMT)
     {"mask --region nan/1/0/1 --resolution 3s --out m.tif", "--region 'nan/1/0/1': 'nan' is not a number"},
