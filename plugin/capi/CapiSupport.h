@@ -37,13 +37,18 @@ struct Failure {
 
 [[noreturn]] inline void fail(geocean_status status, std::string message) { throw Failure{status, std::move(message)}; }
 
+// A double as its shortest round trip (what the caller passed, exactly).
+inline std::string shortest(double v) {
+  char b[40];
+  const auto r = std::to_chars(b, b + sizeof b, v);
+  return std::string(b, r.ptr);
+}
+
 // A finite simulation time beyond the bound the sea is defined at
 // (plugin/waves/TimeRange.h): the message names the field and the value.
 inline void requireTimeInRange(double t, const std::string& field) {
   if (geocean::waves::timeInRange(t)) return;
-  char b[40];
-  const auto r = std::to_chars(b, b + sizeof b, t);
-  fail(GEOCEAN_ERROR_INVALID_ARGUMENT, field + " " + std::string(b, r.ptr) + " s is outside " +
+  fail(GEOCEAN_ERROR_INVALID_ARGUMENT, field + " " + shortest(t) + " s is outside " +
                                            geocean::waves::kTimeRangeText +
                                            " (beyond, the waves' phase w t keeps no precision)");
 }

@@ -171,6 +171,18 @@ TEST(CapiMisuse, BadPlacementsNameTheField) {
   pl.lat_step_deg = NAN;
   EXPECT_EQ(a.setMaskPixels(o.h, px.data(), 4, 2, &pl), GEOCEAN_ERROR_INVALID_ARGUMENT);
   EXPECT_NE(lastError().find("lat_step_deg"), std::string::npos) << lastError();
+  // Rows beyond a pole by more than the file reader's pixel of slack: a
+  // "global" raster there was clamped to its edge row everywhere (fuzz).
+  pl = globalPlacement(4, 2);
+  pl.origin_lat_deg = -1.1e307;
+  EXPECT_EQ(a.setElevationPixels(o.h, px.data(), 4, 2, &pl), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("origin_lat_deg -1.1e+307"), std::string::npos) << lastError();
+  pl = globalPlacement(4, 2);
+  pl.origin_lat_deg = 92.0;  // 2 rows of 90 deg: [-88, 92], within one pixel of the pole (GMT's pixel-is-point)
+  EXPECT_EQ(a.setMaskPixels(o.h, px.data(), 4, 2, &pl), GEOCEAN_OK) << lastError();
+  pl.origin_lat_deg = 181.0;  // [1, 181]
+  EXPECT_EQ(a.setMaskPixels(o.h, px.data(), 4, 2, &pl), GEOCEAN_ERROR_INVALID_ARGUMENT);
+  EXPECT_NE(lastError().find("latitude range [1, 181]"), std::string::npos) << lastError();
   pl = globalPlacement(4, 2);
   pl.lon_step_deg = 45.0;  // 4 x 45 = 180: not a global raster
   EXPECT_EQ(a.setMaskPixels(o.h, px.data(), 4, 2, &pl), GEOCEAN_ERROR_INVALID_ARGUMENT);
