@@ -753,6 +753,72 @@ TEST(Coast, TheTerrainRefinesAnIslandOnlyTheRegionalMaskHas) {
   fs::remove(path);
 }
 
+// A regional mask across the antimeridian is one piece (raster::lonNear):
+// the query, the ocean's pages and the host's terrain tiles read -179.9 as
+// its 180.1. Taveuni (Fiji), 179.5 E .. 179.5 W, 3" GSHHG by `geocean mask`:
+// the island straddles 180 and Qamea and Laucala lie west of it. Truth is
+// the mask file's own cells, indexed here by hand (x from lon + 360 west of
+// 180): every pixel away from the drawn shoreline whose ground point has
+// one class over the 5 x 5 cells round it (beyond the B-spline's reach)
+// must be drawn on that side; and `geocean query --mask` follows the
+// picture there. On both sides of 180, counted apart. The control: the
+// default world drawn at the same views (what the west half showed before,
+// when both the query and the picture left it to the layers below).
+TEST(Coast, ARegionalMaskAcrossTheAntimeridianDrawsAndAnswersOnBothSides) {
+  const std::string path = ::testing::TempDir() + "/coast_taveuni_3s." + std::to_string(::getpid()) + ".tif";
+  fs::remove(path);
+  const auto made = geocean::test::run(kExe + " mask --quiet --region 179.5/180.5/-17.2/-16.5 --resolution 3s --out " + path);
+  ASSERT_EQ(made.exitCode, 0) << made.err;
+  const auto mask = raster::Raster::open(path);
+  ASSERT_EQ(mask->width(), 1200);
+  ASSERT_EQ(mask->height(), 840);
+  const auto cellWater = [&](double lat, double lon, bool& uniform) {
+    const int cx = int(std::floor(((lon < 0.0 ? lon + 360.0 : lon) - 179.5) / kCellDeg));
+    const int cy = int(std::floor((-16.5 - lat) / kCellDeg));
+    uniform = cx >= 2 && cy >= 2 && cx + 2 < 1200 && cy + 2 < 840;
+    if (!uniform) return false;
+    const float v = mask->pixel(cx, cy);  // 0 ocean, 1 land (lakes, 2, left out)
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx) uniform = uniform && mask->pixel(cx + dx, cy + dy) == v;
+    uniform = uniform && v <= 1.0f;
+    return v == 0.0f;
+  };
+  Regional r = makeRegional(path);
+  Scene& s = scene();
+  int counted[2][2] = {{0, 0}, {0, 0}};  // [west of 180][water]
+  int bad = 0, controlBad = 0;
+  for (const auto& [name, p] : {std::pair{std::string("180_15km"), pose(-16.85, 180.0, 15000.0, 0.0, -85.0)},
+                                std::pair{std::string("qamea_10km"), pose(-16.74, -179.82, 10000.0, 0.0, -90.0)},
+                                std::pair{std::string("taveuni_8km"), pose(-16.93, 179.93, 8000.0, 40.0, -60.0)}}) {
+    const Frame f = render(p, *r.renderer, r.ocean.get(), "antimeridian_" + name);
+    const Frame c = render(p, *s.defaultRenderer, s.defaultOcean, "antimeridian_default_" + name);
+    int w = 0, l = 0;
+    expectQueryFollowsPicture(f, " --mask " + path, w, l);
+    for (int y = 0; y < p.height; y += 2)
+      for (int x = 0; x < p.width; x += 2) {
+        geo::Geodetic g;
+        bool uniform = false;
+        if (!awayFromShore(f, x, y) || !groundPoint(f, x, y, g)) continue;
+        const bool water = cellWater(g.latDeg, g.lonDeg, uniform);
+        if (!uniform) continue;
+        counted[g.lonDeg < 0.0][water]++;
+        if (f.drawn(x, y) != water && ++bad <= 10)
+          ADD_FAILURE() << name << ": pixel " << x << "," << y << " at " << g.latDeg << "," << g.lonDeg << " drawn "
+                        << (f.drawn(x, y) ? "water" : "land") << ", the mask says " << (water ? "water" : "land");
+        controlBad += awayFromShore(c, x, y) && c.drawn(x, y) != water;
+      }
+    std::printf("%s: query and picture agree at %d water, %d land pixels\n", name.c_str(), w, l);
+  }
+  std::printf("against the mask's cells: west of 180 %d water %d land, east %d water %d land; %d wrong; "
+              "the default world %d wrong\n",
+              counted[1][1], counted[1][0], counted[0][1], counted[0][0], bad, controlBad);
+  EXPECT_EQ(bad, 0);
+  for (int west = 0; west < 2; ++west)
+    for (int water = 0; water < 2; ++water) EXPECT_GT(counted[west][water], 500) << "west " << west << " water " << water;
+  EXPECT_GT(controlBad, 200) << "the default world should differ from the 3\" mask here";
+  fs::remove(path);
+}
+
 // A relief finer than every mask decides the coast (issue 12 item 1: its
 // 0 m line is land's edge), and a regional one is streamed like a mask: its
 // 0 m line drawn at its own cells on both sides (world::reliefWaterPyramid),
