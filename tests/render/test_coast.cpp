@@ -834,22 +834,22 @@ TEST(Coast, ARegionalMaskAcrossTheAntimeridianDrawsAndAnswersOnBothSides) {
 // --elevation` follows the picture at every pixel away from the shore.
 // Looking straight down: no ray is shallower than 56 degrees, steeper than
 // the island's flank (23 degrees at the coast), so no sea hides behind it.
-TEST(Coast, AReliefFinerThanEveryMaskDrawsItsOwnCoastStreamed) {
-  constexpr double kIslandLat = 36.15, kIslandLon = -7.25, kS = 0.00315;
+void reliefIslandIsDrawnAndQueried(const double kIslandLat, const double kIslandLon, const std::string& tag) {
+  constexpr double kS = 0.00315;
   const double r0 = kS * std::sqrt(std::log(300.0 / 60.0));
-  const std::string path = ::testing::TempDir() + "/coast_regional_relief." + std::to_string(::getpid()) + ".tif";
+  const std::string path = ::testing::TempDir() + "/coast_" + tag + "." + std::to_string(::getpid()) + ".tif";
   const double cosLat = std::cos(kIslandLat * kDeg);
-  const auto rDeg = [&](double lat, double lon) { return std::hypot(lat - kIslandLat, (lon - kIslandLon) * cosLat); };
+  const auto rDeg = [&](double lat, double lon) { return std::hypot(lat - kIslandLat, std::remainder(lon - kIslandLon, 360.0) * cosLat); };
   {
     const int w = 600, h = 360;
     std::vector<float> px(std::size_t(w) * h);
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
-        const double r = rDeg(36.3 - (y + 0.5) * kCellDeg, -7.5 + (x + 0.5) * kCellDeg);
+        const double r = rDeg(kIslandLat + 0.15 - (y + 0.5) * kCellDeg, kIslandLon - 0.25 + (x + 0.5) * kCellDeg);
         px[std::size_t(y) * w + x] = float(300.0 * std::exp(-(r / kS) * (r / kS)) - 60.0);
       }
     raster::GeoTiffWriteOptions wo;
-    wo.transform = {-7.5, 36.3, kCellDeg, -kCellDeg, false};
+    wo.transform = {kIslandLon - 0.25, kIslandLat + 0.15, kCellDeg, -kCellDeg, false};
     raster::writeGeoTiff(path, px.data(), w, h, 1, raster::SampleType::F32, wo);
   }
   // The 5' grid below (the default world) is open sea round the island.
@@ -865,9 +865,10 @@ TEST(Coast, AReliefFinerThanEveryMaskDrawsItsOwnCoastStreamed) {
   ASSERT_TRUE(r.world->waterTiles());
   ASSERT_NE(r.world->regionalWaterIndex(), nullptr);
   const double cellM = kCellDeg * kDeg * geo::kWgs84B;
-  int water = 0, land = 0, checked = 0, wrong = 0;
-  for (const auto& [name, p] : {std::pair{std::string("relief_island_3km"), pose(kIslandLat, kIslandLon, 3000.0, 0.0, -90.0)},
-                                std::pair{std::string("relief_island_east_1200m"), pose(kIslandLat, kIslandLon + r0 / cosLat, 1200.0, 0.0, -90.0)}}) {
+  int water = 0, land = 0, checked = 0, wrong = 0, checkedWest = 0;
+  const double eastLon = std::remainder(kIslandLon + r0 / cosLat, 360.0);  // the island's east coast
+  for (const auto& [name, p] : {std::pair{tag + "_3km", pose(kIslandLat, kIslandLon, 3000.0, 0.0, -90.0)},
+                                std::pair{tag + "_east_1200m", pose(kIslandLat, eastLon, 1200.0, 0.0, -90.0)}}) {
     const Frame f = render(p, *r.renderer, r.ocean.get(), name);
     for (int y = 0; y + 1 < p.height; ++y)
       for (int x = 0; x + 1 < p.width; ++x) {
@@ -878,6 +879,7 @@ TEST(Coast, AReliefFinerThanEveryMaskDrawsItsOwnCoastStreamed) {
         const double offM = (rDeg(g.latDeg, g.lonDeg) - r0) * kDeg * geo::kWgs84B;
         if (std::abs(offM) <= marginM) continue;
         ++checked;
+        checkedWest += g.lonDeg < -90.0;  // west of 180 (the island at 180)
         if (f.drawn(x, y) != (offM > 0.0) && ++wrong <= 10)
           ADD_FAILURE() << name << " pixel " << x << "," << y << " drawn " << (f.drawn(x, y) ? "water" : "land") << " "
                         << offM << " m from the 0 m circle";
@@ -887,13 +889,28 @@ TEST(Coast, AReliefFinerThanEveryMaskDrawsItsOwnCoastStreamed) {
     std::printf("%s: %d water, %d land pixels agree with the query\n", name.c_str(), w, l);
     water += w, land += l;
   }
-  std::printf("relief island: %d pixels off the 0 m circle by more than a pixel and a cell, %d drawn on the wrong side\n",
-              checked, wrong);
+  std::printf("%s: %d pixels off the 0 m circle by more than a pixel and a cell (%d west of 180), %d drawn on the wrong side\n",
+              tag.c_str(), checked, checkedWest, wrong);
+  if (std::abs(kIslandLon) == 180.0) {
+    EXPECT_GT(checkedWest, 20000) << "both sides of 180";
+  }
   EXPECT_EQ(wrong, 0);
   EXPECT_GT(checked, 50000);
   EXPECT_GT(water, 2000);
   EXPECT_GT(land, 2000);
   fs::remove(path);
+}
+
+TEST(Coast, AReliefFinerThanEveryMaskDrawsItsOwnCoastStreamed) {
+  reliefIslandIsDrawnAndQueried(36.15, -7.25, "relief_island");
+}
+
+// The same island on the antimeridian (21.5 S 180, the South Fiji Basin,
+// open sea in the 5' grid): the relief's 3" cells over 179.75 E .. 179.75 W
+// stream as one piece (its water pyramid on both sides, its elevation
+// tiles on the host), half the island west of 180.
+TEST(Coast, AReliefIslandOnTheAntimeridianIsDrawnAndQueriedOnBothSides) {
+  reliefIslandIsDrawnAndQueried(-21.5, 180.0, "relief_island_180");
 }
 
 // Golden images of the strait with the 3" mask, looked at: Tarifa's shore
