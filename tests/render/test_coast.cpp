@@ -767,7 +767,8 @@ TEST(Coast, TheTerrainRefinesAnIslandOnlyTheRegionalMaskHas) {
 TEST(Coast, ARegionalMaskAcrossTheAntimeridianDrawsAndAnswersOnBothSides) {
   const std::string path = ::testing::TempDir() + "/coast_taveuni_3s." + std::to_string(::getpid()) + ".tif";
   fs::remove(path);
-  const auto made = geocean::test::run(kExe + " mask --quiet --region 179.5/180.5/-17.2/-16.5 --resolution 3s --out " + path);
+  const auto made =
+      geocean::test::run(kExe + " mask --quiet --region 179.5/180.5/-17.2/-16.5 --resolution 3s --out " + path);
   ASSERT_EQ(made.exitCode, 0) << made.err;
   const auto mask = raster::Raster::open(path);
   ASSERT_EQ(mask->width(), 1200);
@@ -814,7 +815,8 @@ TEST(Coast, ARegionalMaskAcrossTheAntimeridianDrawsAndAnswersOnBothSides) {
               counted[1][1], counted[1][0], counted[0][1], counted[0][0], bad, controlBad);
   EXPECT_EQ(bad, 0);
   for (int west = 0; west < 2; ++west)
-    for (int water = 0; water < 2; ++water) EXPECT_GT(counted[west][water], 500) << "west " << west << " water " << water;
+    for (int water = 0; water < 2; ++water)
+      EXPECT_GT(counted[west][water], 500) << "west " << west << " water " << water;
   EXPECT_GT(controlBad, 200) << "the default world should differ from the 3\" mask here";
   fs::remove(path);
 }
@@ -839,7 +841,9 @@ void reliefIslandIsDrawnAndQueried(const double kIslandLat, const double kIsland
   const double r0 = kS * std::sqrt(std::log(300.0 / 60.0));
   const std::string path = ::testing::TempDir() + "/coast_" + tag + "." + std::to_string(::getpid()) + ".tif";
   const double cosLat = std::cos(kIslandLat * kDeg);
-  const auto rDeg = [&](double lat, double lon) { return std::hypot(lat - kIslandLat, std::remainder(lon - kIslandLon, 360.0) * cosLat); };
+  const auto rDeg = [&](double lat, double lon) {
+    return std::hypot(lat - kIslandLat, std::remainder(lon - kIslandLon, 360.0) * cosLat);
+  };
   {
     const int w = 600, h = 360;
     std::vector<float> px(std::size_t(w) * h);
@@ -889,7 +893,8 @@ void reliefIslandIsDrawnAndQueried(const double kIslandLat, const double kIsland
     std::printf("%s: %d water, %d land pixels agree with the query\n", name.c_str(), w, l);
     water += w, land += l;
   }
-  std::printf("%s: %d pixels off the 0 m circle by more than a pixel and a cell (%d west of 180), %d drawn on the wrong side\n",
+  std::printf("%s: %d pixels off the 0 m circle by more than a pixel and a cell (%d west of 180), %d drawn on the "
+              "wrong side\n",
               tag.c_str(), checked, checkedWest, wrong);
   if (std::abs(kIslandLon) == 180.0) {
     EXPECT_GT(checkedWest, 20000) << "both sides of 180";
