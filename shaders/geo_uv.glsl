@@ -4,6 +4,12 @@ vec2 geoUv(vec2 lonLatDeg, vec4 geo) {
   return vec2((lonLatDeg.x - geo.x) / geo.z, (lonLatDeg.y - geo.y) / geo.w);
 }
 
+// lonDeg + 360 k nearest centreDeg (raster::lonNear): a regional layer
+// across 180 deg (179.5 .. 180.5) reads -179.9 as 180.1, its own longitude.
+// Near the layer the sum is exact (both in [128, 256), 360 a multiple of
+// their ulp); within 180 deg of the centre it adds 0.
+float lonNear(float lonDeg, float centreDeg) { return lonDeg + 360.0 * roundEven((centreDeg - lonDeg) / 360.0); }
+
 // Cubic B-spline filtered sample from 4 bilinear fetches (Sigg & Hadwiger,
 // GPU Gems 2 ch. 20). Binary masks filtered this way have a smooth 0.5
 // contour instead of the bilinear filter's staircase of rounded cells.
@@ -149,6 +155,9 @@ float waterTexel(ivec2 g, sampler2D grid, vec4 gridGeo) {
 
 // Continuous level texel coordinates with texel centres at integers.
 vec2 waterTexelPos(vec2 lonLatDeg) {
+#ifdef GEOCEAN_WATER_REGIONAL
+  lonLatDeg.x = lonNear(lonLatDeg.x, uWaterLevelGeo.x + 0.5 * float(uWaterLevel.x) * uWaterLevelGeo.z);
+#endif
   return vec2((lonLatDeg.x - uWaterLevelGeo.x) / uWaterLevelGeo.z, (lonLatDeg.y - uWaterLevelGeo.y) / uWaterLevelGeo.w) - 0.5;
 }
 
@@ -245,7 +254,11 @@ float elevTexel(ivec2 g, sampler2D grid, vec4 gridGeo) {
 
 // Bilinear elevation (m) at lon/lat from the streamed level.
 float elevTiles(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
-  vec2 p = vec2((lonLatDeg.x - uElevLevelGeo.x) / uElevLevelGeo.z, (lonLatDeg.y - uElevLevelGeo.y) / uElevLevelGeo.w) - 0.5;
+  vec2 lonLatE = lonLatDeg;  // the grid's longitude stays as it came
+#ifdef GEOCEAN_ELEVATION_REGIONAL
+  lonLatE.x = lonNear(lonLatDeg.x, uElevLevelGeo.x + 0.5 * float(uElevLevel.x) * uElevLevelGeo.z);
+#endif
+  vec2 p = vec2((lonLatE.x - uElevLevelGeo.x) / uElevLevelGeo.z, (lonLatE.y - uElevLevelGeo.y) / uElevLevelGeo.w) - 0.5;
 #ifdef GEOCEAN_ELEVATION_REGIONAL
   if (levelClear(p, uElevLevel.xy)) return textureLod(grid, geoUv(lonLatDeg, gridGeo), 0.0).r;
 #endif
@@ -307,6 +320,9 @@ float pageTexel(int level, ivec2 g, sampler2D grid, vec4 gridGeo) {
 
 // Continuous texel coordinates of a level, texel centres at integers.
 vec2 pagePos(vec2 lonLatDeg, int level) {
+#ifdef GEOCEAN_WATER_PAGES_REGIONAL
+  lonLatDeg.x = lonNear(lonLatDeg.x, uPageGeo.x + 0.5 * float(uPageLevel[0].x) * uPageGeo.z);
+#endif
   return vec2((lonLatDeg.x - uPageGeo.x) / uPageGeo.z, (lonLatDeg.y - uPageGeo.y) / uPageGeo.w) / float(1 << level) -
          0.5;
 }

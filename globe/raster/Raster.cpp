@@ -16,7 +16,12 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 }  // namespace
 
+double GeoTransform::nearLon(double lonDeg) const {
+  return !global && lonSpanDeg > 0.0 ? lonNear(lonDeg, originLonDeg + 0.5 * lonSpanDeg) : lonDeg;
+}
+
 double GeoTransform::pixelX(double lonDeg) const {
+  lonDeg = nearLon(lonDeg);
   double x = (lonDeg - originLonDeg) / lonStepDeg;
   if (global) {
     const double w = 360.0 / lonStepDeg;
@@ -81,6 +86,7 @@ std::shared_ptr<const Raster> Raster::open(const std::string& path, const OpenOp
                              "no world file); if it is a whole-Earth equirectangular image, say so (--global)");
   }
   t->global = std::abs(info.width * t->lonStepDeg - 360.0) < 1e-6 * 360.0;
+  t->lonSpanDeg = info.width * t->lonStepDeg;
   r->transform_ = *t;
   if (options.nodata) r->nodata_ = options.nodata;
 
@@ -129,6 +135,7 @@ std::shared_ptr<const Raster> Raster::fromPixels(std::vector<float> pixels, int 
   r->channels_ = channels;
   r->transform_ = transform;
   r->transform_.global = std::abs(width * transform.lonStepDeg - 360.0) < 1e-6 * 360.0;
+  r->transform_.lonSpanDeg = width * transform.lonStepDeg;
   r->nodata_ = nodata;
   r->pixels_ = std::move(pixels);
   if (nodata) {

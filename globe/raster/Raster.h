@@ -26,6 +26,12 @@ class RasterError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// lonDeg + 360 k nearest centreDeg (lonDeg itself, bit for bit, within 180
+// degrees of it): a regional layer's own longitudes.
+inline double lonNear(double lonDeg, double centreDeg) {
+  return lonDeg + 360.0 * __builtin_nearbyint((centreDeg - lonDeg) / 360.0);
+}
+
 // Maps pixel (column, row) <-> (lonDeg, latDeg). Pixel (i, j) covers
 // [i, i+1) x [j, j+1) in pixel space; (i + 0.5, j + 0.5) is its centre.
 struct GeoTransform {
@@ -34,8 +40,15 @@ struct GeoTransform {
   double lonStepDeg = 1.0;       // degrees per pixel along x (> 0)
   double latStepDeg = -1.0;      // degrees per pixel along y (< 0: north up; > 0: south up)
   bool global = false;           // columns span 360 degrees: longitude wraps
+  // Columns x lonStepDeg, set by Raster (0: unknown). A regional raster
+  // reads each longitude as the lon + 360 k nearest its centre, so one
+  // across the antimeridian (179.5 .. 180.5) answers at -179.9 too.
+  double lonSpanDeg = 0.0;
 
   double pixelX(double lonDeg) const;  // continuous pixel-space x, wrapping if global
+  // The longitude as this raster reads it: a regional one's nearest its
+  // centre, anything else unchanged.
+  double nearLon(double lonDeg) const;
   double pixelY(double latDeg) const;
   double lonOf(double px) const { return originLonDeg + px * lonStepDeg; }
   double latOf(double py) const { return originLatDeg + py * latStepDeg; }

@@ -132,7 +132,8 @@ TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
     const double cellDeg = std::max(std::abs(t.lonStepDeg), std::abs(t.latStepDeg));
     const double across = std::max((lon1 - lon0) / std::abs(t.lonStepDeg), (lat1 - lat0) / std::abs(t.latStepDeg));
     const double reachDeg = 2.0 * double(1 << blockLevel(pyr, across)) * cellDeg;
-    double x0 = ri->texelX(lon0 - reachDeg), x1 = ri->texelX(lon1 + reachDeg);
+    const double shift = t.nearLon(0.5 * (lon0 + lon1)) - 0.5 * (lon0 + lon1);  // across 180: the layer's longitudes
+    double x0 = ri->texelX(lon0 + shift - reachDeg), x1 = ri->texelX(lon1 + shift + reachDeg);
     double y0 = ri->texelY(lat0 - reachDeg), y1 = ri->texelY(lat1 + reachDeg);
     if (x0 > x1) std::swap(x0, x1);
     if (y0 > y1) std::swap(y0, y1);
@@ -371,6 +372,8 @@ bool TerrainRenderer::bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, c
   const int T = pyr.tileSize(), top = pyr.levels() - 1;
   double lat0, lat1, lon0, lon1;
   tileRange(k, lat0, lat1, lon0, lon1);
+  const double shift = t0.nearLon(0.5 * (lon0 + lon1)) - 0.5 * (lon0 + lon1);  // a regional layer across 180
+  lon0 += shift, lon1 += shift;
   const double x0 = (lon0 - t0.originLonDeg) / t0.lonStepDeg, x1 = (lon1 - t0.originLonDeg) / t0.lonStepDeg;
   const double ya = (lat0 - t0.originLatDeg) / t0.latStepDeg, yb = (lat1 - t0.originLatDeg) / t0.latStepDeg;
   const double y0 = std::min(ya, yb), y1 = std::max(ya, yb);

@@ -51,7 +51,7 @@ std::shared_ptr<const raster::TilePyramid> waterPyramid(const RasterLayer& layer
 namespace {
 // The first layer of `kind` when it is north up and finer than the drawn
 // grid; else none. Global: pole to pole and wrapping; regional: any other
-// extent (not across the antimeridian), drawn over the grid, which answers
+// extent (across the antimeridian too: raster::lonNear), drawn over the grid, which answers
 // outside it and where it has no data (isStreamedRegional).
 const RasterLayer* firstIfStreamed(const LayerStack& stack, LayerKind kind, double gridLonStepDeg) {
   for (const RasterLayer& l : stack.layers()) {

@@ -29,6 +29,7 @@ LandSea::LandSea(std::shared_ptr<const raster::Raster> mask, std::shared_ptr<con
     fast_.invLatStep = 1.0 / t.latStepDeg;
     fast_.originLon = t.originLonDeg;
     fast_.originLat = t.originLatDeg;
+    fast_.centreLon = t.originLonDeg + 0.5 * mask_->width() * t.lonStepDeg;
     fast_.width = mask_->width();
     fast_.height = mask_->height();
     fast_.global = t.global;
@@ -81,7 +82,7 @@ world::CoverageClass LandSea::coverageClass(double latDeg, double lonDeg) const 
     // [0, w] the taps' columns lie in [-2, w + 2], so one add or subtract
     // wraps them when w >= 3; a mask 1 or 2 cells wide needs the modulo (a
     // texture's GL_REPEAT, as the slow path below), taken only off [0, w).
-    double px = (lonDeg - fast_.originLon) * fast_.invLonStep;
+    double px = fast_.pixelX(lonDeg);
     if (fast_.global) px -= std::floor(px / w) * w;
     const double py = (latDeg - fast_.originLat) * fast_.invLatStep;
     const std::uint8_t* cls = classes_.data();
@@ -190,12 +191,12 @@ __attribute__((optimize("no-trapping-math")))
 #else
 __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4"), optimize("no-trapping-math")))
 #endif
-void cellIndices(double originLon, double originLat, double invLonStep, double invLatStep, int width, int height,
-                 bool global, const double* __restrict lat, const double* __restrict lon, std::size_t n,
+void cellIndices(double originLon, double originLat, double invLonStep, double invLatStep, double centreLon,
+                 int width, int height, bool global, const double* __restrict lat, const double* __restrict lon, std::size_t n,
                  std::int32_t* __restrict out) {
   const double w = width, hiY = height + 1.0;
   for (std::size_t i = 0; i < n; ++i) {
-    double x = (lon[i] - originLon) * invLonStep;
+    double x = ((global ? lon[i] : raster::lonNear(lon[i], centreLon)) - originLon) * invLonStep;
     const double y = (lat[i] - originLat) * invLatStep;
     x = global ? x - std::floor(x / w) * w : x;
     // Bitwise, not short-circuit: no branch in the loop. NaN gives false.
@@ -256,8 +257,8 @@ void LandSea::classifyBatch(const double* lat, const double* lon, std::size_t n,
     std::int32_t idx[kBlock];
     for (std::size_t b = 0; b < n; b += kBlock) {
       const std::size_t m = std::min(kBlock, n - b);
-      cellIndices(fast_.originLon, fast_.originLat, fast_.invLonStep, fast_.invLatStep, fast_.width, fast_.height,
-                  fast_.global, lat + b, lon + b, m, idx);
+      cellIndices(fast_.originLon, fast_.originLat, fast_.invLonStep, fast_.invLatStep, fast_.centreLon, fast_.width,
+                  fast_.height, fast_.global, lat + b, lon + b, m, idx);
       if (avx512) {
         allInside &= lookupAvx512(cls, idx, m, out + b);
         continue;

@@ -90,10 +90,14 @@ class LandSea {
   // Nearest-cell index into classes_, or -1 outside the mask / for NaN.
   struct FastIndex {
     double invLonStep = 0, invLatStep = 0, originLon = 0, originLat = 0;
+    double centreLon = 0;  // a regional mask reads the longitude nearest it (raster::lonNear)
     int width = 0, height = 0;
     bool global = false;
+    double pixelX(double lonDeg) const {
+      return ((global ? lonDeg : raster::lonNear(lonDeg, centreLon)) - originLon) * invLonStep;
+    }
     int index(double latDeg, double lonDeg) const {
-      double x = (lonDeg - originLon) * invLonStep;
+      double x = pixelX(lonDeg);
       const double y = (latDeg - originLat) * invLatStep;
       if (global) x -= std::floor(x / width) * width;
       // Negated comparisons also reject NaN.

@@ -59,7 +59,8 @@ std::size_t WaterPages::request(const grid::GridFrame& f, double cellPx) {
       const int want = tpp < 1.0 ? 0 : std::min(int(std::floor(std::log2(tpp))), top);
       for (const grid::GridVertex* v : {&a, &b, &c, &vertex(i + 1, j + 1)}) {
         const double s = double(1 << want);
-        double x = (v->lonDeg - t.originLonDeg) / t.lonStepDeg / s, y = (v->latDeg - t.originLatDeg) / t.latStepDeg / s;
+        double x = (t.nearLon(v->lonDeg) - t.originLonDeg) / t.lonStepDeg / s;  // across 180: the layer's longitude
+        double y = (v->latDeg - t.originLatDeg) / t.latStepDeg / s;
         const int W = p.levelWidth(want), H = p.levelHeight(want);
         // A regional pyramid: past the filter's reach (2 texels) of its
         // edge the grid answers (geo_uv.glsl levelClear), nothing to load.

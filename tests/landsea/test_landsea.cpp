@@ -449,3 +449,68 @@ TEST(Poles, ClassifyAtAPoleIsOneClassWhateverTheLongitude) {
   }
   std::filesystem::remove(tif);
 }
+
+// A regional mask across the antimeridian is one piece (raster::lonNear):
+// 16 x 4 cells of 0.125 degrees over 179 E .. 179 W, land on 179.5 E ..
+// 179.5 W (columns 4..11), ocean beyond. The same answers whichever way
+// the file states it (origin 179 or -181), in memory (the class bytes'
+// fast path) or read through the ImageCache (the sampled path), one by one
+// or in a batch, and the raw samples are the columns' own on both sides.
+// Before, everything west of 180 was "no data here".
+TEST(LandSea, ARegionalMaskAcrossTheAntimeridianAnswersOnBothSides) {
+  const int w = 16, h = 4;
+  std::vector<std::uint8_t> px(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) px[std::size_t(y) * w + x] = x >= 4 && x < 12 ? 1 : 0;
+  std::vector<float> cols(std::size_t(w) * h);
+  for (std::size_t i = 0; i < cols.size(); ++i) cols[i] = float(i % w);
+  const auto colsRaster = raster::Raster::fromPixels(cols, w, h, 1, {179.0, -16.0, 0.125, -0.125, false});
+  // Column 10 spans 180.25 .. 180.375, i.e. -179.75 .. -179.625.
+  EXPECT_EQ(colsRaster->sampleNearest(-16.2, -179.7), 10.0f);
+  EXPECT_EQ(colsRaster->sampleNearest(-16.2, 179.7), 5.0f);
+  EXPECT_EQ(colsRaster->sampleNearest(-16.2, 180.3), 10.0f);
+  EXPECT_NEAR(colsRaster->sampleBilinear(-16.2, -179.875), 8.5f, 1e-4f);  // halfway between the centres of 8 and 9
+  EXPECT_NEAR(colsRaster->sampleBilinear(-16.2, -180.0), 7.5f, 1e-4f);    // of 7 and 8, across 180
+  EXPECT_NEAR(colsRaster->sampleBilinear(-16.2, 180.0), 7.5f, 1e-4f);
+  EXPECT_TRUE(std::isnan(colsRaster->sampleNearest(-16.2, -178.99)));  // past the east edge
+  EXPECT_TRUE(std::isnan(colsRaster->sampleNearest(-16.2, 178.99)));   // past the west edge
+
+  const std::string dir = ::testing::TempDir();
+  const std::string pid = std::to_string(::getpid());
+  std::vector<std::string> paths;
+  for (const double origin : {179.0, -181.0}) {
+    raster::GeoTiffWriteOptions wo;
+    wo.transform = {origin, -16.0, 0.125, -0.125, false};
+    wo.tileSize = 16;
+    paths.push_back(dir + "/antimeridian_" + std::to_string(int(origin)) + "." + pid + ".tif");
+    raster::writeGeoTiff(paths.back(), px.data(), w, h, 1, raster::SampleType::U8, wo);
+  }
+  // Cell centres inside the band and out, both sides; 2 cells from the band's edges.
+  const std::vector<std::pair<double, Surface>> truth = {
+      {179.8125, Surface::Land}, {179.9375, Surface::Land},  {-179.9375, Surface::Land},
+      {-179.8125, Surface::Land},       {-179.6875, Surface::Land}, {179.0625, Surface::Ocean},
+      {-179.0625, Surface::Ocean},      {-179.1875, Surface::Ocean}};
+  std::vector<double> la, lo;
+  for (const auto& [lon, s] : truth) la.push_back(-16.25), lo.push_back(lon);
+  for (const auto& path : paths)
+    for (const bool inMemory : {true, false}) {
+      raster::OpenOptions o;
+      if (!inMemory) o.inMemoryLimitBytes = 0;
+      const auto mask = raster::Raster::open(path, o);
+      ASSERT_EQ(mask->inMemory(), inMemory);
+      const ocean::LandSea ls(mask, nullptr);
+      std::vector<Surface> batch(la.size());
+      ls.classifyBatch(la.data(), lo.data(), la.size(), batch.data());
+      for (std::size_t i = 0; i < truth.size(); ++i) {
+        EXPECT_EQ(ls.classify(la[i], lo[i]), truth[i].second) << path << " at " << lo[i] << " in memory " << inMemory;
+        EXPECT_EQ(batch[i], truth[i].second) << path << " at " << lo[i] << " in memory " << inMemory;
+        EXPECT_EQ(ls.classify(la[i], lo[i] + 360.0), truth[i].second) << "lon + 360";
+      }
+      // The coast crosses 0.5 coverage at the band's edges, on both sides.
+      EXPECT_NEAR(ls.waterCoverage(-16.25, -179.5), 0.5f, 1e-6f);
+      EXPECT_NEAR(ls.waterCoverage(-16.25, 179.5), 0.5f, 1e-6f);
+      // Outside the raster: no data (the mask alone: land).
+      EXPECT_TRUE(std::isnan(mask->sampleNearest(-16.25, -178.9)));
+    }
+  for (const auto& p : paths) std::filesystem::remove(p);
+}

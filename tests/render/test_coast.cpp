@@ -753,6 +753,74 @@ TEST(Coast, TheTerrainRefinesAnIslandOnlyTheRegionalMaskHas) {
   fs::remove(path);
 }
 
+// A regional mask across the antimeridian is one piece (raster::lonNear):
+// the query, the ocean's pages and the host's terrain tiles read -179.9 as
+// its 180.1. Taveuni (Fiji), 179.5 E .. 179.5 W, 3" GSHHG by `geocean mask`:
+// the island straddles 180 and Qamea and Laucala lie west of it. Truth is
+// the mask file's own cells, indexed here by hand (x from lon + 360 west of
+// 180): every pixel away from the drawn shoreline whose ground point has
+// one class over the 5 x 5 cells round it (beyond the B-spline's reach)
+// must be drawn on that side; and `geocean query --mask` follows the
+// picture there. On both sides of 180, counted apart. The control: the
+// default world drawn at the same views (what the west half showed before,
+// when both the query and the picture left it to the layers below).
+TEST(Coast, ARegionalMaskAcrossTheAntimeridianDrawsAndAnswersOnBothSides) {
+  const std::string path = ::testing::TempDir() + "/coast_taveuni_3s." + std::to_string(::getpid()) + ".tif";
+  fs::remove(path);
+  const auto made =
+      geocean::test::run(kExe + " mask --quiet --region 179.5/180.5/-17.2/-16.5 --resolution 3s --out " + path);
+  ASSERT_EQ(made.exitCode, 0) << made.err;
+  const auto mask = raster::Raster::open(path);
+  ASSERT_EQ(mask->width(), 1200);
+  ASSERT_EQ(mask->height(), 840);
+  const auto cellWater = [&](double lat, double lon, bool& uniform) {
+    const int cx = int(std::floor(((lon < 0.0 ? lon + 360.0 : lon) - 179.5) / kCellDeg));
+    const int cy = int(std::floor((-16.5 - lat) / kCellDeg));
+    uniform = cx >= 2 && cy >= 2 && cx + 2 < 1200 && cy + 2 < 840;
+    if (!uniform) return false;
+    const float v = mask->pixel(cx, cy);  // 0 ocean, 1 land (lakes, 2, left out)
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx) uniform = uniform && mask->pixel(cx + dx, cy + dy) == v;
+    uniform = uniform && v <= 1.0f;
+    return v == 0.0f;
+  };
+  Regional r = makeRegional(path);
+  Scene& s = scene();
+  int counted[2][2] = {{0, 0}, {0, 0}};  // [west of 180][water]
+  int bad = 0, controlBad = 0;
+  for (const auto& [name, p] : {std::pair{std::string("180_15km"), pose(-16.85, 180.0, 15000.0, 0.0, -85.0)},
+                                std::pair{std::string("qamea_10km"), pose(-16.74, -179.82, 10000.0, 0.0, -90.0)},
+                                std::pair{std::string("taveuni_8km"), pose(-16.93, 179.93, 8000.0, 40.0, -60.0)}}) {
+    const Frame f = render(p, *r.renderer, r.ocean.get(), "antimeridian_" + name);
+    const Frame c = render(p, *s.defaultRenderer, s.defaultOcean, "antimeridian_default_" + name);
+    int w = 0, l = 0;
+    expectQueryFollowsPicture(f, " --mask " + path, w, l);
+    for (int y = 0; y < p.height; y += 2)
+      for (int x = 0; x < p.width; x += 2) {
+        geo::Geodetic g;
+        bool uniform = false;
+        if (!awayFromShore(f, x, y) || !groundPoint(f, x, y, g)) continue;
+        const bool water = cellWater(g.latDeg, g.lonDeg, uniform);
+        if (!uniform) continue;
+        counted[g.lonDeg < 0.0][water]++;
+        if (f.drawn(x, y) != water && ++bad <= 10)
+          ADD_FAILURE() << name << ": pixel " << x << "," << y << " at " << g.latDeg << "," << g.lonDeg << " drawn "
+                        << (f.drawn(x, y) ? "water" : "land") << ", the mask says " << (water ? "water" : "land");
+        controlBad += awayFromShore(c, x, y) && c.drawn(x, y) != water;
+      }
+    std::printf("%s: query and picture agree at %d water, %d land pixels\n", name.c_str(), w, l);
+  }
+  std::printf("against the mask's cells: west of 180 %d water %d land, east %d water %d land; %d wrong; "
+              "the default world %d wrong\n",
+              counted[1][1], counted[1][0], counted[0][1], counted[0][0], bad, controlBad);
+  EXPECT_EQ(bad, 0);
+  for (int west = 0; west < 2; ++west)
+    for (int water = 0; water < 2; ++water)
+      EXPECT_GT(counted[west][water], 500) << "west " << west << " water " << water;
+  EXPECT_GT(controlBad, 200) << "the default world should differ from the 3\" mask here";
+  fs::remove(path);
+}
+
 // A relief finer than every mask decides the coast (issue 12 item 1: its
 // 0 m line is land's edge), and a regional one is streamed like a mask: its
 // 0 m line drawn at its own cells on both sides (world::reliefWaterPyramid),
@@ -768,22 +836,24 @@ TEST(Coast, TheTerrainRefinesAnIslandOnlyTheRegionalMaskHas) {
 // --elevation` follows the picture at every pixel away from the shore.
 // Looking straight down: no ray is shallower than 56 degrees, steeper than
 // the island's flank (23 degrees at the coast), so no sea hides behind it.
-TEST(Coast, AReliefFinerThanEveryMaskDrawsItsOwnCoastStreamed) {
-  constexpr double kIslandLat = 36.15, kIslandLon = -7.25, kS = 0.00315;
+void reliefIslandIsDrawnAndQueried(const double kIslandLat, const double kIslandLon, const std::string& tag) {
+  constexpr double kS = 0.00315;
   const double r0 = kS * std::sqrt(std::log(300.0 / 60.0));
-  const std::string path = ::testing::TempDir() + "/coast_regional_relief." + std::to_string(::getpid()) + ".tif";
+  const std::string path = ::testing::TempDir() + "/coast_" + tag + "." + std::to_string(::getpid()) + ".tif";
   const double cosLat = std::cos(kIslandLat * kDeg);
-  const auto rDeg = [&](double lat, double lon) { return std::hypot(lat - kIslandLat, (lon - kIslandLon) * cosLat); };
+  const auto rDeg = [&](double lat, double lon) {
+    return std::hypot(lat - kIslandLat, std::remainder(lon - kIslandLon, 360.0) * cosLat);
+  };
   {
     const int w = 600, h = 360;
     std::vector<float> px(std::size_t(w) * h);
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
-        const double r = rDeg(36.3 - (y + 0.5) * kCellDeg, -7.5 + (x + 0.5) * kCellDeg);
+        const double r = rDeg(kIslandLat + 0.15 - (y + 0.5) * kCellDeg, kIslandLon - 0.25 + (x + 0.5) * kCellDeg);
         px[std::size_t(y) * w + x] = float(300.0 * std::exp(-(r / kS) * (r / kS)) - 60.0);
       }
     raster::GeoTiffWriteOptions wo;
-    wo.transform = {-7.5, 36.3, kCellDeg, -kCellDeg, false};
+    wo.transform = {kIslandLon - 0.25, kIslandLat + 0.15, kCellDeg, -kCellDeg, false};
     raster::writeGeoTiff(path, px.data(), w, h, 1, raster::SampleType::F32, wo);
   }
   // The 5' grid below (the default world) is open sea round the island.
@@ -799,9 +869,10 @@ TEST(Coast, AReliefFinerThanEveryMaskDrawsItsOwnCoastStreamed) {
   ASSERT_TRUE(r.world->waterTiles());
   ASSERT_NE(r.world->regionalWaterIndex(), nullptr);
   const double cellM = kCellDeg * kDeg * geo::kWgs84B;
-  int water = 0, land = 0, checked = 0, wrong = 0;
-  for (const auto& [name, p] : {std::pair{std::string("relief_island_3km"), pose(kIslandLat, kIslandLon, 3000.0, 0.0, -90.0)},
-                                std::pair{std::string("relief_island_east_1200m"), pose(kIslandLat, kIslandLon + r0 / cosLat, 1200.0, 0.0, -90.0)}}) {
+  int water = 0, land = 0, checked = 0, wrong = 0, checkedWest = 0;
+  const double eastLon = std::remainder(kIslandLon + r0 / cosLat, 360.0);  // the island's east coast
+  for (const auto& [name, p] : {std::pair{tag + "_3km", pose(kIslandLat, kIslandLon, 3000.0, 0.0, -90.0)},
+                                std::pair{tag + "_east_1200m", pose(kIslandLat, eastLon, 1200.0, 0.0, -90.0)}}) {
     const Frame f = render(p, *r.renderer, r.ocean.get(), name);
     for (int y = 0; y + 1 < p.height; ++y)
       for (int x = 0; x + 1 < p.width; ++x) {
@@ -812,6 +883,7 @@ TEST(Coast, AReliefFinerThanEveryMaskDrawsItsOwnCoastStreamed) {
         const double offM = (rDeg(g.latDeg, g.lonDeg) - r0) * kDeg * geo::kWgs84B;
         if (std::abs(offM) <= marginM) continue;
         ++checked;
+        checkedWest += g.lonDeg < -90.0;  // west of 180 (the island at 180)
         if (f.drawn(x, y) != (offM > 0.0) && ++wrong <= 10)
           ADD_FAILURE() << name << " pixel " << x << "," << y << " drawn " << (f.drawn(x, y) ? "water" : "land") << " "
                         << offM << " m from the 0 m circle";
@@ -821,13 +893,29 @@ TEST(Coast, AReliefFinerThanEveryMaskDrawsItsOwnCoastStreamed) {
     std::printf("%s: %d water, %d land pixels agree with the query\n", name.c_str(), w, l);
     water += w, land += l;
   }
-  std::printf("relief island: %d pixels off the 0 m circle by more than a pixel and a cell, %d drawn on the wrong side\n",
-              checked, wrong);
+  std::printf("%s: %d pixels off the 0 m circle by more than a pixel and a cell (%d west of 180), %d drawn on the "
+              "wrong side\n",
+              tag.c_str(), checked, checkedWest, wrong);
+  if (std::abs(kIslandLon) == 180.0) {
+    EXPECT_GT(checkedWest, 20000) << "both sides of 180";
+  }
   EXPECT_EQ(wrong, 0);
   EXPECT_GT(checked, 50000);
   EXPECT_GT(water, 2000);
   EXPECT_GT(land, 2000);
   fs::remove(path);
+}
+
+TEST(Coast, AReliefFinerThanEveryMaskDrawsItsOwnCoastStreamed) {
+  reliefIslandIsDrawnAndQueried(36.15, -7.25, "relief_island");
+}
+
+// The same island on the antimeridian (21.5 S 180, the South Fiji Basin,
+// open sea in the 5' grid): the relief's 3" cells over 179.75 E .. 179.75 W
+// stream as one piece (its water pyramid on both sides, its elevation
+// tiles on the host), half the island west of 180.
+TEST(Coast, AReliefIslandOnTheAntimeridianIsDrawnAndQueriedOnBothSides) {
+  reliefIslandIsDrawnAndQueried(-21.5, 180.0, "relief_island_180");
 }
 
 // Golden images of the strait with the 3" mask, looked at: Tarifa's shore

@@ -166,6 +166,37 @@ TEST(WaterIndex, ARegionalMasksCoverIsWaterWhereEveryCellWithDataIs) {
   }
 }
 
+// A regional layer too coarse to stream (10', the grid's 5' step draws
+// it) across the antimeridian: 176 E .. 176 W, land on 178 E .. 178 W, over
+// an all-ocean global layer. The stack's class and the drawing grid
+// (waterLayerOf, resampled through the stack) have the land on both sides
+// of 180; before, west of 180 the layer below answered (ocean).
+TEST(WaterIndex, ARegionalLayerAcrossTheAntimeridianIsInTheGridOnBothSides) {
+  constexpr int W = 48, H = 24;
+  constexpr double kStep = 10.0 / 60.0;
+  std::vector<float> cls(std::size_t(W) * H, 0.0f);
+  for (int y = 0; y < H; ++y)
+    for (int x = 12; x < 36; ++x) cls[std::size_t(y) * W + x] = 1.0f;  // 0 ocean, 1 land
+  const auto regional = raster::Raster::fromPixels(cls, W, H, 1, {176.0, -10.0, kStep, -kStep, false});
+  const auto ocean = raster::Raster::fromPixels(std::vector<float>(360 * 180, 0.0f), 360, 180, 1,
+                                                {-180.0, 90.0, 1.0, -1.0, true});
+  const LayerStack stack({RasterLayer{LayerKind::Mask, regional, {}, 0},
+                          RasterLayer{LayerKind::Mask, ocean, {}, kDefaultWorldPriority}});
+  const WorldLayer g = waterLayerOf(stack);
+  ASSERT_GT(g.width, 0);
+  const std::vector<std::pair<double, bool>> truth = {{179.0, false}, {-179.0, false}, {179.9, false},
+                                                      {-179.9, false}, {177.0, true},  {-177.0, true}};
+  for (const auto& [lon, water] : truth) {
+    const int x = int(std::floor((lon - g.originLonDeg) / g.lonStepDeg)), y = int(std::floor((-12.0 - g.originLatDeg) / g.latStepDeg));
+    ASSERT_TRUE(x >= 0 && x < g.width && y >= 0 && y < g.height) << lon;
+    EXPECT_EQ(g.values[(std::size_t(y) * g.width + x) * g.channels], water ? 1.0f : 0.0f) << "grid at " << lon;
+    const double lat = -12.0;
+    Surface s;
+    stack.classifyBatch(&lat, &lon, 1, &s);
+    EXPECT_EQ(s, water ? Surface::Ocean : Surface::Land) << "class at " << lon;
+  }
+}
+
 // A streamed global mask's open water and the screen grid's near-water
 // classes come from the pyramid level that is the ocean's water grid
 // (ocean_render::waterIndexFollowsTiles, nearWaterClassifier): checked
