@@ -323,6 +323,72 @@ WvResult wv_gerstnerCoast(int first, int count, WR3 d, WvFrame fr, WR depthM, Wv
 // a coast field, and for the other models).
 WR wv_breakingFoam(WvResult r) { return r.hvel.w; }
 
+// Issue 15 item 4, the distance bands (paper 003's LOD): the breaking foam
+// averaged over the waves' phases at offset d, for cells too coarse to
+// carry the crests (ocean.vert fades wv_breakingFoam into it). The
+// amplitudes, the breaking weight b and the level A are
+// wv_gerstnerCoast's, which need no phase; the crest share is
+// E[smoothstep(0, A, z)] over z = sB sum az cos(psi) with independent
+// uniform phases: a Gram-Charlier density (the sum's variance and its
+// excess kurtosis, -1.5 sum az^4 / (sum az^2)^2 for cosines), exact for
+// the collapse, which keeps z above A. Returns (mean foam 0 .. 1, the
+// amplitude-weighted local wavelength in m, b, A / sigma).
+WR4 wv_breakingFoamMean(int first, int count, WR3 d, WvFrame fr, WR depthM, WvCoast co) {
+  if (co.cell.z <= 0) return WR4(0);
+  WR depth = max(depthM, WR(0.05));
+  WR invR = fr.radial.w;
+  WR3 n0 = WR3(fr.radial);
+  WR lenV = length(n0 + d * invR);
+  WR en = dot(d, n0) * invR;
+  WR4 brk = wv_coastSample(co, count, d);
+  WR sumAz = WR(0), sumAz2 = WR(0), sumAz4 = WR(0), sumAzK = WR(0);
+  for (int i = 0; i < count; ++i) {
+    WvWave w = wvWaves[first + i];
+    WR sO = w.dirO.w, cO = w.binO.w;
+    WR eg = dot(d, WR3(w.dirO)) * invR, eb = dot(d, WR3(w.binO)) * invR;
+    WR p = sO * (WR(1) + en) + cO * eg;
+    WR s = sqrt(p * p + eb * eb);
+    WR4 cf = wv_coastSample(co, i, d);
+    WR taper = smoothstep(WR(WV_TAPER_RAD), WR(2.0 * WV_TAPER_RAD), s / lenV);
+    WR omega = w.phase.z;
+    WR kDeep = omega * omega / WR(WV_G);
+    WR th = WR(1), ks = WR(1), kP = w.extra.x;
+    if (kDeep * depth < WR(WV_DEEP_KH)) {
+      WR kLoc = wv_waveNumber(omega, depth);
+      th = tanh(kLoc * depth);
+      WR n = WR(0.5) * (WR(1) + kLoc * depth * (WR(1) - th * th) / th);
+      ks = sqrt(WR(WV_G) * kLoc / (WR(2) * omega * omega * n));
+      kP = kLoc;
+    }
+    WR az = min(w.phase.w * ks * (WR(1) + cf.w) * taper, WR(0.071 * 2.0 * WV_PI) / kP * th);
+    sumAz += az;
+    sumAz2 += az * az;
+    sumAz4 += az * az * az * az;
+    sumAzK += az * kP;
+  }
+  WR lambda = WR(2.0 * WV_PI) * sumAz / max(sumAzK, WR(1e-30));
+  WR sB = min(WR(1), WR(0.39) * depth / max(sumAz, WR(1e-30)));
+  WR b = brk.z * smoothstep(WR(0), WR(0.5), WR(1) - sB);
+  if (b <= WR(0) || sumAz2 <= WR(0)) return WR4(0, lambda, 0, 0);
+  WR sigma = sB * sqrt(WR(0.5) * sumAz2);
+  WR A = min(WR(1.4142135623730951) * sqrt(sumAz2) * sB, WR(0.8) * sB * sumAz);
+  WR a = A / sigma;
+  WR g = WR(-1.5) * sumAz4 / (sumAz2 * sumAz2) / WR(24);  // excess kurtosis / 24
+  // Above A: Q(a) (Abramowitz & Stegun 7.1.26, error < 1.5e-7) + g He3(a) phi(a).
+  WR x = a * WR(0.7071067811865476), t = WR(1) / (WR(1) + WR(0.3275911) * x);
+  WR ec = t * (WR(0.254829592) + t * (WR(-0.284496736) + t * (WR(1.421413741) + t * (WR(-1.453152027) + t * WR(1.061405429))))) * exp(-x * x);
+  WR phiA = WR(0.3989422804014327) * exp(WR(-0.5) * a * a);
+  WR e = WR(0.5) * ec + g * (a * a * a - WR(3) * a) * phiA;
+  // From 0 to A: the smoothstep's share, 16 midpoints (smooth integrand).
+  for (int j = 0; j < 16; ++j) {
+    WR u = (WR(j) + WR(0.5)) * a / WR(16);
+    WR q = u / a, u2 = u * u;
+    e += q * q * (WR(3) - WR(2) * q) * WR(0.3989422804014327) * exp(WR(-0.5) * u2) *
+         (WR(1) + g * (u2 * u2 - WR(6) * u2 + WR(3))) * a / WR(16);
+  }
+  return WR4(b * clamp(e, WR(0), WR(1)), lambda, b, a);
+}
+
 // Without a coast field: each component's wave number is the reference
 // depth's (the renderer's call; the query's too where no field is set).
 WvResult wv_gerstner(int first, int count, WR3 d, WvFrame fr, WR depthM) {
