@@ -773,6 +773,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glUniform1f(p.uniform("uRefLonDeg"), float(g.lonDeg));
     glUniform1f(p.uniform("uTimeS"), float(std::fmod(light.timeS, 3600.0)));
     glUniform1i(p.uniform("uWriteData"), writeData_ ? 1 : 0);
+    glUniform1i(p.uniform("uCoastBandMode"), int(coastBands_));  // issue 15 item 4 (coast_bands.glsl)
     glUniform1i(p.uniform("uWakeCount"), GLint(wakes.size()));
     if (!wakes.empty()) {
       glUniform4fv(p.uniform("uWakeCentre"), GLsizei(wakes.size()), &wakeCentre[0][0]);

@@ -201,6 +201,10 @@ class OceanRenderer {
   void setCheapCoverage(bool on) { options_.cheapCoverage = on; }
   void setCullOffscreen(bool on) { options_.cullOffscreen = on; }
   void setFarVertexShading(bool on) { options_.farVertexShading = on; }
+  // Issue 15 item 4: the breaking foam's distance bands (shaders/coast_bands.glsl),
+  // or one band everywhere (tests compare them).
+  enum class CoastBands { ByDistance = 0, NearOnly = 1, FarOnly = 2 };
+  void setCoastBands(CoastBands mode) { coastBands_ = mode; }
   // Single pictures: each draw first waits (bounded) for the streamed
   // tiles its view asks for, instead of drawing their ancestors.
   void setCompleteTiles(bool on) { completeTiles_ = on; }
@@ -295,6 +299,7 @@ class OceanRenderer {
   OceanInputs inputs_;
   std::vector<Wake> wakes_;
   bool writeData_ = false;
+  CoastBands coastBands_ = CoastBands::ByDistance;  // issue 15 item 4
   bool glAbandoned_ = false;
   GLuint shadowSampler_ = 0;  // the shadow map's comparison and filter, whatever the host's texture says
   std::unique_ptr<WaterPages> pages_;

@@ -641,7 +641,7 @@ WaveField::BreakingMean WaveField::breakingFoamMean(double latDeg, double lonDeg
   for (std::size_t i = 0; i < components_.size(); ++i) wv[i] = waveAt(components_[i], radial, tS);
   kd::Kernel k{nullptr, wv.data(), nullptr, nullptr, coast_->texels().data()};
   const glm::dvec4 m =
-      k.wv_breakingFoamMean(0, int(components_.size()), glm::dvec3(0.0), frame, depthM, coast_->at(loc.p));
+      k.wv_breakingFoamMean(0, int(components_.size()), glm::dvec3(0.0), frame, depthM, coast_->at(loc.p)).m;
   return {m.x, m.y};
 }
 
