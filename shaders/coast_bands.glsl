@@ -19,6 +19,8 @@
 // heights and normals stay wv_gerstnerCoast's, the query's function (item 5).
 // uCoastBandMode (OceanRenderer::setCoastBands, for tests): 0 the bands by
 // distance, 1 the near band everywhere, 2 the middle/far bands everywhere.
+// GEOCEAN_NO_COAST_BANDS (OceanOptions::coastBands false): none of it.
+#ifndef GEOCEAN_NO_COAST_BANDS
 uniform int uCoastBandMode;
 out vec4 vBreakBand;   // (near -> middle weight, A / sigma, texture scale, mean foam)
 out vec4 vBreakPhase;  // the 4 components' unreduced phases (linear across a cell)
@@ -33,3 +35,4 @@ void coastBands(WvBreakMean m, float cellAlongM) {
   vBreakAmp = m.amp;
   vBreakLambdaM = m.m.y;
 }
+#endif

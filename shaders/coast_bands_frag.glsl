@@ -1,5 +1,8 @@
 // Issue 15 item 4: the breaking foam of the distance bands per fragment
 // (coast_bands.glsl says which band is which).
+#ifdef GEOCEAN_NO_COAST_BANDS
+float coastBandFoam(float nearFoam, vec3 eyeRel) { return nearFoam; }
+#else
 in vec4 vBreakBand;
 in vec4 vBreakPhase;
 in vec4 vBreakAmp;
@@ -16,3 +19,4 @@ float coastBandFoam(float nearFoam, vec3 eyeRel) {
   float far = mix(tex, vBreakBand.w, smoothstep(0.25, 1.0, pixelM / max(vBreakLambdaM, 1e-3)));
   return mix(nearFoam, far, vBreakBand.x);
 }
+#endif

@@ -130,9 +130,11 @@ void main() {
 #ifdef WV_COAST
   WvResult r = wv_gerstnerCoast(0, uWaveCount, d, fr, depth, wvCoasts[0]);
   vBreakFoam = wv_breakingFoam(r);
+#ifndef GEOCEAN_NO_COAST_BANDS
   // Issue 15 item 4 hook: the distance bands' foam (coast_bands.glsl).
   coastBands(wv_breakingFoamMean(0, uWaveCount, d, fr, depth, wvCoasts[0]),
              footprint / max(abs(dot(normalize(aEyeRel), up)), 0.02));
+#endif
 #else
   WvResult r = wv_gerstner(0, uWaveCount, d, fr, depth);
 #endif

@@ -73,6 +73,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
                                                                                  : "WV_MODEL 0"};
   if (options_.model == waves::Model::Fft) model.push_back("WV_FFT 1");
   if (coast) model.push_back("WV_COAST 1");
+  if (coast && !options_.coastBands) model.push_back("GEOCEAN_NO_COAST_BANDS 1");  // issue 15 item 4
   // Gerstner and FFT whitecaps per fragment from the Jacobian (foam.glsl);
   // the far per-vertex group has faded to the mean cover.
   std::vector<std::string> shaded = model;

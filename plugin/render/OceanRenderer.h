@@ -44,6 +44,10 @@ struct OceanOptions {
   bool cullOffscreen = true;
   // Far open water (waves faded into roughness) shaded per vertex.
   bool farVertexShading = true;
+  // Issue 15 item 4, with a coast field: the breaking foam's distance bands
+  // (shaders/coast_bands.glsl); false: the kernel's per-vertex foam at every
+  // distance, as before (compiled out; bench_coast_frame's reference).
+  bool coastBands = true;
   // A streamed mask's coverage (world::waterPyramid of
   // world::streamedMaskLayer, the host terrain's pyramid): the shoreline is
   // drawn from its tiles (WaterPages.h), so the query's coverage rule on the
