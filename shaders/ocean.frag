@@ -24,6 +24,7 @@ in vec3 vColor;  // far open water: shaded per vertex (OceanRenderer)
 #if WV_MODEL == 1 && defined(WV_COAST) && !defined(GEOCEAN_BARE)
 in float vBreakFoam;  // issue 15 hook (ocean.vert): breaking foam, added to the crest foam below
 #define GEOCEAN_BREAK_FOAM 1
+#include "coast_bands_frag.glsl"  // issue 15 item 4: the distance bands (coastBandFoam)
 #endif
 #ifdef FOAM_TIMES
 // Whitecaps from the Jacobian per fragment (Gerstner, FFT): the rest point
@@ -121,11 +122,11 @@ void main() {
   float crest = far < 1.0 ? whitecapFoam(vRest, wvFrames[0], vWaveDepthM) : 0.0;
   crest = mix(crest, uWhitecapCover, far);
 #ifdef GEOCEAN_BREAK_FOAM
-  crest = max(crest, vBreakFoam);
+  crest = max(crest, coastBandFoam(vBreakFoam, vEyeRel));
 #endif
 #elif defined(GEOCEAN_BREAK_FOAM)
   // Issue 15 hook: oceanColor's crest foam, and the breaking waves' on top.
-  float crest = max(mix(smoothstep(vFoamM - uFoamSoftM, vFoamM + uFoamSoftM, vHeightM), uWhitecapCover, vFar), vBreakFoam);
+  float crest = max(mix(smoothstep(vFoamM - uFoamSoftM, vFoamM + uFoamSoftM, vHeightM), uWhitecapCover, vFar), coastBandFoam(vBreakFoam, vEyeRel));
 #elif WV_MODEL == 0
   float crest = 0.0;  // below, with the octaves
 #else

@@ -74,6 +74,7 @@ out float vMss;
 out float vFoamM;
 #if WV_MODEL == 1 && defined(WV_COAST)
 out float vBreakFoam;  // issue 15 hook: the breaking waves' foam (wv_breakingFoam) for ocean.frag
+#include "coast_bands.glsl"
 #endif
 #ifdef FOAM_TIMES
 out vec3 vRest;  // ocean.frag's whitecaps (foam.glsl)
@@ -129,6 +130,11 @@ void main() {
 #ifdef WV_COAST
   WvResult r = wv_gerstnerCoast(0, uWaveCount, d, fr, depth, wvCoasts[0]);
   vBreakFoam = wv_breakingFoam(r);
+#ifndef GEOCEAN_NO_COAST_BANDS
+  // Issue 15 item 4 hook: the distance bands' foam (coast_bands.glsl).
+  coastBands(wv_breakingFoamMean(0, uWaveCount, d, fr, depth, wvCoasts[0]),
+             footprint / max(abs(dot(normalize(aEyeRel), up)), 0.02));
+#endif
 #else
   WvResult r = wv_gerstner(0, uWaveCount, d, fr, depth);
 #endif

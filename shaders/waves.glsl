@@ -323,6 +323,118 @@ WvResult wv_gerstnerCoast(int first, int count, WR3 d, WvFrame fr, WR depthM, Wv
 // a coast field, and for the other models).
 WR wv_breakingFoam(WvResult r) { return r.hvel.w; }
 
+// Issue 15 item 4, the distance bands (paper 003's LOD; shaders/coast_bands.glsl).
+// E[smoothstep(0, a, u)] for u of unit variance and excess kurtosis 24 g,
+// by a Gram-Charlier density phi(u) (1 + g He4(u)): Q(a) + g He3(a) phi(a)
+// above a (Abramowitz & Stegun 7.1.26 for Q, error < 1.5e-7), 16 midpoints
+// from 0 to a (a smooth integrand).
+WR wv_crestShare(WR a, WR g) {
+  WR x = a * WR(0.7071067811865476), t = WR(1) / (WR(1) + WR(0.3275911) * x);
+  WR ec = t * (WR(0.254829592) + t * (WR(-0.284496736) + t * (WR(1.421413741) + t * (WR(-1.453152027) + t * WR(1.061405429))))) * exp(-x * x);
+  WR e = WR(0.5) * ec + g * (a * a * a - WR(3) * a) * WR(0.3989422804014327) * exp(WR(-0.5) * a * a);
+  for (int j = 0; j < 16; ++j) {
+    WR u = (WR(j) + WR(0.5)) * a / WR(16);
+    WR q = u / a, u2 = u * u;
+    e += q * q * (WR(3) - WR(2) * q) * WR(0.3989422804014327) * exp(WR(-0.5) * u2) *
+         (WR(1) + g * (u2 * u2 - WR(6) * u2 + WR(3))) * a / WR(16);
+  }
+  return clamp(e, WR(0), WR(1));
+}
+
+// The breaking foam averaged over the waves' phases at offset d, for cells
+// too coarse to carry the crests. The amplitudes, the breaking weight b and
+// the level A are wv_gerstnerCoast's, which need no phase; the crest share
+// is E[smoothstep(0, A, z)] over z = sB sum az cos(psi) with independent
+// uniform phases (wv_crestShare: the sum's variance and its excess
+// kurtosis, -1.5 sum az^4 / (sum az^2)^2 for cosines); exact for the
+// collapse, which keeps z above A.
+// m: (mean foam 0 .. 1, the amplitude-weighted local wavelength in m, b,
+// A / sigma). For a foam texture with that mean: the unreduced phases (psi
+// with the field's offset, continuous in d) of the 4 components of largest
+// deep-water amplitude (the same everywhere) and their local amplitudes
+// over sqrt(sum / 2) of their squares (so sum amp cos(phase) has unit
+// variance); the texture's own crest share at A / sigma is in m's place
+// only through wv_crestShare (the includer's).
+struct WvBreakMean {
+  WR4 m;
+  WR4 phase;
+  WR4 amp;
+  WR shareTex;  // wv_crestShare of the 4-cosine texture at A / sigma
+};
+WvBreakMean wv_breakingFoamMean(int first, int count, WR3 d, WvFrame fr, WR depthM, WvCoast co) {
+  WvBreakMean r;
+  r.m = WR4(0);
+  r.phase = WR4(0);
+  r.amp = WR4(0);
+  r.shareTex = WR(0);
+  if (co.cell.z <= 0) return r;
+  WR depth = max(depthM, WR(0.05));
+  WR invR = fr.radial.w;
+  WR3 n0 = WR3(fr.radial);
+  WR lenV = length(n0 + d * invR);
+  WR en = dot(d, n0) * invR;
+  WR4 brk = wv_coastSample(co, count, d);
+  WR sumAz = WR(0), sumAz2 = WR(0), sumAz4 = WR(0), sumAzK = WR(0);
+  WR4 top = WR4(-1);  // deep-water amplitudes of the 4 kept, decreasing
+  for (int i = 0; i < count; ++i) {
+    WvWave w = wvWaves[first + i];
+    WR sO = w.dirO.w, cO = w.binO.w;
+    WR eg = dot(d, WR3(w.dirO)) * invR, eb = dot(d, WR3(w.binO)) * invR;
+    WR p = sO * (WR(1) + en) + cO * eg;
+    WR s = sqrt(p * p + eb * eb);
+    WR4 cf = wv_coastSample(co, i, d);
+    WR taper = smoothstep(WR(WV_TAPER_RAD), WR(2.0 * WV_TAPER_RAD), s / lenV);
+    WR omega = w.phase.z;
+    WR kDeep = omega * omega / WR(WV_G);
+    WR th = WR(1), ks = WR(1), kP = w.extra.x;
+    if (kDeep * depth < WR(WV_DEEP_KH)) {
+      WR kLoc = wv_waveNumber(omega, depth);
+      th = tanh(kLoc * depth);
+      WR n = WR(0.5) * (WR(1) + kLoc * depth * (WR(1) - th * th) / th);
+      ks = sqrt(WR(WV_G) * kLoc / (WR(2) * omega * omega * n));
+      kP = kLoc;
+    }
+    WR az = min(w.phase.w * ks * (WR(1) + cf.w) * taper, WR(0.071 * 2.0 * WV_PI) / kP * th);
+    sumAz += az;
+    sumAz2 += az * az;
+    sumAz4 += az * az * az * az;
+    sumAzK += az * kP;
+    // Insertion into the 4 largest by w.phase.w (ties: the first stays).
+    WR a0 = w.phase.w;
+    if (a0 > top.w) {
+      WR e0 = eb * eb / max(s + p, WR(1e-30));
+      WR psi = w.phase.x + w.phase.y * wv_atan2Small(eg + cO * e0, WR(1) + en + sO * e0) + cf.x;
+      if (a0 > top.x) {
+        top = WR4(a0, top.x, top.y, top.z), r.phase = WR4(psi, r.phase.x, r.phase.y, r.phase.z);
+        r.amp = WR4(az, r.amp.x, r.amp.y, r.amp.z);
+      } else if (a0 > top.y) {
+        top = WR4(top.x, a0, top.y, top.z), r.phase = WR4(r.phase.x, psi, r.phase.y, r.phase.z);
+        r.amp = WR4(r.amp.x, az, r.amp.y, r.amp.z);
+      } else if (a0 > top.z) {
+        top = WR4(top.x, top.y, a0, top.z), r.phase = WR4(r.phase.x, r.phase.y, psi, r.phase.z);
+        r.amp = WR4(r.amp.x, r.amp.y, az, r.amp.z);
+      } else {
+        top.w = a0, r.phase.w = psi, r.amp.w = az;
+      }
+    }
+  }
+  WR lambda = WR(2.0 * WV_PI) * sumAz / max(sumAzK, WR(1e-30));
+  WR sB = min(WR(1), WR(0.39) * depth / max(sumAz, WR(1e-30)));
+  WR b = brk.z * smoothstep(WR(0), WR(0.5), WR(1) - sB);
+  r.m = WR4(0, lambda, 0, 0);
+  if (b <= WR(0) || sumAz2 <= WR(0)) return r;
+  WR sigma = sB * sqrt(WR(0.5) * sumAz2);
+  WR A = min(WR(1.4142135623730951) * sqrt(sumAz2) * sB, WR(0.8) * sB * sumAz);
+  WR a = A / sigma;
+  r.m = WR4(b * wv_crestShare(a, WR(-1.5 / 24.0) * sumAz4 / (sumAz2 * sumAz2)), lambda, b, a);
+  WR t2 = dot(r.amp, r.amp);
+  if (t2 > WR(0)) {
+    r.shareTex = wv_crestShare(a, WR(-1.5 / 24.0) * dot(r.amp * r.amp, r.amp * r.amp) / (t2 * t2));
+    r.amp /= sqrt(WR(0.5) * t2);
+  }
+  return r;
+}
+
 // Without a coast field: each component's wave number is the reference
 // depth's (the renderer's call; the query's too where no field is set).
 WvResult wv_gerstner(int first, int count, WR3 d, WvFrame fr, WR depthM) {

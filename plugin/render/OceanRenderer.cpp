@@ -73,6 +73,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
                                                                                  : "WV_MODEL 0"};
   if (options_.model == waves::Model::Fft) model.push_back("WV_FFT 1");
   if (coast) model.push_back("WV_COAST 1");
+  if (coast && !options_.coastBands) model.push_back("GEOCEAN_NO_COAST_BANDS 1");  // issue 15 item 4
   // Gerstner and FFT whitecaps per fragment from the Jacobian (foam.glsl);
   // the far per-vertex group has faded to the mean cover.
   std::vector<std::string> shaded = model;
@@ -773,6 +774,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glUniform1f(p.uniform("uRefLonDeg"), float(g.lonDeg));
     glUniform1f(p.uniform("uTimeS"), float(std::fmod(light.timeS, 3600.0)));
     glUniform1i(p.uniform("uWriteData"), writeData_ ? 1 : 0);
+    glUniform1i(p.uniform("uCoastBandMode"), int(coastBands_));  // issue 15 item 4 (coast_bands.glsl)
     glUniform1i(p.uniform("uWakeCount"), GLint(wakes.size()));
     if (!wakes.empty()) {
       glUniform4fv(p.uniform("uWakeCentre"), GLsizei(wakes.size()), &wakeCentre[0][0]);

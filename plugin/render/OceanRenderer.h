@@ -44,6 +44,10 @@ struct OceanOptions {
   bool cullOffscreen = true;
   // Far open water (waves faded into roughness) shaded per vertex.
   bool farVertexShading = true;
+  // Issue 15 item 4, with a coast field: the breaking foam's distance bands
+  // (shaders/coast_bands.glsl); false: the kernel's per-vertex foam at every
+  // distance, as before (compiled out; bench_coast_frame's reference).
+  bool coastBands = true;
   // A streamed mask's coverage (world::waterPyramid of
   // world::streamedMaskLayer, the host terrain's pyramid): the shoreline is
   // drawn from its tiles (WaterPages.h), so the query's coverage rule on the
@@ -201,6 +205,10 @@ class OceanRenderer {
   void setCheapCoverage(bool on) { options_.cheapCoverage = on; }
   void setCullOffscreen(bool on) { options_.cullOffscreen = on; }
   void setFarVertexShading(bool on) { options_.farVertexShading = on; }
+  // Issue 15 item 4: the breaking foam's distance bands (shaders/coast_bands.glsl),
+  // or one band everywhere (tests compare them).
+  enum class CoastBands { ByDistance = 0, NearOnly = 1, FarOnly = 2 };
+  void setCoastBands(CoastBands mode) { coastBands_ = mode; }
   // Single pictures: each draw first waits (bounded) for the streamed
   // tiles its view asks for, instead of drawing their ancestors.
   void setCompleteTiles(bool on) { completeTiles_ = on; }
@@ -295,6 +303,7 @@ class OceanRenderer {
   OceanInputs inputs_;
   std::vector<Wake> wakes_;
   bool writeData_ = false;
+  CoastBands coastBands_ = CoastBands::ByDistance;  // issue 15 item 4
   bool glAbandoned_ = false;
   GLuint shadowSampler_ = 0;  // the shadow map's comparison and filter, whatever the host's texture says
   std::unique_ptr<WaterPages> pages_;

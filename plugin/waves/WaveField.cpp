@@ -632,6 +632,19 @@ WaveSample WaveField::sample(double latDeg, double lonDeg, double tS, double dep
   return toEnu(k.wv_gerstnerCoast(0, int(components_.size()), glm::dvec3(0.0), frame, depthM, co), f);
 }
 
+WaveField::BreakingMean WaveField::breakingFoamMean(double latDeg, double lonDeg, double tS, double depthM) const {
+  if (model_ != Model::Gerstner || !coast_) return {};
+  const Located loc = locate(latDeg, lonDeg);
+  const kd::WvFrame frame = makeFrame(loc.p);
+  std::array<kd::WvWave, kMaxComponents> wv;
+  const glm::dvec3 radial(frame.radial);
+  for (std::size_t i = 0; i < components_.size(); ++i) wv[i] = waveAt(components_[i], radial, tS);
+  kd::Kernel k{nullptr, wv.data(), nullptr, nullptr, coast_->texels().data()};
+  const glm::dvec4 m =
+      k.wv_breakingFoamMean(0, int(components_.size()), glm::dvec3(0.0), frame, depthM, coast_->at(loc.p)).m;
+  return {m.x, m.y};
+}
+
 SurfacePoint WaveField::surfaceAt(double latDeg, double lonDeg, double tS, double depthM) const {
   SurfacePoint sp;
   if (model_ != Model::Gerstner && model_ != Model::Fft) {

@@ -146,6 +146,15 @@ class WaveField {
   // local water depth (m, positive; kDeepWaterM for deep water).
   WaveSample sample(double latDeg, double lonDeg, double tS, double depthM = kDeepWaterM) const;
 
+  // Gerstner with a coast field: the breaking foam at the rest point
+  // averaged over the waves' phases (wv_breakingFoamMean, what the
+  // renderer's far distance band draws), and the amplitude-weighted local
+  // wavelength (m) that band is measured against; 0, 0 otherwise.
+  struct BreakingMean {
+    double foam = 0.0, wavelengthM = 0.0;
+  };
+  BreakingMean breakingFoamMean(double latDeg, double lonDeg, double tS, double depthM = kDeepWaterM) const;
+
   // The displaced surface exactly above (latDeg, lonDeg): the horizontal
   // displacement is inverted by Newton iteration to within 0.01 mm.
   SurfacePoint surfaceAt(double latDeg, double lonDeg, double tS, double depthM = kDeepWaterM) const;

@@ -6,7 +6,9 @@
 // view is drawn alternately by an OceanRenderer with the field
 // (wv_gerstnerCoast: texel reads, local dispersion, curl and collapse) and
 // one without (the deep-water phase with local shoaling: the reference), so
-// load from other processes hits both alike. Reports the ocean pass's
+// load from other processes hits both alike; and a third with the field but
+// issue 15 item 4's distance bands compiled out (OceanOptions::coastBands
+// false): the bands' own cost. Reports the ocean pass's
 // median process-CPU and wall time per frame (FrameTimes, glFinish between
 // passes) and the ratio. Not run by ctest; figures in docs/PERFORMANCE.md.
 //   bench_coast_frame [--frames N] [--size WxH]
@@ -110,6 +112,9 @@ int main(int argc, char** argv) {
   oo.sea = snap->seaState;
   oo.coast = snap->waves->coastFieldShared();
   auto withCoast = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  oo.coastBands = false;  // issue 15 item 4's distance bands compiled out
+  auto noBands = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  oo.coastBands = true;
   oo.coast = nullptr;
   auto deepOnly = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
   auto layer = std::make_shared<render::test::DirectOceanLayer>(withCoast);
@@ -122,16 +127,17 @@ int main(int argc, char** argv) {
   };
   std::printf("bench_coast_frame %dx%d, %d frames per view and renderer (the first of each dropped)\n", base.width,
               base.height, frames);
-  std::printf("%-22s | ocean pass cpu ms: field    none  ratio | wall ms: field   none  ratio\n", "view");
+  std::printf("%-22s | ocean pass cpu ms: field    none  ratio | wall ms: field   none  ratio | "
+              "cpu ms: no bands  bands/no bands\n", "view");
   for (const View& v : {View{"island 30 m", 350.0, 30.0, -12.0}, View{"island 300 m", 900.0, 300.0, -35.0},
                         View{"island 1 km, down", 0.0, 1000.0, -89.0}}) {
     camera::ViewPose p = base;
     p.latDeg = kLat + v.northM / 110574.0, p.lonDeg = kLon, p.altM = v.altM;
     p.headingDeg = 180.0, p.pitchDeg = v.pitchDeg;
-    std::vector<double> cpu[2], wall[2];
+    std::vector<double> cpu[3], wall[3];
     for (int f = 0; f < frames; ++f)
-      for (int k = 0; k < 2; ++k) {
-        layer->setOcean(k == 0 ? withCoast : deepOnly);
+      for (int k = 0; k < 3; ++k) {
+        layer->setOcean(k == 0 ? withCoast : k == 1 ? deepOnly : noBands);
         render::FrameSettings fs;
         fs.timeS = 30.0 + f / 30.0;
         fs.sunEcef = render::sunFromLocal(kLat, kLon, 150.0, 40.0);
@@ -142,8 +148,9 @@ int main(int argc, char** argv) {
         wall[k].push_back(t.layersMs);
       }
     const double c0 = median(cpu[0]), c1 = median(cpu[1]), w0 = median(wall[0]), w1 = median(wall[1]);
-    std::printf("%-22s |                 %7.1f %7.1f  %5.2f |        %6.1f %6.1f  %5.2f\n", v.name, c0, c1,
-                c0 / c1, w0, w1, w0 / w1);
+    const double c2 = median(cpu[2]);
+    std::printf("%-22s |                 %7.1f %7.1f  %5.2f |        %6.1f %6.1f  %5.2f |        %7.1f  %5.2f\n",
+                v.name, c0, c1, c0 / c1, w0, w1, w0 / w1, c2, c0 / c2);
   }
   return 0;
 }
