@@ -5,7 +5,7 @@
 
 // Deferred shading (the noise sea, OceanRenderer): GEOCEAN_GBUFFER writes
 // what the shading reads per pixel from the grid's triangles, and
-// GEOCEAN_DEFERRED shades it in one full-screen pass. llvmpipe shades 4 x 4
+// GEOCEAN_DEFERRED shades it in one pass over the tiles with sea. llvmpipe shades 4 x 4
 // pixel blocks whole, so the grid's 32-pixel triangles ran the shading for
 // ~2 lanes a pixel (docs/PERFORMANCE.md); the values and arithmetic are
 // the forward pass's.
@@ -108,7 +108,7 @@ layout(location = 4) out vec4 outG4;
 layout(location = 5) out vec4 outG5;
 layout(location = 6) out vec4 outG6;
 // Which 8 x 8 pixel tiles have sea to shade (OceanRenderer draws the
-// full-screen pass over those alone: llvmpipe runs the whole shading for a
+// shading pass over those alone: llvmpipe runs the whole shading for a
 // block whose pixels all discard). Tested early, so hidden sea marks none.
 layout(early_fragment_tests) in;
 layout(binding = 7, r8ui) uniform writeonly uimage2D uGTiles;

@@ -910,7 +910,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   lastDeferred_ = deferred;
   if (deferred) {
     // The grid writes the G-buffer against a copy of the host's depth, which
-    // then goes back with the sea's in it; one full-screen pass shades.
+    // then goes back with the sea's in it; one pass over the tiles with sea shades.
     const GLint w = viewport[2], h = viewport[3];
     glBlitNamedFramebuffer(GLuint(hostFbo), gFbo_, viewport[0], viewport[1], viewport[0] + w, viewport[1] + h, 0, 0, w,
                            h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);

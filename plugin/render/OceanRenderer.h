@@ -70,10 +70,11 @@ struct OceanOptions {
   bool detailNormals = true;
   // Light through thin crests (ocean_shading.glsl, crestSubsurface).
   bool subsurface = true;
-  // The noise sea's per-pixel shading deferred to one full-screen pass
-  // over a G-buffer the grid writes (ocean.frag): the same picture, shaded
-  // once a pixel instead of ~2x on llvmpipe (docs/PERFORMANCE.md). Used
-  // where the host's target allows it (drawGBuffer), else forward.
+  // The noise sea's per-pixel shading deferred to one pass over a G-buffer
+  // the grid writes (ocean.frag), on the tiles with sea: the same picture,
+  // shaded once a pixel instead of ~1.9x on llvmpipe (docs/PERFORMANCE.md).
+  // Used where octaves are drawn per pixel and the host's target allows it
+  // (gBufferFor), else forward.
   bool deferred = true;
 };
 
@@ -273,7 +274,7 @@ class OceanRenderer {
   // on a uniform and a loop's body once even for no iteration, so a term
   // not drawn still cost every pixel (docs/PERFORMANCE.md).
   // The noise sea's deferred programs beside them: the grid's G-buffer
-  // writers (g*) and the full-screen shading (shade).
+  // writers (g*) and the shading over the tiles with sea (shade).
   struct PixelPrograms {
     gl::GlProgram sharp, smooth, open, gSharp, gSmooth, gOpen, shade;
   };
