@@ -3,18 +3,32 @@
 // not drawn, whitecaps and the shore foam band of paper 000 (eq. 9-11).
 #include "geo_uv.glsl"
 
-in vec3 vEyeRel;
-in vec3 vNormal;
-in vec3 vUp;
-in vec2 vLonLat;
-in float vHeightM;
-in vec3 vSun;
-in vec3 vHazeTr;
-in vec3 vHazeIn;
-in float vDepthM;
-in float vFar;
-in float vMss;
-in float vFoamM;
+// Deferred shading (the noise sea, OceanRenderer): GEOCEAN_GBUFFER writes
+// what the shading reads per pixel from the grid's triangles, and
+// GEOCEAN_DEFERRED shades it in one pass over the tiles with sea. llvmpipe shades 4 x 4
+// pixel blocks whole, so the grid's 32-pixel triangles ran the shading for
+// ~2 lanes a pixel (docs/PERFORMANCE.md); the values and arithmetic are
+// the forward pass's.
+#ifdef GEOCEAN_DEFERRED
+#define VARYING  // filled from the G-buffer at the start of main
+#else
+#define VARYING in
+#endif
+#if (defined(GEOCEAN_GBUFFER) || defined(GEOCEAN_DEFERRED)) && (WV_MODEL != 0 || defined(GEOCEAN_FAR_SHADED))
+#error "the deferred ocean is the noise sea's per-pixel programs only"
+#endif
+VARYING vec3 vEyeRel;
+VARYING vec3 vNormal;
+VARYING vec3 vUp;
+VARYING vec2 vLonLat;
+VARYING float vHeightM;
+VARYING vec3 vSun;
+VARYING vec3 vHazeTr;
+VARYING vec3 vHazeIn;
+VARYING float vDepthM;
+VARYING float vFar;
+VARYING float vMss;
+VARYING float vFoamM;
 #ifdef GEOCEAN_VERTEX_COVERAGE
 in float vCoverage;
 #endif
@@ -70,8 +84,8 @@ uniform int uFragOctaves;
 uniform int uOctaveCount;
 uniform float uOctaveWavelengthM[16];
 uniform float uMssAbove[17];
-in float vHeightA;
-in float vCellAlongM;
+VARYING float vHeightA;
+VARYING float vCellAlongM;
 #endif
 #ifdef FOAM_TIMES
 #include "foam.glsl"
@@ -83,8 +97,37 @@ uniform vec3 uSunDir;
 uniform int uWriteData;
 layout(binding = 2) uniform sampler2D uWater;
 
+#ifdef GEOCEAN_GBUFFER
+// eyeRel, alpha | normal, height | up, relief depth | sun, far | haze
+// transmittance, vertex octaves' crest height | haze in-scatter, cell
+// along the view | footprint, coverage.
+layout(location = 0) out vec4 outG0;
+layout(location = 1) out vec4 outG1;
+layout(location = 2) out vec4 outG2;
+layout(location = 3) out vec4 outG3;
+layout(location = 4) out vec4 outG4;
+layout(location = 5) out vec4 outG5;
+layout(location = 6) out vec4 outG6;
+// Which 8 x 8 pixel tiles have sea to shade (OceanRenderer draws the
+// shading pass over those alone: llvmpipe runs the whole shading for a
+// block whose pixels all discard). Tested early, so hidden sea marks none.
+layout(early_fragment_tests) in;
+layout(binding = 7, r8ui) uniform writeonly uimage2D uGTiles;
+#else
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outData;
+#endif
+#ifdef GEOCEAN_DEFERRED
+// The G-buffer (units 15-21), its texel (0, 0) at the viewport's origin.
+layout(binding = 15) uniform sampler2D uG0;
+layout(binding = 16) uniform sampler2D uG1;
+layout(binding = 17) uniform sampler2D uG2;
+layout(binding = 18) uniform sampler2D uG3;
+layout(binding = 19) uniform sampler2D uG4;
+layout(binding = 20) uniform sampler2D uG5;
+layout(binding = 21) uniform sampler2D uG6;
+uniform ivec2 uGOrigin;
+#endif
 
 #include "ocean_shading.glsl"
 #ifndef GEOCEAN_FAR_SHADED
@@ -93,6 +136,18 @@ layout(location = 1) out vec4 outData;
 #endif
 
 void main() {
+#ifdef GEOCEAN_DEFERRED
+  ivec2 px = ivec2(gl_FragCoord.xy) - uGOrigin;
+  vec4 g0 = texelFetch(uG0, px, 0);
+  float alpha = g0.w;
+  if (alpha <= 0.0) discard;  // no sea drawn at this pixel (cleared to 0)
+  vec4 g1 = texelFetch(uG1, px, 0), g2 = texelFetch(uG2, px, 0), g3 = texelFetch(uG3, px, 0);
+  vec4 g4 = texelFetch(uG4, px, 0), g5 = texelFetch(uG5, px, 0), g6 = texelFetch(uG6, px, 0);
+  vEyeRel = g0.xyz, vNormal = g1.xyz, vHeightM = g1.w, vUp = g2.xyz, vDepthM = g2.w;
+  vSun = g3.xyz, vFar = g3.w, vHazeTr = g4.xyz, vHeightA = g4.w, vHazeIn = g5.xyz, vCellAlongM = g5.w;
+  vLonLat = vec2(0.0), vMss = 0.0, vFoamM = 0.0;  // not read by the noise sea's shading
+  float w = g6.y;
+#else
   // Coverage: B-spline magnified (a smooth shoreline, no 5' steps), the
   // mipmapped average minified; 0.5 is the coast, smoothed over a pixel.
 #if defined(GEOCEAN_OPEN_WATER) || defined(GEOCEAN_FAR_SHADED)
@@ -108,8 +163,13 @@ void main() {
   float aa = clamp(fwidth(w) * 0.75, 1e-3, 0.5);
   float alpha = smoothstep(0.5 - aa, 0.5 + aa, w);
   if (alpha <= 0.0) discard;
-
-#ifdef GEOCEAN_FAR_SHADED
+#endif
+#ifdef GEOCEAN_GBUFFER
+  outG0 = vec4(vEyeRel, alpha), outG1 = vec4(vNormal, vHeightM), outG2 = vec4(vUp, vDepthM);
+  outG3 = vec4(vSun, vFar), outG4 = vec4(vHazeTr, vHeightA), outG5 = vec4(vHazeIn, vCellAlongM);
+  outG6 = vec4(max(length(dFdx(vEyeRel)), length(dFdy(vEyeRel))), w, 0.0, 0.0);
+  imageStore(uGTiles, ivec2(gl_FragCoord.xy) / 8, uvec4(1u));
+#elif defined(GEOCEAN_FAR_SHADED)
   outColor = vec4(vColor, alpha);
 #else
   // The floating bodies' foam (wake.glsl) joins the crests' foam.
@@ -138,7 +198,11 @@ void main() {
   // turns normals towards the mean by 0.7 far, so that share of them stays
   // roughness.
   vec3 up = normalize(vUp);
+#ifdef GEOCEAN_DEFERRED
+  float footprint = g6.x;  // the grid pass's derivatives
+#else
   float footprint = max(length(dFdx(vEyeRel)), length(dFdy(vEyeRel)));
+#endif
 #if WV_MODEL == 0
   // The noise sea's octaves not in the vertex normal, down to 2 pixels,
   // at the fragment's rest point (the displacement is vertical), and the
@@ -225,5 +289,7 @@ void main() {
   vec3 col = oceanColorCrest(vEyeRel, nrm, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, mss, max(crest, wake), w, vHeightM);
   outColor = vec4(uShadow == 2 ? col * mix(0.5, 1.0, sunVis) : col, alpha);
 #endif
+#ifndef GEOCEAN_GBUFFER
   outData = uWriteData != 0 ? vec4(vEyeRel, 1.0) : vec4(0.0);
+#endif
 }

@@ -403,13 +403,19 @@ OceanRenderer::~OceanRenderer() {
   glDeleteBuffers(1, &ibo_);
   glDeleteBuffers(5, ssbo_);
   if (shadowSampler_) glDeleteSamplers(1, &shadowSampler_);
+  if (gFbo_) glDeleteFramebuffers(1, &gFbo_);
+  glDeleteTextures(kGTargets, gTex_);
+  const GLuint gMore[] = {gDepth_, gTiles_};
+  glDeleteTextures(2, gMore);
+  if (gVao_) glDeleteVertexArrays(1, &gVao_);
+  if (gVbo_) glDeleteBuffers(1, &gVbo_);
 }
 
 void OceanRenderer::abandonGl() {
   glAbandoned_ = true;
   for (gl::GlProgram* p : {&farShaded_, &bare_}) p->abandon();
   for (PixelPrograms& v : pixel_)
-    for (gl::GlProgram* p : {&v.sharp, &v.smooth, &v.open}) p->abandon();
+    for (gl::GlProgram* p : {&v.sharp, &v.smooth, &v.open, &v.gSharp, &v.gSmooth, &v.gOpen, &v.shade}) p->abandon();
   if (pages_) pages_->abandonGl();
 }
 
@@ -649,6 +655,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   gridMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (idx.empty()) {
     if (pages_) pages_->endFrame();
+    lastDeferred_ = false;
     return;
   }
   const std::size_t vbytes = frame_.vertices.size() * sizeof(grid::GridVertex);
@@ -878,20 +885,123 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   glBindTextureUnit(12, octaveTexelTex_);
   glBindTextureUnit(13, octaveBandTex_);
   const PixelPrograms& pixel = pixelPrograms(!wakes.empty(), reflect || bare);  // no variant made for a bare draw
-  const std::pair<const gl::GlProgram*, std::size_t> passes[4] = {{bare ? &bare_ : &pixel.sharp, groups.sharp},
-                                                                       {&pixel.smooth, groups.smooth},
-                                                                       {&pixel.open, groups.open},
-                                                                       {&farShaded_, groups.farOpen}};
   std::size_t first = 0;
-  for (const auto& [prog, count] : passes) {
-    if (count == 0) continue;
-    prog->use();
-    setUniforms(*prog);
-    if (pages_ && (prog == &pixel.sharp || prog == &pixel.smooth)) pages_->bind(*prog);
-    glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
-                   reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
+  const auto drawGroup = [&](const gl::GlProgram& prog, std::size_t count, bool coverage) {
+    if (count > 0) {
+      prog.use();
+      setUniforms(prog);
+      if (pages_ && coverage) pages_->bind(prog);
+      glDrawElements(GL_TRIANGLES, GLsizei(count), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
+    }
     first += count;
+  };
+  GLint hostFbo = 0, viewport[4] = {0, 0, 0, 0};
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &hostFbo);
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  // Deferred costs a frame ~10-15 ms more (G-buffer clear, depth copies,
+  // the tile read-back; 1280 x 720, llvmpipe) and saves 5-25 % of the
+  // ocean where its per-pixel shading is dear: where some noise octave is
+  // drawn per pixel (the nadir's pixel under half the longest octave).
+  // Above that (~40 km here) the sea's pixels are roughness alone
+  // (docs/PERFORMANCE.md).
+  const bool octavesPerPixel = !octaveWavelengthM_.empty() &&
+                               g.heightM * cull.cellRadians / options_.cellPx < 0.5 * double(octaveWavelengthM_[0]);
+  const bool deferred = !bare && octavesPerPixel && pixel.shade.id() != 0 &&
+                        groups.sharp + groups.smooth + groups.open > 0 && gBufferFor(hostFbo, viewport);
+  lastDeferred_ = deferred;
+  if (deferred) {
+    // The grid writes the G-buffer against a copy of the host's depth, which
+    // then goes back with the sea's in it; one pass over the tiles with sea shades.
+    const GLint w = viewport[2], h = viewport[3];
+    glBlitNamedFramebuffer(GLuint(hostFbo), gFbo_, viewport[0], viewport[1], viewport[0] + w, viewport[1] + h, 0, 0, w,
+                           h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(gFbo_, GL_COLOR, 0, zero);  // alpha 0: no sea (the others are read only under alpha > 0)
+    const std::uint8_t noTile = 0;
+    glClearTexImage(gTiles_, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &noTile);
+    // Image unit 7: the host's binding there is put back after.
+    GLint hostImage[5] = {0, 0, 0, 0, 0};
+    const GLenum imageQuery[5] = {GL_IMAGE_BINDING_NAME, GL_IMAGE_BINDING_LEVEL, GL_IMAGE_BINDING_LAYERED,
+                                  GL_IMAGE_BINDING_LAYER, GL_IMAGE_BINDING_FORMAT};
+    for (int i = 0; i < 5; ++i) glGetIntegeri_v(imageQuery[i], 7, &hostImage[i]);
+    GLint hostAccess = GL_READ_ONLY;
+    glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, 7, &hostAccess);
+    glBindImageTexture(7, gTiles_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8UI);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gFbo_);
+    glViewport(0, 0, w, h);
+    glDisable(GL_BLEND);
+    drawGroup(pixel.gSharp, groups.sharp, true);
+    drawGroup(pixel.gSmooth, groups.smooth, true);
+    drawGroup(pixel.gOpen, groups.open, false);
+    glBindImageTexture(7, GLuint(hostImage[0]), hostImage[1], GLboolean(hostImage[2]), hostImage[3], GLenum(hostAccess),
+                       hostImage[4] ? GLenum(hostImage[4]) : GL_R8UI);
+    // The tiles with sea, as rectangles (runs along each row of tiles).
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    const int tw = (w + kGTilePx - 1) / kGTilePx, th = (h + kGTilePx - 1) / kGTilePx;
+    gTileMask_.resize(std::size_t(tw) * std::size_t(th));
+    GLint packAlignment = 4;
+    glGetIntegerv(GL_PACK_ALIGNMENT, &packAlignment);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(gTiles_, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, GLsizei(gTileMask_.size()), gTileMask_.data());
+    glPixelStorei(GL_PACK_ALIGNMENT, packAlignment);
+    gRects_.clear();
+    for (int ty = 0; ty < th; ++ty)
+      for (int tx = 0; tx < tw;) {
+        if (!gTileMask_[std::size_t(ty) * std::size_t(tw) + std::size_t(tx)]) {
+          ++tx;
+          continue;
+        }
+        const int x0 = tx;
+        while (tx < tw && gTileMask_[std::size_t(ty) * std::size_t(tw) + std::size_t(tx)]) ++tx;
+        const float ax = float(x0 * kGTilePx), bx = float(std::min(tx * kGTilePx, w));
+        const float ay = float(ty * kGTilePx), by = float(std::min((ty + 1) * kGTilePx, h));
+        for (float v : {ax, ay, bx, ay, bx, by, ax, ay, bx, by, ax, by}) gRects_.push_back(v);
+      }
+    glBlitNamedFramebuffer(gFbo_, GLuint(hostFbo), 0, 0, w, h, viewport[0], viewport[1], viewport[0] + w,
+                           viewport[1] + h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(hostFbo));
+    glViewport(viewport[0], viewport[1], w, h);
+    glEnable(GL_BLEND);
+    // Units 15-21: the host's textures there are put back after.
+    GLint hostTex[kGTargets] = {};
+    GLint active = 0;
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+    for (int i = 0; i < kGTargets; ++i) {
+      glActiveTexture(GLenum(GL_TEXTURE15 + i));
+      glGetIntegerv(GL_TEXTURE_BINDING_2D, &hostTex[i]);
+    }
+    glActiveTexture(GLenum(active));
+    for (int i = 0; i < kGTargets; ++i) glBindTextureUnit(GLuint(15 + i), gTex_[i]);
+    const GLboolean depthTest = glIsEnabled(GL_DEPTH_TEST);
+    glDisable(GL_DEPTH_TEST);  // the depth is in already
+    pixel.shade.use();
+    setUniforms(pixel.shade);
+    glUniform2i(pixel.shade.uniform("uGOrigin"), viewport[0], viewport[1]);
+    glUniform2f(pixel.shade.uniform("uGSize"), float(w), float(h));
+    const std::size_t rectBytes = gRects_.size() * sizeof(float);
+    if (rectBytes > gVboBytes_) {
+      gVboBytes_ = rectBytes;
+      glNamedBufferData(gVbo_, GLsizeiptr(gVboBytes_), nullptr, GL_STREAM_DRAW);
+    }
+    if (rectBytes > 0) {
+      glNamedBufferSubData(gVbo_, 0, GLsizeiptr(rectBytes), gRects_.data());
+      glBindVertexArray(gVao_);
+      glDrawArrays(GL_TRIANGLES, 0, GLsizei(gRects_.size() / 2));
+      glBindVertexArray(vao_);
+    }
+    if (depthTest) glEnable(GL_DEPTH_TEST);
+    for (int i = 0; i < kGTargets; ++i) {
+      glActiveTexture(GLenum(GL_TEXTURE15 + i));
+      glBindTexture(GL_TEXTURE_2D, GLuint(hostTex[i]));
+    }
+    glActiveTexture(GLenum(active));
+  } else {
+    drawGroup(bare ? bare_ : pixel.sharp, groups.sharp, !bare);
+    drawGroup(pixel.smooth, groups.smooth, true);
+    drawGroup(pixel.open, groups.open, false);
   }
+  drawGroup(farShaded_, groups.farOpen, false);
   glBindVertexArray(0);
   for (int u = 0; u < 2; ++u) {
     glActiveTexture(GLenum(GL_TEXTURE12 + u));
@@ -923,8 +1033,78 @@ const OceanRenderer::PixelPrograms& OceanRenderer::pixelPrograms(bool wakes, boo
     v.sharp = make(sharpDefines_);
     v.smooth = make(smoothDefines_);
     v.open = make(openDefines_);
+    if (options_.deferred && options_.model == waves::Model::Noise) {
+      const auto gMake = [&](std::vector<std::string> d) {
+        d.push_back("GEOCEAN_GBUFFER 1");
+        return gl::GlProgram::graphics("ocean.vert", "ocean.frag", d);
+      };
+      v.gSharp = gMake(sharpDefines_);
+      v.gSmooth = gMake(smoothDefines_);
+      v.gOpen = gMake(openDefines_);
+      auto d = openDefines_;
+      d.push_back("GEOCEAN_DEFERRED 1");
+      if (wakes) d.push_back("GEOCEAN_WAKES 1");
+      if (!reflection) d.push_back("GEOCEAN_NO_REFLECTION 1");
+      v.shade = gl::GlProgram::graphics("ocean_deferred.vert", "ocean.frag", d);
+    }
   }
   return v;
+}
+
+bool OceanRenderer::gBufferFor(GLint hostFbo, const GLint* vp) {
+  if (hostFbo == 0 || vp[2] <= 0 || vp[3] <= 0 || glIsEnabled(GL_SCISSOR_TEST)) return false;
+  GLboolean depthWrites = GL_FALSE;
+  glGetBooleanv(GL_DEPTH_WRITEMASK, &depthWrites);
+  if (!depthWrites) return false;
+  const GLuint fbo = GLuint(hostFbo);
+  GLint type = GL_NONE, name = 0, format = 0, samples = 0;
+  glGetNamedFramebufferAttachmentParameteriv(fbo, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+  if (type != GL_RENDERBUFFER && type != GL_TEXTURE) return false;
+  glGetNamedFramebufferAttachmentParameteriv(fbo, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
+  if (type == GL_RENDERBUFFER) {
+    glGetNamedRenderbufferParameteriv(GLuint(name), GL_RENDERBUFFER_INTERNAL_FORMAT, &format);
+    glGetNamedRenderbufferParameteriv(GLuint(name), GL_RENDERBUFFER_SAMPLES, &samples);
+  } else {
+    GLint level = 0, layered = GL_FALSE;
+    glGetNamedFramebufferAttachmentParameteriv(fbo, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, &level);
+    glGetNamedFramebufferAttachmentParameteriv(fbo, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_LAYERED, &layered);
+    if (layered) return false;
+    glGetTextureLevelParameteriv(GLuint(name), level, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    glGetTextureLevelParameteriv(GLuint(name), level, GL_TEXTURE_SAMPLES, &samples);
+  }
+  if (format != GL_DEPTH_COMPONENT32F || samples > 1) return false;
+  if (gFbo_ && gWidth_ == vp[2] && gHeight_ == vp[3]) return true;
+  if (gFbo_) glDeleteFramebuffers(1, &gFbo_);
+  glDeleteTextures(kGTargets, gTex_);
+  const GLuint gMore[] = {gDepth_, gTiles_};
+  glDeleteTextures(2, gMore);
+  if (!gVao_) {
+    glCreateVertexArrays(1, &gVao_);
+    glCreateBuffers(1, &gVbo_);
+    glEnableVertexArrayAttrib(gVao_, 0);
+    glVertexArrayAttribFormat(gVao_, 0, 2, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(gVao_, 0, 0);
+    glVertexArrayVertexBuffer(gVao_, 0, gVbo_, 0, 2 * sizeof(float));
+  }
+  glCreateTextures(GL_TEXTURE_2D, 1, &gTiles_);
+  glTextureStorage2D(gTiles_, 1, GL_R8UI, (vp[2] + kGTilePx - 1) / kGTilePx, (vp[3] + kGTilePx - 1) / kGTilePx);
+  glCreateFramebuffers(1, &gFbo_);
+  glCreateTextures(GL_TEXTURE_2D, kGTargets, gTex_);
+  GLenum bufs[kGTargets];
+  for (int i = 0; i < kGTargets; ++i) {
+    glTextureStorage2D(gTex_[i], 1, GL_RGBA32F, vp[2], vp[3]);
+    glNamedFramebufferTexture(gFbo_, GLenum(GL_COLOR_ATTACHMENT0 + i), gTex_[i], 0);
+    bufs[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
+  }
+  glNamedFramebufferDrawBuffers(gFbo_, kGTargets, bufs);
+  glCreateTextures(GL_TEXTURE_2D, 1, &gDepth_);
+  glTextureStorage2D(gDepth_, 1, GL_DEPTH_COMPONENT32F, vp[2], vp[3]);
+  glNamedFramebufferTexture(gFbo_, GL_DEPTH_ATTACHMENT, gDepth_, 0);
+  gWidth_ = vp[2], gHeight_ = vp[3];
+  if (glCheckNamedFramebufferStatus(gFbo_, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) return true;
+  glDeleteFramebuffers(1, &gFbo_);
+  gFbo_ = 0, gWidth_ = gHeight_ = 0;
+  return false;
 }
 
 bool OceanRenderer::swapCoast(std::shared_ptr<const waves::WaveField> w) {

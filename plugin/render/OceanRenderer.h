@@ -74,6 +74,12 @@ struct OceanOptions {
   bool detailNormals = true;
   // Light through thin crests (ocean_shading.glsl, crestSubsurface).
   bool subsurface = true;
+  // The noise sea's per-pixel shading deferred to one pass over a G-buffer
+  // the grid writes (ocean.frag), on the tiles with sea: the same picture,
+  // shaded once a pixel instead of ~1.9x on llvmpipe (docs/PERFORMANCE.md).
+  // Used where octaves are drawn per pixel and the host's target allows it
+  // (gBufferFor), else forward.
+  bool deferred = true;
 };
 
 // Reorders a grid frame's compacted cell indices (6 per cell) into three
@@ -256,6 +262,8 @@ class OceanRenderer {
   // CPU time of the last draw's grid build (ScreenGrid::build + index
   // compaction), wall ms: the part of the ocean pass that is not GL.
   double lastGridMs() const { return gridMs_; }
+  // Whether the last draw shaded through the G-buffer (OceanOptions::deferred).
+  bool lastDrawDeferred() const { return lastDeferred_; }
 
  private:
   std::shared_ptr<const world::WorldGrids> world_;
@@ -273,12 +281,27 @@ class OceanRenderer {
   // the others at their first draw. llvmpipe runs both sides of a branch
   // on a uniform and a loop's body once even for no iteration, so a term
   // not drawn still cost every pixel (docs/PERFORMANCE.md).
+  // The noise sea's deferred programs beside them: the grid's G-buffer
+  // writers (g*) and the shading over the tiles with sea (shade).
   struct PixelPrograms {
-    gl::GlProgram sharp, smooth, open;
+    gl::GlProgram sharp, smooth, open, gSharp, gSmooth, gOpen, shade;
   };
   PixelPrograms pixel_[4];
   std::vector<std::string> sharpDefines_, smoothDefines_, openDefines_;
   const PixelPrograms& pixelPrograms(bool wakes, bool reflection);
+  // The G-buffer for a host target and viewport, made or resized; false
+  // (draw forward) for a target whose depth it cannot copy: the default
+  // framebuffer, a depth other than single-sample DEPTH_COMPONENT32F, the
+  // scissor test on or depth writes off.
+  bool gBufferFor(GLint hostFbo, const GLint* viewport);
+  static constexpr int kGTargets = 7;  // ocean.frag's outG0..outG6
+  static constexpr int kGTilePx = 8;    // ocean.frag's uGTiles
+  GLuint gFbo_ = 0, gTex_[kGTargets] = {}, gDepth_ = 0, gTiles_ = 0, gVao_ = 0, gVbo_ = 0;
+  int gWidth_ = 0, gHeight_ = 0;
+  bool lastDeferred_ = false;
+  std::size_t gVboBytes_ = 0;
+  std::vector<std::uint8_t> gTileMask_;
+  std::vector<float> gRects_;
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0, ssbo_[5] = {0, 0, 0, 0, 0};  // octaves, waves, frame, FFT planes | coast, FFT | coast texels
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;

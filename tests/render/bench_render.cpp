@@ -11,6 +11,7 @@
 //                [--reflection-size N] [--no-reflections] [--no-refraction]
 //                (the optics' switches, issue 13 item 7; `refl` is the
 //                mirrored pass alone, inside `ocean`)
+//                [--cell-px PX]  (the ocean grid's vertex spacing, OceanOptions::cellPx)
 //                [--no-shadows] [--shadow-model paper] [--sun-model phong]
 //                (issue 13 item 6; `shadow` is the sun's depth pass alone,
 //                inside `ocean`, over the frames that drew it)
@@ -67,6 +68,7 @@ int main(int argc, char** argv) {
   bool ocean = true;
   int repeat = 1;  // draws per frame before the timed one
   bool detail = true;
+  double cellPx = 0.0;
   int reflectionSize = 0;
   bool reflections = true, refraction = true, shadows = true;
   render::ShadowModel shadowModel = render::ShadowModel::Physical;
@@ -89,6 +91,7 @@ int main(int argc, char** argv) {
     else if (a == "--pixel-error") terrain.pixelErrorPx = std::atof(next().c_str());
     else if (a == "--repeat") repeat = std::atoi(next().c_str());
     else if (a == "--sea-proxy") terrain.seaProxy = true;
+    else if (a == "--cell-px") cellPx = std::atof(next().c_str());
     else if (a == "--no-detail") detail = false;  // the ocean without its detail normal layer
     else if (a == "--reflection-size") reflectionSize = std::atoi(next().c_str());
     else if (a == "--no-reflections") reflections = false;
@@ -121,6 +124,7 @@ int main(int argc, char** argv) {
   if (ocean) {
     ocean_render::OceanOptions oo;
     oo.detailNormals = detail;
+    if (cellPx > 0.0) oo.cellPx = cellPx;
     const std::string err =
         render::test::addDirectOcean(*s.renderer, s.world->grids(), "noise", 10.0, 270.0, &oceanLayer, nullptr, oo);
     if (!err.empty()) {
