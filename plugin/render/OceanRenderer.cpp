@@ -14,7 +14,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cstring>
 #include <cstdio>
 #include <cmath>
@@ -480,17 +479,76 @@ std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenC
     while (i < octaves.size() && i < 16 && 1.0 / octaves[i].frequencyPerM > 3.03 * dist * v.cellRadians) ++i;
     return tailBoundM[i];
   };
-  std::vector<double> lat(near.size()), lon(near.size());
-  for (std::size_t k = 0; k < near.size(); ++k) lat[k] = f.vertices[near[k]].latDeg, lon[k] = f.vertices[near[k]].lonDeg;
-  std::vector<waves::SurfacePoint> sp(near.size());
-  v.waves->surfaceBatch(lat.data(), lon.data(), &v.timeS, false, nullptr, near.size(), sp.data());
-  for (std::size_t k = 0; k < near.size(); ++k) {
-    const grid::GridVertex& g = f.vertices[near[k]];
-    const glm::dvec3 p(g.eyeRelM[0], g.eyeRelM[1], g.eyeRelM[2]);
-    const glm::dvec3 up = geo::surfaceNormal(g.latDeg, g.lonDeg);
+  const auto exact = [&](const std::vector<std::size_t>& which, std::vector<waves::SurfacePoint>& sp) {
+    std::vector<double> lat(which.size()), lon(which.size());
+    for (std::size_t k = 0; k < which.size(); ++k)
+      lat[k] = f.vertices[which[k]].latDeg, lon[k] = f.vertices[which[k]].lonDeg;
+    sp.resize(which.size());
+    v.waves->surfaceBatch(lat.data(), lon.data(), &v.timeS, false, nullptr, which.size(), sp.data());
+  };
+  const auto eyeRel = [&](std::size_t i) {
+    const float* e = f.vertices[i].eyeRelM;
+    return glm::dvec3(e[0], e[1], e[2]);
+  };
+  const auto test = [&](std::size_t i, double heightM, double slackM) {
+    const grid::GridVertex& g = f.vertices[i];
+    const glm::dvec3 p = eyeRel(i);
     const double dist = glm::length(p);
-    out[near[k]] = sides(p + up * sp[k].heightM, omittedBoundM(dist) + 0.01 + sagM(dist));
+    return sides(p + geo::surfaceNormal(g.latDeg, g.lonDeg) * heightM,
+                 omittedBoundM(dist) + 0.01 + sagM(dist) + slackM);
+  };
+  // Per block of B x B grid vertices, one height (the block's centre, or
+  // its first near vertex) bounds the others' by the noise field's
+  // Lipschitz constant L: |h(a) - h(b)| <= L |a - b| along the chord, as the
+  // noise sum is a function of the ECEF point (wv_solidNoise). Per octave
+  // |grad perlin3| <= 8.5 a lattice axis (the blended gradients' component
+  // <= 1, plus the fade's slope 30/16 times the faces' difference <= 2 + 2),
+  // and d/dECEF takes the rows: L = sum |a| 8.5 (|row0| + |row1| + |row2|).
+  // Vertices the block's bound leaves undecided are evaluated themselves.
+  // Near the eye the cells are centimetres, so a block's bound is tight
+  // (L ~ 4 for the default sea): at 2 m, of ~110 k near vertices ~11 k are
+  // evaluated (1.8 k blocks of 8, 4.7 k of 2, 4.8 k alone), not all.
+  const std::size_t cols = std::size_t(std::max(f.cols, 0)), rows = std::size_t(std::max(f.rows, 0));
+  std::vector<std::size_t> rest = near;
+  if (v.waves->model() == waves::Model::Noise && cols * rows == f.vertices.size()) {
+    double lipschitz = 0.0;
+    for (const auto& o : octaves)
+      lipschitz += std::abs(o.amplitudeM) * 8.5 * (glm::length(o.row[0]) + glm::length(o.row[1]) + glm::length(o.row[2]));
+    // Blocks of 8 (one evaluation in 64), then of 2 for what is left there.
+    for (const std::size_t block : {std::size_t(8), std::size_t(2)}) {
+      const std::size_t bc = (cols + block - 1) / block, br = (rows + block - 1) / block;
+      std::vector<std::size_t> rep(bc * br, SIZE_MAX), reps, undecided;
+      const auto blockOf = [&](std::size_t i) { return (i / cols / block) * bc + (i % cols) / block; };
+      for (std::size_t i : rest) {
+        std::size_t& r = rep[blockOf(i)];
+        if (r == SIZE_MAX) r = i;
+      }
+      for (std::size_t b = 0; b < rep.size(); ++b) {
+        if (rep[b] == SIZE_MAX) continue;
+        const std::size_t r = std::min(rows - 1, (b / bc) * block + block / 2);
+        const std::size_t c = std::min(cols - 1, (b % bc) * block + block / 2);
+        if (!(f.vertices[r * cols + c].flags & grid::kVertexHorizon)) rep[b] = r * cols + c;
+        reps.push_back(rep[b]);
+      }
+      std::vector<waves::SurfacePoint> sp;
+      exact(reps, sp);
+      std::vector<double> repHeight(rep.size(), 0.0);
+      for (std::size_t k = 0, b = 0; b < rep.size(); ++b)
+        if (rep[b] != SIZE_MAX) repHeight[b] = sp[k++].heightM;
+      for (std::size_t i : rest) {
+        const std::size_t b = blockOf(i);
+        const glm::dvec3 p = eyeRel(i), q = eyeRel(rep[b]);
+        // The chord between the float rest positions, with their rounding.
+        const double chordM = glm::length(p - q) + 1e-6 * (glm::length(p) + glm::length(q));
+        out[i] = test(i, repHeight[b], lipschitz * chordM);
+        if (!out[i] && i != rep[b]) undecided.push_back(i);
+      }
+      rest.swap(undecided);
+    }
   }
+  std::vector<waves::SurfacePoint> sp;
+  exact(rest, sp);
+  for (std::size_t k = 0; k < rest.size(); ++k) out[rest[k]] = test(rest[k], sp[k].heightM, 0.0);
   return out;
 }
 
