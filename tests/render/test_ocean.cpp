@@ -288,6 +288,30 @@ TEST(Ocean, DeferredShadingDrawsTheForwardPictureBitForBit) {
   }
 }
 
+// The off-screen cull near the eye (offscreenSides: one wave height per
+// block of grid vertices bounds the block's others by the noise's
+// Lipschitz constant) only drops cells no wave brings on screen: below 10 m,
+// where ~110 k vertices take that path, the picture with the cull is the
+// one without it, bit for bit. Looking along the sea, down at it (the sea
+// under the eye on screen, the blocks across the screen's bottom edge) and
+// sideways, at 2 m and 6 m.
+TEST(Ocean, NearEyeCullKeepsThePictureBitForBit) {
+  OceanGuard guard;
+  ocean_render::OceanOptions on, off;
+  off.cullOffscreen = false;
+  const auto culled = sessionOceanWith(on), whole = sessionOceanWith(off);
+  const ViewPose views[] = {seaPose(30.0, -40.0, 2.0, 90.0, -3.0), seaPose(30.0, -40.0, 2.0, 200.0, -40.0),
+                            seaPose(30.0, -40.0, 6.0, 300.0, -15.0), seaPose(-20.0, 60.0, 2.0, 10.0, 5.0)};
+  for (const ViewPose& v : views) {
+    useOcean(culled);
+    const Image a = renderAt(v, 20.0, 135.0, 30.0);
+    useOcean(whole);
+    const Image b = renderAt(v, 20.0, 135.0, 30.0);
+    const ImageDiff d = compare(a, b);
+    EXPECT_EQ(d.max, 0) << "at " << v.altM << " m, heading " << v.headingDeg << ": mean " << d.mean;
+  }
+}
+
 // Sub-pixel waves are roughness, not sparkle (issue 13 item 1): a flight
 // over the open sea (U10 = 10 m/s; the sea frozen at one time, so what
 // changes is only the camera's sampling of a static sea), straight down
