@@ -142,12 +142,14 @@ TEST(Spray, OnlyWhereTheWavesBreakNearTheEye) {
     gl::writePng(::testing::TempDir() + "/spray_" + name + ".png", with);
     const camera::Camera cam = camera::Camera::fromView(p);
     sprayPx = outsidePx = 0;
-    double worstM = 0.0;
+    double worstM = -1e9;
+    Image mask = with;  // the spray's pixels red over the frame without it (looked at)
     for (int y = 0; y < p.height; ++y)
       for (int x = 0; x < p.width; ++x) {
         const std::size_t i = (std::size_t(y) * p.width + x) * 4;
         if (std::memcmp(&with.rgba[i], &without.rgba[i], 3) == 0) continue;
         ++sprayPx;
+        mask.rgba[i] = 255, mask.rgba[i + 1] = mask.rgba[i + 2] = 0;
         geo::Geodetic g;
         if (!seaPoint(cam, x, y, g)) {
           ++outsidePx;
@@ -166,6 +168,7 @@ TEST(Spray, OnlyWhereTheWavesBreakNearTheEye) {
         worstM = std::max(worstM, seawardM - slackM);
         if (seawardM > slackM) ++outsidePx;
       }
+    gl::writePng(::testing::TempDir() + "/spray_" + name + "_mask.png", mask);
     std::printf("%s: %d spray pixels, %d beyond the break line (worst %.1f m past its slack)\n", name.c_str(), sprayPx,
                 outsidePx, worstM);
   };
