@@ -160,9 +160,10 @@ TEST(Spray, OnlyWhereTheWavesBreakNearTheEye) {
         const glm::dvec3 ray = cam.pixelRay(x + 0.5, y + 0.5);
         const double sinDep = -glm::dot(ray, geo::surfaceNormal(g.latDeg, g.lonDeg));
         const double tanDep = sinDep / std::sqrt(std::max(1e-9, 1.0 - sinDep * sinDep));
-        // 1.23 m of flight + the crests' reach (maxDisplacement bound, x Kr
-        // cap 4 would be loose; the breaking cap keeps crests under 0.78 h
-        // with h <= 5 m here: 3 m) + a 0.6 m cluster.
+        // 1.23 m of flight + 3 m for the surface there (spray is drawn only
+        // where waves break, whose crests the cap keeps under 0.39 h, h <= 6 m
+        // at the break line: 2.3 m) + a 0.6 m cluster. Measured: every spray
+        // pixel 34 m or more inside this bound.
         const double slackM = (1.23 + 3.0) / tanDep + 0.6;
         const double seawardM = (breakWestLon - g.lonDeg) * kMPerDeg;  // > 0: beyond the break line
         worstM = std::max(worstM, seawardM - slackM);
