@@ -104,6 +104,8 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   }
   model.push_back("GEOCEAN_BARE 1");
   bare_ = gl::GlProgram::graphics("ocean.vert", "bare.frag", model);
+  // Issue 15 item 4 hook: the bands' breaking spray (Spray.h).
+  if (coast && options_.coastBands && options_.model == waves::Model::Gerstner) spray_ = std::make_unique<Spray>();
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
   glCreateBuffers(1, &ibo_);
@@ -414,6 +416,7 @@ OceanRenderer::~OceanRenderer() {
 void OceanRenderer::abandonGl() {
   glAbandoned_ = true;
   for (gl::GlProgram* p : {&farShaded_, &bare_}) p->abandon();
+  if (spray_) spray_->abandon();
   for (PixelPrograms& v : pixel_)
     for (gl::GlProgram* p : {&v.sharp, &v.smooth, &v.open, &v.gSharp, &v.gSmooth, &v.gOpen, &v.shade}) p->abandon();
   if (pages_) pages_->abandonGl();
@@ -1061,6 +1064,9 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     drawGroup(pixel.open, groups.open, false);
   }
   drawGroup(farShaded_, groups.farOpen, false);
+  // Issue 15 item 4 hook: the near band's breaking spray (Spray.h), over the sea.
+  if (spray_ && sprayOn_ && !bare)
+    spray_->draw(cam, origin, g.latDeg, g.lonDeg, light.timeS, waveCount, elevationGeo, light.sunEcef);
   glBindVertexArray(0);
   for (int u = 0; u < 2; ++u) {
     glActiveTexture(GLenum(GL_TEXTURE12 + u));

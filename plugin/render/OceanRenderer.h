@@ -11,6 +11,7 @@
 #include "globe/world/WorldGrids.h"
 #include "plugin/grid/ScreenGrid.h"
 #include "plugin/landsea/LandSea.h"
+#include "plugin/render/Spray.h"
 #include "plugin/render/WaterPages.h"
 #include "plugin/waves/WaveField.h"
 
@@ -215,6 +216,9 @@ class OceanRenderer {
   // or one band everywhere (tests compare them).
   enum class CoastBands { ByDistance = 0, NearOnly = 1, FarOnly = 2 };
   void setCoastBands(CoastBands mode) { coastBands_ = mode; }
+  // Issue 15 item 4: the near band's breaking spray (Spray.h); on with the
+  // bands (Gerstner with a coast field), off for tests.
+  void setSpray(bool on) { sprayOn_ = on; }
   // Single pictures: each draw first waits (bounded) for the streamed
   // tiles its view asks for, instead of drawing their ancestors.
   void setCompleteTiles(bool on) { completeTiles_ = on; }
@@ -327,6 +331,8 @@ class OceanRenderer {
   std::vector<Wake> wakes_;
   bool writeData_ = false;
   CoastBands coastBands_ = CoastBands::ByDistance;  // issue 15 item 4
+  std::unique_ptr<Spray> spray_;                    // issue 15 item 4: null without the bands
+  bool sprayOn_ = true;
   bool glAbandoned_ = false;
   GLuint shadowSampler_ = 0;  // the shadow map's comparison and filter, whatever the host's texture says
   std::unique_ptr<WaterPages> pages_;

@@ -8,7 +8,9 @@
 // one without (the deep-water phase with local shoaling: the reference), so
 // load from other processes hits both alike; and a third with the field but
 // issue 15 item 4's distance bands compiled out (OceanOptions::coastBands
-// false): the bands' own cost. Reports the ocean pass's
+// false): the bands' own cost; and a fourth with the bands but without their
+// breaking spray (OceanRenderer::setSpray(false)): the spray's own cost
+// (the bands' ratio is taken without it). Reports the ocean pass's
 // median process-CPU and wall time per frame (FrameTimes, glFinish between
 // passes) and the ratio. Not run by ctest; figures in docs/PERFORMANCE.md.
 //   bench_coast_frame [--frames N] [--size WxH]
@@ -115,6 +117,8 @@ int main(int argc, char** argv) {
   oo.coastBands = false;  // issue 15 item 4's distance bands compiled out
   auto noBands = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
   oo.coastBands = true;
+  auto noSpray = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  noSpray->setSpray(false);  // issue 15 item 4's spray (Spray.h) left out
   oo.coast = nullptr;
   auto deepOnly = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
   auto layer = std::make_shared<render::test::DirectOceanLayer>(withCoast);
@@ -128,16 +132,16 @@ int main(int argc, char** argv) {
   std::printf("bench_coast_frame %dx%d, %d frames per view and renderer (the first of each dropped)\n", base.width,
               base.height, frames);
   std::printf("%-22s | ocean pass cpu ms: field    none  ratio | wall ms: field   none  ratio | "
-              "cpu ms: no bands  bands/no bands\n", "view");
+              "cpu ms: no bands  bands/no bands | cpu ms: no spray  spray/no spray\n", "view");
   for (const View& v : {View{"island 30 m", 350.0, 30.0, -12.0}, View{"island 300 m", 900.0, 300.0, -35.0},
                         View{"island 1 km, down", 0.0, 1000.0, -89.0}}) {
     camera::ViewPose p = base;
     p.latDeg = kLat + v.northM / 110574.0, p.lonDeg = kLon, p.altM = v.altM;
     p.headingDeg = 180.0, p.pitchDeg = v.pitchDeg;
-    std::vector<double> cpu[3], wall[3];
+    std::vector<double> cpu[4], wall[4];
     for (int f = 0; f < frames; ++f)
-      for (int k = 0; k < 3; ++k) {
-        layer->setOcean(k == 0 ? withCoast : k == 1 ? deepOnly : noBands);
+      for (int k = 0; k < 4; ++k) {
+        layer->setOcean(k == 0 ? withCoast : k == 1 ? deepOnly : k == 2 ? noBands : noSpray);
         render::FrameSettings fs;
         fs.timeS = 30.0 + f / 30.0;
         fs.sunEcef = render::sunFromLocal(kLat, kLon, 150.0, 40.0);
@@ -148,9 +152,10 @@ int main(int argc, char** argv) {
         wall[k].push_back(t.layersMs);
       }
     const double c0 = median(cpu[0]), c1 = median(cpu[1]), w0 = median(wall[0]), w1 = median(wall[1]);
-    const double c2 = median(cpu[2]);
-    std::printf("%-22s |                 %7.1f %7.1f  %5.2f |        %6.1f %6.1f  %5.2f |        %7.1f  %5.2f\n",
-                v.name, c0, c1, c0 / c1, w0, w1, w0 / w1, c2, c0 / c2);
+    const double c2 = median(cpu[2]), c3 = median(cpu[3]);
+    std::printf("%-22s |                 %7.1f %7.1f  %5.2f |        %6.1f %6.1f  %5.2f |        %7.1f  %5.2f |"
+                "        %7.1f  %5.2f\n",
+                v.name, c0, c1, c0 / c1, w0, w1, w0 / w1, c2, c3 / c2, c3, c0 / c3);
   }
   return 0;
 }

@@ -1,0 +1,74 @@
+#include "plugin/render/Spray.h"
+
+#include "globe/geo/Ellipsoid.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+
+namespace geocean::ocean_render {
+
+Spray::Spray() : program_(gl::GlProgram::graphics("spray.vert", "spray.frag", {"WV_MODEL 1", "WV_COAST 1"})) {
+  glCreateVertexArrays(1, &vao_);  // no attributes: gl_VertexID is the site
+}
+
+Spray::~Spray() {
+  if (vao_) glDeleteVertexArrays(1, &vao_);
+}
+
+void Spray::draw(const camera::Camera& cam, const glm::dvec3& originEcef, double latDeg, double lonDeg, double timeS,
+                 int waveCount, const glm::vec4& elevationGeo, const glm::dvec3& sunEcef) const {
+  // Metres per degree at the nadir (finite differences, double), and the
+  // lattice's steps in degrees fixed per whole degree of latitude so the
+  // sites stay on the ground as the eye moves.
+  auto perDeg = [](double lat, double lon, double dLat, double dLon) {
+    const glm::dvec3 a = geo::toEcef({lat - 0.5 * dLat, lon - 0.5 * dLon, 0.0});
+    const glm::dvec3 b = geo::toEcef({lat + 0.5 * dLat, lon + 0.5 * dLon, 0.0});
+    return std::pair{glm::length(b - a) / (dLat + dLon), glm::normalize(b - a)};
+  };
+  const double latRef = std::round(latDeg);
+  const double stepLon = kSpacingM / perDeg(latRef, 0.0, 0.0, 1e-3).first;
+  const double stepLat = kSpacingM / perDeg(latRef, 0.0, 1e-3, 0.0).first;
+  const auto [mLon, east] = perDeg(latDeg, lonDeg, 0.0, 1e-3);
+  const auto [mLat, north] = perDeg(latDeg, lonDeg, 1e-3, 0.0);
+  const double uLon = lonDeg / stepLon, uLat = latDeg / stepLat;
+  const double iLon = std::floor(uLon), iLat = std::floor(uLat);
+  program_.use();
+  const glm::vec3 eyeMinusO(cam.eyeEcef() - originEcef), eastF(east), northF(north), sun(sunEcef);
+  glUniformMatrix4fv(program_.uniform("uViewProj"), 1, GL_FALSE, &cam.gpu().viewProj[0][0]);
+  glUniform3fv(program_.uniform("uEyeMinusOrigin"), 1, &eyeMinusO[0]);
+  glUniform1i(program_.uniform("uWaveCount"), waveCount);
+  glUniform4fv(program_.uniform("uElevationGeo"), 1, &elevationGeo[0]);
+  glUniform3fv(program_.uniform("uSunDir"), 1, &sun[0]);
+  // 3600 s is a whole number of spray.vert's periods (1 s).
+  glUniform1f(program_.uniform("uTimeS"), float(std::fmod(timeS, 3600.0)));
+  glUniform1i(program_.uniform("uSprayN"), kSites);
+  glUniform2i(program_.uniform("uSprayBase"), int(iLon) - kSites / 2, int(iLat) - kSites / 2);
+  glUniform2f(program_.uniform("uSprayFrac"), float(uLon - iLon), float(uLat - iLat));
+  glUniform2f(program_.uniform("uSprayCellM"), float(stepLon * mLon), float(stepLat * mLat));
+  glUniform2f(program_.uniform("uSprayCellDeg"), float(stepLon), float(stepLat));
+  glUniform2f(program_.uniform("uOriginLonLat"), float(lonDeg), float(latDeg));
+  glUniform3fv(program_.uniform("uEast"), 1, &eastF[0]);
+  glUniform3fv(program_.uniform("uNorth"), 1, &northF[0]);
+  const double pxPerRad = cam.heightPx() / (2.0 * std::tan(0.5 * cam.vfovDeg() * 3.14159265358979 / 180.0));
+  glUniform1f(program_.uniform("uPxPerRad"), float(pxPerRad));
+  // Over the sea, blended, behind what is nearer, writing no depth and
+  // only the colour attachment (the host's data target keeps the sea's).
+  GLboolean depthMask = GL_TRUE, dataMask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
+  glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask);
+  glGetBooleani_v(GL_COLOR_WRITEMASK, 1, dataMask);
+  const GLboolean blend = glIsEnabled(GL_BLEND), pointSize = glIsEnabled(GL_PROGRAM_POINT_SIZE);
+  glDepthMask(GL_FALSE);
+  glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFunci(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  glBindVertexArray(vao_);
+  glDrawArrays(GL_POINTS, 0, kSites * kSites);
+  glDepthMask(depthMask);
+  glColorMaski(1, dataMask[0], dataMask[1], dataMask[2], dataMask[3]);
+  if (!blend) glDisable(GL_BLEND);
+  if (!pointSize) glDisable(GL_PROGRAM_POINT_SIZE);
+}
+
+}  // namespace geocean::ocean_render
