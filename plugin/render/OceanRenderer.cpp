@@ -405,10 +405,7 @@ OceanRenderer::~OceanRenderer() {
   glDeleteBuffers(1, &ibo_);
   glDeleteBuffers(5, ssbo_);
   if (shadowSampler_) glDeleteSamplers(1, &shadowSampler_);
-  if (gFbo_) glDeleteFramebuffers(1, &gFbo_);
-  glDeleteTextures(kGTargets, gTex_);
-  const GLuint gMore[] = {gDepth_, gTiles_};
-  glDeleteTextures(2, gMore);
+  releaseGBuffer();
   if (gVao_) glDeleteVertexArrays(1, &gVao_);
   if (gVbo_) glDeleteBuffers(1, &gVbo_);
 }
@@ -1116,6 +1113,13 @@ const OceanRenderer::PixelPrograms& OceanRenderer::pixelPrograms(bool wakes, boo
   return v;
 }
 
+void OceanRenderer::releaseGBuffer() {
+  if (gFbo_) glDeleteFramebuffers(1, &gFbo_);
+  glDeleteTextures(kGTargets, gTex_);
+  const GLuint gMore[] = {gDepth_, gTiles_};
+  glDeleteTextures(2, gMore);
+}
+
 bool OceanRenderer::gBufferFor(GLint hostFbo, const GLint* vp) {
   if (hostFbo == 0 || vp[2] <= 0 || vp[3] <= 0 || glIsEnabled(GL_SCISSOR_TEST)) return false;
   GLboolean depthWrites = GL_FALSE;
@@ -1139,10 +1143,7 @@ bool OceanRenderer::gBufferFor(GLint hostFbo, const GLint* vp) {
   }
   if (format != GL_DEPTH_COMPONENT32F || samples > 1) return false;
   if (gFbo_ && gWidth_ == vp[2] && gHeight_ == vp[3]) return true;
-  if (gFbo_) glDeleteFramebuffers(1, &gFbo_);
-  glDeleteTextures(kGTargets, gTex_);
-  const GLuint gMore[] = {gDepth_, gTiles_};
-  glDeleteTextures(2, gMore);
+  releaseGBuffer();
   if (!gVao_) {
     glCreateVertexArrays(1, &gVao_);
     glCreateBuffers(1, &gVbo_);

@@ -298,6 +298,7 @@ class OceanRenderer {
   // framebuffer, a depth other than single-sample DEPTH_COMPONENT32F, the
   // scissor test on or depth writes off.
   bool gBufferFor(GLint hostFbo, const GLint* viewport);
+  void releaseGBuffer();  // its framebuffer and textures (the tile VAO/VBO stay)
   static constexpr int kGTargets = 7;  // ocean.frag's outG0..outG6
   static constexpr int kGTilePx = 8;    // ocean.frag's uGTiles
   GLuint gFbo_ = 0, gTex_[kGTargets] = {}, gDepth_ = 0, gTiles_ = 0, gVao_ = 0, gVbo_ = 0;
