@@ -164,11 +164,8 @@ TiffGeoref readTiffGeoref(const std::string& path, int width, int height) {
     t.latStepDeg = -sy;
     t.originLonDeg = x0 - (i0 + shift) * sx;
     t.originLatDeg = y0 + (j0 + shift) * sy;
-    const double north = std::max(t.originLatDeg, t.latOf(height));
-    const double south = std::min(t.originLatDeg, t.latOf(height));
-    // A pixel of slack: GMT's pixel-is-point global grids put centres on the poles.
-    const double slack = std::abs(t.latStepDeg) * 1.01;
-    if (north > 90.0 + slack || south < -90.0 - slack)
+    double south = 0.0, north = 0.0;
+    if (!t.rowsWithinPoles(height, south, north))
       throw RasterError(path + ": latitude range [" + fmt("%g", south) + ", " + fmt("%g", north) +
                         "] is outside [-90, 90]: the raster is not in geographic degrees (projected CRS without GeoKeys?)");
     t.global = std::abs(width * sx - 360.0) < 1e-6 * 360.0;

@@ -9,6 +9,8 @@
 // be called from any number of threads.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -50,6 +52,16 @@ struct GeoTransform {
   // centre, anything else unchanged.
   double nearLon(double lonDeg) const;
   double pixelY(double latDeg) const;
+  // Rows 0 .. height span [south, north]; false when that reaches beyond a
+  // pole by more than a pixel (GMT's pixel-is-point global grids put
+  // centres on the poles): not geographic degrees. The file reader's and
+  // the C ABI's rule.
+  bool rowsWithinPoles(int height, double& south, double& north) const {
+    const double edge = latOf(double(height));
+    north = std::max(originLatDeg, edge), south = std::min(originLatDeg, edge);
+    const double slack = std::abs(latStepDeg) * 1.01;
+    return !std::isnan(edge) && north <= 90.0 + slack && south >= -90.0 - slack;
+  }
   double lonOf(double px) const { return originLonDeg + px * lonStepDeg; }
   double latOf(double py) const { return originLatDeg + py * latStepDeg; }
 };

@@ -71,24 +71,21 @@ std::shared_ptr<const Raster> fromMemory(const float* values, int32_t width, int
     fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "placement lon_step_deg " + std::to_string(p->lon_step_deg) + " is not > 0");
   if (!(p->lat_step_deg != 0.0) || !finite(p->lat_step_deg))
     fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "placement lat_step_deg " + std::to_string(p->lat_step_deg) + " is not != 0");
-  // The file reader's rule (globe/raster/GeoTiff.cpp): rows beyond the poles
-  // by more than a pixel are not geographic degrees. A "global" raster placed
-  // there was clamped to its edge row and answered everywhere (fuzz_capi_pixels).
-  {
-    const double edge = p->origin_lat_deg + double(height) * p->lat_step_deg;
-    const double north = std::max(p->origin_lat_deg, edge), south = std::min(p->origin_lat_deg, edge);
-    const double slack = std::abs(p->lat_step_deg) * 1.01;
-    if (!finite(edge) || north > 90.0 + slack || south < -90.0 - slack)
-      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "placement latitude range [" + shortest(south) + ", " + shortest(north) +
-                                               "] (origin_lat_deg " + shortest(p->origin_lat_deg) + ", lat_step_deg " +
-                                               shortest(p->lat_step_deg) + ") is outside [-90, 90]");
-  }
   geocean::raster::GeoTransform t;
   t.originLonDeg = p->origin_lon_deg;
   t.originLatDeg = p->origin_lat_deg;
   t.lonStepDeg = p->lon_step_deg;
   t.latStepDeg = p->lat_step_deg;
   t.global = p->global != 0;
+  // The file reader's rule: a "global" raster placed beyond a pole was
+  // clamped to its edge row and answered everywhere (fuzz_capi_pixels).
+  {
+    double south = 0.0, north = 0.0;
+    if (!t.rowsWithinPoles(height, south, north))
+      fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "placement latitude range [" + shortest(south) + ", " + shortest(north) +
+                                               "] (origin_lat_deg " + shortest(p->origin_lat_deg) + ", lat_step_deg " +
+                                               shortest(p->lat_step_deg) + ") is outside [-90, 90]");
+  }
   if (t.global && std::abs(width * p->lon_step_deg - 360.0) > 1e-6 * 360.0)
     fail(GEOCEAN_ERROR_INVALID_ARGUMENT, "placement is global but width * lon_step_deg = " +
                                              std::to_string(width * p->lon_step_deg) + ", not 360");
