@@ -402,6 +402,187 @@ float pageBilinear(vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo) {
              f.y);
 }
 
+#ifdef GEOCEAN_WATER_PAGES_LAYERS
+// Several streamed masks (WaterPages, world::streamedWaterLayers: 2 to 4),
+// in answer order: layer 0 is uPage* above, layer k >= 1 element k - 1 of
+// the uPageB* arrays, its pool on unit 8 + k, its page table on 21 + k.
+// A point is drawn from the first layer with data within its filter's
+// reach: that layer's B-spline (or bilinear) over its own texels, where a
+// texel past its edge or without data (NaN) takes the next layers' value
+// at the texel's centre (the first with data there, else the grid's), as
+// one layer's texels take the grid's. So where a layer answers the query
+// (its nearest cell has data) and its 4 x 4 cells all have data, the drawn
+// coverage is the query's; the layers below answer where it has none.
+layout(binding = 9) uniform sampler2DArray uPagePool1;
+layout(binding = 22) uniform isampler2D uPageTable1;
+#if GEOCEAN_WATER_PAGES_LAYERS > 2
+layout(binding = 10) uniform sampler2DArray uPagePool2;
+layout(binding = 23) uniform isampler2D uPageTable2;
+#endif
+#if GEOCEAN_WATER_PAGES_LAYERS > 3
+layout(binding = 11) uniform sampler2DArray uPagePool3;
+layout(binding = 24) uniform isampler2D uPageTable3;
+#endif
+uniform int uPageBTop[3];
+uniform ivec4 uPageBLevel[72];  // per layer 24 levels, as uPageLevel
+uniform vec4 uPageBGeo[3];
+uniform ivec2 uPageBTile[3];
+
+int chTop(int k) { return k == 0 ? uPageTop : uPageBTop[k - 1]; }
+ivec4 chLevel(int k, int l) { return k == 0 ? uPageLevel[l] : uPageBLevel[(k - 1) * 24 + l]; }
+vec4 chGeo(int k) { return k == 0 ? uPageGeo : uPageBGeo[k - 1]; }
+ivec2 chTile(int k) { return k == 0 ? uPageTile : uPageBTile[k - 1]; }
+
+int chTable(int k, ivec2 at) {
+  if (k == 0) return texelFetch(uPageTable, at, 0).r;
+#if GEOCEAN_WATER_PAGES_LAYERS > 2
+  if (k == 2) return texelFetch(uPageTable2, at, 0).r;
+#endif
+#if GEOCEAN_WATER_PAGES_LAYERS > 3
+  if (k == 3) return texelFetch(uPageTable3, at, 0).r;
+#endif
+  return texelFetch(uPageTable1, at, 0).r;
+}
+
+float chPool(int k, ivec3 at) {
+  if (k == 0) return texelFetch(uPagePool, at, 0).r;
+#if GEOCEAN_WATER_PAGES_LAYERS > 2
+  if (k == 2) return texelFetch(uPagePool2, at, 0).r;
+#endif
+#if GEOCEAN_WATER_PAGES_LAYERS > 3
+  if (k == 3) return texelFetch(uPagePool3, at, 0).r;
+#endif
+  return texelFetch(uPagePool1, at, 0).r;
+}
+
+ivec2 chWrap(int k, int level, ivec2 g) {  // as pageWrap
+  ivec4 L = chLevel(k, level);
+  g.x = chTile(k).y != 0 ? ((g.x % L.x) + L.x) % L.x : clamp(g.x, 0, L.x - 1);
+  g.y = clamp(g.y, 0, L.y - 1);
+  return g;
+}
+
+int chSlot(int k, int level, ivec2 g) {  // g wrapped
+  ivec2 t = g / chTile(k).x;
+  return chTable(k, ivec2(t.x, chLevel(k, level).w + t.y));
+}
+
+// Continuous texel coordinates of a level, texel centres at integers (pagePos).
+vec2 chPos(int k, vec2 lonLatDeg, int level) {
+  vec4 G = chGeo(k);
+  if (chTile(k).y == 0) lonLatDeg.x = lonNear(lonLatDeg.x, G.x + 0.5 * float(chLevel(k, 0).x) * G.z);
+  return vec2((lonLatDeg.x - G.x) / G.z, (lonLatDeg.y - G.y) / G.w) / float(1 << level) - 0.5;
+}
+
+// g inside the level (wrapped for a global layer); false past a regional one's edge.
+bool chInside(int k, int level, inout ivec2 g) {
+  if (chTile(k).y != 0) {
+    g = chWrap(k, level, g);
+    return true;
+  }
+  return all(greaterThanEqual(g, ivec2(0))) && all(lessThan(g, chLevel(k, level).xy));
+}
+
+// The layers from j on at lon/lat c: the first whose texel there (at its
+// finest resident level) has data, else the grid's coverage (one fetch,
+// as pageTexel's).
+float chBelow(int j, vec2 c, sampler2D grid, vec4 gridGeo) {
+  for (int k = j; k < GEOCEAN_WATER_PAGES_LAYERS; ++k) {
+    int top = chTop(k), T = chTile(k).x;
+    for (int l = 0; l <= top; ++l) {
+      ivec2 g = ivec2(floor(chPos(k, c, l) + 0.5));
+      if (!chInside(k, l, g)) break;  // past its edge: the next layer
+      int s = chSlot(k, l, g);
+      if (s < 0) continue;  // not resident: its parent
+      float v = chPool(k, ivec3(g - (g / T) * T + 1, s));
+      if (!isnan(v)) return v;
+      break;  // no data here: the next layer
+    }
+  }
+  return textureLod(grid, geoUv(c, gridGeo), 0.0).r;
+}
+
+// Texel g of layer k's level, or the layers' below at its centre; `own`
+// set when it is the layer's own.
+float chTexel(int k, int level, ivec2 g, sampler2D grid, vec4 gridGeo, inout bool own) {
+  ivec2 w = g;
+  if (chInside(k, level, w)) {
+    int T = chTile(k).x;
+    float v = chPool(k, ivec3(w - (w / T) * T + 1, chSlot(k, level, w)));
+    if (!isnan(v)) {
+      own = true;
+      return v;
+    }
+  }
+  vec4 G = chGeo(k);
+  return chBelow(k + 1, G.xy + (vec2(g) + 0.5) * float(1 << level) * G.zw, grid, gridGeo);
+}
+
+// The finest level from `want` up whose tiles under the 4 x 4 texels at
+// lonLat are all resident (pageLevel).
+int chResidentLevel(int k, vec2 lonLatDeg, int want) {
+  int top = chTop(k);
+  for (int l = want; l < top; ++l) {
+    ivec2 i = ivec2(floor(chPos(k, lonLatDeg, l)));
+    ivec2 a = chWrap(k, l, i - 1), b = chWrap(k, l, i + 2);
+    if (chSlot(k, l, a) >= 0 && chSlot(k, l, b) >= 0 && chSlot(k, l, ivec2(a.x, b.y)) >= 0 &&
+        chSlot(k, l, ivec2(b.x, a.y)) >= 0)
+      return l;
+  }
+  return top;
+}
+
+float chBSpline(int k, vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo, inout bool own) {
+  vec2 p = chPos(k, lonLatDeg, level);
+  vec2 i = floor(p);
+  vec2 f = p - i;
+  vec4 wx = bsplineWeights4(f.x), wy = bsplineWeights4(f.y);
+  ivec2 g = ivec2(i) - 1;
+  float s = 0.0;
+  for (int y = 0; y < 4; ++y) {
+    vec4 row = vec4(chTexel(k, level, g + ivec2(0, y), grid, gridGeo, own),
+                    chTexel(k, level, g + ivec2(1, y), grid, gridGeo, own),
+                    chTexel(k, level, g + ivec2(2, y), grid, gridGeo, own),
+                    chTexel(k, level, g + ivec2(3, y), grid, gridGeo, own));
+    s += wy[y] * dot(row, wx);
+  }
+  return s;
+}
+
+float chBilinear(int k, vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo, inout bool own) {
+  vec2 p = chPos(k, lonLatDeg, level);
+  vec2 i = floor(p);
+  vec2 f = p - i;
+  ivec2 g = ivec2(i);
+  return mix(mix(chTexel(k, level, g, grid, gridGeo, own), chTexel(k, level, g + ivec2(1, 0), grid, gridGeo, own), f.x),
+             mix(chTexel(k, level, g + ivec2(0, 1), grid, gridGeo, own),
+                 chTexel(k, level, g + ivec2(1, 1), grid, gridGeo, own), f.x),
+             f.y);
+}
+
+#ifdef GEOCEAN_FRAGMENT_STAGE
+// waterPagesAuto over the layers: the first with a texel of its own within
+// the filter's reach, at its level for the pixel; else the grid alone.
+float waterPagesChain(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
+  vec2 uvW = geoUv(lonLatDeg, gridGeo);
+  vec2 dx = dFdx(uvW), dy = dFdy(uvW);
+  float tpp[GEOCEAN_WATER_PAGES_LAYERS];  // derivatives before any branch
+  for (int k = 0; k < GEOCEAN_WATER_PAGES_LAYERS; ++k) tpp[k] = length(fwidth(chPos(k, lonLatDeg, 0)));
+  for (int k = 0; k < GEOCEAN_WATER_PAGES_LAYERS; ++k) {
+    int want = tpp[k] < 1.0 ? 0 : min(int(floor(log2(tpp[k]))), chTop(k));
+    if (chTile(k).y == 0 && levelClear(chPos(k, lonLatDeg, want), chLevel(k, want).xy)) continue;
+    int l = chResidentLevel(k, lonLatDeg, want);
+    bool own = false;
+    float v = tpp[k] < 1.0 ? chBSpline(k, lonLatDeg, l, grid, gridGeo, own)
+                           : chBilinear(k, lonLatDeg, l, grid, gridGeo, own);
+    if (own) return v;
+  }
+  float texelsPerPixel = length((abs(dx) + abs(dy)) * vec2(textureSize(grid, 0)));
+  return texelsPerPixel < 1.0 ? textureBSplineGather(grid, uvW) : textureGrad(grid, uvW, dx, dy).r;
+}
+#endif
+#endif
+
 #ifdef GEOCEAN_FRAGMENT_STAGE
 // Magnified: the B-spline of level 0 (or the finest resident); minified:
 // bilinear at the level whose texel is about the pixel (the pyramid's
@@ -410,6 +591,9 @@ float pageBilinear(vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo) {
 // pyramid's level is within the filter's reach, the grid alone, as
 // textureBSplineAuto draws it (derivatives taken before the branch).
 float waterPagesAuto(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
+#ifdef GEOCEAN_WATER_PAGES_LAYERS
+  return waterPagesChain(lonLatDeg, grid, gridGeo);
+#endif
   float tpp = length(fwidth(pagePos(lonLatDeg, 0)));
   int want = tpp < 1.0 ? 0 : min(int(floor(log2(tpp))), uPageTop);
 #ifdef GEOCEAN_WATER_PAGES_REGIONAL

@@ -53,13 +53,17 @@ namespace {
 // grid; else none. Global: pole to pole and wrapping; regional: any other
 // extent (across the antimeridian too: raster::lonNear), drawn over the grid, which answers
 // outside it and where it has no data (isStreamedRegional).
+bool streams(const RasterLayer& l, double gridLonStepDeg) {
+  const raster::GeoTransform& t = l.raster->transform();
+  const bool global = t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * l.raster->height() + 180.0) < 1e-6;
+  const bool regional = !t.global && t.latStepDeg < 0 && t.lonStepDeg > 0;
+  return (global || regional) && t.lonStepDeg < 0.999 * gridLonStepDeg;
+}
+
 const RasterLayer* firstIfStreamed(const LayerStack& stack, LayerKind kind, double gridLonStepDeg) {
   for (const RasterLayer& l : stack.layers()) {
     if (l.kind != kind) continue;
-    const raster::GeoTransform& t = l.raster->transform();
-    const bool global = t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * l.raster->height() + 180.0) < 1e-6;
-    const bool regional = !t.global && t.latStepDeg < 0 && t.lonStepDeg > 0;
-    return (global || regional) && t.lonStepDeg < 0.999 * gridLonStepDeg ? &l : nullptr;
+    return streams(l, gridLonStepDeg) ? &l : nullptr;
   }
   return nullptr;
 }
@@ -69,15 +73,19 @@ bool isStreamedRegional(const raster::Raster& r) { return !r.transform().global;
 
 namespace {
 // The stack without `streamed` (null when nothing is left).
-std::unique_ptr<LayerStack> without(const LayerStack& stack, const raster::Raster& streamed) {
+std::unique_ptr<LayerStack> without(const LayerStack& stack, const std::vector<const raster::Raster*>& streamed) {
   std::vector<RasterLayer> rest;
   for (const RasterLayer& l : stack.layers())
-    if (l.raster.get() != &streamed) rest.push_back(l);
+    if (std::find(streamed.begin(), streamed.end(), l.raster.get()) == streamed.end()) rest.push_back(l);
   return rest.empty() ? nullptr : std::make_unique<LayerStack>(std::move(rest));
 }
 }  // namespace
 
 WorldLayer waterLayerBelow(const LayerStack& stack, const raster::Raster& streamed) {
+  return waterLayerBelow(stack, std::vector<const raster::Raster*>{&streamed});
+}
+
+WorldLayer waterLayerBelow(const LayerStack& stack, const std::vector<const raster::Raster*>& streamed) {
   const auto rest = without(stack, streamed);
   if (rest && (rest->has(LayerKind::Mask) || rest->has(LayerKind::Elevation))) return waterLayerOf(*rest);
   WorldLayer l = globalGridFor(nullptr);
@@ -96,6 +104,35 @@ const RasterLayer* streamedWaterLayer(const LayerStack& stack, double gridLonSte
   for (const RasterLayer& o : stack.layers())  // it must answer first where it has data
     if (o.kind != LayerKind::Imagery) return &o == l ? l : nullptr;
   return nullptr;
+}
+
+std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, double gridLonStepDeg) {
+  std::vector<const RasterLayer*> chain;
+  const RasterLayer* first = streamedWaterLayer(stack, gridLonStepDeg);
+  if (!first) return chain;
+  chain.push_back(first);
+  if (first->kind != LayerKind::Mask) return chain;
+  bool after = false;
+  for (const RasterLayer& l : stack.layers()) {
+    if (&l == first) {
+      after = true;
+      continue;
+    }
+    if (!after || l.kind == LayerKind::Imagery) continue;
+    if (!isStreamedRegional(*chain.back()->raster) || int(chain.size()) == kMaxStreamedLayers) break;
+    // A relief answers by sign where it has data: it ends the chain (drawn in the grid below).
+    if (l.kind != LayerKind::Mask || !streams(l, gridLonStepDeg)) break;
+    chain.push_back(&l);
+  }
+  return chain;
+}
+
+WorldLayer waterGridBelow(const LayerStack& stack, const std::vector<const RasterLayer*>& chain, double gridLonStepDeg) {
+  if (chain.empty()) return waterLayerOf(stack);
+  if (!isStreamedRegional(*chain.back()->raster)) return waterLayerOf(*waterPyramid(*chain.back()), gridLonStepDeg);
+  std::vector<const raster::Raster*> streamed;
+  for (const RasterLayer* l : chain) streamed.push_back(l->raster.get());
+  return waterLayerBelow(stack, streamed);
 }
 
 const RasterLayer* streamedElevationLayer(const LayerStack& stack, double gridLonStepDeg) {

@@ -8,6 +8,7 @@
 #include "globe/world/Surface.h"
 
 #include <memory>
+#include <vector>
 
 namespace geocean::world {
 
@@ -34,6 +35,10 @@ std::shared_ptr<const raster::TilePyramid> waterPyramid(const RasterLayer& layer
 // which is then the whole stack's resample and answers outside the layer's
 // extent and where it has no data, as the query's layers do.
 const RasterLayer* streamedMaskLayer(const LayerStack& stack, double gridLonStepDeg);
+// At most this many streamed layers of a kind are drawn (the ocean's
+// shader falls through them in answer order: GEOCEAN_WATER_PAGES_LAYERS).
+constexpr int kMaxStreamedLayers = 4;
+
 // The layer the drawn water streams from (the host's terrain and the
 // ocean alike): streamedMaskLayer, or, where a relief decides the coast
 // (drawingMask() null), the first elevation layer when it answers first of
@@ -43,6 +48,21 @@ const RasterLayer* streamedMaskLayer(const LayerStack& stack, double gridLonStep
 // then the relief's own 0 m line at its cells (reliefWaterPyramid), as the
 // query's, instead of its resample on the grid. Null otherwise.
 const RasterLayer* streamedWaterLayer(const LayerStack& stack, double gridLonStepDeg);
+
+// The streamed water layers in answer order (issue 12 item 2: several of a
+// kind): streamedWaterLayer first, then each next layer of the stack while
+// it is a mask that streams by the same rule (north up, finer than the
+// grid), up to kMaxStreamedLayers. The chain ends after a global layer (it
+// answers everywhere), at a relief or a mask that does not stream (it is in
+// the grid below, waterGridBelow) and for a relief's coast (one layer).
+// Empty when streamedWaterLayer is null. A fifth streamable mask is drawn
+// from the grid below, resampled at its step (limits: globe/world/README).
+std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, double gridLonStepDeg);
+// The water grid drawn where the streamed layers of `chain` have no data:
+// a global last layer's pyramid level (waterLayerOf at gridLonStepDeg), else
+// waterLayerBelow of the stack without all of them. For one layer exactly
+// what loadLayeredWorld and the ocean's grids drew before the chain.
+WorldLayer waterGridBelow(const LayerStack& stack, const std::vector<const RasterLayer*>& chain, double gridLonStepDeg);
 
 // A global water grid read from a water pyramid's coarse level: the
 // coarsest level whose texel is at most stepDeg (and at most 16384 wide),
@@ -76,6 +96,8 @@ bool isStreamedRegional(const raster::Raster& r);
 // other layers: all land. (A regional relief is drawn over the whole
 // stack's resample: relief has no class to keep.)
 WorldLayer waterLayerBelow(const LayerStack& stack, const raster::Raster& streamed);
+// The same without every raster of `streamed`.
+WorldLayer waterLayerBelow(const LayerStack& stack, const std::vector<const raster::Raster*>& streamed);
 
 // A regional pyramid's water for a WaterIndex: its finest level of at most
 // maxTexels texels, nodata (NaN) as water. A level texel is the mean of the

@@ -93,9 +93,12 @@ struct WorldCache {
   std::shared_ptr<const geocean::world::WorldGrids> grids;
   // A layer's streamed mask (the host terrain's rule and pyramid), or null.
   std::shared_ptr<const geocean::raster::TilePyramid> waterTiles;
+  std::vector<std::shared_ptr<const geocean::raster::TilePyramid>> waterTilesBelow;  // several streamed masks
   const geocean::world::WorldGrids& of(const Snapshot& snap) {
     if (!grids || landSea != snap.landSea || mask != snap.mask || elevation != snap.elevation) {
-      waterTiles = geocean::ocean_render::oceanWaterTiles(snap.landSea.get(), snap.mask);
+      waterTilesBelow = geocean::ocean_render::oceanWaterTileLayers(snap.landSea.get(), snap.mask);
+      waterTiles = waterTilesBelow.empty() ? nullptr : waterTilesBelow.front();
+      if (!waterTilesBelow.empty()) waterTilesBelow.erase(waterTilesBelow.begin());
       grids = geocean::ocean_render::oceanWorld(snap.mask, snap.elevation, snap.landSea.get(), snap.maskEncoding,
                                                 waterTiles.get());
       landSea = snap.landSea;
@@ -419,6 +422,7 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
         o.coast = snap->waves->coastFieldShared();  // Ocean::setCoastRegion: the query's near-shore field
         o.waves = snap->waves;  // the query's field: its FFT tables are built once for both
         o.waterTiles = ds.world.waterTiles;
+        o.waterTilesBelow = ds.world.waterTilesBelow;
         gl.renderer.reset();
         gl.renderer = std::make_unique<geocean::ocean_render::OceanRenderer>(ds.world.grids, snap->landSea, o);
       }

@@ -82,11 +82,10 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     shaded.push_back("FOAM_SUB " + std::to_string(kFoamSub));
   }
   if (options_.waterTiles) {
-    pages_ = std::make_unique<WaterPages>(options_.waterTiles);
+    pages_ = std::make_unique<WaterPages>(options_.waterTiles, gl::TilePoolOptions{}, options_.waterTilesBelow);
     pagedTexels_ = world_->water().lonStepDeg / options_.waterTiles->source().transform().lonStepDeg;
     auto paged = shaded;
-    paged.push_back("GEOCEAN_WATER_PAGES 1");
-    if (!options_.waterTiles->source().transform().global) paged.push_back("GEOCEAN_WATER_PAGES_REGIONAL 1");
+    for (const std::string& d : pages_->defines()) paged.push_back(d);
     sharpDefines_ = paged;
   } else {
     sharpDefines_ = shaded;

@@ -61,6 +61,9 @@ struct OceanOptions {
   // A regional mask's cells all take the
   // per-pixel coverage, and coversOpaquely is false.
   std::shared_ptr<const raster::TilePyramid> waterTiles;
+  // Streamed masks under waterTiles, in answer order (oceanWaterTileLayers):
+  // the first with data at a point is drawn (WaterPages.h).
+  std::vector<std::shared_ptr<const raster::TilePyramid>> waterTilesBelow;
   // False: a streamed mask's cells all per pixel and coversOpaquely false
   // (the shortcuts' reference in tests). Either way a global mask's grid
   // cells are classed from the level (nearWaterClassifier).

@@ -15,6 +15,14 @@ namespace geocean::ocean_render {
 
 namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+// The water grid's step the streamed layers are chosen at (0: none): the
+// drawing mask's, or without one (a relief finer than every mask decides
+// the coast) the drawing elevation's.
+double waterGridStep(const ocean::LayeredLandSea* layered, const std::shared_ptr<const raster::Raster>& mask) {
+  const auto grid = layered && mask ? mask : layered ? layered->stack().drawingElevation() : nullptr;
+  return grid ? world::globalGridFor(grid.get()).lonStepDeg : 0.0;
+}
 }  // namespace
 
 // The ocean's global equirectangular layers from its rasters: a global raster in memory is copied pixel for pixel (the
@@ -47,8 +55,13 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
   const auto* layered = dynamic_cast<const ocean::LayeredLandSea*>(landSea);
   if (waterTiles && world::isStreamedRegional(waterTiles->source()) && layered) {
     // A regional pyramid is drawn over the grid of the layers below it,
-    // the host terrain's (world::loadLayeredWorld).
-    d.water = world::waterLayerBelow(layered->stack(), waterTiles->source());
+    // the host terrain's (world::loadLayeredWorld); several streamed layers
+    // (oceanWaterTileLayers) over the grid below them all.
+    const auto chain = world::streamedWaterLayers(layered->stack(), waterGridStep(layered, mask));
+    if (chain.size() > 1 && chain[0]->raster.get() == &waterTiles->source())
+      d.water = world::waterGridBelow(layered->stack(), chain, waterGridStep(layered, mask));
+    else
+      d.water = world::waterLayerBelow(layered->stack(), waterTiles->source());
   } else if (waterTiles && !world::isStreamedRegional(waterTiles->source())) {
     d.water = world::waterLayerOf(*waterTiles, world::globalGridFor((mask ? mask : elevation).get()).lonStepDeg);
   } else if (mask && directly(mask)) {
@@ -70,11 +83,21 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
 std::shared_ptr<const raster::TilePyramid> oceanWaterTiles(const ocean::LandSea* landSea,
                                                            const std::shared_ptr<const raster::Raster>& mask) {
   const auto* layered = dynamic_cast<const ocean::LayeredLandSea*>(landSea);
-  // No drawing mask: a relief finer than every mask decides the coast, on its grid.
-  const auto grid = layered && mask ? mask : layered ? layered->stack().drawingElevation() : nullptr;
-  if (!grid) return nullptr;
-  const world::RasterLayer* l = world::streamedWaterLayer(layered->stack(), world::globalGridFor(grid.get()).lonStepDeg);
+  const double step = waterGridStep(layered, mask);
+  if (!(step > 0.0)) return nullptr;
+  const world::RasterLayer* l = world::streamedWaterLayer(layered->stack(), step);
   return l ? world::waterPyramid(*l) : nullptr;
+}
+
+std::vector<std::shared_ptr<const raster::TilePyramid>> oceanWaterTileLayers(
+    const ocean::LandSea* landSea, const std::shared_ptr<const raster::Raster>& mask) {
+  std::vector<std::shared_ptr<const raster::TilePyramid>> out;
+  const auto* layered = dynamic_cast<const ocean::LayeredLandSea*>(landSea);
+  const double step = waterGridStep(layered, mask);
+  if (!(step > 0.0)) return out;
+  for (const world::RasterLayer* l : world::streamedWaterLayers(layered->stack(), step))
+    out.push_back(world::waterPyramid(*l));
+  return out;
 }
 
 bool waterIndexFollowsTiles(const world::WorldGrids& world, const raster::TilePyramid& water) {

@@ -10,6 +10,7 @@
 #include "plugin/landsea/LandSea.h"
 
 #include <memory>
+#include <vector>
 
 namespace geocean::ocean_render {
 
@@ -37,6 +38,12 @@ std::shared_ptr<const raster::TilePyramid> oceanWaterTiles(const ocean::LandSea*
 // or one resampled onto the grid's step (oceanWorld's waterLayerOf), whose
 // texels are 1 only where every mask cell under them is water. So open water drawn without the per-pixel
 // coverage, and terrain left out under it, keep every island of the mask.
+// Every streamed water layer's pyramid in answer order
+// (world::streamedWaterLayers; the first is oceanWaterTiles'): several
+// masks of which the first with data at a point answers. Empty: none.
+std::vector<std::shared_ptr<const raster::TilePyramid>> oceanWaterTileLayers(
+    const ocean::LandSea* landSea, const std::shared_ptr<const raster::Raster>& mask);
+
 bool waterIndexFollowsTiles(const world::WorldGrids& world, const raster::TilePyramid& water);
 
 // The screen grid's classifier for a streamed global mask whose water

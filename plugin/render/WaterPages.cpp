@@ -1,5 +1,7 @@
 #include "plugin/render/WaterPages.h"
 
+#include "globe/world/WaterPyramid.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -7,37 +9,82 @@
 
 namespace geocean::ocean_render {
 
-WaterPages::WaterPages(std::shared_ptr<const raster::TilePyramid> pyramid, gl::TilePoolOptions pool)
-    : pool_(std::make_unique<gl::TilePool>(std::move(pyramid), pool)) {
-  const raster::TilePyramid& p = pool_->pyramid();
-  if (p.levels() > 24) throw std::invalid_argument("water pages: more than 24 pyramid levels");
-  tableW_ = p.tilesX(0);
-  for (int l = 0; l < p.levels(); ++l) {
-    rowOf_.push_back(tableH_);
-    tableH_ += p.tilesY(l);
+gl::TilePoolOptions WaterPages::defaultBelowPool() {
+  gl::TilePoolOptions o;
+  o.slots = 96;  // a layer below answers only where the first has no data
+  return o;
+}
+
+WaterPages::Layer WaterPages::makeLayer(std::shared_ptr<const raster::TilePyramid> pyramid, gl::TilePoolOptions pool) {
+  Layer l;
+  l.pool = std::make_unique<gl::TilePool>(std::move(pyramid), pool);
+  const raster::TilePyramid& p = l.pool->pyramid();
+  if (p.levels() > 24)
+    throw std::invalid_argument(p.source().path() + ": water pages: more than 24 pyramid levels");
+  l.tableW = p.tilesX(0);
+  for (int k = 0; k < p.levels(); ++k) {
+    l.rowOf.push_back(l.tableH);
+    l.tableH += p.tilesY(k);
   }
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  if (tableW_ > maxSize || tableH_ > maxSize)
-    throw std::invalid_argument("water pages: the page table (" + std::to_string(tableW_) + " x " +
-                                std::to_string(tableH_) + ") exceeds GL_MAX_TEXTURE_SIZE " + std::to_string(maxSize));
-  glCreateTextures(GL_TEXTURE_2D, 1, &table_);
-  glTextureStorage2D(table_, 1, GL_R32I, tableW_, tableH_);
-  glTextureParameteri(table_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(table_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  cpu_.assign(std::size_t(tableW_) * tableH_, -1);
+  if (l.tableW > maxSize || l.tableH > maxSize)
+    throw std::invalid_argument(p.source().path() + ": water pages: the page table (" + std::to_string(l.tableW) +
+                                " x " + std::to_string(l.tableH) + ") exceeds GL_MAX_TEXTURE_SIZE " +
+                                std::to_string(maxSize));
+  glCreateTextures(GL_TEXTURE_2D, 1, &l.table);
+  glTextureStorage2D(l.table, 1, GL_R32I, l.tableW, l.tableH);
+  glTextureParameteri(l.table, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(l.table, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  l.cpu.assign(std::size_t(l.tableW) * l.tableH, -1);
+  return l;
+}
+
+WaterPages::WaterPages(std::shared_ptr<const raster::TilePyramid> pyramid, gl::TilePoolOptions pool,
+                       std::vector<std::shared_ptr<const raster::TilePyramid>> below, gl::TilePoolOptions belowPool) {
+  if (below.size() + 1 > std::size_t(world::kMaxStreamedLayers))
+    throw std::invalid_argument("water pages: " + std::to_string(below.size() + 1) + " streamed layers, at most " +
+                                std::to_string(world::kMaxStreamedLayers) + " (the first: " + pyramid->source().path() +
+                                ")");
+  if (!below.empty()) {
+    // Several layers: a layer's nodata (NaN) must reach the shader, where
+    // the next layer answers (an R8 pool would make it land).
+    for (gl::TilePoolOptions* o : {&pool, &belowPool}) o->internalFormat = GL_R32F, o->nodataValue = NAN;
+  }
+  layers_.push_back(makeLayer(std::move(pyramid), pool));
+  for (auto& b : below) layers_.push_back(makeLayer(std::move(b), belowPool));
 }
 
 WaterPages::~WaterPages() {
-  if (!abandoned_ && table_) glDeleteTextures(1, &table_);
+  if (abandoned_) return;
+  for (const Layer& l : layers_)
+    if (l.table) glDeleteTextures(1, &l.table);
 }
 
 void WaterPages::abandonGl() {
   abandoned_ = true;
-  pool_->abandonGl();
+  for (Layer& l : layers_) l.pool->abandonGl();
+}
+
+void WaterPages::endFrame() {
+  for (Layer& l : layers_) l.pool->endFrame();
+}
+
+std::vector<std::string> WaterPages::defines() const {
+  std::vector<std::string> d{"GEOCEAN_WATER_PAGES 1"};
+  if (!pyramid().source().transform().global) d.push_back("GEOCEAN_WATER_PAGES_REGIONAL 1");
+  if (layers_.size() > 1) d.push_back("GEOCEAN_WATER_PAGES_LAYERS " + std::to_string(layers_.size()));
+  return d;
 }
 
 std::size_t WaterPages::request(const grid::GridFrame& f, double cellPx) {
+  std::size_t missing = 0;
+  for (Layer& l : layers_) missing += request(l, f, cellPx);
+  return missing;
+}
+
+std::size_t WaterPages::request(Layer& layer, const grid::GridFrame& f, double cellPx) {
+  gl::TilePool* pool_ = layer.pool.get();
   const raster::TilePyramid& p = pool_->pyramid();
   const raster::GeoTransform& t = p.source().transform();
   const int T = p.tileSize(), top = p.levels() - 1;
@@ -82,34 +129,51 @@ std::size_t WaterPages::request(const grid::GridFrame& f, double cellPx) {
 void WaterPages::complete(const grid::GridFrame& f, double cellPx) {
   // Bounded: a view needing more tiles than the pool holds draws what fits.
   for (int round = 0; round < 64 && request(f, cellPx) > 0; ++round) {
-    pool_->waitIdle();
-    pool_->endFrame();
+    for (Layer& l : layers_) l.pool->waitIdle();
+    endFrame();
   }
 }
 
-void WaterPages::refreshTable() {
-  if (pool_->residencyVersion() == version_) return;
-  version_ = pool_->residencyVersion();
-  std::fill(cpu_.begin(), cpu_.end(), -1);
-  for (const auto& [id, slot] : pool_->residentTiles())
-    cpu_[std::size_t(rowOf_[std::size_t(id.level)] + id.y) * tableW_ + id.x] = slot;
-  glTextureSubImage2D(table_, 0, 0, 0, tableW_, tableH_, GL_RED_INTEGER, GL_INT, cpu_.data());
+void WaterPages::refreshTable(Layer& l) {
+  if (l.pool->residencyVersion() == l.version) return;
+  l.version = l.pool->residencyVersion();
+  std::fill(l.cpu.begin(), l.cpu.end(), -1);
+  for (const auto& [id, slot] : l.pool->residentTiles())
+    l.cpu[std::size_t(l.rowOf[std::size_t(id.level)] + id.y) * l.tableW + id.x] = slot;
+  glTextureSubImage2D(l.table, 0, 0, 0, l.tableW, l.tableH, GL_RED_INTEGER, GL_INT, l.cpu.data());
 }
 
 void WaterPages::bind(const gl::GlProgram& prog) {
-  refreshTable();
-  const raster::TilePyramid& p = pool_->pyramid();
-  const raster::GeoTransform& t = p.source().transform();
-  glBindTextureUnit(6, pool_->texture());
-  glBindTextureUnit(7, table_);
-  std::vector<GLint> levels;
-  for (int l = 0; l < p.levels(); ++l)
-    levels.insert(levels.end(), {p.levelWidth(l), p.levelHeight(l), p.tilesX(l), rowOf_[std::size_t(l)]});
-  glUniform1i(prog.uniform("uPageTop"), p.levels() - 1);
-  glUniform4iv(prog.uniform("uPageLevel"), GLsizei(p.levels()), levels.data());
-  glUniform4f(prog.uniform("uPageGeo"), float(t.originLonDeg), float(t.originLatDeg), float(t.lonStepDeg),
-              float(t.latStepDeg));
-  glUniform2i(prog.uniform("uPageTile"), p.tileSize(), t.global ? 1 : 0);
+  for (std::size_t k = 0; k < layers_.size(); ++k) {
+    Layer& layer = layers_[k];
+    refreshTable(layer);
+    const raster::TilePyramid& p = layer.pool->pyramid();
+    const raster::GeoTransform& t = p.source().transform();
+    std::vector<GLint> levels;
+    for (int l = 0; l < p.levels(); ++l)
+      levels.insert(levels.end(), {p.levelWidth(l), p.levelHeight(l), p.tilesX(l), layer.rowOf[std::size_t(l)]});
+    if (k == 0) {
+      glBindTextureUnit(6, layer.pool->texture());
+      glBindTextureUnit(7, layer.table);
+      glUniform1i(prog.uniform("uPageTop"), p.levels() - 1);
+      glUniform4iv(prog.uniform("uPageLevel"), GLsizei(p.levels()), levels.data());
+      glUniform4f(prog.uniform("uPageGeo"), float(t.originLonDeg), float(t.originLatDeg), float(t.lonStepDeg),
+                  float(t.latStepDeg));
+      glUniform2i(prog.uniform("uPageTile"), p.tileSize(), t.global ? 1 : 0);
+      continue;
+    }
+    // Layer k >= 1: element k - 1 of the uPageB arrays (geo_uv.glsl).
+    glBindTextureUnit(GLuint(8 + k), layer.pool->texture());
+    glBindTextureUnit(GLuint(21 + k), layer.table);
+    const auto at = [&](const char* name, std::size_t i) {
+      return prog.uniform((std::string(name) + "[" + std::to_string(i) + "]").c_str());
+    };
+    glUniform1i(at("uPageBTop", k - 1), p.levels() - 1);
+    glUniform4iv(at("uPageBLevel", (k - 1) * 24), GLsizei(p.levels()), levels.data());
+    glUniform4f(at("uPageBGeo", k - 1), float(t.originLonDeg), float(t.originLatDeg), float(t.lonStepDeg),
+                float(t.latStepDeg));
+    glUniform2i(at("uPageBTile", k - 1), p.tileSize(), t.global ? 1 : 0);
+  }
 }
 
 }  // namespace geocean::ocean_render

@@ -9,6 +9,10 @@
 // wait until what the view asked for is resident. A regional mask's
 // pyramid (not global) is drawn over the ocean's water grid: past its edge
 // and at its nodata the grid's coverage answers (the layers below).
+// Several streamed masks (world::streamedWaterLayers, up to
+// world::kMaxStreamedLayers): each its own pyramid, pool and page table;
+// the shader falls through them in answer order, the first with data at a
+// point answers (GEOCEAN_WATER_PAGES_LAYERS), the grid past the last.
 // GL calls on the context's thread only.
 #pragma once
 
@@ -20,14 +24,21 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace geocean::ocean_render {
 
 class WaterPages {
  public:
-  // Needs a current GL context; loads the top tile.
-  explicit WaterPages(std::shared_ptr<const raster::TilePyramid> pyramid, gl::TilePoolOptions pool = {});
+  // Needs a current GL context; loads the top tile. below: the streamed
+  // layers under `pyramid`, in answer order (each a pool of belowPool's
+  // slots); throws std::invalid_argument for more than
+  // world::kMaxStreamedLayers layers in all.
+  explicit WaterPages(std::shared_ptr<const raster::TilePyramid> pyramid, gl::TilePoolOptions pool = {},
+                      std::vector<std::shared_ptr<const raster::TilePyramid>> below = {},
+                      gl::TilePoolOptions belowPool = defaultBelowPool());
+  static gl::TilePoolOptions defaultBelowPool();
   ~WaterPages();
   WaterPages(const WaterPages&) = delete;
   WaterPages& operator=(const WaterPages&) = delete;
@@ -39,22 +50,32 @@ class WaterPages {
   std::size_t request(const grid::GridFrame& frame, double cellPx);
   // Waits (bounded) until the frame's tiles are resident: single pictures.
   void complete(const grid::GridFrame& frame, double cellPx);
-  // Units 6 (pool) and 7 (page table) and the uniforms; refreshes the table.
+  // Units 6 (pool) and 7 (page table) and the uniforms; refreshes the
+  // table. Layers below: pools on units 9.., tables on 22.. (uPageB*).
   void bind(const gl::GlProgram& p);
   // After the frame's draws: finished loads go up.
-  void endFrame() { pool_->endFrame(); }
+  void endFrame();
+  // The program's defines for these pages (GEOCEAN_WATER_PAGES, _REGIONAL
+  // for a regional first layer, _LAYERS n for n > 1 layers).
+  std::vector<std::string> defines() const;
 
-  const raster::TilePyramid& pyramid() const { return pool_->pyramid(); }
-  const gl::TilePool& pool() const { return *pool_; }
+  const raster::TilePyramid& pyramid() const { return layers_[0].pool->pyramid(); }
+  const gl::TilePool& pool(int layer = 0) const { return *layers_[std::size_t(layer)].pool; }
+  int layers() const { return int(layers_.size()); }
 
  private:
-  void refreshTable();
-  std::unique_ptr<gl::TilePool> pool_;
-  GLuint table_ = 0;
-  int tableW_ = 0, tableH_ = 0;
-  std::vector<int> rowOf_;  // first table row of each level
-  std::vector<std::int32_t> cpu_;
-  std::uint64_t version_ = ~std::uint64_t(0);
+  struct Layer {
+    std::unique_ptr<gl::TilePool> pool;
+    GLuint table = 0;
+    int tableW = 0, tableH = 0;
+    std::vector<int> rowOf;  // first table row of each level
+    std::vector<std::int32_t> cpu;
+    std::uint64_t version = ~std::uint64_t(0);
+  };
+  static Layer makeLayer(std::shared_ptr<const raster::TilePyramid> pyramid, gl::TilePoolOptions pool);
+  static void refreshTable(Layer& l);
+  std::size_t request(Layer& l, const grid::GridFrame& frame, double cellPx);
+  std::vector<Layer> layers_;
   bool abandoned_ = false;
 };
 

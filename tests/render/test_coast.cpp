@@ -26,7 +26,9 @@
 #include "globe/raster/World.h"
 #include "globe/render/Session.h"
 #include "globe/world/LayerStack.h"
+#include "globe/world/WaterPyramid.h"
 #include "plugin/landsea/LandSea.h"
+#include "plugin/landsea/LayeredLandSea.h"
 #include "plugin/ocean/Ocean.h"
 #include "plugin/render/OceanWorld.h"
 #include "shaders/Shaders.h"
@@ -916,6 +918,178 @@ TEST(Coast, AReliefFinerThanEveryMaskDrawsItsOwnCoastStreamed) {
 // tiles on the host), half the island west of 180.
 TEST(Coast, AReliefIslandOnTheAntimeridianIsDrawnAndQueriedOnBothSides) {
   reliefIslandIsDrawnAndQueried(-21.5, 180.0, "relief_island_180");
+}
+
+// Several streamed masks of a kind (issue 12 item 2): two overlapping
+// regional masks over the default world, both streamed (the ocean's pages
+// fall through them in answer order, world::streamedWaterLayers). In the
+// Gulf of Cadiz (open sea in the 5' grid, as the island test's): A, 3" over
+// 36.10..36.30 N, 7.40..7.10 W, with islands A1 in the overlap and A2 where
+// only A has data, and a nodata square (255) in the overlap; B, 6" over
+// 36.00..36.20 N, 7.50..7.20 W, with B1 in the overlap (partly under A's
+// water: not drawn there; drawn in A's nodata square) and B2 where only B
+// has data. At the same priority the finer A answers first. Truth is the
+// files' own cells, indexed here by hand: the answering layer at a point
+// is A where A's nearest cell has data, else B where B's has, else the
+// default world (open sea here); a pixel whose 5 x 5 cells round it in that
+// layer all have that layer's data and one class (past the B-spline's
+// reach of any other layer's texel) must be drawn that class. `geocean
+// query` with both masks follows the picture at every pixel away from the
+// drawn shoreline. Control: the first mask alone streamed (the pages before
+// this chain), B from the 5' grid, loses B2.
+TEST(Coast, TwoOverlappingRegionalMasksAreDrawnAndAnsweredAsTheStackSays) {
+  struct Disc {
+    double lat, lon, r;
+  };
+  struct Mask {
+    std::string path;
+    double lon0, lat0, cell;
+    int w, h;
+    std::vector<Disc> islands;
+    double holeLat0 = 0, holeLat1 = 0, holeLon0 = 0, holeLon1 = 0;  // nodata
+    std::vector<std::uint8_t> px;
+    // -1 outside, 255 nodata, else the class value (0 ocean, 1 land).
+    int cellAt(int cx, int cy) const {
+      return cx < 0 || cy < 0 || cx >= w || cy >= h ? -1 : px[std::size_t(cy) * w + cx];
+    }
+    int cx(double lon) const { return int(std::floor((lon - lon0) / cell)); }
+    int cy(double lat) const { return int(std::floor((lat0 - lat) / cell)); }
+  };
+  const double cosLat = std::cos(36.15 * kDeg);
+  const std::string dir = ::testing::TempDir() + "/coast_two_masks." + std::to_string(::getpid());
+  fs::create_directories(dir);
+  Mask a{dir + "/a_3s.tif", -7.40, 36.30, kCellDeg, 360, 240, {{36.15, -7.30, 0.008}, {36.25, -7.15, 0.008}}, 0, 0, 0, 0, {}};
+  a.holeLat0 = 36.11, a.holeLat1 = 36.14, a.holeLon0 = -7.27, a.holeLon1 = -7.23;
+  Mask b{dir + "/b_6s.tif", -7.50, 36.20, 2.0 * kCellDeg, 180, 120, {{36.14, -7.26, 0.012}, {36.05, -7.42, 0.012}}, 0, 0, 0, 0, {}};
+  for (Mask* m : {&a, &b}) {
+    m->px.assign(std::size_t(m->w) * m->h, 0);
+    for (int y = 0; y < m->h; ++y)
+      for (int x = 0; x < m->w; ++x) {
+        const double lat = m->lat0 - (y + 0.5) * m->cell, lon = m->lon0 + (x + 0.5) * m->cell;
+        std::uint8_t& v = m->px[std::size_t(y) * m->w + x];
+        for (const Disc& d : m->islands)
+          if (std::hypot(lat - d.lat, (lon - d.lon) * cosLat) < d.r) v = 1;
+        if (lat > m->holeLat0 && lat < m->holeLat1 && lon > m->holeLon0 && lon < m->holeLon1) v = 255;
+      }
+    raster::GeoTiffWriteOptions wo;
+    wo.transform = {m->lon0, m->lat0, m->cell, -m->cell, false};
+    wo.nodata = 255.0;
+    raster::writeGeoTiff(m->path, m->px.data(), m->w, m->h, 1, raster::SampleType::U8, wo);
+  }
+  // The layer that answers at a point, by its nearest cell (0 A, 1 B, 2 the default world), and whether the
+  // 5 x 5 cells round the point in it all have its data and one class (`cls`, 1 land).
+  const auto truth = [&](double lat, double lon, int& cls) {
+    int layer = 2;
+    for (int k = 0; k < 2 && layer == 2; ++k) {
+      const Mask& m = k == 0 ? a : b;
+      const int c = m.cellAt(m.cx(lon), m.cy(lat));
+      if (c >= 0 && c != 255) layer = k;
+    }
+    cls = 0;
+    if (layer == 2) return std::pair{layer, false};
+    const Mask& m = layer == 0 ? a : b;
+    const int x = m.cx(lon), y = m.cy(lat);
+    cls = m.cellAt(x, y);
+    bool uniform = true;
+    for (int dy = -2; dy <= 2; ++dy)
+      for (int dx = -2; dx <= 2; ++dx) uniform = uniform && m.cellAt(x + dx, y + dy) == cls;
+    // B answers near A only past A's filter reach (2 of A's cells and a margin).
+    if (layer == 1)
+      for (int dy = -3; dy <= 3; ++dy)
+        for (int dx = -3; dx <= 3; ++dx) {
+          const int c = a.cellAt(a.cx(lon) + dx, a.cy(lat) + dy);
+          uniform = uniform && (c < 0 || c == 255);
+        }
+    return std::pair{layer, uniform};
+  };
+
+  scene();  // the session's context
+  const std::string cache = dir + "/tiles";
+  ::setenv("GEOCEAN_TILE_CACHE", cache.c_str(), 1);
+  world::WorldData d = world::loadLayeredWorld({{world::LayerKind::Mask, b.path, "", 0}, {world::LayerKind::Mask, a.path, "", 0}}, true);
+  ASSERT_TRUE(d.waterSource);
+  EXPECT_EQ(d.waterSource->path(), a.path) << "the finer mask answers first";
+  TerrainOptions t;
+  t.waitForTiles = true;
+  auto worldTex = std::make_shared<WorldTextures>(d);
+  GlobeRenderer renderer(worldTex, t);
+  ocean::Ocean o;
+  o.setDefaultWorld(ocean::Ocean::defaultWorldDir());
+  o.addMaskLayerFile(b.path);
+  o.addMaskLayerFile(a.path);
+  const auto snap = o.current();
+  auto layers = ocean_render::oceanWaterTileLayers(snap->landSea.get(), snap->mask);
+  ASSERT_EQ(layers.size(), 2u);
+  EXPECT_EQ(layers[0]->source().path(), a.path);
+  EXPECT_EQ(layers[1]->source().path(), b.path);
+  ocean_render::OceanOptions oo;
+  oo.waterTiles = layers[0];
+  oo.waterTilesBelow = {layers[1]};
+  const auto grids = ocean_render::oceanWorld(snap->mask, snap->elevation, snap->landSea.get(), snap->maskEncoding,
+                                              layers[0].get());
+  auto ocean = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  ocean->setCompleteTiles(true);
+  renderer.addLayer(std::make_shared<DirectOceanLayer>(ocean));
+  // The control: A streamed alone, B and the world from the grid below A.
+  ocean_render::OceanOptions one;
+  one.waterTiles = layers[0];
+  const auto* layered = dynamic_cast<const ocean::LayeredLandSea*>(snap->landSea.get());
+  ASSERT_NE(layered, nullptr);
+  const auto gridsOne = std::make_shared<const world::WorldGrids>(
+      grids->elevation(), world::waterLayerBelow(layered->stack(), layers[0]->source()));
+  auto oceanOne = std::make_shared<ocean_render::OceanRenderer>(gridsOne, snap->landSea, one);
+  oceanOne->setCompleteTiles(true);
+  GlobeRenderer rendererOne(worldTex, t);
+  rendererOne.addLayer(std::make_shared<DirectOceanLayer>(oceanOne));
+
+  const std::string extra = " --mask " + b.path + " --mask " + a.path;
+  int counted[3][2] = {{0, 0}, {0, 0}, {0, 0}};  // [layer][land]
+  int overlap = 0, inHole = 0, bad = 0, controlBad = 0, water = 0, land = 0;
+  for (const auto& [name, p] : {std::pair{std::string("overlap_12km"), pose(36.15, -7.28, 12000.0, 0.0, -90.0)},
+                                std::pair{std::string("b_only_15km"), pose(36.02, -7.42, 15000.0, 0.0, -90.0)},
+                                std::pair{std::string("a_only_12km"), pose(36.24, -7.16, 12000.0, 0.0, -90.0)}}) {
+    const Frame f = render(p, renderer, ocean.get(), "two_masks_" + name);
+    const Frame c = render(p, rendererOne, oceanOne.get(), "two_masks_one_streamed_" + name);
+    int w = 0, l = 0;
+    expectQueryFollowsPicture(f, extra, w, l);
+    water += w, land += l;
+    for (int y = 0; y < p.height; y += 2)
+      for (int x = 0; x < p.width; x += 2) {
+        geo::Geodetic g;
+        if (!awayFromShore(f, x, y) || !groundPoint(f, x, y, g)) continue;
+        int cls = 0;
+        const auto [layer, uniform] = truth(g.latDeg, g.lonDeg, cls);
+        if (layer < 2 && !uniform) continue;
+        counted[layer][cls]++;
+        const int bc = b.cellAt(b.cx(g.lonDeg), b.cy(g.latDeg));
+        overlap += layer == 0 && bc >= 0 && bc != 255;
+        inHole += layer == 1 && a.cellAt(a.cx(g.lonDeg), a.cy(g.latDeg)) == 255;
+        const bool wet = layer == 2 ? true : cls == 0;
+        if (f.drawn(x, y) != wet && ++bad <= 10)
+          ADD_FAILURE() << name << ": pixel " << x << "," << y << " at " << g.latDeg << "," << g.lonDeg << " drawn "
+                        << (f.drawn(x, y) ? "water" : "land") << ", layer " << layer << " says "
+                        << (wet ? "water" : "land");
+        controlBad += awayFromShore(c, x, y) && c.drawn(x, y) != wet;
+      }
+    std::printf("%s: query and picture agree at %d water, %d land pixels\n", name.c_str(), w, l);
+  }
+  std::printf("against the files' cells: A %d water %d land (%d where B has data too), B %d water %d land (%d in A's "
+              "nodata), the default world %d water; %d wrong; A alone streamed: %d wrong\n",
+              counted[0][0], counted[0][1], overlap, counted[1][0], counted[1][1], inHole, counted[2][0], bad,
+              controlBad);
+  EXPECT_EQ(bad, 0);
+  for (int layer = 0; layer < 2; ++layer)
+    for (int cls = 0; cls < 2; ++cls) EXPECT_GT(counted[layer][cls], 300) << "layer " << layer << " class " << cls;
+  EXPECT_GT(counted[2][0], 1000);
+  EXPECT_GT(overlap, 1000);
+  EXPECT_GT(inHole, 100);
+  EXPECT_GT(controlBad, 300) << "B drawn from the 5' grid should lose its islands";
+  EXPECT_GT(land, 1000);
+  EXPECT_GT(water, 5000);
+  ASSERT_TRUE(ocean->waterPages());
+  ASSERT_EQ(ocean->waterPages()->layers(), 2);
+  EXPECT_GT(ocean->waterPages()->pool(1).stats().resident, 0);  // B: one tile, the pinned top
+  fs::remove_all(dir);
 }
 
 // Golden images of the strait with the 3" mask, looked at: Tarifa's shore
