@@ -130,7 +130,189 @@ uniform vec4 uWaterLevelGeo;  // origin lon, origin lat, lon step, lat step of a
 // (NaN) take the grid's coverage at the texel's centre (one bilinear
 // fetch: only texels within the B-spline's reach of the edge, or nodata,
 // ever need it), so the coast runs on into the grid's without a gap.
+#ifdef GEOCEAN_WATER_TILES_LAYERS
+// Several streamed masks on the terrain (world::streamedWaterLayers, 2 to
+// 4), in answer order: layer 0 is uWater* above, layer k >= 1 uWaterB<k>*
+// (its pool on unit 15 + k, its 2 x 2 block as layer 0's; slots -1 where
+// the terrain tile is clear of it). As the ocean's pages (waterPagesChain):
+// the first layer with a texel of its own within the filter's reach draws
+// the point; its texels past its edge or without data (NaN) take the next
+// layers' texel at their centre, the grid past the last.
+layout(binding = 16) uniform sampler2DArray uWaterPoolB1;
+uniform ivec4 uWaterB1Slots, uWaterB1Block;
+uniform ivec3 uWaterB1Level;
+uniform vec4 uWaterB1LevelGeo;
+#if GEOCEAN_WATER_TILES_LAYERS > 2
+layout(binding = 17) uniform sampler2DArray uWaterPoolB2;
+uniform ivec4 uWaterB2Slots, uWaterB2Block;
+uniform ivec3 uWaterB2Level;
+uniform vec4 uWaterB2LevelGeo;
+#endif
+#if GEOCEAN_WATER_TILES_LAYERS > 3
+layout(binding = 18) uniform sampler2DArray uWaterPoolB3;
+uniform ivec4 uWaterB3Slots, uWaterB3Block;
+uniform ivec3 uWaterB3Level;
+uniform vec4 uWaterB3LevelGeo;
+#endif
+
+ivec4 wSlots(int k) {
+#if GEOCEAN_WATER_TILES_LAYERS > 2
+  if (k == 2) return uWaterB2Slots;
+#endif
+#if GEOCEAN_WATER_TILES_LAYERS > 3
+  if (k == 3) return uWaterB3Slots;
+#endif
+  return k == 1 ? uWaterB1Slots : uWaterSlots;
+}
+ivec4 wBlock(int k) {
+#if GEOCEAN_WATER_TILES_LAYERS > 2
+  if (k == 2) return uWaterB2Block;
+#endif
+#if GEOCEAN_WATER_TILES_LAYERS > 3
+  if (k == 3) return uWaterB3Block;
+#endif
+  return k == 1 ? uWaterB1Block : uWaterBlock;
+}
+ivec3 wLevel(int k) {
+#if GEOCEAN_WATER_TILES_LAYERS > 2
+  if (k == 2) return uWaterB2Level;
+#endif
+#if GEOCEAN_WATER_TILES_LAYERS > 3
+  if (k == 3) return uWaterB3Level;
+#endif
+  return k == 1 ? uWaterB1Level : uWaterLevel;
+}
+vec4 wGeo(int k) {
+#if GEOCEAN_WATER_TILES_LAYERS > 2
+  if (k == 2) return uWaterB2LevelGeo;
+#endif
+#if GEOCEAN_WATER_TILES_LAYERS > 3
+  if (k == 3) return uWaterB3LevelGeo;
+#endif
+  return k == 1 ? uWaterB1LevelGeo : uWaterLevelGeo;
+}
+float wFetch(int k, ivec3 at) {
+#if GEOCEAN_WATER_TILES_LAYERS > 2
+  if (k == 2) return texelFetch(uWaterPoolB2, at, 0).r;
+#endif
+#if GEOCEAN_WATER_TILES_LAYERS > 3
+  if (k == 3) return texelFetch(uWaterPoolB3, at, 0).r;
+#endif
+  return k == 1 ? texelFetch(uWaterPoolB1, at, 0).r : texelFetch(uWaterPool, at, 0).r;
+}
+
+bool wDrawn(int k) { return wSlots(k).x >= 0; }
+
+// Continuous texel coordinates of layer k's bound level (waterTexelPos).
+vec2 wPos(int k, vec2 lonLatDeg) {
+  vec4 G = wGeo(k);
+  ivec3 L = wLevel(k);
+  if (L.z == 0) lonLatDeg.x = lonNear(lonLatDeg.x, G.x + 0.5 * float(L.x) * G.z);
+  return vec2((lonLatDeg.x - G.x) / G.z, (lonLatDeg.y - G.y) / G.w) - 0.5;
+}
+
+// Texel g of layer k: true, with v, inside the level and not NaN.
+bool wOwn(int k, ivec2 g, out float v) {
+  v = 0.0;
+  ivec3 L = wLevel(k);
+  if (L.z == 0 && (any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g, L.xy)))) return false;
+  v = wFetch(k, blockTexel(g, L, wBlock(k), wSlots(k)));
+  return !isnan(v);
+}
+
+// The layers from j on at lon/lat c: the first whose texel there has data, else the grid's.
+float wBelow(int j, vec2 c, sampler2D grid, vec4 gridGeo) {
+  for (int k = j; k < GEOCEAN_WATER_TILES_LAYERS; ++k) {
+    float v;
+    if (wDrawn(k) && wOwn(k, ivec2(floor(wPos(k, c) + 0.5)), v)) return v;
+  }
+  return textureLod(grid, geoUv(c, gridGeo), 0.0).r;
+}
+
+float wTexel(int k, ivec2 g, sampler2D grid, vec4 gridGeo, inout bool own) {
+  float v;
+  if (wOwn(k, g, v)) {
+    own = true;
+    return v;
+  }
+  vec4 G = wGeo(k);
+  return wBelow(k + 1, G.xy + (vec2(g) + 0.5) * G.zw, grid, gridGeo);
+}
+
+// Layer k drawn here: bound and a texel within the filter's reach.
+bool wReaches(int k, vec2 p) { return wDrawn(k) && (wLevel(k).z != 0 || !levelClear(p, wLevel(k).xy)); }
+
+float wLayerBSpline(int k, vec2 p, sampler2D grid, vec4 gridGeo, inout bool own) {
+  vec2 i = floor(p);
+  vec2 f = p - i;
+  vec4 wx = bsplineWeights4(f.x), wy = bsplineWeights4(f.y);
+  ivec2 g = ivec2(i) - 1;
+  float s = 0.0;
+  for (int y = 0; y < 4; ++y) {
+    vec4 row = vec4(wTexel(k, g + ivec2(0, y), grid, gridGeo, own), wTexel(k, g + ivec2(1, y), grid, gridGeo, own),
+                    wTexel(k, g + ivec2(2, y), grid, gridGeo, own), wTexel(k, g + ivec2(3, y), grid, gridGeo, own));
+    s += wy[y] * dot(row, wx);
+  }
+  return s;
+}
+
+float wLayerBilinear(int k, vec2 p, sampler2D grid, vec4 gridGeo, inout bool own) {
+  vec2 i = floor(p);
+  vec2 f = p - i;
+  ivec2 g = ivec2(i);
+  return mix(mix(wTexel(k, g, grid, gridGeo, own), wTexel(k, g + ivec2(1, 0), grid, gridGeo, own), f.x),
+             mix(wTexel(k, g + ivec2(0, 1), grid, gridGeo, own), wTexel(k, g + ivec2(1, 1), grid, gridGeo, own), f.x),
+             f.y);
+}
+
+float wChainBSpline(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
+  for (int k = 0; k < GEOCEAN_WATER_TILES_LAYERS; ++k) {
+    vec2 p = wPos(k, lonLatDeg);
+    if (!wReaches(k, p)) continue;
+    bool own = false;
+    float v = wLayerBSpline(k, p, grid, gridGeo, own);
+    if (own) return v;
+  }
+  return textureBSplineGather(grid, geoUv(lonLatDeg, gridGeo));
+}
+
+float wChainBilinear(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
+  for (int k = 0; k < GEOCEAN_WATER_TILES_LAYERS; ++k) {
+    vec2 p = wPos(k, lonLatDeg);
+    if (!wReaches(k, p)) continue;
+    bool own = false;
+    float v = wLayerBilinear(k, p, grid, gridGeo, own);
+    if (own) return v;
+  }
+  return textureLod(grid, geoUv(lonLatDeg, gridGeo), 0.0).r;
+}
+
+#ifdef GEOCEAN_FRAGMENT_STAGE
+// waterTilesAuto over the layers (derivatives before any branch).
+float wChainAuto(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
+  vec2 uvW = geoUv(lonLatDeg, gridGeo);
+  vec2 dx = dFdx(uvW), dy = dFdy(uvW);
+  float tpp[GEOCEAN_WATER_TILES_LAYERS];
+  for (int k = 0; k < GEOCEAN_WATER_TILES_LAYERS; ++k) tpp[k] = length(fwidth(wPos(k, lonLatDeg)));
+  for (int k = 0; k < GEOCEAN_WATER_TILES_LAYERS; ++k) {
+    vec2 p = wPos(k, lonLatDeg);
+    if (!wReaches(k, p)) continue;
+    bool own = false;
+    float v = tpp[k] < 1.0 ? wLayerBSpline(k, p, grid, gridGeo, own) : wLayerBilinear(k, p, grid, gridGeo, own);
+    if (own) return v;
+  }
+  float gridTpp = length((abs(dx) + abs(dy)) * vec2(textureSize(grid, 0)));
+  return gridTpp < 1.0 ? textureBSplineGather(grid, uvW) : textureGrad(grid, uvW, dx, dy).r;
+}
+#endif
+#endif
+
 bool waterTilesDrawn() {
+#ifdef GEOCEAN_WATER_TILES_LAYERS
+  for (int k = 0; k < GEOCEAN_WATER_TILES_LAYERS; ++k)
+    if (wDrawn(k)) return true;
+  return false;
+#endif
 #ifdef GEOCEAN_WATER_REGIONAL
   return uWaterSlots.x >= 0;
 #else
@@ -170,6 +352,9 @@ bool waterTilesClear(vec2 p) {
 }
 
 float waterTilesBilinear(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
+#ifdef GEOCEAN_WATER_TILES_LAYERS
+  return wChainBilinear(lonLatDeg, grid, gridGeo);
+#endif
   vec2 p = waterTexelPos(lonLatDeg);
   if (waterTilesClear(p)) return textureLod(grid, geoUv(lonLatDeg, gridGeo), 0.0).r;
   vec2 i = floor(p);
@@ -180,6 +365,9 @@ float waterTilesBilinear(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
 }
 
 float waterTilesBSpline(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
+#ifdef GEOCEAN_WATER_TILES_LAYERS
+  return wChainBSpline(lonLatDeg, grid, gridGeo);
+#endif
   vec2 p = waterTexelPos(lonLatDeg);
   if (waterTilesClear(p)) return textureBSplineGather(grid, geoUv(lonLatDeg, gridGeo));
   vec2 i = floor(p);
@@ -199,6 +387,9 @@ float waterTilesBSpline(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
 // Magnified: the B-spline; minified: bilinear at the level the terrain tile
 // chose (its texels are at most about a pixel: the tile's cells are).
 float waterTilesAuto(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
+#ifdef GEOCEAN_WATER_TILES_LAYERS
+  return wChainAuto(lonLatDeg, grid, gridGeo);
+#endif
   vec2 p = waterTexelPos(lonLatDeg);
   float texelsPerPixel = length(fwidth(p));
 #ifdef GEOCEAN_WATER_REGIONAL

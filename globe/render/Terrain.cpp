@@ -46,8 +46,8 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
   if (options_.poolTiles < 64) throw std::invalid_argument("terrain pool must hold at least 64 tiles");
   maxLevel_ = options_.maxLevel;
   double texelDeg = world_.finestShapeTexelDeg();
-  if (world_.waterTiles())  // the streamed mask's own texel
-    texelDeg = std::min(texelDeg, std::abs(world_.waterTiles()->pyramid().source().transform().lonStepDeg));
+  for (int w = 0; w < world_.waterTileLayers(); ++w)  // the streamed masks' own texels
+    texelDeg = std::min(texelDeg, std::abs(world_.waterTiles(w)->pyramid().source().transform().lonStepDeg));
   if (world_.elevationTiles())  // the streamed relief's
     texelDeg = std::min(texelDeg, std::abs(world_.elevationTiles()->pyramid().source().transform().lonStepDeg));
   while (maxLevel_ > 0 && texelDeg > 0.0 && 90.0 / double(1 << (maxLevel_ - 1)) / (kGrid - 1) <= texelDeg / 16.0)
@@ -62,6 +62,7 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
       d.push_back("GEOCEAN_WATER_REGIONAL 1");
     if (world_.elevationTiles() && !world_.elevationTiles()->pyramid().source().transform().global)
       d.push_back("GEOCEAN_ELEVATION_REGIONAL 1");
+    if (world_.waterTileLayers() > 1) d.push_back("GEOCEAN_WATER_TILES_LAYERS " + std::to_string(world_.waterTileLayers()));
     return d;
   };
   // Under an ocean layer too: the ocean draws a streamed mask's coast from
@@ -126,8 +127,12 @@ TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
   const world::WaterIndex& wi = world_.waterIndex();
   double gridMargin = 1.0;
   bool regional = false, regionalLand = false;
-  if (const world::WaterIndex* ri = world_.regionalWaterIndex()) {
-    const raster::TilePyramid& pyr = world_.waterTiles()->pyramid();
+  // Each streamed layer's own index (several masks: any of them with land
+  // within its reach keeps the tile refining).
+  for (int w = 0; w < world_.waterTileLayers() && !regionalLand; ++w) {
+    const world::WaterIndex* ri = world_.regionalWaterIndex(w);
+    if (!ri) continue;
+    const raster::TilePyramid& pyr = world_.waterTiles(w)->pyramid();
     const raster::GeoTransform& t = pyr.source().transform();
     const double cellDeg = std::max(std::abs(t.lonStepDeg), std::abs(t.latStepDeg));
     const double across = std::max((lon1 - lon0) / std::abs(t.lonStepDeg), (lat1 - lat0) / std::abs(t.latStepDeg));
@@ -137,12 +142,13 @@ TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
     double y0 = ri->texelY(lat0 - reachDeg), y1 = ri->texelY(lat1 + reachDeg);
     if (x0 > x1) std::swap(x0, x1);
     if (y0 > y1) std::swap(y0, y1);
-    regional = x1 >= 0.0 && x0 <= ri->width() && y1 >= 0.0 && y0 <= ri->height();
-    if (regional) {  // clipped: the index is not global, nothing past its edge may wrap in
+    const bool inReach = x1 >= 0.0 && x0 <= ri->width() && y1 >= 0.0 && y0 <= ri->height();
+    regional = regional || inReach;
+    if (inReach) {  // clipped: the index is not global, nothing past its edge may wrap in
       const double xe = std::nextafter(double(ri->width()), 0.0), ye = std::nextafter(double(ri->height()), 0.0);
       regionalLand = !ri->allWater(std::clamp(x0, 0.0, xe), std::clamp(x1, 0.0, xe), std::clamp(y0, 0.0, ye),
                                    std::clamp(y1, 0.0, ye));
-      gridMargin += reachDeg / std::min(wi.lonStepDeg(), wi.latStepDeg());
+      gridMargin = std::max(gridMargin, 1.0 + reachDeg / std::min(wi.lonStepDeg(), wi.latStepDeg()));
     }
   }
   b.allWater = !regionalLand && wi.allWaterAround(lat0, lat1, lon0, lon1, gridMargin);
@@ -337,6 +343,10 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
   gl::TilePool* pool = world_.waterTiles();
   const bool streamed = pool && prog.uniform("uWaterSlots") >= 0;
   if (streamed) glBindTextureUnit(5, pool->texture());
+  // Streamed masks under the first (GEOCEAN_WATER_TILES_LAYERS): pools on units 15 + k, uniforms uWaterB<k>*.
+  const int waterLayers = streamed ? world_.waterTileLayers() : 0;
+  static const char* const kBelow[] = {"", "uWaterB1", "uWaterB2", "uWaterB3"};
+  for (int w = 1; w < waterLayers; ++w) glBindTextureUnit(GLuint(15 + w), world_.waterTiles(w)->texture());
   gl::TilePool* elevPool = world_.elevationTiles();
   const bool elevStreamed = elevPool && prog.uniform("uElevSlots") >= 0;
   if (elevStreamed) glBindTextureUnit(4, elevPool->texture());
@@ -344,6 +354,7 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const Key& k = tiles[i];
     if (streamed) bindWaterBlock(&prog, k);
+    for (int w = 1; w < waterLayers; ++w) bindBlock(&prog, *world_.waterTiles(w), k, kBelow[w]);
     if (elevStreamed) bindBlock(&prog, *elevPool, k, "uElev");
     const glm::vec3 off(slots[i]->centerEcef - cam.eyeEcef());  // double difference, then float
     glUniform3fv(locOffset, 1, &off[0]);
@@ -437,6 +448,7 @@ TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const
       d.push_back("GEOCEAN_WATER_TILES 1");
       if (!w->pyramid().source().transform().global) d.push_back("GEOCEAN_WATER_REGIONAL 1");
     }
+    if (world_.waterTileLayers() > 1) d.push_back("GEOCEAN_WATER_TILES_LAYERS " + std::to_string(world_.waterTileLayers()));
     if (const gl::TilePool* e = world_.elevationTiles()) {
       d.push_back("GEOCEAN_ELEVATION_TILES 1");
       if (!e->pyramid().source().transform().global) d.push_back("GEOCEAN_ELEVATION_REGIONAL 1");
@@ -512,10 +524,12 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
     // for (bounded: a view needing more than the pool holds draws what fits).
     for (int round = 0; round < 64; ++round) {
       bool complete = true;
-      for (const Key& k : tiles) complete = bindWaterBlock(nullptr, k) && complete;
+      for (const Key& k : tiles)
+        for (int w = 0; w < world_.waterTileLayers(); ++w)
+          complete = bindBlock(nullptr, *world_.waterTiles(w), k, "") && complete;
       if (complete) break;
-      pool->waitIdle();
-      pool->endFrame();
+      for (int w = 0; w < world_.waterTileLayers(); ++w) world_.waterTiles(w)->waitIdle();
+      for (int w = 0; w < world_.waterTileLayers(); ++w) world_.waterTiles(w)->endFrame();
     }
   }
   if (gl::TilePool* pool = world_.elevationTiles(); pool && options_.waitForTiles && !bare) {
@@ -542,7 +556,7 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
   }
   pass(colour);
   // Finished tile loads go up after the frame's draws (they never wait).
-  if (gl::TilePool* pool = world_.waterTiles()) pool->endFrame();
+  for (int w = 0; w < world_.waterTileLayers(); ++w) world_.waterTiles(w)->endFrame();
   if (gl::TilePool* pool = world_.elevationTiles()) pool->endFrame();
   stats.tilesDrawn = int(tiles.size());
   glBindVertexArray(0);

@@ -49,16 +49,35 @@ WorldTextures::WorldTextures(const world::WorldData& data)
     o.nodataValue = NAN;  // the shader falls back to the elevation grid there
     elevationTiles_ = std::make_unique<gl::TilePool>(data.elevationTiles, o);
   }
+  // Several streamed masks: R32F pools that keep a layer's nodata (NaN),
+  // where the next layer answers (an R8 pool makes it land); the layers
+  // below hold half the slots (they answer only where those above have no data).
+  gl::TilePoolOptions first, below;
+  if (!data.waterSourcesBelow.empty()) {
+    if (data.waterSourcesBelow.size() + 1 > std::size_t(world::kMaxStreamedLayers))
+      throw std::invalid_argument(data.waterSourcesBelow.back()->path() + ": more than " +
+                                  std::to_string(world::kMaxStreamedLayers) + " streamed water layers");
+    for (gl::TilePoolOptions* o : {&first, &below}) o->internalFormat = GL_R32F, o->nodataValue = NAN;
+    below.slots = first.slots / 2;
+  }
   if (data.waterSource)
     waterTiles_ = std::make_unique<gl::TilePool>(data.waterFromRelief ? world::reliefWaterPyramid(data.waterSource)
-                                                                       : world::waterPyramid(data.waterSource, data.waterEncoding));
+                                                                       : world::waterPyramid(data.waterSource, data.waterEncoding),
+                                                 first);
+  for (std::size_t i = 0; i < data.waterSourcesBelow.size(); ++i)
+    waterTilesBelow_.push_back(std::make_unique<gl::TilePool>(
+        world::waterPyramid(data.waterSourcesBelow[i], data.waterEncodingsBelow[i]), below));
   indexRegionalWater();
 }
 
 void WorldTextures::indexRegionalWater() {
-  regionalIndex_.reset();
-  if (waterTiles_ && world::isStreamedRegional(waterTiles_->pyramid().source()))
-    regionalIndex_ = std::make_unique<world::WaterIndex>(world::regionalWaterCover(waterTiles_->pyramid()));
+  regionalIndex_.clear();
+  for (int k = 0; k < waterTileLayers(); ++k) {
+    const gl::TilePool* p = waterTiles(k);
+    regionalIndex_.push_back(world::isStreamedRegional(p->pyramid().source())
+                                 ? std::make_unique<world::WaterIndex>(world::regionalWaterCover(p->pyramid()))
+                                 : nullptr);
+  }
 }
 
 WorldTextures::WorldTextures(const world::WorldData& data, std::shared_ptr<const raster::TilePyramid> water,

@@ -50,10 +50,18 @@ class WorldTextures {
   const world::WaterIndex& waterIndex() const { return grids_->waterIndex(); }
   // The streamed water coverage, or null (the single texture only).
   gl::TilePool* waterTiles() const { return waterTiles_.get(); }
+  // All streamed water layers in answer order (WorldData::waterSourcesBelow
+  // after waterTiles, each its own pool): 0 without streamed water.
+  int waterTileLayers() const { return waterTiles_ ? 1 + int(waterTilesBelow_.size()) : 0; }
+  gl::TilePool* waterTiles(int layer) const {
+    return layer == 0 ? waterTiles_.get() : waterTilesBelow_[std::size_t(layer - 1)].get();
+  }
   // A regional streamed mask's own water index (world::regionalWaterCover,
   // over its extent; null otherwise): waterIndex() is the grid's below it,
   // which knows nothing of the mask's islands and coasts.
-  const world::WaterIndex* regionalWaterIndex() const { return regionalIndex_.get(); }
+  const world::WaterIndex* regionalWaterIndex(int layer = 0) const {
+    return std::size_t(layer) < regionalIndex_.size() ? regionalIndex_[std::size_t(layer)].get() : nullptr;
+  }
   // The streamed elevation (WorldData::elevationTiles: R32F, NaN where the
   // raster has no data), or null.
   gl::TilePool* elevationTiles() const { return elevationTiles_.get(); }
@@ -65,7 +73,8 @@ class WorldTextures {
   std::vector<GLuint> imageryLayers_;
   std::vector<glm::vec4> imageryLayerGeo_;
   std::unique_ptr<gl::TilePool> waterTiles_, elevationTiles_;
-  std::unique_ptr<world::WaterIndex> regionalIndex_;
+  std::vector<std::unique_ptr<gl::TilePool>> waterTilesBelow_;
+  std::vector<std::unique_ptr<world::WaterIndex>> regionalIndex_;  // per streamed water layer
   void indexRegionalWater();
 };
 

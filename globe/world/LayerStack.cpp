@@ -338,12 +338,17 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
   const auto m = stack.drawingMask();
   const double gridStep =
       m && globalInMemory(*m) ? m->transform().lonStepDeg : globalGridFor((m ? m : stack.drawingElevation()).get()).lonStepDeg;
-  if (const RasterLayer* l = streamedWaterLayer(stack, gridStep)) {
+  if (const auto chain = streamedWaterLayers(stack, gridStep); !chain.empty()) {
+    const RasterLayer* l = chain.front();
     d.waterSource = l->raster;
     d.waterFromRelief = l->kind == LayerKind::Elevation;
     d.waterEncoding = l->encoding;
+    for (std::size_t i = 1; i < chain.size(); ++i) {
+      d.waterSourcesBelow.push_back(chain[i]->raster);
+      d.waterEncodingsBelow.push_back(chain[i]->encoding);
+    }
     // A regional mask (or relief) is drawn over the grid of the layers below it.
-    d.water = isStreamedRegional(*l->raster) ? waterLayerBelow(stack, *l->raster) : waterLayerOf(*waterPyramid(*l), gridStep);
+    d.water = waterGridBelow(stack, chain, gridStep);
   } else {
     d.water = waterLayerOf(stack);
   }

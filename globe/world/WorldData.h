@@ -65,6 +65,11 @@ struct WorldData {
   // streamed as its 0 m line (world::reliefWaterPyramid), not a mask.
   bool waterFromRelief = false;
   MaskEncoding waterEncoding;
+  // Streamed masks under waterSource, in answer order
+  // (world::streamedWaterLayers): the first with data at a point is drawn,
+  // `water` is the grid under them all. Empty: waterSource alone.
+  std::vector<std::shared_ptr<const raster::Raster>> waterSourcesBelow;
+  std::vector<MaskEncoding> waterEncodingsBelow;
   // A global elevation layer finer than `elevation` that answers first: the
   // host draws it streamed (NaN texels fall back to `elevation`), the grid
   // stays for the CPU. Null: `elevation` is what is drawn.

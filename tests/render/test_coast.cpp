@@ -1086,6 +1086,45 @@ TEST(Coast, TwoOverlappingRegionalMasksAreDrawnAndAnsweredAsTheStackSays) {
   EXPECT_GT(controlBad, 300) << "B drawn from the 5' grid should lose its islands";
   EXPECT_GT(land, 1000);
   EXPECT_GT(water, 5000);
+  // The host's terrain streams both too: B2 (only B has it) is the
+  // terrain's land, as A1 (A's, drawn from A's tiles since one layer
+  // streamed): inside both islands the terrain draws the same land
+  // (imagery and relief alike: the default world's open sea here, 25 km
+  // apart), where the ocean leaves its hole. With B left to the 5' grid (A
+  // alone streamed, as before this chain) the terrain drew B2 as its
+  // sunken sea. Mean colour of the centre 9 x 9 pixels, 3 km up, looking
+  // down, the same sun over each view.
+  ASSERT_EQ(worldTex->waterTileLayers(), 2);
+  {
+    world::WorldData first = d;
+    first.waterSourcesBelow.clear(), first.waterEncodingsBelow.clear();
+    first.water = world::waterLayerBelow(layered->stack(), layers[0]->source());
+    GlobeRenderer alone(std::make_shared<WorldTextures>(first), t);
+    alone.addLayer(std::make_shared<DirectOceanLayer>(ocean));
+    const auto centre = [&](GlobeRenderer& r, double lat, double lon, const std::string& name) {
+      const ViewPose p = pose(lat, lon, 3000.0, 0.0, -90.0);
+      const Frame f = render(p, r, ocean.get(), name);
+      EXPECT_FALSE(f.drawn(p.width / 2, p.height / 2)) << name << ": the island's centre is land";
+      glm::dvec3 c(0.0);
+      for (int y = -4; y <= 4; ++y)
+        for (int x = -4; x <= 4; ++x)
+          for (int ch = 0; ch < 3; ++ch)
+            c[ch] += f.image.rgba[(std::size_t(p.height / 2 + y) * p.width + p.width / 2 + x) * 4 + ch] / 81.0;
+      return c;
+    };
+    const glm::dvec3 a1 = centre(renderer, 36.15, -7.30, "two_masks_a1_3km");
+    const glm::dvec3 b2 = centre(renderer, 36.05, -7.42, "two_masks_b2_3km");
+    const glm::dvec3 b2Alone = centre(alone, 36.05, -7.42, "two_masks_b2_alone_3km");
+    std::printf("terrain colour inside A1 %.1f %.1f %.1f, B2 %.1f %.1f %.1f, B2 with A alone streamed %.1f %.1f %.1f\n",
+                a1.r, a1.g, a1.b, b2.r, b2.g, b2.b, b2Alone.r, b2Alone.g, b2Alone.b);
+    // Land against land: the imagery's own variation over 25 km (a few
+    // units, looked at); the sunken sea is 20-50 units darker in green and blue.
+    const auto maxDiff = [](const glm::dvec3& u, const glm::dvec3& v) {
+      return std::max({std::abs(u.r - v.r), std::abs(u.g - v.g), std::abs(u.b - v.b)});
+    };
+    EXPECT_LT(maxDiff(b2, a1), 8.0);
+    EXPECT_GT(maxDiff(b2Alone, a1), 20.0) << "the control should draw B2 as the terrain's sea";
+  }
   ASSERT_TRUE(ocean->waterPages());
   ASSERT_EQ(ocean->waterPages()->layers(), 2);
   EXPECT_GT(ocean->waterPages()->pool(1).stats().resident, 0);  // B: one tile, the pinned top
