@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <stdexcept>
 
@@ -338,7 +339,14 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
   const auto m = stack.drawingMask();
   const double gridStep =
       m && globalInMemory(*m) ? m->transform().lonStepDeg : globalGridFor((m ? m : stack.drawingElevation()).get()).lonStepDeg;
-  if (const auto chain = streamedWaterLayers(stack, gridStep); !chain.empty()) {
+  const RasterLayer* beyond = nullptr;
+  const auto chain = streamedWaterLayers(stack, gridStep, &beyond);
+  if (beyond)
+    std::fprintf(stderr,
+                 "geocean: warning: %s: more than %d masks to stream; it and the masks after it are drawn from the "
+                 "%.4g' water grid (the query still answers at their cells)\n",
+                 beyond->raster->path().c_str(), kMaxStreamedLayers, gridStep * 60.0);
+  if (!chain.empty()) {
     const RasterLayer* l = chain.front();
     d.waterSource = l->raster;
     d.waterFromRelief = l->kind == LayerKind::Elevation;

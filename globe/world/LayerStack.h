@@ -100,9 +100,10 @@ LayerStack openLayerStack(const std::vector<LayerSource>& layers, bool defaultWo
 ImageryLayer imageryLayerOf(std::shared_ptr<const raster::Raster> r, int maxSide = 8192);
 
 // The host's world: the default imagery, elevation and water from
-// openLayerStack by the drawing rule (grids at most 5'; the first mask and
-// the first elevation layer finer than that, global or regional, streamed
-// as tiles: WaterPyramid.h), the imagery layers over the default
+// openLayerStack by the drawing rule (grids at most 5'; the first masks
+// (up to 4, streamedWaterLayers) and the first elevation layer finer than
+// that, global or regional, streamed as tiles: WaterPyramid.h), the
+// imagery layers over the default
 // imagery (at most kMaxImageryLayers). Without layers exactly
 // loadDefaultWorld(). Throws raster::RasterError naming the file,
 // std::invalid_argument for a bad encoding, an empty stack or too many

@@ -106,7 +106,9 @@ const RasterLayer* streamedWaterLayer(const LayerStack& stack, double gridLonSte
   return nullptr;
 }
 
-std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, double gridLonStepDeg) {
+std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, double gridLonStepDeg,
+                                                    const RasterLayer** beyondLimit) {
+  if (beyondLimit) *beyondLimit = nullptr;
   std::vector<const RasterLayer*> chain;
   const RasterLayer* first = streamedWaterLayer(stack, gridLonStepDeg);
   if (!first) return chain;
@@ -119,9 +121,13 @@ std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, dou
       continue;
     }
     if (!after || l.kind == LayerKind::Imagery) continue;
-    if (!isStreamedRegional(*chain.back()->raster) || int(chain.size()) == kMaxStreamedLayers) break;
+    if (!isStreamedRegional(*chain.back()->raster)) break;
     // A relief answers by sign where it has data: it ends the chain (drawn in the grid below).
     if (l.kind != LayerKind::Mask || !streams(l, gridLonStepDeg)) break;
+    if (int(chain.size()) == kMaxStreamedLayers) {
+      if (beyondLimit) *beyondLimit = &l;
+      break;
+    }
     chain.push_back(&l);
   }
   return chain;

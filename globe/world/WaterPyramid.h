@@ -56,8 +56,11 @@ const RasterLayer* streamedWaterLayer(const LayerStack& stack, double gridLonSte
 // answers everywhere), at a relief or a mask that does not stream (it is in
 // the grid below, waterGridBelow) and for a relief's coast (one layer).
 // Empty when streamedWaterLayer is null. A fifth streamable mask is drawn
-// from the grid below, resampled at its step (limits: globe/world/README).
-std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, double gridLonStepDeg);
+// from the grid below, resampled at its step (design: plugin/render/README.md).
+// beyondLimit (optional): the first mask that would stream but is past
+// the limit, else null.
+std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, double gridLonStepDeg,
+                                                    const RasterLayer** beyondLimit = nullptr);
 // The water grid drawn where the streamed layers of `chain` have no data:
 // a global last layer's pyramid level (waterLayerOf at gridLonStepDeg), else
 // waterLayerBelow of the stack without all of them. For one layer exactly

@@ -197,6 +197,58 @@ TEST(WaterIndex, ARegionalLayerAcrossTheAntimeridianIsInTheGridOnBothSides) {
   }
 }
 
+// Several streamed masks (world::streamedWaterLayers): in answer order,
+// at most kMaxStreamedLayers, the rest past the limit named; the chain
+// ends at a relief (it answers by sign where it has data), at a mask no
+// finer than the grid, and after a global mask. Regional 1' masks (finer
+// than the 5' grid) of decreasing priority, a global 1' mask, the
+// default-like 1 degree global mask.
+TEST(WaterIndex, SeveralStreamedMasksChainInAnswerOrderUpToTheLimit) {
+  constexpr double kStep = 1.0 / 60.0, kGrid = 5.0 / 60.0;
+  const auto regional = [&](double lon0) {
+    return raster::Raster::fromPixels(std::vector<float>(60 * 60, 0.0f), 60, 60, 1, {lon0, 10.0, kStep, -kStep, false});
+  };
+  const auto global1m = raster::Raster::fromPixels(std::vector<float>(21600 * 2, 0.0f), 21600, 2, 1,
+                                                   {-180.0, 90.0, kStep, -90.0, true});
+  const auto coarse = raster::Raster::fromPixels(std::vector<float>(360 * 180, 0.0f), 360, 180, 1,
+                                                 {-180.0, 90.0, 1.0, -1.0, true});
+  std::vector<RasterLayer> layers;
+  for (int i = 0; i < 6; ++i) layers.push_back({LayerKind::Mask, regional(i), {}, 10 - i});
+  layers.push_back({LayerKind::Mask, coarse, {}, kDefaultWorldPriority});
+  {
+    const LayerStack stack(layers);
+    const RasterLayer* beyond = nullptr;
+    const auto chain = streamedWaterLayers(stack, kGrid, &beyond);
+    ASSERT_EQ(int(chain.size()), kMaxStreamedLayers);
+    for (int i = 0; i < kMaxStreamedLayers; ++i) EXPECT_EQ(chain[std::size_t(i)]->priority, 10 - i);
+    ASSERT_NE(beyond, nullptr);
+    EXPECT_EQ(beyond->priority, 10 - kMaxStreamedLayers);
+    EXPECT_EQ(chain[0], streamedWaterLayer(stack, kGrid));
+  }
+  {  // two regional masks over the 1 degree world: both, the world in the grid below
+    const LayerStack stack({layers[0], layers[1], layers[6]});
+    const RasterLayer* beyond = nullptr;
+    EXPECT_EQ(streamedWaterLayers(stack, kGrid, &beyond).size(), 2u);
+    EXPECT_EQ(beyond, nullptr);
+    const WorldLayer below = waterGridBelow(stack, streamedWaterLayers(stack, kGrid), kGrid);
+    const WorldLayer world = waterLayerBelow(LayerStack({layers[6], layers[0]}), *layers[0].raster);
+    EXPECT_EQ(below.values, world.values) << "the grid under the chain is the world's alone";
+  }
+  {  // a regional mask over a global streamed one: both; nothing after the global one
+    const LayerStack stack({layers[0], RasterLayer{LayerKind::Mask, global1m, {}, 6}, layers[5], layers[6]});
+    const auto chain = streamedWaterLayers(stack, kGrid);
+    ASSERT_EQ(chain.size(), 2u);
+    EXPECT_EQ(chain[1]->raster, global1m);
+  }
+  {  // a relief between two masks ends the chain
+    const auto relief = raster::Raster::fromPixels(std::vector<float>(60 * 60, -5.0f), 60, 60, 1,
+                                                   {50.0, 10.0, 2.0 * kStep, -2.0 * kStep, false});
+    const LayerStack stack({layers[0], RasterLayer{LayerKind::Elevation, relief, {}, 10}, layers[1], layers[6]});
+    ASSERT_EQ(stack.layers()[1].kind, LayerKind::Elevation);
+    EXPECT_EQ(streamedWaterLayers(stack, kGrid).size(), 1u);
+  }
+}
+
 // A streamed global mask's open water and the screen grid's near-water
 // classes come from the pyramid level that is the ocean's water grid
 // (ocean_render::waterIndexFollowsTiles, nearWaterClassifier): checked
