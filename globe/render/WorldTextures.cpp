@@ -49,24 +49,28 @@ WorldTextures::WorldTextures(const world::WorldData& data)
     o.nodataValue = NAN;  // the shader falls back to the elevation grid there
     elevationTiles_ = std::make_unique<gl::TilePool>(data.elevationTiles, o);
   }
-  // Several streamed masks: R32F pools that keep a layer's nodata (NaN),
-  // where the next layer answers (an R8 pool makes it land); the layers
-  // below hold half the slots (they answer only where those above have no data).
-  gl::TilePoolOptions first, below;
-  if (!data.waterSourcesBelow.empty()) {
-    if (data.waterSourcesBelow.size() + 1 > std::size_t(world::kMaxStreamedLayers))
-      throw std::invalid_argument(data.waterSourcesBelow.back()->path() + ": more than " +
-                                  std::to_string(world::kMaxStreamedLayers) + " streamed water layers");
-    for (gl::TilePoolOptions* o : {&first, &below}) o->internalFormat = GL_R32F, o->nodataValue = NAN;
-    below.slots = first.slots / 2;
-  }
+  // Several streamed masks: a layer with nodata keeps it (NaN) in an R32F
+  // pool, where the next layer answers (an R8 pool makes it land; past a
+  // layer's edge the shader knows by position); the layers below hold half
+  // the slots (they answer only where those above have no data).
+  const bool several = !data.waterSourcesBelow.empty();
+  if (data.waterSourcesBelow.size() + 1 > std::size_t(world::kMaxStreamedLayers))
+    throw std::invalid_argument(data.waterSourcesBelow.back()->path() + ": more than " +
+                                std::to_string(world::kMaxStreamedLayers) + " streamed water layers");
+  const auto options = [&](const raster::Raster& r, bool below) {
+    gl::TilePoolOptions o;
+    if (below) o.slots /= 2;
+    if (several && r.nodata()) o.internalFormat = GL_R32F, o.nodataValue = NAN;
+    return o;
+  };
   if (data.waterSource)
     waterTiles_ = std::make_unique<gl::TilePool>(data.waterFromRelief ? world::reliefWaterPyramid(data.waterSource)
                                                                        : world::waterPyramid(data.waterSource, data.waterEncoding),
-                                                 first);
+                                                 options(*data.waterSource, false));
   for (std::size_t i = 0; i < data.waterSourcesBelow.size(); ++i)
     waterTilesBelow_.push_back(std::make_unique<gl::TilePool>(
-        world::waterPyramid(data.waterSourcesBelow[i], data.waterEncodingsBelow[i]), below));
+        world::waterPyramid(data.waterSourcesBelow[i], data.waterEncodingsBelow[i]),
+        options(*data.waterSourcesBelow[i], true)));
   indexRegionalWater();
 }
 

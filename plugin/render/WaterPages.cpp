@@ -46,13 +46,19 @@ WaterPages::WaterPages(std::shared_ptr<const raster::TilePyramid> pyramid, gl::T
     throw std::invalid_argument("water pages: " + std::to_string(below.size() + 1) + " streamed layers, at most " +
                                 std::to_string(world::kMaxStreamedLayers) + " (the first: " + pyramid->source().path() +
                                 ")");
-  if (!below.empty()) {
-    // Several layers: a layer's nodata (NaN) must reach the shader, where
-    // the next layer answers (an R8 pool would make it land).
-    for (gl::TilePoolOptions* o : {&pool, &belowPool}) o->internalFormat = GL_R32F, o->nodataValue = NAN;
+  // Several layers: a layer with nodata keeps it (NaN) in an R32F pool, so
+  // the next layer answers there (R8 would make it land); past a layer's
+  // edge the shader knows by position, so a layer without nodata stays R8.
+  const auto keepNodata = [&](gl::TilePoolOptions o, const raster::TilePyramid& p) {
+    if (!below.empty() && p.source().nodata()) o.internalFormat = GL_R32F, o.nodataValue = NAN;
+    return o;
+  };
+  const gl::TilePoolOptions first = keepNodata(pool, *pyramid);
+  layers_.push_back(makeLayer(std::move(pyramid), first));
+  for (auto& b : below) {
+    const gl::TilePoolOptions o = keepNodata(belowPool, *b);
+    layers_.push_back(makeLayer(std::move(b), o));
   }
-  layers_.push_back(makeLayer(std::move(pyramid), pool));
-  for (auto& b : below) layers_.push_back(makeLayer(std::move(b), belowPool));
 }
 
 WaterPages::~WaterPages() {

@@ -925,7 +925,7 @@ TEST(Coast, AReliefIslandOnTheAntimeridianIsDrawnAndQueriedOnBothSides) {
 // fall through them in answer order, world::streamedWaterLayers). In the
 // Gulf of Cadiz (open sea in the 5' grid, as the island test's): A, 3" over
 // 36.10..36.30 N, 7.40..7.10 W, with islands A1 in the overlap and A2 where
-// only A has data, and a nodata square (255) in the overlap; B, 6" over
+// only A has data, and a nodata square (255, declared) in the overlap; B, 6" over
 // 36.00..36.20 N, 7.50..7.20 W, with B1 in the overlap (partly under A's
 // water: not drawn there; drawn in A's nodata square) and B2 where only B
 // has data. At the same priority the finer A answers first. Truth is the
@@ -973,7 +973,7 @@ TEST(Coast, TwoOverlappingRegionalMasksAreDrawnAndAnsweredAsTheStackSays) {
       }
     raster::GeoTiffWriteOptions wo;
     wo.transform = {m->lon0, m->lat0, m->cell, -m->cell, false};
-    wo.nodata = 255.0;
+    if (m == &a) wo.nodata = 255.0;  // A's pools R32F (its nodata reaches the shader), B's R8
     raster::writeGeoTiff(m->path, m->px.data(), m->w, m->h, 1, raster::SampleType::U8, wo);
   }
   // The layer that answers at a point, by its nearest cell (0 A, 1 B, 2 the default world), and whether the
