@@ -137,7 +137,7 @@ uniform vec4 uWaterLevelGeo;  // origin lon, origin lat, lon step, lat step of a
 // the terrain tile is clear of it). As the ocean's pages (waterPagesChain):
 // the first layer with a texel of its own within the filter's reach draws
 // the point; its texels past its edge or without data (NaN) take the next
-// layers' texel at their centre, the grid past the last.
+// layers' texel at the pixel (one lookup a pixel), the grid past the last.
 layout(binding = 16) uniform sampler2DArray uWaterPoolB1;
 uniform ivec4 uWaterB1Slots, uWaterB1Block;
 uniform ivec3 uWaterB1Level;
@@ -220,70 +220,84 @@ bool wOwn(int k, ivec2 g, out float v) {
   return !isnan(v);
 }
 
-// The layers from j on at lon/lat c: the first whose texel there has data, else the grid's.
+// The layers from j on at lon/lat c: the first whose texel there has
+// data, else the grid's. Spelled out per layer (a constant index selects
+// one pool; a loop's made llvmpipe fetch from each).
 float wBelow(int j, vec2 c, sampler2D grid, vec4 gridGeo) {
-  for (int k = j; k < GEOCEAN_WATER_TILES_LAYERS; ++k) {
-    float v;
-    if (wDrawn(k) && wOwn(k, ivec2(floor(wPos(k, c) + 0.5)), v)) return v;
-  }
+  float v;
+  if (j <= 1 && wDrawn(1) && wOwn(1, ivec2(floor(wPos(1, c) + 0.5)), v)) return v;
+#if GEOCEAN_WATER_TILES_LAYERS > 2
+  if (j <= 2 && wDrawn(2) && wOwn(2, ivec2(floor(wPos(2, c) + 0.5)), v)) return v;
+#endif
+#if GEOCEAN_WATER_TILES_LAYERS > 3
+  if (j <= 3 && wDrawn(3) && wOwn(3, ivec2(floor(wPos(3, c) + 0.5)), v)) return v;
+#endif
   return textureLod(grid, geoUv(c, gridGeo), 0.0).r;
 }
 
-float wTexel(int k, ivec2 g, sampler2D grid, vec4 gridGeo, inout bool own) {
+// Texel g of layer k, or `below` (the layers' below at the pixel: one
+// lookup a pixel, as the ocean's chTexel).
+float wTexel(int k, ivec2 g, float below, inout bool own) {
   float v;
   if (wOwn(k, g, v)) {
     own = true;
     return v;
   }
-  vec4 G = wGeo(k);
-  return wBelow(k + 1, G.xy + (vec2(g) + 0.5) * G.zw, grid, gridGeo);
+  return below;
 }
 
 // Layer k drawn here: bound and a texel within the filter's reach.
 bool wReaches(int k, vec2 p) { return wDrawn(k) && (wLevel(k).z != 0 || !levelClear(p, wLevel(k).xy)); }
 
-float wLayerBSpline(int k, vec2 p, sampler2D grid, vec4 gridGeo, inout bool own) {
+float wLayerBSpline(int k, vec2 p, float below, inout bool own) {
   vec2 i = floor(p);
   vec2 f = p - i;
   vec4 wx = bsplineWeights4(f.x), wy = bsplineWeights4(f.y);
   ivec2 g = ivec2(i) - 1;
   float s = 0.0;
   for (int y = 0; y < 4; ++y) {
-    vec4 row = vec4(wTexel(k, g + ivec2(0, y), grid, gridGeo, own), wTexel(k, g + ivec2(1, y), grid, gridGeo, own),
-                    wTexel(k, g + ivec2(2, y), grid, gridGeo, own), wTexel(k, g + ivec2(3, y), grid, gridGeo, own));
+    vec4 row = vec4(wTexel(k, g + ivec2(0, y), below, own), wTexel(k, g + ivec2(1, y), below, own),
+                    wTexel(k, g + ivec2(2, y), below, own), wTexel(k, g + ivec2(3, y), below, own));
     s += wy[y] * dot(row, wx);
   }
   return s;
 }
 
-float wLayerBilinear(int k, vec2 p, sampler2D grid, vec4 gridGeo, inout bool own) {
+float wLayerBilinear(int k, vec2 p, float below, inout bool own) {
   vec2 i = floor(p);
   vec2 f = p - i;
   ivec2 g = ivec2(i);
-  return mix(mix(wTexel(k, g, grid, gridGeo, own), wTexel(k, g + ivec2(1, 0), grid, gridGeo, own), f.x),
-             mix(wTexel(k, g + ivec2(0, 1), grid, gridGeo, own), wTexel(k, g + ivec2(1, 1), grid, gridGeo, own), f.x),
-             f.y);
+  return mix(mix(wTexel(k, g, below, own), wTexel(k, g + ivec2(1, 0), below, own), f.x),
+             mix(wTexel(k, g + ivec2(0, 1), below, own), wTexel(k, g + ivec2(1, 1), below, own), f.x), f.y);
 }
 
-float wChainBSpline(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
-  for (int k = 0; k < GEOCEAN_WATER_TILES_LAYERS; ++k) {
-    vec2 p = wPos(k, lonLatDeg);
-    if (!wReaches(k, p)) continue;
-    bool own = false;
-    float v = wLayerBSpline(k, p, grid, gridGeo, own);
-    if (own) return v;
+// Each layer spelled out: W_LAYER(K, EVAL) tries layer K with EVAL
+// (wLayerBSpline or wLayerBilinear) and returns when it has a texel of its own.
+#define W_LAYER(K, EVAL)                                              \
+  {                                                                   \
+    vec2 p = wPos(K, lonLatDeg);                                      \
+    if (wReaches(K, p)) {                                             \
+      float below = wBelow(K + 1, lonLatDeg, grid, gridGeo);          \
+      bool own = false;                                               \
+      float v = EVAL(K, p, below, own);                               \
+      if (own) return v;                                              \
+    }                                                                 \
   }
+#if GEOCEAN_WATER_TILES_LAYERS > 3
+#define W_LAYERS(EVAL) W_LAYER(0, EVAL) W_LAYER(1, EVAL) W_LAYER(2, EVAL) W_LAYER(3, EVAL)
+#elif GEOCEAN_WATER_TILES_LAYERS > 2
+#define W_LAYERS(EVAL) W_LAYER(0, EVAL) W_LAYER(1, EVAL) W_LAYER(2, EVAL)
+#else
+#define W_LAYERS(EVAL) W_LAYER(0, EVAL) W_LAYER(1, EVAL)
+#endif
+
+float wChainBSpline(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
+  W_LAYERS(wLayerBSpline)
   return textureBSplineGather(grid, geoUv(lonLatDeg, gridGeo));
 }
 
 float wChainBilinear(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
-  for (int k = 0; k < GEOCEAN_WATER_TILES_LAYERS; ++k) {
-    vec2 p = wPos(k, lonLatDeg);
-    if (!wReaches(k, p)) continue;
-    bool own = false;
-    float v = wLayerBilinear(k, p, grid, gridGeo, own);
-    if (own) return v;
-  }
+  W_LAYERS(wLayerBilinear)
   return textureLod(grid, geoUv(lonLatDeg, gridGeo), 0.0).r;
 }
 
@@ -294,17 +308,24 @@ float wChainAuto(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
   vec2 dx = dFdx(uvW), dy = dFdy(uvW);
   float tpp[GEOCEAN_WATER_TILES_LAYERS];
   for (int k = 0; k < GEOCEAN_WATER_TILES_LAYERS; ++k) tpp[k] = length(fwidth(wPos(k, lonLatDeg)));
-  for (int k = 0; k < GEOCEAN_WATER_TILES_LAYERS; ++k) {
-    vec2 p = wPos(k, lonLatDeg);
-    if (!wReaches(k, p)) continue;
-    bool own = false;
-    float v = tpp[k] < 1.0 ? wLayerBSpline(k, p, grid, gridGeo, own) : wLayerBilinear(k, p, grid, gridGeo, own);
-    if (own) return v;
+#undef W_LAYER
+#define W_LAYER(K, EVAL)                                                                               \
+  {                                                                                                    \
+    vec2 p = wPos(K, lonLatDeg);                                                                       \
+    if (wReaches(K, p)) {                                                                              \
+      float below = wBelow(K + 1, lonLatDeg, grid, gridGeo);                                           \
+      bool own = false;                                                                                \
+      float v = tpp[K] < 1.0 ? wLayerBSpline(K, p, below, own) : wLayerBilinear(K, p, below, own);     \
+      if (own) return v;                                                                               \
+    }                                                                                                  \
   }
+  W_LAYERS(unused)
   float gridTpp = length((abs(dx) + abs(dy)) * vec2(textureSize(grid, 0)));
   return gridTpp < 1.0 ? textureBSplineGather(grid, uvW) : textureGrad(grid, uvW, dx, dy).r;
 }
 #endif
+#undef W_LAYERS
+#undef W_LAYER
 #endif
 
 bool waterTilesDrawn() {
@@ -600,8 +621,9 @@ float pageBilinear(vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo) {
 // A point is drawn from the first layer with data within its filter's
 // reach: that layer's B-spline (or bilinear) over its own texels, where a
 // texel past its edge or without data (NaN) takes the next layers' value
-// at the texel's centre (the first with data there, else the grid's), as
-// one layer's texels take the grid's. So where a layer answers the query
+// at the pixel (the first with data there, else the grid's: one lookup a
+// pixel, not one a texel as a single layer's grid fetch; llvmpipe ran
+// those under lane masks for every texel). So where a layer answers the query
 // (its nearest cell has data) and its 4 x 4 cells all have data, the drawn
 // coverage is the query's; the layers below answer where it has none.
 layout(binding = 9) uniform sampler2DArray uPagePool1;
@@ -677,25 +699,52 @@ bool chInside(int k, int level, inout ivec2 g) {
 // The layers from j on at lon/lat c: the first whose texel there (at its
 // finest resident level) has data, else the grid's coverage (one fetch,
 // as pageTexel's).
-float chBelow(int j, vec2 c, sampler2D grid, vec4 gridGeo) {
-  for (int k = j; k < GEOCEAN_WATER_PAGES_LAYERS; ++k) {
-    int top = chTop(k), T = chTile(k).x;
-    for (int l = 0; l <= top; ++l) {
-      ivec2 g = ivec2(floor(chPos(k, c, l) + 0.5));
-      if (!chInside(k, l, g)) break;  // past its edge: the next layer
-      int s = chSlot(k, l, g);
-      if (s < 0) continue;  // not resident: its parent
-      float v = chPool(k, ivec3(g - (g / T) * T + 1, s));
-      if (!isnan(v)) return v;
-      break;  // no data here: the next layer
-    }
+// Layer k's texel at lon/lat c at its finest resident level: `has` when
+// inside it and with data.
+float chAt(int k, vec2 c, out bool has) {
+  has = false;
+  int top = chTop(k), T = chTile(k).x;
+  for (int l = 0; l <= top; ++l) {
+    ivec2 g = ivec2(floor(chPos(k, c, l) + 0.5));
+    if (!chInside(k, l, g)) break;  // past its edge: the next layer
+    int s = chSlot(k, l, g);
+    if (s < 0) continue;  // not resident: its parent
+    float v = chPool(k, ivec3(g - (g / T) * T + 1, s));
+    has = !isnan(v);  // NaN: no data here, the next layer
+    return v;
   }
+  return 0.0;
+}
+
+// The layers from j on at lon/lat c: the first whose texel there (at its
+// finest resident level) has data, else the grid's coverage (one fetch,
+// as pageTexel's). Spelled out per layer: a constant layer index selects
+// one pool and table (a loop's index made llvmpipe fetch from each).
+float chBelow(int j, vec2 c, sampler2D grid, vec4 gridGeo) {
+  bool has;
+  float v;
+  if (j <= 1) {
+    v = chAt(1, c, has);
+    if (has) return v;
+  }
+#if GEOCEAN_WATER_PAGES_LAYERS > 2
+  if (j <= 2) {
+    v = chAt(2, c, has);
+    if (has) return v;
+  }
+#endif
+#if GEOCEAN_WATER_PAGES_LAYERS > 3
+  if (j <= 3) {
+    v = chAt(3, c, has);
+    if (has) return v;
+  }
+#endif
   return textureLod(grid, geoUv(c, gridGeo), 0.0).r;
 }
 
-// Texel g of layer k's level, or the layers' below at its centre; `own`
-// set when it is the layer's own.
-float chTexel(int k, int level, ivec2 g, sampler2D grid, vec4 gridGeo, inout bool own) {
+// Texel g of layer k's level, or `below` (the layers' below at the
+// pixel); `own` set when it is the layer's own.
+float chTexel(int k, int level, ivec2 g, float below, inout bool own) {
   ivec2 w = g;
   if (chInside(k, level, w)) {
     int T = chTile(k).x;
@@ -705,8 +754,7 @@ float chTexel(int k, int level, ivec2 g, sampler2D grid, vec4 gridGeo, inout boo
       return v;
     }
   }
-  vec4 G = chGeo(k);
-  return chBelow(k + 1, G.xy + (vec2(g) + 0.5) * float(1 << level) * G.zw, grid, gridGeo);
+  return below;
 }
 
 // The finest level from `want` up whose tiles under the 4 x 4 texels at
@@ -723,7 +771,7 @@ int chResidentLevel(int k, vec2 lonLatDeg, int want) {
   return top;
 }
 
-float chBSpline(int k, vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo, inout bool own) {
+float chBSpline(int k, vec2 lonLatDeg, int level, float below, inout bool own) {
   vec2 p = chPos(k, lonLatDeg, level);
   vec2 i = floor(p);
   vec2 f = p - i;
@@ -731,23 +779,20 @@ float chBSpline(int k, vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo, 
   ivec2 g = ivec2(i) - 1;
   float s = 0.0;
   for (int y = 0; y < 4; ++y) {
-    vec4 row = vec4(chTexel(k, level, g + ivec2(0, y), grid, gridGeo, own),
-                    chTexel(k, level, g + ivec2(1, y), grid, gridGeo, own),
-                    chTexel(k, level, g + ivec2(2, y), grid, gridGeo, own),
-                    chTexel(k, level, g + ivec2(3, y), grid, gridGeo, own));
+    vec4 row = vec4(chTexel(k, level, g + ivec2(0, y), below, own), chTexel(k, level, g + ivec2(1, y), below, own),
+                    chTexel(k, level, g + ivec2(2, y), below, own), chTexel(k, level, g + ivec2(3, y), below, own));
     s += wy[y] * dot(row, wx);
   }
   return s;
 }
 
-float chBilinear(int k, vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo, inout bool own) {
+float chBilinear(int k, vec2 lonLatDeg, int level, float below, inout bool own) {
   vec2 p = chPos(k, lonLatDeg, level);
   vec2 i = floor(p);
   vec2 f = p - i;
   ivec2 g = ivec2(i);
-  return mix(mix(chTexel(k, level, g, grid, gridGeo, own), chTexel(k, level, g + ivec2(1, 0), grid, gridGeo, own), f.x),
-             mix(chTexel(k, level, g + ivec2(0, 1), grid, gridGeo, own),
-                 chTexel(k, level, g + ivec2(1, 1), grid, gridGeo, own), f.x),
+  return mix(mix(chTexel(k, level, g, below, own), chTexel(k, level, g + ivec2(1, 0), below, own), f.x),
+             mix(chTexel(k, level, g + ivec2(0, 1), below, own), chTexel(k, level, g + ivec2(1, 1), below, own), f.x),
              f.y);
 }
 
@@ -757,17 +802,31 @@ float chBilinear(int k, vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo,
 float waterPagesChain(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
   vec2 uvW = geoUv(lonLatDeg, gridGeo);
   vec2 dx = dFdx(uvW), dy = dFdy(uvW);
-  float tpp[GEOCEAN_WATER_PAGES_LAYERS];  // derivatives before any branch
+  // Derivatives before any branch; each layer spelled out (CH_LAYER): a
+  // constant index selects its own pool and table.
+  float tpp[GEOCEAN_WATER_PAGES_LAYERS];
   for (int k = 0; k < GEOCEAN_WATER_PAGES_LAYERS; ++k) tpp[k] = length(fwidth(chPos(k, lonLatDeg, 0)));
-  for (int k = 0; k < GEOCEAN_WATER_PAGES_LAYERS; ++k) {
-    int want = tpp[k] < 1.0 ? 0 : min(int(floor(log2(tpp[k]))), chTop(k));
-    if (chTile(k).y == 0 && levelClear(chPos(k, lonLatDeg, want), chLevel(k, want).xy)) continue;
-    int l = chResidentLevel(k, lonLatDeg, want);
-    bool own = false;
-    float v = tpp[k] < 1.0 ? chBSpline(k, lonLatDeg, l, grid, gridGeo, own)
-                           : chBilinear(k, lonLatDeg, l, grid, gridGeo, own);
-    if (own) return v;
+#define CH_LAYER(K)                                                                                 \
+  {                                                                                                 \
+    int want = tpp[K] < 1.0 ? 0 : min(int(floor(log2(tpp[K]))), chTop(K));                         \
+    if (chTile(K).y != 0 || !levelClear(chPos(K, lonLatDeg, want), chLevel(K, want).xy)) {          \
+      int l = chResidentLevel(K, lonLatDeg, want);                                                  \
+      float below = chBelow(K + 1, lonLatDeg, grid, gridGeo);                                       \
+      bool own = false;                                                                             \
+      float v = tpp[K] < 1.0 ? chBSpline(K, lonLatDeg, l, below, own)                               \
+                             : chBilinear(K, lonLatDeg, l, below, own);                             \
+      if (own) return v;                                                                            \
+    }                                                                                               \
   }
+  CH_LAYER(0)
+  CH_LAYER(1)
+#if GEOCEAN_WATER_PAGES_LAYERS > 2
+  CH_LAYER(2)
+#endif
+#if GEOCEAN_WATER_PAGES_LAYERS > 3
+  CH_LAYER(3)
+#endif
+#undef CH_LAYER
   float texelsPerPixel = length((abs(dx) + abs(dy)) * vec2(textureSize(grid, 0)));
   return texelsPerPixel < 1.0 ? textureBSplineGather(grid, uvW) : textureGrad(grid, uvW, dx, dy).r;
 }
