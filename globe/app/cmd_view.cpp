@@ -299,7 +299,7 @@ int runView(const ViewArgs& a) {
       if (a.waves == gl::kPanelWaveModels[i]) panel.waveModel = i;
     panel.windMps = float(windMps), panel.windFromDeg = float(a.windFromDeg);
     panel.sunAzimuthDeg = float(sunAzEl[0]), panel.sunElevationDeg = float(sunAzEl[1]);
-    panel.reflections = !a.noReflections, panel.refraction = !a.noRefraction;
+    panel.reflections = !a.noReflections, panel.refraction = !a.noRefraction, panel.shadows = !a.light.noShadows;
     panel.layerNames = layerLabels(a.layers);
     panel.layerShown.assign(panel.layerNames.size(), 1);
     // The layers as the panel shows them, drawn and queried alike: the host's
@@ -407,6 +407,7 @@ int runView(const ViewArgs& a) {
       fs.refraction = panel.refraction;
       fs.reflectionSize = a.reflectionSize;
       applyLightOptions(a.light, fs);
+      fs.shadows = panel.shadows;  // --no-shadows is the panel's initial state
       fs.reflectionEvery = a.reflectionEvery;
       const render::FrameTimes times = renderer->render(c.pose, fs);
       tilesBuilt += times.terrain.tilesBuilt;
@@ -497,8 +498,8 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                                      "from the system, kB; terrain tiles drawn, tiles made so far)");
                       sub.add_flag("--no-hud", a->noHud, "no HUD panel (H toggles it in the window)");
                       sub.add_flag("--panel", a->panel,
-                                   "open the control panel (P toggles it): wave model, wind, sun, reflections and "
-                                   "refraction, raster layers shown (also keys 1-9), changed live");
+                                   "open the control panel (P toggles it): wave model, wind, sun, reflections, "
+                                   "refraction, shadows, raster layers shown (also keys 1-9), changed live");
                       sub.add_flag("--no-reflections", a->noReflections,
                                    "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
                       sub.add_flag("--no-refraction", a->noRefraction,
