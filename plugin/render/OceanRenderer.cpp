@@ -736,7 +736,15 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   // the camera, where precision is visible.
   const geo::Geodetic g = geo::fromEcef(cam.eyeEcef());
   const glm::dvec3 origin = geo::toEcef({g.latDeg, g.lonDeg, 0.0});
-  if (jacobianFoam() && !bare && glm::length(origin - foamCalibratedAt_) > kFoamCalibrationM)
+  // ocean.frag draws the Jacobian's whitecaps only where vFar < 0.75, a
+  // cell's footprint under 0.3433 of the longest octave (ocean.vert's
+  // smoothstep); no sea point is nearer than the eye's height less the
+  // waves' reach, so from higher up the threshold is never read and its
+  // calibration (0.7-1 s with Gerstner) is not made: a flight from orbit
+  // made it every frame, its nadir moving more than kFoamCalibrationM.
+  const bool crestsDrawn = octaveWavelengthM_.empty() ||
+                           (g.heightM - maxDisplacementM_) * cull.cellRadians < 0.35 * octaveWavelengthM_[0];
+  if (jacobianFoam() && !bare && crestsDrawn && glm::length(origin - foamCalibratedAt_) > kFoamCalibrationM)
     calibrateJacobianFoam(g.latDeg, g.lonDeg);
   waves_->gpuPatch(origin, light.timeS, patch_);
   const int modelOctaves = int(patch_.octaves.size());
