@@ -1022,7 +1022,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(hostFbo));
     glViewport(viewport[0], viewport[1], w, h);
     glEnable(GL_BLEND);
-    // Units 15-21: the host's textures there are put back after.
+    // Units 15-17: the host's textures there are put back after.
     GLint hostTex[kGTargets] = {};
     GLint active = 0;
     glGetIntegerv(GL_ACTIVE_TEXTURE, &active);

@@ -299,7 +299,7 @@ class OceanRenderer {
   // scissor test on or depth writes off.
   bool gBufferFor(GLint hostFbo, const GLint* viewport);
   void releaseGBuffer();  // its framebuffer and textures (the tile VAO/VBO stay)
-  static constexpr int kGTargets = 7;  // ocean.frag's outG0..outG6
+  static constexpr int kGTargets = 3;   // ocean.frag's outG0..outG2
   static constexpr int kGTilePx = 8;    // ocean.frag's uGTiles
   GLuint gFbo_ = 0, gTex_[kGTargets] = {}, gDepth_ = 0, gTiles_ = 0, gVao_ = 0, gVbo_ = 0;
   int gWidth_ = 0, gHeight_ = 0;
