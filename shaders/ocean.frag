@@ -115,11 +115,10 @@ layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outData;
 #endif
 #ifdef GEOCEAN_DEFERRED
-// The G-buffer (units 15-17), its texel (0, 0) at the viewport's origin.
+// The G-buffer (units 15-17), in the framebuffer's pixels.
 layout(binding = 15) uniform sampler2D uG0;
 layout(binding = 16) uniform sampler2D uG1;
 layout(binding = 17) uniform sampler2D uG2;
-uniform ivec2 uGOrigin;
 #endif
 #if defined(GEOCEAN_GBUFFER) || defined(GEOCEAN_DEFERRED)
 // A direction as 2 floats (octahedral; the shading normalises what it reads).
@@ -148,7 +147,7 @@ uniform float uEyeAltM;
 
 void main() {
 #ifdef GEOCEAN_DEFERRED
-  ivec2 px = ivec2(gl_FragCoord.xy) - uGOrigin;
+  ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 g0 = texelFetch(uG0, px, 0);
   float alpha = g0.w;
   if (alpha <= 0.0) discard;  // no sea drawn at this pixel (cleared to 0)
