@@ -30,14 +30,10 @@
 // Over the middle band and the fade the mean luma is the near band's
 // within 1 % (every band draws the near band's phase-averaged foam;
 // measured 127.3 against 128.1).
+#include "CoastScene.h"
 #include "RenderFixture.h"
 
-#include "globe/camera/Camera.h"
-#include "globe/geo/Ellipsoid.h"
 #include "globe/gl/Framebuffer.h"
-#include "globe/raster/Raster.h"
-#include "globe/world/WorldData.h"
-#include "plugin/ocean/Ocean.h"
 
 #include <gtest/gtest.h>
 
@@ -52,12 +48,8 @@
 namespace geocean::render::test {
 namespace {
 
-// 0.0001-degree rasters (11 m), lon -0.02 .. 0.02, lat 0.26 .. 0.34; the
-// shore at lon 0.005, a 1:50 beach (spilling at U10 10: Iribarren ~0.1)
-// down to 200 m.
-constexpr int kW = 400, kH = 800;
-const raster::GeoTransform kPlace{-0.02, 0.34, 0.0001, -0.0001, false};
-constexpr double kShoreLon = 0.005, kSlope = 0.02;
+// The 1:50 spilling beach (CoastScene.h).
+constexpr double kShoreLon = kSpillingShoreLon, kSlope = kSpillingSlope;
 
 // The band edge (coast_bands.glsl: smoothstep(0.125, 0.333, r) is 1/2
 // there) and the bins of ln(r / kEdgeR).
@@ -120,63 +112,14 @@ double stepAt(const std::vector<double>& v) {
   return fitLine(v, kBinsSide - 26, kBinsSide - 2, at).value - fitLine(v, kBinsSide + 2, kBinsSide + 26, at).value;
 }
 
-// Where the ray through a pixel's centre meets the ellipsoid (bisection on
-// the geodetic height); false if it does not within 5 km.
-bool seaPoint(const camera::Camera& cam, int x, int y, geo::Geodetic& out) {
-  const glm::dvec3 eye = cam.eyeEcef(), ray = cam.pixelRay(x + 0.5, y + 0.5);
-  double lo = 0.0, hi = 5000.0;
-  if (geo::fromEcef(eye + hi * ray).heightM > 0.0) return false;
-  for (int i = 0; i < 60; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (geo::fromEcef(eye + mid * ray).heightM > 0.0 ? lo : hi) = mid;
-  }
-  out = geo::fromEcef(eye + hi * ray);
-  return true;
-}
-
 }  // namespace
 
 TEST(CoastBands, BreakingFoamBandEdgeHasNoStep) {
   session();
-  std::vector<float> elev(std::size_t(kW) * kH), land(std::size_t(kW) * kH);
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) {
-      const double eastOfShoreM = (-0.02 + (x + 0.5) * 0.0001 - kShoreLon) * 111320.0;
-      elev[std::size_t(y) * kW + x] = float(std::max(-200.0, kSlope * eastOfShoreM));
-      land[std::size_t(y) * kW + x] = eastOfShoreM > 0.0 ? 1.0f : 0.0f;
-    }
-  const auto elevation = raster::Raster::fromPixels(elev, kW, kH, 1, kPlace, std::nullopt, "beach");
-  const auto mask = raster::Raster::fromPixels(land, kW, kH, 1, kPlace, std::nullopt, "beach_mask");
-  ocean::Ocean o;
-  o.setRasters(mask, elevation);
-  waves::SeaState sea;
-  sea.windSpeedMps = 10.0;
-  sea.windFromDeg = 270.0;  // onto the shore
-  sea.anchorLatDeg = 0.3;
-  o.setSeaState(waves::Model::Gerstner, sea);
-  waves::CoastField::Region r;  // 4 km of 8 m cells: the whole view's surf zone
-  r.latDeg = 0.3;
-  r.lonDeg = 0.0;
-  r.cellM = 8.0;
-  r.nodes = 501;
-  r.islandRadiusM = 50.0;  // a straight shore casts no shadow
-  o.setCoastRegion(r);
-  const auto snap = o.current();
+  const auto beach = spillingBeach();
+  const auto& snap = beach->snap;
   ASSERT_NE(snap->waves->coastField(), nullptr);
-
-  const auto grids = std::make_shared<const world::WorldGrids>(world::layerOf(*elevation, 0), world::waterLayerOf(*mask));
-  std::vector<float> sand(std::size_t(kW) * kH * 3);
-  for (std::size_t i = 0; i < sand.size(); i += 3) sand[i] = 194.0f, sand[i + 1] = 178.0f, sand[i + 2] = 128.0f;
-  world::WorldData wd = world::loadDefaultWorld();
-  wd.imagery = world::layerOf(*raster::Raster::fromPixels(sand, kW, kH, 3, kPlace, std::nullopt, "sand"));
-  wd.elevation = world::layerOf(*elevation, 0);
-  wd.water = world::waterLayerOf(*mask);
-  const auto world = std::make_shared<const WorldTextures>(wd);
-  ocean_render::OceanOptions oo;
-  oo.model = waves::Model::Gerstner;
-  oo.sea = snap->seaState;
-  oo.coast = snap->waves->coastFieldShared();
-  const auto ocean = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  const auto ocean = std::make_shared<ocean_render::OceanRenderer>(beach->grids, snap->landSea, beach->options());
   // The near band's spray (Spray.h, its own test test_spray.cpp) is the same
   // in A, B and C but its bright dots add high-frequency power near the
   // eye, masking the foam's step. The bands' foam is tested alone.
@@ -187,7 +130,7 @@ TEST(CoastBands, BreakingFoamBandEdgeHasNoStep) {
   ViewPose p;
   p.latDeg = 0.284, p.lonDeg = kShoreLon - 70.0 / 111320.0, p.altM = 60.0, p.headingDeg = 0.0, p.pitchDeg = -30.0;
   p.width = p.height = 384;
-  GlobeRenderer renderer(world);
+  GlobeRenderer renderer(beach->world);
   renderer.addLayer(std::make_shared<DirectOceanLayer>(ocean));
   Framebuffer fb(p.width, p.height, true);
   fb.bind();

@@ -11,14 +11,10 @@
 // phase average of the kernel's wv_breakingFoam) is non-zero. Over deep
 // water (the lattice 2 km off the break line) no pixel may differ, and with
 // the bands off (OceanOptions::coastBands false) there is no spray at all.
+#include "CoastScene.h"
 #include "RenderFixture.h"
 
-#include "globe/camera/Camera.h"
-#include "globe/geo/Ellipsoid.h"
 #include "globe/gl/Framebuffer.h"
-#include "globe/raster/Raster.h"
-#include "globe/world/WorldData.h"
-#include "plugin/ocean/Ocean.h"
 
 #include <gtest/gtest.h>
 
@@ -33,70 +29,15 @@
 namespace geocean::render::test {
 namespace {
 
-constexpr int kW = 400, kH = 800;
-const raster::GeoTransform kPlace{-0.02, 0.34, 0.0001, -0.0001, false};
-constexpr double kShoreLon = 0.005, kSlope = 0.02, kMPerDeg = 111320.0;
+constexpr double kShoreLon = kSpillingShoreLon, kSlope = kSpillingSlope, kMPerDeg = 111320.0;
 
 double depthAt(double lonDeg) { return std::max(1.0, std::min(200.0, -kSlope * (lonDeg - kShoreLon) * kMPerDeg)); }
-
-struct Beach {
-  std::shared_ptr<const world::WorldGrids> grids;
-  std::shared_ptr<const WorldTextures> world;
-  ocean::Ocean o;
-  std::shared_ptr<const ocean::Snapshot> snap;
-};
-
-std::unique_ptr<Beach> makeBeach() {
-  auto b = std::make_unique<Beach>();
-  std::vector<float> elev(std::size_t(kW) * kH), land(std::size_t(kW) * kH);
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) {
-      const double eastOfShoreM = (-0.02 + (x + 0.5) * 0.0001 - kShoreLon) * kMPerDeg;
-      elev[std::size_t(y) * kW + x] = float(std::max(-200.0, kSlope * eastOfShoreM));
-      land[std::size_t(y) * kW + x] = eastOfShoreM > 0.0 ? 1.0f : 0.0f;
-    }
-  const auto elevation = raster::Raster::fromPixels(elev, kW, kH, 1, kPlace, std::nullopt, "beach");
-  const auto mask = raster::Raster::fromPixels(land, kW, kH, 1, kPlace, std::nullopt, "beach_mask");
-  b->o.setRasters(mask, elevation);
-  waves::SeaState sea;
-  sea.windSpeedMps = 10.0;
-  sea.windFromDeg = 270.0;
-  sea.anchorLatDeg = 0.3;
-  b->o.setSeaState(waves::Model::Gerstner, sea);
-  waves::CoastField::Region r;
-  r.latDeg = 0.3, r.lonDeg = 0.0, r.cellM = 8.0, r.nodes = 501, r.islandRadiusM = 50.0;
-  b->o.setCoastRegion(r);
-  b->snap = b->o.current();
-  b->grids = std::make_shared<const world::WorldGrids>(world::layerOf(*elevation, 0), world::waterLayerOf(*mask));
-  std::vector<float> sand(std::size_t(kW) * kH * 3);
-  for (std::size_t i = 0; i < sand.size(); i += 3) sand[i] = 194.0f, sand[i + 1] = 178.0f, sand[i + 2] = 128.0f;
-  world::WorldData wd = world::loadDefaultWorld();
-  wd.imagery = world::layerOf(*raster::Raster::fromPixels(sand, kW, kH, 3, kPlace, std::nullopt, "sand"));
-  wd.elevation = world::layerOf(*elevation, 0);
-  wd.water = world::waterLayerOf(*mask);
-  b->world = std::make_shared<const WorldTextures>(wd);
-  return b;
-}
-
-// Where the ray through a pixel's centre meets the ellipsoid (bisection on
-// the geodetic height); false if it does not within 5 km.
-bool seaPoint(const camera::Camera& cam, int x, int y, geo::Geodetic& out) {
-  const glm::dvec3 eye = cam.eyeEcef(), ray = cam.pixelRay(x + 0.5, y + 0.5);
-  double lo = 0.0, hi = 5000.0;
-  if (geo::fromEcef(eye + hi * ray).heightM > 0.0) return false;
-  for (int i = 0; i < 60; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (geo::fromEcef(eye + mid * ray).heightM > 0.0 ? lo : hi) = mid;
-  }
-  out = geo::fromEcef(eye + hi * ray);
-  return true;
-}
 
 }  // namespace
 
 TEST(Spray, OnlyWhereTheWavesBreakNearTheEye) {
   session();
-  const auto beach = makeBeach();
+  const auto beach = spillingBeach();
   const auto& snap = beach->snap;
   ASSERT_NE(snap->waves->coastField(), nullptr);
   // The breaking zone across the beach at the view's latitude: the CPU's
@@ -115,10 +56,7 @@ TEST(Spray, OnlyWhereTheWavesBreakNearTheEye) {
   std::printf("breaking from %.0f m off the shore (depth %.2f m)\n", breakWidthM, depthAt(breakWestLon));
 
   auto render = [&](bool bands, double offBreakM, double timeS, const std::string& name, int& sprayPx, int& outsidePx) {
-    ocean_render::OceanOptions oo;
-    oo.model = waves::Model::Gerstner;
-    oo.sea = snap->seaState;
-    oo.coast = snap->waves->coastFieldShared();
+    ocean_render::OceanOptions oo = beach->options();
     oo.coastBands = bands;
     const auto ocean = std::make_shared<ocean_render::OceanRenderer>(beach->grids, snap->landSea, oo);
     // 30 m up, offBreakM seaward of the break line, looking east at the shore.
