@@ -33,6 +33,38 @@ constexpr double kShoreLon = kSpillingShoreLon, kSlope = kSpillingSlope, kMPerDe
 
 double depthAt(double lonDeg) { return std::max(1.0, std::min(200.0, -kSlope * (lonDeg - kShoreLon) * kMPerDeg)); }
 
+// The spray's pixels in views from poses (those that differ between the
+// frame with it and without it), written as <name>_<i>.png for looking at.
+std::vector<std::vector<bool>> sprayPixels(const CoastScene& scene, const std::vector<ViewPose>& poses, double timeS,
+                                           const std::string& name) {
+  const auto ocean = std::make_shared<ocean_render::OceanRenderer>(scene.grids, scene.snap->landSea, scene.options());
+  GlobeRenderer renderer(scene.world);
+  renderer.addLayer(std::make_shared<DirectOceanLayer>(ocean));
+  std::vector<std::vector<bool>> out;
+  for (const ViewPose& p : poses) {
+    Framebuffer fb(p.width, p.height, true);
+    fb.bind();
+    FrameSettings fs;
+    fs.sunEcef = sunForView(p, 150.0, 40.0);
+    fs.timeS = timeS;
+    ocean->setSpray(true);
+    renderer.render(p, fs);
+    const Image with = fb.readColor();
+    ocean->setSpray(false);
+    renderer.render(p, fs);
+    const Image without = fb.readColor();
+    gl::writePng(::testing::TempDir() + "/" + name + "_" + std::to_string(out.size()) + ".png", with);
+    std::vector<bool> px(std::size_t(p.width) * p.height);
+    Image mask = with;  // the spray's pixels red (looked at)
+    for (std::size_t i = 0; i < px.size(); ++i)
+      if ((px[i] = std::memcmp(&with.rgba[i * 4], &without.rgba[i * 4], 3) != 0))
+        mask.rgba[i * 4] = 255, mask.rgba[i * 4 + 1] = mask.rgba[i * 4 + 2] = 0;
+    gl::writePng(::testing::TempDir() + "/" + name + "_" + std::to_string(out.size()) + "_mask.png", mask);
+    out.push_back(std::move(px));
+  }
+  return out;
+}
+
 }  // namespace
 
 TEST(Spray, OnlyWhereTheWavesBreakNearTheEye) {
@@ -128,6 +160,43 @@ TEST(Spray, OnlyWhereTheWavesBreakNearTheEye) {
   int off = 0, offOut = 0;
   render(false, 40.0, 30.0, "bands_off", off, offOut);
   EXPECT_EQ(off, 0) << "spray with the coast bands off";
+}
+
+// The spray's seed is continuous across 180 degrees: the 1:50 beach with
+// its surf zone 40 .. 340 m ahead of an eye on the meridian, at 0 and at
+// 180 degrees (the same rasters and coast region shifted), each seen from
+// 1 cm west and 1 cm east of its meridian. At 180 the nadir's longitude
+// wraps from +180 to -180 between the two frames (at 0 nothing wraps):
+// the same sites must throw the same clusters, so the two frames' spray
+// pixels are nearly one set (overlap: shared over either's), as at 0.
+TEST(Spray, SeedIsContinuousAcrossTheAntimeridian) {
+  session();
+  const double aheadDeg = 340.0 / kMPerDeg;  // the shore east of the eye
+  auto overlapAt = [&](double meridian, const std::string& name) {
+    waves::CoastField::Region r;
+    r.latDeg = 0.3, r.lonDeg = meridian, r.cellM = 8.0, r.nodes = 501, r.islandRadiusM = 50.0;
+    const auto scene = makeCoastScene(
+        straightBeach(400, 800, {meridian - 0.02, 0.34, 0.0001, -0.0001, false}, meridian + aheadDeg, kSlope), r);
+    std::vector<ViewPose> poses;
+    for (double side : {-1.0, 1.0}) {
+      ViewPose p;
+      const double lon = meridian + side * 1e-7;  // 1.1 cm
+      p.latDeg = 0.3, p.lonDeg = lon > 180.0 ? lon - 360.0 : lon, p.altM = 30.0, p.headingDeg = 90.0, p.pitchDeg = -40.0;
+      p.width = p.height = 256;
+      poses.push_back(p);
+    }
+    const auto px = sprayPixels(*scene, poses, 30.0, "spray_meridian_" + name);
+    int both = 0, either = 0;
+    for (std::size_t i = 0; i < px[0].size(); ++i) both += px[0][i] && px[1][i], either += px[0][i] || px[1][i];
+    std::printf("%s: %d and %d spray pixels, %d in either frame, %d in both (overlap %.3f)\n", name.c_str(),
+                int(std::count(px[0].begin(), px[0].end(), true)), int(std::count(px[1].begin(), px[1].end(), true)),
+                either, both, double(both) / std::max(either, 1));
+    EXPECT_GT(either, 100) << name << ": no spray in view";
+    return double(both) / std::max(either, 1);
+  };
+  const double at0 = overlapAt(0.0, "0"), at180 = overlapAt(180.0, "180");
+  EXPECT_GT(at0, 0.8);
+  EXPECT_GT(at180, at0 - 0.1) << "the spray changes where the nadir's longitude wraps";
 }
 
 }  // namespace geocean::render::test
