@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace geocean::ocean_render {
 
@@ -25,16 +26,17 @@ void Spray::draw(const camera::Camera& cam, const glm::dvec3& originEcef, double
   auto perDeg = [](double lat, double lon, double dLat, double dLon) {
     const glm::dvec3 a = geo::toEcef({lat - 0.5 * dLat, lon - 0.5 * dLon, 0.0});
     const glm::dvec3 b = geo::toEcef({lat + 0.5 * dLat, lon + 0.5 * dLon, 0.0});
-    return std::pair{glm::length(b - a) / (dLat + dLon), glm::normalize(b - a)};
+    return glm::length(b - a) / (dLat + dLon);
   };
   const double latRef = std::round(latDeg);
   // A whole number of sites round the parallel: the lattice (and spray.vert's
   // seed, its index modulo lonSites) is the same on both sides of 180 deg.
-  const int lonSites = int(std::max(1L, std::lround(360.0 * perDeg(latRef, 0.0, 0.0, 1e-3).first / kSpacingM)));
+  const int lonSites = int(std::max(1L, std::lround(360.0 * perDeg(latRef, 0.0, 0.0, 1e-3) / kSpacingM)));
   const double stepLon = 360.0 / lonSites;
-  const double stepLat = kSpacingM / perDeg(latRef, 0.0, 1e-3, 0.0).first;
-  const auto [mLon, east] = perDeg(latDeg, lonDeg, 0.0, 1e-3);
-  const auto [mLat, north] = perDeg(latDeg, lonDeg, 1e-3, 0.0);
+  const double stepLat = kSpacingM / perDeg(latRef, 0.0, 1e-3, 0.0);
+  const double mLon = perDeg(latDeg, lonDeg, 0.0, 1e-3), mLat = perDeg(latDeg, lonDeg, 1e-3, 0.0);
+  const geo::EnuFrame enu = geo::enuFrame({latDeg, lonDeg, 0.0});
+  const glm::dvec3 east = enu.east, north = enu.north;
   const double uLon = lonDeg / stepLon, uLat = latDeg / stepLat;
   const double iLon = std::floor(uLon), iLat = std::floor(uLat);
   program_.use();
@@ -62,7 +64,7 @@ void Spray::draw(const camera::Camera& cam, const glm::dvec3& originEcef, double
   glUniform2f(program_.uniform("uOriginUv"), float((lonR - geoD.x) / geoD.z), float((latDeg - geoD.y) / geoD.w));
   glUniform3fv(program_.uniform("uEast"), 1, &eastF[0]);
   glUniform3fv(program_.uniform("uNorth"), 1, &northF[0]);
-  const double pxPerRad = cam.heightPx() / (2.0 * std::tan(0.5 * cam.vfovDeg() * 3.14159265358979 / 180.0));
+  const double pxPerRad = cam.heightPx() / (2.0 * std::tan(0.5 * cam.vfovDeg() * std::numbers::pi / 180.0));
   glUniform1f(program_.uniform("uPxPerRad"), float(pxPerRad));
   // Over the sea, blended, behind what is nearer, writing no depth and
   // only the colour attachment (the host's data target keeps the sea's).
