@@ -98,16 +98,13 @@ uniform int uWriteData;
 layout(binding = 2) uniform sampler2D uWater;
 
 #ifdef GEOCEAN_GBUFFER
-// eyeRel, alpha | normal, height | up, relief depth | sun, far | haze
-// transmittance, vertex octaves' crest height | haze in-scatter, cell
-// along the view | footprint, coverage.
+// eyeRel, alpha | normal (octahedral), height, cell along the view |
+// relief depth, vertex octaves' crest height, footprint, coverage. The terms
+// smooth over a cell (up, sun, haze, far) are made again per pixel by the
+// shading pass: each target costs ~6-10 ms a frame to write on llvmpipe.
 layout(location = 0) out vec4 outG0;
 layout(location = 1) out vec4 outG1;
 layout(location = 2) out vec4 outG2;
-layout(location = 3) out vec4 outG3;
-layout(location = 4) out vec4 outG4;
-layout(location = 5) out vec4 outG5;
-layout(location = 6) out vec4 outG6;
 // Which 8 x 8 pixel tiles have sea to shade (OceanRenderer draws the
 // shading pass over those alone: llvmpipe runs the whole shading for a
 // block whose pixels all discard). Tested early, so hidden sea marks none.
@@ -118,17 +115,30 @@ layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outData;
 #endif
 #ifdef GEOCEAN_DEFERRED
-// The G-buffer (units 15-21), its texel (0, 0) at the viewport's origin.
+// The G-buffer (units 15-17), in the framebuffer's pixels.
 layout(binding = 15) uniform sampler2D uG0;
 layout(binding = 16) uniform sampler2D uG1;
 layout(binding = 17) uniform sampler2D uG2;
-layout(binding = 18) uniform sampler2D uG3;
-layout(binding = 19) uniform sampler2D uG4;
-layout(binding = 20) uniform sampler2D uG5;
-layout(binding = 21) uniform sampler2D uG6;
-uniform ivec2 uGOrigin;
 #endif
-
+#if defined(GEOCEAN_GBUFFER) || defined(GEOCEAN_DEFERRED)
+// A direction as 2 floats (octahedral; the shading normalises what it reads).
+vec2 octEncode(vec3 n) {
+  n /= abs(n.x) + abs(n.y) + abs(n.z);
+  vec2 s = vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+  return n.z >= 0.0 ? n.xy : (1.0 - abs(n.yx)) * s;
+}
+vec3 octDecode(vec2 e) {
+  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  vec2 s = vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * s;
+  return n;
+}
+#endif
+#ifdef GEOCEAN_DEFERRED
+// ocean.vert's, for the terms it makes per vertex, made here per pixel.
+uniform float uCellRadians;
+uniform float uEyeAltM;
+#endif
 #include "ocean_shading.glsl"
 #ifndef GEOCEAN_FAR_SHADED
 #include "wake.glsl"
@@ -137,16 +147,24 @@ uniform ivec2 uGOrigin;
 
 void main() {
 #ifdef GEOCEAN_DEFERRED
-  ivec2 px = ivec2(gl_FragCoord.xy) - uGOrigin;
+  ivec2 px = ivec2(gl_FragCoord.xy);
   vec4 g0 = texelFetch(uG0, px, 0);
   float alpha = g0.w;
   if (alpha <= 0.0) discard;  // no sea drawn at this pixel (cleared to 0)
-  vec4 g1 = texelFetch(uG1, px, 0), g2 = texelFetch(uG2, px, 0), g3 = texelFetch(uG3, px, 0);
-  vec4 g4 = texelFetch(uG4, px, 0), g5 = texelFetch(uG5, px, 0), g6 = texelFetch(uG6, px, 0);
-  vEyeRel = g0.xyz, vNormal = g1.xyz, vHeightM = g1.w, vUp = g2.xyz, vDepthM = g2.w;
-  vSun = g3.xyz, vFar = g3.w, vHazeTr = g4.xyz, vHeightA = g4.w, vHazeIn = g5.xyz, vCellAlongM = g5.w;
+  vec4 g1 = texelFetch(uG1, px, 0), g2 = texelFetch(uG2, px, 0);
+  vEyeRel = g0.xyz, vNormal = octDecode(g1.xy), vHeightM = g1.z, vCellAlongM = g1.w, vDepthM = g2.x, vHeightA = g2.y;
+  float w = g2.w;
+  // What ocean.vert makes per vertex and the grid interpolates, at the
+  // pixel (the same formulas: they vary little over a cell, so the
+  // picture moves by rounding; docs/PERFORMANCE.md).
+  vUp = wv_upAt(wvFrames[0], vEyeRel + uEyeMinusOrigin);
+  vSun = sunLight(dot(uSunDir, vUp));
+  vHazeTr = exp(-hazeAmount(length(vEyeRel), uEyeAltM, 0.0) * vec3(1.2, 2.0, 3.6));
+  vHazeIn = vec3(0.30, 0.45, 0.80) * (vSun + vec3(0.02)) * 0.3 * (1.0 - vHazeTr);
+  vec3 restRel = vEyeRel - vUp * vHeightM;
+  float cellFootprint = length(restRel) * uCellRadians;
+  vFar = smoothstep(0.02, 0.5, cellFootprint / max(uOctaveWavelengthM[0], 1e-3));
   vLonLat = vec2(0.0), vMss = 0.0, vFoamM = 0.0;  // not read by the noise sea's shading
-  float w = g6.y;
 #else
   // Coverage: B-spline magnified (a smooth shoreline, no 5' steps), the
   // mipmapped average minified; 0.5 is the coast, smoothed over a pixel.
@@ -165,9 +183,8 @@ void main() {
   if (alpha <= 0.0) discard;
 #endif
 #ifdef GEOCEAN_GBUFFER
-  outG0 = vec4(vEyeRel, alpha), outG1 = vec4(vNormal, vHeightM), outG2 = vec4(vUp, vDepthM);
-  outG3 = vec4(vSun, vFar), outG4 = vec4(vHazeTr, vHeightA), outG5 = vec4(vHazeIn, vCellAlongM);
-  outG6 = vec4(max(length(dFdx(vEyeRel)), length(dFdy(vEyeRel))), w, 0.0, 0.0);
+  outG0 = vec4(vEyeRel, alpha), outG1 = vec4(octEncode(vNormal), vHeightM, vCellAlongM);
+  outG2 = vec4(vDepthM, vHeightA, max(length(dFdx(vEyeRel)), length(dFdy(vEyeRel))), w);
   imageStore(uGTiles, ivec2(gl_FragCoord.xy) / 8, uvec4(1u));
 #elif defined(GEOCEAN_FAR_SHADED)
   outColor = vec4(vColor, alpha);
@@ -199,7 +216,7 @@ void main() {
   // roughness.
   vec3 up = normalize(vUp);
 #ifdef GEOCEAN_DEFERRED
-  float footprint = g6.x;  // the grid pass's derivatives
+  float footprint = g2.z;  // the grid pass's derivatives
 #else
   float footprint = max(length(dFdx(vEyeRel)), length(dFdy(vEyeRel)));
 #endif

@@ -179,6 +179,44 @@ WR4 wv_coastSample(WvCoast co, int comp, WR3 d) {
 #endif
 }
 
+// One component's amplitude at depth `depth` (m, >= 0.05), shared by
+// wv_gerstnerCoast (the query's surface) and wv_breakingFoamMean (its phase
+// average), so the two cannot drift: shoaling Ks = sqrt(cg0 / cg) at the
+// local wave number, the coast field's refraction (krM1 = Kr - 1), the
+// source's taper at arc s / |P| = sRel and, with a coast field (`coast`),
+// Miche's steepness limit H <= 0.142 L tanh(k h). Returns (az, tanh(k h),
+// kP: the wave number of the phase, the local one with a coast field).
+WR3 wv_coastAmplitude(WvWave w, WR sRel, WR krM1, WR depth, bool coast) {
+  WR taper = smoothstep(WR(WV_TAPER_RAD), WR(2.0 * WV_TAPER_RAD), sRel);
+  WR omega = w.phase.z;
+  WR kDeep = omega * omega / WR(WV_G);
+  WR th = WR(1), ks = WR(1);
+  WR kP = w.extra.x;
+  if (kDeep * depth < WR(WV_DEEP_KH)) {
+    WR kLoc = wv_waveNumber(omega, depth);
+    th = tanh(kLoc * depth);
+    WR n = WR(0.5) * (WR(1) + kLoc * depth * (WR(1) - th * th) / th);
+    ks = sqrt(WR(WV_G) * kLoc / (WR(2) * omega * omega * n));
+    if (coast) kP = kLoc;  // the phase field's |grad psi|
+  }
+  WR az = w.phase.w * ks * (WR(1) + krM1) * taper;
+  if (coast) az = min(az, WR(0.071 * 2.0 * WV_PI) / kP * th);
+  return WR3(az, th, kP);
+}
+
+// The breaking of the crest sum (sumAz: of the components' az, sumAz2: of
+// az^2) at depth `depth`, shared as wv_coastAmplitude: (sB, the factor
+// that keeps the highest crest sB sumAz <= 0.39 h, i.e. H <= 0.78 h; b,
+// the breaking weight: brkW, the coast field's, times the share the cap
+// removes; A, the level above which eq. 6 collapses the crest).
+WR3 wv_coastBreaking(WR depth, WR sumAz, WR sumAz2, WR brkW) {
+  WR sB = min(WR(1), WR(0.39) * depth / max(sumAz, WR(1e-30)));
+  WR b = brkW * smoothstep(WR(0), WR(0.5), WR(1) - sB);
+  WR zc = sB * sumAz;
+  WR A = min(WR(1.4142135623730951) * sqrt(sumAz2) * sB, WR(0.8) * zc);
+  return WR3(sB, b, A);
+}
+
 // Sum of `count` components wvWaves[first ..] at depth `depthM` (m, > 0; use
 // 1e30 for deep water). Each component travels along great circles away from
 // its source; its local wave number follows the dispersion relation at the
@@ -245,21 +283,9 @@ WvResult wv_gerstnerCoast(int first, int count, WR3 d, WvFrame fr, WR depthM, Wv
     dir = normalize(dir - dot(dir, up) * up);
     // Snell turning by beta about the up axis (exact no-op where cf = 0).
     dir = dir * (WR(1) - cf.z) + cross(up, dir) * cf.y;
-    WR taper = smoothstep(WR(WV_TAPER_RAD), WR(2.0 * WV_TAPER_RAD), s / lenV);
     WR omega = w.phase.z;
-    WR kDeep = omega * omega / WR(WV_G);
-    WR th = WR(1), ks = WR(1);
-    WR kP = w.extra.x;
-    if (kDeep * depth < WR(WV_DEEP_KH)) {
-      WR kLoc = wv_waveNumber(omega, depth);
-      th = tanh(kLoc * depth);
-      WR n = WR(0.5) * (WR(1) + kLoc * depth * (WR(1) - th * th) / th);
-      ks = sqrt(WR(WV_G) * kLoc / (WR(2) * omega * omega * n));
-      if (co.cell.z > 0) kP = kLoc;  // the phase field's |grad psi|
-    }
-    WR az = w.phase.w * ks * (WR(1) + cf.w) * taper;
-    // Miche's steepness limit, H <= 0.142 L tanh(k h), with the coast field.
-    if (co.cell.z > 0) az = min(az, WR(0.071 * 2.0 * WV_PI) / kP * th);
+    WR3 amp = wv_coastAmplitude(w, s / lenV, cf.w, depth, co.cell.z > 0);
+    WR az = amp.x, th = amp.y, kP = amp.z;
     WR ax = w.extra.y * az / th;
     WR cs = cos(psi), sn = sin(psi);
     // Eq. 5: the horizontal phase psx and d(psx)/d(psi) (exactly psi and 1 without curl).
@@ -288,17 +314,18 @@ WvResult wv_gerstnerCoast(int first, int count, WR3 d, WvFrame fr, WR depthM, Wv
   }
   // Breaking limit on the crest, then keep the horizontal map one-to-one
   // (Jacobian eigenvalues >= 0.1) so the surface never loops.
-  WR sB = min(WR(1), WR(0.39) * depth / max(sumAz, WR(1e-30)));
+  WR3 brkA = wv_coastBreaking(depth, sumAz, sumAz2, brk.z);
+  WR sB = brkA.x;
   WR lam = sB * min(WR(1), WR(0.9) / max(sB * sumKAx, WR(1e-30)));
   z *= sB;
   dzdt *= sB;
   gradZ *= sB;
   // Eq. 6: the collapse above A where the waves break, and their foam.
   WR foam = WR(0);
-  WR b = brk.z * smoothstep(WR(0), WR(0.5), WR(1) - sB);
+  WR b = brkA.y;
   if (b > WR(0)) {
     WR zc = sB * sumAz;
-    WR A = min(WR(1.4142135623730951) * sqrt(sumAz2) * sB, WR(0.8) * zc);
+    WR A = brkA.z;
     if (z > A) {
       WR S = WR(0.5) / (zc - A);
       WR m = WR(1) - WR(2) * S * b * (z - A);
@@ -383,18 +410,8 @@ WvBreakMean wv_breakingFoamMean(int first, int count, WR3 d, WvFrame fr, WR dept
     WR p = sO * (WR(1) + en) + cO * eg;
     WR s = sqrt(p * p + eb * eb);
     WR4 cf = wv_coastSample(co, i, d);
-    WR taper = smoothstep(WR(WV_TAPER_RAD), WR(2.0 * WV_TAPER_RAD), s / lenV);
-    WR omega = w.phase.z;
-    WR kDeep = omega * omega / WR(WV_G);
-    WR th = WR(1), ks = WR(1), kP = w.extra.x;
-    if (kDeep * depth < WR(WV_DEEP_KH)) {
-      WR kLoc = wv_waveNumber(omega, depth);
-      th = tanh(kLoc * depth);
-      WR n = WR(0.5) * (WR(1) + kLoc * depth * (WR(1) - th * th) / th);
-      ks = sqrt(WR(WV_G) * kLoc / (WR(2) * omega * omega * n));
-      kP = kLoc;
-    }
-    WR az = min(w.phase.w * ks * (WR(1) + cf.w) * taper, WR(0.071 * 2.0 * WV_PI) / kP * th);
+    WR3 amp = wv_coastAmplitude(w, s / lenV, cf.w, depth, true);
+    WR az = amp.x, kP = amp.z;
     sumAz += az;
     sumAz2 += az * az;
     sumAz4 += az * az * az * az;
@@ -419,12 +436,11 @@ WvBreakMean wv_breakingFoamMean(int first, int count, WR3 d, WvFrame fr, WR dept
     }
   }
   WR lambda = WR(2.0 * WV_PI) * sumAz / max(sumAzK, WR(1e-30));
-  WR sB = min(WR(1), WR(0.39) * depth / max(sumAz, WR(1e-30)));
-  WR b = brk.z * smoothstep(WR(0), WR(0.5), WR(1) - sB);
+  WR3 brkA = wv_coastBreaking(depth, sumAz, sumAz2, brk.z);
+  WR sB = brkA.x, b = brkA.y, A = brkA.z;
   r.m = WR4(0, lambda, 0, 0);
   if (b <= WR(0) || sumAz2 <= WR(0)) return r;
   WR sigma = sB * sqrt(WR(0.5) * sumAz2);
-  WR A = min(WR(1.4142135623730951) * sqrt(sumAz2) * sB, WR(0.8) * sB * sumAz);
   WR a = A / sigma;
   r.m = WR4(b * wv_crestShare(a, WR(-1.5 / 24.0) * sumAz4 / (sumAz2 * sumAz2)), lambda, b, a);
   WR t2 = dot(r.amp, r.amp);

@@ -35,6 +35,12 @@
 namespace geocean::app {
 namespace {
 
+// The shader warm-up's descent (runView): enough poses to pass every
+// altitude where a new program or state first draws (orbit, the paged
+// coast from ~30 km, the near bands below 500 m, the sea at 2 m), small.
+constexpr int kWarmUpFrames = 12;
+constexpr int kWarmUpSize[2] = {96, 54};
+
 struct ViewArgs {
   std::string flyTo;  // LAT,LON
   std::string camera;  // LAT,LON,ALT,HEADING,PITCH: the first view (as render's)
@@ -44,6 +50,7 @@ struct ViewArgs {
   int flightFrames = 0;    // with --frames: the flight lasts this many frames, then restarts (0: all of them)
   std::string screenshot;  // PNG of the last of --frames
   std::string statsCsv;    // per-frame CSV (position, sea, fps, resident memory)
+  bool noWarmUp = false;   // no off-screen descent before the first frame
   bool noHud = false;
   bool panel = false;  // the control panel open from the start (P toggles it)
   bool noReflections = false, noRefraction = false;
@@ -299,7 +306,7 @@ int runView(const ViewArgs& a) {
       if (a.waves == gl::kPanelWaveModels[i]) panel.waveModel = i;
     panel.windMps = float(windMps), panel.windFromDeg = float(a.windFromDeg);
     panel.sunAzimuthDeg = float(sunAzEl[0]), panel.sunElevationDeg = float(sunAzEl[1]);
-    panel.reflections = !a.noReflections, panel.refraction = !a.noRefraction;
+    panel.reflections = !a.noReflections, panel.refraction = !a.noRefraction, panel.shadows = !a.light.noShadows;
     panel.layerNames = layerLabels(a.layers);
     panel.layerShown.assign(panel.layerNames.size(), 1);
     // The layers as the panel shows them, drawn and queried alike: the host's
@@ -334,6 +341,40 @@ int runView(const ViewArgs& a) {
     glfwSetScrollCallback(win, [](GLFWwindow* w, double, double dy) {
       static_cast<Controller*>(glfwGetWindowUserPointer(w))->wheel += dy;
     });
+    auto frameSettings = [&](double simT, const camera::ViewPose& pose) {
+      render::FrameSettings fs;
+      fs.timeS = simT;
+      fs.sunEcef = render::sunFromLocal(pose.latDeg, pose.lonDeg, panel.sunAzimuthDeg, panel.sunElevationDeg);
+      fs.reflections = panel.reflections;
+      fs.refraction = panel.refraction;
+      fs.reflectionSize = a.reflectionSize;
+      applyLightOptions(a.light, fs);
+      fs.shadows = panel.shadows;  // --no-shadows is the panel's initial state
+      fs.reflectionEvery = a.reflectionEvery;
+      return fs;
+    };
+    // llvmpipe JIT-compiles each shader variant on its first draw: 1-2 s
+    // each with a cold Mesa cache (docs/PERFORMANCE.md), stalls in the
+    // middle of a descent. The descent from the first view to the sea,
+    // drawn once small and off screen, takes them before the first frame.
+    if (rc == kExitOk && !a.noWarmUp) {
+      render::FlightPlan warm;
+      warm.fromLatDeg = c.pose.latDeg, warm.fromLonDeg = c.pose.lonDeg, warm.fromAltM = c.pose.altM;
+      warm.toLatDeg = plan.toLatDeg, warm.toLonDeg = plan.toLonDeg;
+      if (!flying) host::viewTarget(c.pose, warm.toLatDeg, warm.toLonDeg);
+      warm.headingDeg = flying ? plan.headingDeg : c.pose.headingDeg;
+      camera::ViewPose base = c.pose;
+      base.width = kWarmUpSize[0], base.height = kWarmUpSize[1];
+      gl::Framebuffer small(base.width, base.height);
+      small.bind();
+      for (int i = 0; i < kWarmUpFrames; ++i) {
+        const camera::ViewPose pose = render::flightPose(warm, double(i) / (kWarmUpFrames - 1), base);
+        render::FrameSettings fs = frameSettings(a.timeS, pose);
+        fs.reflectionEvery = 1;  // the first shown frame then starts its own cycle
+        renderer->render(pose, fs);
+      }
+      glFinish();
+    }
     const auto t0 = std::chrono::steady_clock::now();
     auto last = t0;
     double fpsSmoothed = 0.0, flightS = 0.0;
@@ -400,15 +441,7 @@ int runView(const ViewArgs& a) {
       }
       if (!fb || fb->width() != w || fb->height() != h) fb = std::make_unique<gl::Framebuffer>(w, h);
       fb->bind();
-      render::FrameSettings fs;
-      fs.timeS = simT;
-      fs.sunEcef = render::sunFromLocal(c.pose.latDeg, c.pose.lonDeg, panel.sunAzimuthDeg, panel.sunElevationDeg);
-      fs.reflections = panel.reflections;
-      fs.refraction = panel.refraction;
-      fs.reflectionSize = a.reflectionSize;
-      applyLightOptions(a.light, fs);
-      fs.reflectionEvery = a.reflectionEvery;
-      const render::FrameTimes times = renderer->render(c.pose, fs);
+      const render::FrameTimes times = renderer->render(c.pose, frameSettings(simT, c.pose));
       tilesBuilt += times.terrain.tilesBuilt;
       // The float-depth target is blitted to the window (its own depth is fixed point).
       glBindFramebuffer(GL_READ_FRAMEBUFFER, fb->id());
@@ -496,9 +529,12 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                                      "heap_held_kb,tiles,tiles_built (resident set; malloc'd bytes in use and held "
                                      "from the system, kB; terrain tiles drawn, tiles made so far)");
                       sub.add_flag("--no-hud", a->noHud, "no HUD panel (H toggles it in the window)");
+                      sub.add_flag("--no-warm-up", a->noWarmUp,
+                                   "draw the first frame at once, without first drawing the descent to the sea off "
+                                   "screen (which takes the shaders' first-use compiling before the window shows the globe)");
                       sub.add_flag("--panel", a->panel,
-                                   "open the control panel (P toggles it): wave model, wind, sun, reflections and "
-                                   "refraction, raster layers shown (also keys 1-9), changed live");
+                                   "open the control panel (P toggles it): wave model, wind, sun, reflections, "
+                                   "refraction, shadows, raster layers shown (also keys 1-9), changed live");
                       sub.add_flag("--no-reflections", a->noReflections,
                                    "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
                       sub.add_flag("--no-refraction", a->noRefraction,

@@ -159,6 +159,8 @@ PanelChange Hud::frame(int widthPx, int heightPx, double dtS, const HudValues& v
         layout_.reflections = lastItem();
         change.light |= ImGui::Checkbox("refraction", &panel->refraction);
         layout_.refraction = lastItem();
+        change.light |= ImGui::Checkbox("shadows", &panel->shadows);
+        layout_.shadows = lastItem();
         ImGui::Separator();
         if (panel->layerNames.empty()) {
           ImGui::TextDisabled("no raster layers (--mask ...)");

@@ -32,7 +32,7 @@ struct PanelState {
   int waveModel = 0;  // index into kPanelWaveModels
   float windMps = 10.0f, windFromDeg = 270.0f;
   float sunAzimuthDeg = 135.0f, sunElevationDeg = 40.0f;  // at the camera's nadir
-  bool reflections = true, refraction = true;
+  bool reflections = true, refraction = true, shadows = true;
   // The user's raster layers (--mask, --elevation, --imagery; the viewer
   // fills them), each drawn and queried only while shown; keys 1-9 too.
   std::vector<std::string> layerNames;
@@ -54,7 +54,7 @@ struct PanelLayout {
     float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   };
   Rect window;  // the whole panel
-  Rect waveModel, wind, windFrom, sunAzimuth, sunElevation, reflections, refraction;  // sliders: their frames
+  Rect waveModel, wind, windFrom, sunAzimuth, sunElevation, reflections, refraction, shadows;  // sliders: their frames
   std::vector<Rect> layers;  // PanelState::layerNames' checkboxes
   bool shown = false;
 };

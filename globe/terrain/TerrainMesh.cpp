@@ -1,9 +1,9 @@
 #include "globe/terrain/TerrainMesh.h"
 
 #include "globe/geo/Ellipsoid.h"
+#include "globe/geo/Parallel.h"
 
 #include <glm/geometric.hpp>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -145,7 +145,7 @@ TerrainMesh TerrainMesh::whole(const raster::Raster& r, const glm::dvec3& localO
   m.origin_ = localOrigin;
   m.ecef_.resize(std::size_t(W) * H);
   std::vector<std::uint8_t> ok(m.ecef_.size());
-  tbb::parallel_for(0, H, [&](int j) {
+  geo::parallelFor(0, H, [&](int j) {
     for (int i = 0; i < W; ++i) {
       bool finite = false;
       m.ecef_[std::size_t(j) * W + i] = vertexEcef(r, i, j, finite);

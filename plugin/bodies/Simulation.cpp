@@ -1,5 +1,6 @@
 #include "plugin/bodies/Simulation.h"
 
+#include "globe/geo/Parallel.h"
 #include "plugin/bodies/Gravity.h"
 #include "plugin/bodies/Validate.h"
 
@@ -7,7 +8,6 @@
 #include <glm/matrix.hpp>
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <exception>
@@ -123,7 +123,7 @@ void Simulation::step() {
       return;
     }
     std::vector<std::exception_ptr> errors(n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
+    geo::parallelFor(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) {
         try {
           f(i);

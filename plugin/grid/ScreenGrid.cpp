@@ -1,9 +1,9 @@
 #include "plugin/grid/ScreenGrid.h"
 
+#include "globe/geo/Parallel.h"
 #include "plugin/grid/RayKernels.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -497,7 +497,7 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
   };
   auto run = [&] {
     if (!colLines.empty()) {
-      tbb::parallel_for(tbb::blocked_range<int>(0, cols, 32), [&](const tbb::blocked_range<int>& r) {
+      geo::parallelFor(tbb::blocked_range<int>(0, cols, 32), [&](const tbb::blocked_range<int>& r) {
         for (int i = r.begin(); i < r.end(); ++i) {
           LimbLine& l = colLines[std::size_t(i)];
           l = limb.column(rect.minX + i * dxNdc);
@@ -514,7 +514,7 @@ void ScreenGrid::build(const camera::Camera& cam, GridFrame& f) const {
         }
       });
     }
-    tbb::parallel_for(tbb::blocked_range<int>(0, chunks, 1), [&](const tbb::blocked_range<int>& r) {
+    geo::parallelFor(tbb::blocked_range<int>(0, chunks, 1), [&](const tbb::blocked_range<int>& r) {
       for (int c = r.begin(); c < r.end(); ++c) buildChunk(c);
     }, tbb::simple_partitioner());
   };

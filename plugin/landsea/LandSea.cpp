@@ -68,15 +68,39 @@ void LandSea::markCoast(bool global) {
   }
 }
 
+namespace {
+// The 4 x 4 cells whose B-spline covers a point of raster r, read in one
+// batch (the reader sorts them by tile). Cells beyond a regional raster's
+// edge repeat the edge (a texture's clamp to edge); longitude wraps for a
+// global one; latitude clamps.
+struct Cells16 {
+  double px, py;  // continuous pixel coordinates of the point
+  world::BSplineTaps tx, ty;
+  float v[16];
+  float at(int cx, int cy) const { return v[(cy - ty.first) * 4 + (cx - tx.first)]; }
+};
+Cells16 gatherCells(const raster::Raster& r, double latDeg, double lonDeg) {
+  const auto& t = r.transform();
+  const int w = r.width(), h = r.height();
+  double px = t.pixelX(lonDeg);
+  if (t.global) px -= std::floor(px / w) * w;
+  const double py = t.pixelY(latDeg);
+  Cells16 c{px, py, world::BSplineTaps(px), world::BSplineTaps(py), {}};
+  double la[16], lo[16];
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      int cx = c.tx.first + i;
+      cx = t.global ? ((cx % w) + w) % w : std::clamp(cx, 0, w - 1);
+      const int cy = std::clamp(c.ty.first + j, 0, h - 1);
+      la[j * 4 + i] = t.latOf(cy + 0.5), lo[j * 4 + i] = t.lonOf(cx + 0.5);
+    }
+  r.sampleNearestBatch(la, lo, 16, c.v);
+  return c;
+}
+}  // namespace
+
 world::CoverageClass LandSea::coverageClass(double latDeg, double lonDeg) const {
-  const auto& t = mask_->transform();
   const int w = mask_->width(), h = mask_->height();
-  // Cells beyond a regional raster's edge repeat the edge (a texture's
-  // clamp to edge); longitude wraps for a global one; latitude clamps.
-  auto wrap = [&](int cx, int cy) {
-    cx = t.global ? ((cx % w) + w) % w : std::clamp(cx, 0, w - 1);
-    return std::pair{cx, std::clamp(cy, 0, h - 1)};
-  };
   if (!classes_.empty()) {
     // The hot path (every point near a coast). Once x is wrapped into
     // [0, w] the taps' columns lie in [-2, w + 2], so one add or subtract
@@ -94,22 +118,9 @@ world::CoverageClass LandSea::coverageClass(double latDeg, double lonDeg) const 
       return static_cast<Surface>(cls[std::size_t(cy) * std::size_t(w) + std::size_t(cx)] & kClassBits);
     });
   }
-  double px = t.pixelX(lonDeg);
-  if (t.global) px -= std::floor(px / w) * w;
-  const double py = t.pixelY(latDeg);
-  // A cached mask: the 16 cells in one batch (sorted by tile by the reader).
-  double la[16], lo[16];
-  float v[16];
-  const world::BSplineTaps tx(px), ty(py);
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) {
-      const auto [x, y] = wrap(tx.first + i, ty.first + j);
-      la[j * 4 + i] = t.latOf(y + 0.5), lo[j * 4 + i] = t.lonOf(x + 0.5);
-    }
-  mask_->sampleNearestBatch(la, lo, 16, v);
-  return world::coverageClassAt(px, py, [&](int cx, int cy) {
-    return classOfValue(v[(cy - ty.first) * 4 + (cx - tx.first)]);
-  });
+  // A cached mask: its 16 cells in one batch.
+  const Cells16 c = gatherCells(*mask_, latDeg, lonDeg);
+  return world::coverageClassAt(c.px, c.py, [&](int cx, int cy) { return classOfValue(c.at(cx, cy)); });
 }
 
 bool LandSea::poleClass(double latDeg, Surface& out) const {
@@ -137,24 +148,9 @@ world::CoverageClass LandSea::reliefCoverage(double latDeg, double lonDeg, float
     c.coverage = c.surface == Surface::Land ? 0.0f : 1.0f;
     return c;
   }
-  const auto& t = elevation_->transform();
-  const int w = elevation_->width(), h = elevation_->height();
-  double px = t.pixelX(lonDeg);
-  if (t.global) px -= std::floor(px / w) * w;
-  const double py = t.pixelY(latDeg);
-  double la[16], lo[16];
-  float v[16];
-  const world::BSplineTaps tx(px), ty(py);
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) {
-      int cx = tx.first + i;
-      cx = t.global ? ((cx % w) + w) % w : std::clamp(cx, 0, w - 1);
-      const int cy = std::clamp(ty.first + j, 0, h - 1);
-      la[j * 4 + i] = t.latOf(cy + 0.5), lo[j * 4 + i] = t.lonOf(cx + 0.5);
-    }
-  elevation_->sampleNearestBatch(la, lo, 16, v);
-  return world::coverageClassAt(px, py, [&](int cx, int cy) {
-    const float x = v[(cy - ty.first) * 4 + (cx - tx.first)];
+  const Cells16 c = gatherCells(*elevation_, latDeg, lonDeg);
+  return world::coverageClassAt(c.px, c.py, [&](int cx, int cy) {
+    const float x = c.at(cx, cy);
     return !std::isnan(x) && x < 0.0f ? Surface::Ocean : Surface::Land;
   });
 }

@@ -1,12 +1,12 @@
 #include "plugin/ocean/Ocean.h"
 
 #include "globe/geo/Ellipsoid.h"
+#include "globe/geo/Parallel.h"
 #include "globe/raster/World.h"
 #include "plugin/landsea/LayeredLandSea.h"
 #include "plugin/waves/TimeRange.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -101,8 +101,8 @@ void Snapshot::querySurface(const Points& p, const SurfaceOutputs& out) const {
   // Blocks as `geocean query` had them: large enough that the per-block
   // set-up vanishes, small enough to balance 2..N cores on 10 k points.
   constexpr std::size_t kGrain = 4096;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, p.count, kGrain),
-                    [&](const tbb::blocked_range<std::size_t>& r) { queryRange(p, r.begin(), r.end(), out); });
+  geo::parallelFor(tbb::blocked_range<std::size_t>(0, p.count, kGrain),
+                   [&](const tbb::blocked_range<std::size_t>& r) { queryRange(p, r.begin(), r.end(), out); });
 }
 
 void Snapshot::querySurfaceOnThisThread(const Points& p, const SurfaceOutputs& out) const {

@@ -1,11 +1,11 @@
 #include "plugin/pick/Picker.h"
 
 #include "globe/geo/Ellipsoid.h"
+#include "globe/geo/Parallel.h"
 #include "globe/terrain/TerrainScene.h"
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -233,7 +233,7 @@ PickResult Picker::pick(const PickRay& ray) const {
 void Picker::pickBatch(const PickRay* rays, std::size_t n, PickResult* out) const {
   const Impl& m = *impl_;
   const std::size_t packets = (n + 15) / 16;
-  tbb::parallel_for(std::size_t(0), packets, [&](std::size_t p) {
+  geo::parallelFor(std::size_t(0), packets, [&](std::size_t p) {
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];
     glm::dvec3 dUnit[16];

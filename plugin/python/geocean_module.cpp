@@ -12,6 +12,7 @@
 //  - bad input throws std::invalid_argument (Python ValueError) naming the
 //    argument, the index and the value.
 #include "globe/geo/Ellipsoid.h"
+#include "globe/geo/Parallel.h"
 #include "globe/raster/Raster.h"
 #include "plugin/ocean/Ocean.h"
 #include "plugin/pick/Picker.h"
@@ -22,7 +23,6 @@
 #include <pybind11/stl.h>
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <charconv>
 #include <chrono>
@@ -106,8 +106,8 @@ class NotReadyError : public std::runtime_error {
 // façade's own grain for querySurface).
 template <class F>
 void parallelBlocks(std::size_t n, F&& f) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
-                    [&](const tbb::blocked_range<std::size_t>& r) { f(r.begin(), r.end()); });
+  geocean::geo::parallelFor(tbb::blocked_range<std::size_t>(0, n, 4096),
+                            [&](const tbb::blocked_range<std::size_t>& r) { f(r.begin(), r.end()); });
 }
 
 class Core {

@@ -735,7 +735,15 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   // the camera, where precision is visible.
   const geo::Geodetic g = geo::fromEcef(cam.eyeEcef());
   const glm::dvec3 origin = geo::toEcef({g.latDeg, g.lonDeg, 0.0});
-  if (jacobianFoam() && !bare && glm::length(origin - foamCalibratedAt_) > kFoamCalibrationM)
+  // ocean.frag draws the Jacobian's whitecaps only where vFar < 0.75, a
+  // cell's footprint under 0.3433 of the longest octave (ocean.vert's
+  // smoothstep); no sea point is nearer than the eye's height less the
+  // waves' reach, so from higher up the threshold is never read and its
+  // calibration (0.7-1 s with Gerstner) is not made: a flight from orbit
+  // made it every frame, its nadir moving more than kFoamCalibrationM.
+  const bool crestsDrawn = octaveWavelengthM_.empty() ||
+                           (g.heightM - maxDisplacementM_) * cull.cellRadians < 0.35 * octaveWavelengthM_[0];
+  if (jacobianFoam() && !bare && crestsDrawn && glm::length(origin - foamCalibratedAt_) > kFoamCalibrationM)
     calibrateJacobianFoam(g.latDeg, g.lonDeg);
   waves_->gpuPatch(origin, light.timeS, patch_);
   const int modelOctaves = int(patch_.octaves.size());
@@ -957,8 +965,9 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   GLint hostFbo = 0, viewport[4] = {0, 0, 0, 0};
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &hostFbo);
   glGetIntegerv(GL_VIEWPORT, viewport);
-  // Deferred costs a frame ~10-15 ms more (G-buffer clear, depth copies,
-  // the tile read-back; 1280 x 720, llvmpipe) and saves 5-25 % of the
+  // Deferred has a fixed cost a frame (G-buffer clear and writes, the tile
+  // read-back; 10-15 ms at 1280 x 720 on llvmpipe with 7 targets and two
+  // depth copies, less since) and saved 5-25 % of the
   // ocean where its per-pixel shading is dear: where some noise octave is
   // drawn per pixel (the nadir's pixel under half the longest octave).
   // Above that (~40 km here) the sea's pixels are roughness alone
@@ -969,11 +978,11 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
                         groups.sharp + groups.smooth + groups.open > 0 && gBufferFor(hostFbo, viewport);
   lastDeferred_ = deferred;
   if (deferred) {
-    // The grid writes the G-buffer against a copy of the host's depth, which
-    // then goes back with the sea's in it; one pass over the tiles with sea shades.
+    // The grid writes the G-buffer against the host's own depth (attached
+    // to the G-buffer's framebuffer by gBufferFor for this pass: no copies),
+    // one pass over the tiles with sea shades. Targets and tiles are in the
+    // framebuffer's pixels; the viewport stays the host's.
     const GLint w = viewport[2], h = viewport[3];
-    glBlitNamedFramebuffer(GLuint(hostFbo), gFbo_, viewport[0], viewport[1], viewport[0] + w, viewport[1] + h, 0, 0, w,
-                           h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearNamedFramebufferfv(gFbo_, GL_COLOR, 0, zero);  // alpha 0: no sea (the others are read only under alpha > 0)
     const std::uint8_t noTile = 0;
@@ -987,7 +996,6 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glGetIntegeri_v(GL_IMAGE_BINDING_ACCESS, 7, &hostAccess);
     glBindImageTexture(7, gTiles_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8UI);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gFbo_);
-    glViewport(0, 0, w, h);
     glDisable(GL_BLEND);
     drawGroup(pixel.gSharp, groups.sharp, true);
     drawGroup(pixel.gSmooth, groups.smooth, true);
@@ -996,7 +1004,8 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
                        hostImage[4] ? GLenum(hostImage[4]) : GL_R8UI);
     // The tiles with sea, as rectangles (runs along each row of tiles).
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-    const int tw = (w + kGTilePx - 1) / kGTilePx, th = (h + kGTilePx - 1) / kGTilePx;
+    const int right = viewport[0] + w, top = viewport[1] + h;
+    const int tw = (right + kGTilePx - 1) / kGTilePx, th = (top + kGTilePx - 1) / kGTilePx;
     gTileMask_.resize(std::size_t(tw) * std::size_t(th));
     GLint packAlignment = 4;
     glGetIntegerv(GL_PACK_ALIGNMENT, &packAlignment);
@@ -1012,16 +1021,14 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
         }
         const int x0 = tx;
         while (tx < tw && gTileMask_[std::size_t(ty) * std::size_t(tw) + std::size_t(tx)]) ++tx;
-        const float ax = float(x0 * kGTilePx), bx = float(std::min(tx * kGTilePx, w));
-        const float ay = float(ty * kGTilePx), by = float(std::min((ty + 1) * kGTilePx, h));
+        const float ax = float(std::max(x0 * kGTilePx, viewport[0])), bx = float(std::min(tx * kGTilePx, right));
+        const float ay = float(std::max(ty * kGTilePx, viewport[1])), by = float(std::min((ty + 1) * kGTilePx, top));
         for (float v : {ax, ay, bx, ay, bx, by, ax, ay, bx, by, ax, by}) gRects_.push_back(v);
       }
-    glBlitNamedFramebuffer(gFbo_, GLuint(hostFbo), 0, 0, w, h, viewport[0], viewport[1], viewport[0] + w,
-                           viewport[1] + h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    glNamedFramebufferTexture(gFbo_, GL_DEPTH_ATTACHMENT, 0, 0);  // the host's depth is not kept (it may go)
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(hostFbo));
-    glViewport(viewport[0], viewport[1], w, h);
     glEnable(GL_BLEND);
-    // Units 15-21: the host's textures there are put back after.
+    // Units 15-17: the host's textures there are put back after.
     GLint hostTex[kGTargets] = {};
     GLint active = 0;
     glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
@@ -1115,8 +1122,7 @@ const OceanRenderer::PixelPrograms& OceanRenderer::pixelPrograms(bool wakes, boo
 void OceanRenderer::releaseGBuffer() {
   if (gFbo_) glDeleteFramebuffers(1, &gFbo_);
   glDeleteTextures(kGTargets, gTex_);
-  const GLuint gMore[] = {gDepth_, gTiles_};
-  glDeleteTextures(2, gMore);
+  glDeleteTextures(1, &gTiles_);
 }
 
 bool OceanRenderer::gBufferFor(GLint hostFbo, const GLint* vp) {
@@ -1125,7 +1131,7 @@ bool OceanRenderer::gBufferFor(GLint hostFbo, const GLint* vp) {
   glGetBooleanv(GL_DEPTH_WRITEMASK, &depthWrites);
   if (!depthWrites) return false;
   const GLuint fbo = GLuint(hostFbo);
-  GLint type = GL_NONE, name = 0, format = 0, samples = 0;
+  GLint type = GL_NONE, name = 0, format = 0, samples = 0, hostLevel = 0;
   glGetNamedFramebufferAttachmentParameteriv(fbo, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
   if (type != GL_RENDERBUFFER && type != GL_TEXTURE) return false;
   glGetNamedFramebufferAttachmentParameteriv(fbo, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
@@ -1137,11 +1143,26 @@ bool OceanRenderer::gBufferFor(GLint hostFbo, const GLint* vp) {
     glGetNamedFramebufferAttachmentParameteriv(fbo, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, &level);
     glGetNamedFramebufferAttachmentParameteriv(fbo, GL_DEPTH_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_LAYERED, &layered);
     if (layered) return false;
+    GLint target = GL_NONE;
+    glGetTextureParameteriv(GLuint(name), GL_TEXTURE_TARGET, &target);
+    if (target != GL_TEXTURE_2D) return false;
     glGetTextureLevelParameteriv(GLuint(name), level, GL_TEXTURE_INTERNAL_FORMAT, &format);
     glGetTextureLevelParameteriv(GLuint(name), level, GL_TEXTURE_SAMPLES, &samples);
+    hostLevel = level;
   }
   if (format != GL_DEPTH_COMPONENT32F || samples > 1) return false;
-  if (gFbo_ && gWidth_ == vp[2] && gHeight_ == vp[3]) return true;
+  // The targets cover the framebuffer's pixels up to the viewport's far corner.
+  const int width = vp[0] + vp[2], height = vp[1] + vp[3];
+  const auto attachHostDepth = [&]() {
+    if (type == GL_RENDERBUFFER)
+      glNamedFramebufferRenderbuffer(gFbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, GLuint(name));
+    else
+      glNamedFramebufferTexture(gFbo_, GL_DEPTH_ATTACHMENT, GLuint(name), hostLevel);
+    if (glCheckNamedFramebufferStatus(gFbo_, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) return true;
+    glNamedFramebufferTexture(gFbo_, GL_DEPTH_ATTACHMENT, 0, 0);
+    return false;
+  };
+  if (gFbo_ && gWidth_ == width && gHeight_ == height) return attachHostDepth();
   releaseGBuffer();
   if (!gVao_) {
     glCreateVertexArrays(1, &gVao_);
@@ -1152,21 +1173,18 @@ bool OceanRenderer::gBufferFor(GLint hostFbo, const GLint* vp) {
     glVertexArrayVertexBuffer(gVao_, 0, gVbo_, 0, 2 * sizeof(float));
   }
   glCreateTextures(GL_TEXTURE_2D, 1, &gTiles_);
-  glTextureStorage2D(gTiles_, 1, GL_R8UI, (vp[2] + kGTilePx - 1) / kGTilePx, (vp[3] + kGTilePx - 1) / kGTilePx);
+  glTextureStorage2D(gTiles_, 1, GL_R8UI, (width + kGTilePx - 1) / kGTilePx, (height + kGTilePx - 1) / kGTilePx);
   glCreateFramebuffers(1, &gFbo_);
   glCreateTextures(GL_TEXTURE_2D, kGTargets, gTex_);
   GLenum bufs[kGTargets];
   for (int i = 0; i < kGTargets; ++i) {
-    glTextureStorage2D(gTex_[i], 1, GL_RGBA32F, vp[2], vp[3]);
+    glTextureStorage2D(gTex_[i], 1, GL_RGBA32F, width, height);
     glNamedFramebufferTexture(gFbo_, GLenum(GL_COLOR_ATTACHMENT0 + i), gTex_[i], 0);
     bufs[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
   }
   glNamedFramebufferDrawBuffers(gFbo_, kGTargets, bufs);
-  glCreateTextures(GL_TEXTURE_2D, 1, &gDepth_);
-  glTextureStorage2D(gDepth_, 1, GL_DEPTH_COMPONENT32F, vp[2], vp[3]);
-  glNamedFramebufferTexture(gFbo_, GL_DEPTH_ATTACHMENT, gDepth_, 0);
-  gWidth_ = vp[2], gHeight_ = vp[3];
-  if (glCheckNamedFramebufferStatus(gFbo_, GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE) return true;
+  gWidth_ = width, gHeight_ = height;
+  if (attachHostDepth()) return true;
   glDeleteFramebuffers(1, &gFbo_);
   gFbo_ = 0, gWidth_ = gHeight_ = 0;
   return false;

@@ -296,15 +296,17 @@ class OceanRenderer {
   PixelPrograms pixel_[4];
   std::vector<std::string> sharpDefines_, smoothDefines_, openDefines_;
   const PixelPrograms& pixelPrograms(bool wakes, bool reflection);
-  // The G-buffer for a host target and viewport, made or resized; false
-  // (draw forward) for a target whose depth it cannot copy: the default
-  // framebuffer, a depth other than single-sample DEPTH_COMPONENT32F, the
-  // scissor test on or depth writes off.
+  // The G-buffer for a host target and viewport, made or resized, with the
+  // host's depth attached (the draw detaches it after the grid's pass);
+  // false (draw forward) for a target whose depth it cannot attach: the
+  // default framebuffer, a depth other than a single-sample
+  // DEPTH_COMPONENT32F renderbuffer or 2D texture, the scissor test on or
+  // depth writes off.
   bool gBufferFor(GLint hostFbo, const GLint* viewport);
   void releaseGBuffer();  // its framebuffer and textures (the tile VAO/VBO stay)
-  static constexpr int kGTargets = 7;  // ocean.frag's outG0..outG6
+  static constexpr int kGTargets = 3;   // ocean.frag's outG0..outG2
   static constexpr int kGTilePx = 8;    // ocean.frag's uGTiles
-  GLuint gFbo_ = 0, gTex_[kGTargets] = {}, gDepth_ = 0, gTiles_ = 0, gVao_ = 0, gVbo_ = 0;
+  GLuint gFbo_ = 0, gTex_[kGTargets] = {}, gTiles_ = 0, gVao_ = 0, gVbo_ = 0;
   int gWidth_ = 0, gHeight_ = 0;
   bool lastDeferred_ = false;
   std::size_t gVboBytes_ = 0;

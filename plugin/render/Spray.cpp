@@ -4,7 +4,9 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace geocean::ocean_render {
 
@@ -24,13 +26,17 @@ void Spray::draw(const camera::Camera& cam, const glm::dvec3& originEcef, double
   auto perDeg = [](double lat, double lon, double dLat, double dLon) {
     const glm::dvec3 a = geo::toEcef({lat - 0.5 * dLat, lon - 0.5 * dLon, 0.0});
     const glm::dvec3 b = geo::toEcef({lat + 0.5 * dLat, lon + 0.5 * dLon, 0.0});
-    return std::pair{glm::length(b - a) / (dLat + dLon), glm::normalize(b - a)};
+    return glm::length(b - a) / (dLat + dLon);
   };
   const double latRef = std::round(latDeg);
-  const double stepLon = kSpacingM / perDeg(latRef, 0.0, 0.0, 1e-3).first;
-  const double stepLat = kSpacingM / perDeg(latRef, 0.0, 1e-3, 0.0).first;
-  const auto [mLon, east] = perDeg(latDeg, lonDeg, 0.0, 1e-3);
-  const auto [mLat, north] = perDeg(latDeg, lonDeg, 1e-3, 0.0);
+  // A whole number of sites round the parallel: the lattice (and spray.vert's
+  // seed, its index modulo lonSites) is the same on both sides of 180 deg.
+  const int lonSites = int(std::max(1L, std::lround(360.0 * perDeg(latRef, 0.0, 0.0, 1e-3) / kSpacingM)));
+  const double stepLon = 360.0 / lonSites;
+  const double stepLat = kSpacingM / perDeg(latRef, 0.0, 1e-3, 0.0);
+  const double mLon = perDeg(latDeg, lonDeg, 0.0, 1e-3), mLat = perDeg(latDeg, lonDeg, 1e-3, 0.0);
+  const geo::EnuFrame enu = geo::enuFrame({latDeg, lonDeg, 0.0});
+  const glm::dvec3 east = enu.east, north = enu.north;
   const double uLon = lonDeg / stepLon, uLat = latDeg / stepLat;
   const double iLon = std::floor(uLon), iLat = std::floor(uLat);
   program_.use();
@@ -38,19 +44,27 @@ void Spray::draw(const camera::Camera& cam, const glm::dvec3& originEcef, double
   glUniformMatrix4fv(program_.uniform("uViewProj"), 1, GL_FALSE, &cam.gpu().viewProj[0][0]);
   glUniform3fv(program_.uniform("uEyeMinusOrigin"), 1, &eyeMinusO[0]);
   glUniform1i(program_.uniform("uWaveCount"), waveCount);
-  glUniform4fv(program_.uniform("uElevationGeo"), 1, &elevationGeo[0]);
   glUniform3fv(program_.uniform("uSunDir"), 1, &sun[0]);
   // 3600 s is a whole number of spray.vert's periods (1 s).
   glUniform1f(program_.uniform("uTimeS"), float(std::fmod(timeS, 3600.0)));
   glUniform1i(program_.uniform("uSprayN"), kSites);
-  glUniform2i(program_.uniform("uSprayBase"), int(iLon) - kSites / 2, int(iLat) - kSites / 2);
+  glUniform1i(program_.uniform("uSprayLonSites"), lonSites);
+  glUniform1f(program_.uniform("uEyeAltM"), float(geo::fromEcef(cam.eyeEcef()).heightM));
+  // Reduced here: GLSL's % is undefined for negative operands.
+  const long long baseLon = (static_cast<long long>(iLon) - kSites / 2) % lonSites;
+  glUniform2i(program_.uniform("uSprayBase"), int(baseLon < 0 ? baseLon + lonSites : baseLon), int(iLat) - kSites / 2);
   glUniform2f(program_.uniform("uSprayFrac"), float(uLon - iLon), float(uLat - iLat));
   glUniform2f(program_.uniform("uSprayCellM"), float(stepLon * mLon), float(stepLat * mLat));
-  glUniform2f(program_.uniform("uSprayCellDeg"), float(stepLon), float(stepLat));
-  glUniform2f(program_.uniform("uOriginLonLat"), float(lonDeg), float(latDeg));
+  // The nadir's elevation texture coordinates in double, its longitude
+  // within 180 deg of the raster's centre (raster::lonNear's rule; the
+  // texture repeats in longitude).
+  const glm::dvec4 geoD(elevationGeo);
+  const double lonR = lonDeg + 360.0 * std::round((geoD.x + 0.5 * geoD.z - lonDeg) / 360.0);
+  glUniform2f(program_.uniform("uSprayCellUv"), float(stepLon / geoD.z), float(stepLat / geoD.w));
+  glUniform2f(program_.uniform("uOriginUv"), float((lonR - geoD.x) / geoD.z), float((latDeg - geoD.y) / geoD.w));
   glUniform3fv(program_.uniform("uEast"), 1, &eastF[0]);
   glUniform3fv(program_.uniform("uNorth"), 1, &northF[0]);
-  const double pxPerRad = cam.heightPx() / (2.0 * std::tan(0.5 * cam.vfovDeg() * 3.14159265358979 / 180.0));
+  const double pxPerRad = cam.heightPx() / (2.0 * std::tan(0.5 * cam.vfovDeg() * std::numbers::pi / 180.0));
   glUniform1f(program_.uniform("uPxPerRad"), float(pxPerRad));
   // Over the sea, blended, behind what is nearer, writing no depth and
   // only the colour attachment (the host's data target keeps the sea's).

@@ -1,13 +1,12 @@
 #include "plugin/waves/CoastField.h"
 
+#include "globe/geo/Parallel.h"
 #include "plugin/waves/WaveField.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
-
-#include <tbb/parallel_for.h>
 
 namespace geocean::waves {
 
@@ -539,7 +538,7 @@ std::vector<glm::dvec4> CoastField::islandTable(const IslandInputs& in, std::vec
   std::vector<double>& shadow = shadowOut ? *shadowOut : shadowLocal;
   shadow.assign(out.size(), 0.0);
   if (n == 0 || in.components == 0) return out;
-  tbb::parallel_for(0, n, [&](int j) {
+  geo::parallelFor(0, n, [&](int j) {
     kd::Kernel k{};
     k.wvIslandElev = in.elevation.data();
     k.wvIslandLandSat = in.landSat.data();
@@ -654,7 +653,7 @@ OuterPhase OuterPhase::build(const WaveField& field, double latDeg, double lonDe
   auto x = [&](int i) { return (i - half) * kCellM; };
   std::vector<double> depth(std::size_t(n) * n), elevation(depth.size());
   // Rows on all cores: depthAt is the façade's query (thread-safe).
-  tbb::parallel_for(0, n, [&](int j) {
+  geo::parallelFor(0, n, [&](int j) {
     for (int i = 0; i < n; ++i) {
       const double h = depthAt(x(i), x(j));
       depth[std::size_t(j) * n + i] = std::isfinite(h) ? std::max(h, kMinDepthM) : kMinDepthM;
@@ -668,7 +667,7 @@ OuterPhase OuterPhase::build(const WaveField& field, double latDeg, double lonDe
   const Grid grid{n, kCellM, &depth, &elevation, true};
   op.reversed_.assign(comps.size(), 0);
   // Components in parallel: each solve is independent (its own buffers).
-  tbb::parallel_for(std::size_t(0), comps.size(), [&](std::size_t c) {
+  geo::parallelFor(std::size_t(0), comps.size(), [&](std::size_t c) {
     const WaveField::Component& w = comps[c];
     glm::dvec3 g = radial * glm::dot(w.source, radial) - w.source;
     if (glm::length(g) < 1e-12) return;  // at its source: no travel (the fine field skips it too)

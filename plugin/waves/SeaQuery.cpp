@@ -1,7 +1,8 @@
 #include "plugin/waves/SeaQuery.h"
 
+#include "globe/geo/Parallel.h"
+
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -80,7 +81,7 @@ void SeaQuery::queryClassified(const double* latDeg, const double* lonDeg, const
 
 void SeaQuery::queryBatch(const double* latDeg, const double* lonDeg, const double* tS, bool timesPerPoint,
                           std::size_t n, SeaQueryResult* out) const {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 512), [&](const tbb::blocked_range<std::size_t>& r) {
+  geo::parallelFor(tbb::blocked_range<std::size_t>(0, n, 512), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<ocean::Surface> cls(r.size(), ocean::Surface::Ocean);
     if (landSea_) landSea_->classifyBatch(latDeg + r.begin(), lonDeg + r.begin(), r.size(), cls.data());
     queryClassified(latDeg + r.begin(), lonDeg + r.begin(), timesPerPoint ? tS + r.begin() : tS, timesPerPoint,

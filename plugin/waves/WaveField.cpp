@@ -744,24 +744,16 @@ LocalSeaState WaveField::seaStateAt(double latDeg, double lonDeg, double depthM)
       const Component& c = components_[i];
       const kd::WvWave w = waveAt(c, radial, 0.0);
       const glm::dvec4 cf = co.cell.z > 0 ? k.wv_coastSample(co, int(i), glm::dvec3(0.0)) : glm::dvec4(0.0);
-      // wv_gerstnerCoast's shoaling, refraction, taper and Miche cap at d = 0.
-      double ks = 1.0, th = 1.0, kP = c.kRef;
-      if (c.omega * c.omega / kG * depth < WV_DEEP_KH) {
-        const double kl = k.wv_waveNumber(c.omega, depth);
-        th = std::tanh(kl * depth);
-        const double n = 0.5 * (1.0 + kl * depth * (1.0 - th * th) / th);
-        ks = std::sqrt(kG * kl / (2.0 * c.omega * c.omega * n));
-        if (co.cell.z > 0) kP = kl;
-      }
-      double az = c.amplitudeM * ks * (1.0 + cf.w) * glm::smoothstep(WV_TAPER_RAD, 2.0 * WV_TAPER_RAD, w.dirO.w);
-      if (co.cell.z > 0) az = std::min(az, 0.071 * kTwoPi / kP * th);
+      // wv_gerstnerCoast's shoaling, refraction, taper and Miche cap at d = 0
+      // (the arc from the source over |P| is sin(thetaO) there).
+      const double az = k.wv_coastAmplitude(w, w.dirO.w, cf.w, depth, co.cell.z > 0).x;
       m0 += 0.5 * az * az;
       sumAz += az;
       glm::dvec3 dir = glm::dvec3(w.dirO);
       dir = dir * (1.0 - cf.z) + glm::cross(loc.f.u, dir) * cf.y;
       travel += (0.5 * az * az) * dir;
     }
-    const double sB = std::min(1.0, 0.39 * depth / std::max(sumAz, 1e-30));  // wv_gerstner's breaking cap
+    const double sB = k.wv_coastBreaking(depth, sumAz, 0.0, 0.0).x;  // wv_gerstner's breaking cap
     out.hsM = 4.0 * std::sqrt(m0) * sB;
   } else {
     out.hsM = hsM_;

@@ -67,6 +67,16 @@ TEST(HudPanel, ClicksChangeTheLightAtOnceAndTheSeaStateWhenTheSliderIsLetGo) {
   EXPECT_FALSE(press.sea || release.sea);
   EXPECT_TRUE(p.state.refraction);
 
+  // Shadows: their own checkbox under refraction, a light change alone.
+  ASSERT_TRUE(p.state.shadows);
+  EXPECT_GT(lay.shadows.y0, lay.refraction.y1 - 1.0f);
+  auto [sPress, sRelease] = p.click(lay.shadows);
+  EXPECT_FALSE(p.state.shadows) << "a click on the checkbox turns shadows off";
+  EXPECT_TRUE(sPress.light || sRelease.light);
+  EXPECT_FALSE(sPress.sea || sRelease.sea);
+  EXPECT_TRUE(p.state.refraction);
+  EXPECT_FALSE(p.state.reflections);
+
   // The wind slider at 3/4 of its width: 30 m/s x 3/4, within the grab's
   // half width (ImGui's grab is a few pixels of a ~200 px track: 1 m/s).
   const float windBefore = p.state.windMps;
@@ -127,7 +137,7 @@ TEST(HudPanel, EachRasterLayerHasACheckboxThatHidesItAlone) {
   const PanelLayout lay = p.hud->panelLayout();
   ASSERT_EQ(lay.layers.size(), 3u);
   for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_GT(lay.layers[i].y0, lay.refraction.y1) << "listed below the light's controls";
+    EXPECT_GT(lay.layers[i].y0, lay.shadows.y1) << "listed below the light's controls";
     EXPECT_LT(lay.layers[i].y1, lay.window.y1) << "inside the panel";
     if (i) {
       EXPECT_GT(lay.layers[i].y0, lay.layers[i - 1].y1 - 1.0f) << "one under the other";

@@ -7,6 +7,7 @@
 // the same view without the field is the deep-water phase, which the query
 // with the field does not match (so the comparison can fail). The frames
 // are written next to the test's temp files for looking at.
+#include "CoastScene.h"
 #include "RenderFixture.h"
 
 #include "globe/geo/Ellipsoid.h"
@@ -173,7 +174,6 @@ TEST(OceanCoast, DrawnSurfaceIsTheQueryOverAShelf) {
 namespace {
 constexpr int kBw = 400, kBh = 400;
 const raster::GeoTransform kBeachPlace{-0.02, 0.32, 0.0001, -0.0001, false};
-double beachLon(int x) { return -0.02 + (x + 0.5) * 0.0001; }
 constexpr double kBeachShoreLon = 0.005;
 int foamPixels(const gl::Image& img) {
   int n = 0;
@@ -184,74 +184,29 @@ int foamPixels(const gl::Image& img) {
   return n;
 }
 
-// A synthetic coast (kBw x kBh rasters at `place`) as the host and the ocean
-// draw it: its relief and water, sand for imagery (the default's there is
-// the Gulf of Guinea's deep blue), and the ocean with and without the
-// snapshot's coast field.
-struct SandCoast {
-  std::shared_ptr<const world::WorldGrids> grids;
-  std::shared_ptr<const WorldTextures> world;
-  std::shared_ptr<ocean_render::OceanRenderer> withCoast, deepOnly;
-};
-SandCoast sandCoast(const raster::Raster& elevation, const raster::Raster& mask, const raster::GeoTransform& place,
-                    const ocean::Snapshot& snap) {
-  SandCoast c;
-  c.grids = std::make_shared<const world::WorldGrids>(world::layerOf(elevation, 0), world::waterLayerOf(mask));
-  std::vector<float> sand(std::size_t(kBw) * kBh * 3);
-  for (std::size_t i = 0; i < sand.size(); i += 3) sand[i] = 194.0f, sand[i + 1] = 178.0f, sand[i + 2] = 128.0f;
-  world::WorldData wd = world::loadDefaultWorld();
-  wd.imagery = world::layerOf(*raster::Raster::fromPixels(sand, kBw, kBh, 3, place, std::nullopt, "sand"));
-  wd.elevation = world::layerOf(elevation, 0);
-  wd.water = world::waterLayerOf(mask);
-  c.world = std::make_shared<const WorldTextures>(wd);
-  ocean_render::OceanOptions oo;
-  oo.model = waves::Model::Gerstner;
-  oo.sea = snap.seaState;
-  oo.coast = snap.waves->coastFieldShared();
-  c.withCoast = std::make_shared<ocean_render::OceanRenderer>(c.grids, snap.landSea, oo);
-  oo.coast = nullptr;
-  c.deepOnly = std::make_shared<ocean_render::OceanRenderer>(c.grids, snap.landSea, oo);
-  return c;
-}
 }  // namespace
 
 TEST(OceanCoast, BreakersOnAPlungingBeachAt30mAnd300m) {
   session();
-  std::vector<float> elev(std::size_t(kBw) * kBh), land(std::size_t(kBw) * kBh);
-  for (int y = 0; y < kBh; ++y)
-    for (int x = 0; x < kBw; ++x) {
-      const double eastOfShoreM = (beachLon(x) - kBeachShoreLon) * 111320.0;
-      elev[std::size_t(y) * kBw + x] = float(std::max(-200.0, 0.1 * eastOfShoreM));
-      land[std::size_t(y) * kBw + x] = eastOfShoreM > 0.0 ? 1.0f : 0.0f;
-    }
-  const auto elevation = raster::Raster::fromPixels(elev, kBw, kBh, 1, kBeachPlace, std::nullopt, "beach");
-  const auto mask = raster::Raster::fromPixels(land, kBw, kBh, 1, kBeachPlace, std::nullopt, "beach_mask");
-  ocean::Ocean o;
-  o.setRasters(mask, elevation);
-  waves::SeaState sea;
-  sea.windSpeedMps = 10.0;
-  sea.windFromDeg = 270.0;  // onto the shore
-  sea.anchorLatDeg = 0.3;
-  o.setSeaState(waves::Model::Gerstner, sea);
   waves::CoastField::Region r;  // 1.5 km of 5 m cells, the shoreline 557 m east of its centre
   r.latDeg = 0.3;
   r.lonDeg = 0.0;
   r.cellM = 5.0;
   r.nodes = 301;
   r.islandRadiusM = 50.0;  // a straight shore casts no shadow
-  o.setCoastRegion(r);
-  const auto snap = o.current();
+  // U10 10 m/s onto the shore (CoastScene.h), sand imagery.
+  const auto scene = makeCoastScene(straightBeach(kBw, kBh, kBeachPlace, kBeachShoreLon, 0.1), r);
+  const auto& snap = scene->snap;
   ASSERT_NE(snap->waves->coastField(), nullptr);
   const waves::CoastField::Beach beach = snap->waves->coastField()->beachAt(450.0, 0.0);
   std::printf("beach 107 m off the shore: tan(beta) %.3f, Iribarren %.2f (%s)\n", beach.tanBeta, beach.iribarren,
               waves::CoastField::breakerName(beach.type));
   ASSERT_EQ(beach.type, waves::CoastField::Breaker::Plunging);
 
-  const SandCoast beachCoast = sandCoast(*elevation, *mask, kBeachPlace, *snap);
-  const auto& grids = beachCoast.grids;
-  const auto& beachWorld = beachCoast.world;
-  const auto& withCoast = beachCoast.withCoast;
-  const auto& deepOnly = beachCoast.deepOnly;
+  const auto& grids = scene->grids;
+  const auto& beachWorld = scene->world;
+  const auto withCoast = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, scene->options());
+  const auto deepOnly = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, scene->options(false));
   struct View {
     const char* name;
     double lonDeg, altM, headingDeg, pitchDeg;
@@ -272,10 +227,7 @@ TEST(OceanCoast, BreakersOnAPlungingBeachAt30mAnd300m) {
   // Drawn = queried in the surf zone too (curl and collapse in both): 10 m
   // above 4 m of water looking steeply down, every wave drawn (cellPx 2, as
   // DrawnSurfaceIsTheQueryOverAShelf and its 1 cm bound).
-  ocean_render::OceanOptions oo;
-  oo.model = waves::Model::Gerstner;
-  oo.sea = snap->seaState;
-  oo.coast = snap->waves->coastFieldShared();
+  ocean_render::OceanOptions oo = scene->options();
   oo.cellPx = 2.0;
   auto fine = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
   ViewPose p;
@@ -390,27 +342,20 @@ TEST(OceanCoast, ARoundIslandShelterIsDrawnAt30mAnd300m) {
     }
   const auto elevation = raster::Raster::fromPixels(elev, kBw, kBh, 1, kIslandPlace, std::nullopt, "island");
   const auto mask = raster::Raster::fromPixels(land, kBw, kBh, 1, kIslandPlace, std::nullopt, "island_mask");
-  ocean::Ocean o;
-  o.setRasters(mask, elevation);
-  waves::SeaState sea;
-  sea.windSpeedMps = 10.0;
-  sea.windFromDeg = 270.0;  // waves travel east
-  sea.anchorLatDeg = kIslandLat;
-  o.setSeaState(waves::Model::Gerstner, sea);
   waves::CoastField::Region r;  // 1.6 km of 10 m cells round the island; occlusion reach 640 m (64 nodes)
   r.latDeg = kIslandLat;
   r.lonDeg = kIslandLon;
   r.cellM = 10.0;
   r.nodes = 161;
-  o.setCoastRegion(r);
-  const auto snap = o.current();
+  // U10 10 m/s, waves travel east (CoastScene.h), sand imagery.
+  const auto scene = makeCoastScene({elevation, mask}, r);
+  const auto& snap = scene->snap;
   const auto cf = snap->waves->coastField();
   ASSERT_NE(cf, nullptr);
 
-  const SandCoast islandCoast = sandCoast(*elevation, *mask, kIslandPlace, *snap);
-  const auto& islandWorld = islandCoast.world;
-  const auto& withCoast = islandCoast.withCoast;
-  const auto& deepOnly = islandCoast.deepOnly;
+  const auto& islandWorld = scene->world;
+  const auto withCoast = std::make_shared<ocean_render::OceanRenderer>(scene->grids, snap->landSea, scene->options());
+  const auto deepOnly = std::make_shared<ocean_render::OceanRenderer>(scene->grids, snap->landSea, scene->options(false));
 
   // From the north, looking south across the island: up-wave (west) on the
   // right, the lee on the left. 30 m: 350 m off its centre; 300 m: 900 m off.

@@ -257,12 +257,23 @@ TEST(Ocean, OpenSeaGoldenMatrixFrom2mTo30km) {
 
 // The noise sea's deferred shading (OceanOptions::deferred: the grid
 // writes a G-buffer, one pass over the tiles with sea shades it) draws the
-// forward pass's picture bit for bit: the same values and arithmetic, moved
-// (llvmpipe shaded the grid's small triangles ~2 lanes a pixel). At 2 m,
-// 30 m and 3 km, a coast in view at 300 m (the per-pixel coverage's cells
-// in the G-buffer), and the planar reflection drawn; at 1000 km no octave
-// is drawn per pixel, and the forward pass draws.
-TEST(Ocean, DeferredShadingDrawsTheForwardPictureBitForBit) {
+// forward pass's picture (llvmpipe shaded the grid's small triangles ~2
+// lanes a pixel). The G-buffer holds what varies within a cell (position,
+// normal, heights, the cell along the view, footprint, coverage); the
+// shading pass makes the terms ocean.vert makes per vertex (up, sun, haze,
+// far) at the pixel by the same formulas, so pixels move only where those
+// curve over a cell: near the horizon, where a cell spans kilometres along
+// the view (the haze exp(-3.6 t), t 0.17 -> 0.22 over one: ~2e-3 of the
+// value, 1-3 of 255). Measured (256 px views, of 65,536): 16 changed at
+// 2 m, 1,409 at 30 m, 105 at 3 km, 1,792 at 300 m, all by at most 3 (with
+// those terms made per pixel in the forward pass too, 0-1 changed). So:
+// at most 4 of 255 anywhere, under 5 % of the pixels, and under 0.2 % at
+// 2 m, where the view's cells are centimetres (a wrong normal or cell in
+// the G-buffer moves most of the sea). At 2 m, 30 m and
+// 3 km, a coast in view at 300 m (the per-pixel coverage's cells in the
+// G-buffer), and the planar reflection drawn; at 1000 km no octave is drawn
+// per pixel and the forward pass draws: bit for bit there.
+TEST(Ocean, DeferredShadingDrawsTheForwardPicture) {
   OceanGuard guard;
   ocean_render::OceanOptions on, off;
   off.deferred = false;
@@ -270,12 +281,13 @@ TEST(Ocean, DeferredShadingDrawsTheForwardPictureBitForBit) {
   struct View {
     ViewPose pose;
     bool expectDeferred;
+    double maxChanged;  // share of the pixels
   };
-  const View views[] = {{seaPose(30.0, -40.0, 2.0, 90.0, -8.0), true},
-                        {seaPose(30.0, -40.0, 30.0, 0.0, -20.0), true},
-                        {seaPose(30.0, -40.0, 3000.0, 0.0, -45.0), true},
-                        {seaPose(36.0, -5.9, 300.0, 90.0, -10.0), true},  // Strait of Gibraltar, the coast in view
-                        {seaPose(30.0, -40.0, 1.0e6, 0.0, -90.0), false}};
+  const View views[] = {{seaPose(30.0, -40.0, 2.0, 90.0, -8.0), true, 0.002},
+                        {seaPose(30.0, -40.0, 30.0, 0.0, -20.0), true, 0.05},
+                        {seaPose(30.0, -40.0, 3000.0, 0.0, -45.0), true, 0.05},
+                        {seaPose(36.0, -5.9, 300.0, 90.0, -10.0), true, 0.05},  // Strait of Gibraltar, the coast in view
+                        {seaPose(30.0, -40.0, 1.0e6, 0.0, -90.0), false, 0.0}};
   for (const View& v : views) {
     useOcean(deferred);
     const Image a = renderAt(v.pose, 20.0, 135.0, 30.0);
@@ -284,7 +296,12 @@ TEST(Ocean, DeferredShadingDrawsTheForwardPictureBitForBit) {
     const Image b = renderAt(v.pose, 20.0, 135.0, 30.0);
     EXPECT_FALSE(forward->lastDrawDeferred());
     const ImageDiff d = compare(a, b);
-    EXPECT_EQ(d.max, 0) << "at " << v.pose.altM << " m: mean " << d.mean;
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < a.rgba.size(); i += 4)
+      changed += a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1] || a.rgba[i + 2] != b.rgba[i + 2];
+    const double share = double(changed) / double(a.rgba.size() / 4);
+    EXPECT_LE(d.max, v.expectDeferred ? 4 : 0) << "at " << v.pose.altM << " m: mean " << d.mean;
+    EXPECT_LE(share, v.maxChanged) << "at " << v.pose.altM << " m: " << changed << " pixels changed";
   }
 }
 

@@ -285,6 +285,55 @@ TEST(SeaOptics, GerstnerWhitecapCoverFollowsMonahan) {
 }
 TEST(SeaOptics, FftWhitecapCoverFollowsMonahan) { expectMonahanCover(waves::Model::Fft, "fft", kJacobianViews); }
 
+// The Jacobian foam's threshold is calibrated (0.7-1 s for Gerstner) only
+// where its whitecaps are drawn: ocean.frag reads it where vFar < 0.75, and
+// the renderer skips the calibration where the eye is too high for any
+// cell to be that fine. Found by bisection with fresh oceans (the first
+// draw calibrates when it may), the lowest height that skips it draws the
+// same picture, to the bit, with the threshold unset (0: a read would give
+// NaN or another foam) and calibrated: the skip is never where the
+// threshold shows.
+TEST(SeaOptics, TheFoamThresholdIsOnlyCalibratedWhereWhitecapsAreDrawn) {
+  Session& s = session();
+  OceanGuard guard;
+  ViewPose p;
+  p.latDeg = 10.0, p.lonDeg = -30.0, p.headingDeg = 0.0, p.pitchDeg = -90.0;
+  p.width = p.height = 128, p.fovYDeg = 90.0;
+  FrameSettings fs;
+  fs.sunEcef = sunFromLocal(p.latDeg, p.lonDeg, 200.0, 15.0);
+  fs.reflections = fs.refraction = false;
+  fs.timeS = 12.37;
+  auto drawAt = [&](double altM, const std::shared_ptr<ocean_render::OceanRenderer>& o) {
+    useOcean(o);
+    p.altM = altM;
+    s.render(p, fs);
+    return s.image();
+  };
+  auto calibratesAt = [&](double altM) {
+    const auto o = oceanAt(12.0, waves::Model::Gerstner);
+    drawAt(altM, o);
+    return o->foamJacobian() != 0.0;
+  };
+  double lo = 60.0, hi = 20000.0;
+  ASSERT_TRUE(calibratesAt(lo)) << "whitecaps drawn from 60 m";
+  ASSERT_FALSE(calibratesAt(hi)) << "none from 20 km: no calibration";
+  while (hi / lo > 1.01) {
+    const double mid = std::sqrt(lo * hi);
+    (calibratesAt(mid) ? lo : hi) = mid;
+  }
+  const auto o = oceanAt(12.0, waves::Model::Gerstner);
+  const Image unset = drawAt(hi, o);
+  ASSERT_EQ(o->foamJacobian(), 0.0);
+  o->calibrateJacobianFoam(p.latDeg, p.lonDeg);
+  ASSERT_GT(o->foamJacobian(), 0.0);
+  const Image calibrated = drawAt(hi, o);
+  std::printf("[ measured ] the foam threshold is calibrated below %.0f m (128 px, 90 deg, 8 px cells)\n", hi);
+  ASSERT_EQ(unset.rgba.size(), calibrated.rgba.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < unset.rgba.size(); ++i) differ += unset.rgba[i] != calibrated.rgba[i];
+  EXPECT_EQ(differ, 0u) << "the threshold shows at " << hi << " m, where it is not calibrated";
+}
+
 // The whitecaps' foam: full where the Jacobian folds now, none once every
 // sample is unfolded; the sample times fall on the 0.5 s grid before t
 // (the decay between: JacobianFoamFollowsAFoldBetweenItsSamples).

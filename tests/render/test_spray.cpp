@@ -11,14 +11,10 @@
 // phase average of the kernel's wv_breakingFoam) is non-zero. Over deep
 // water (the lattice 2 km off the break line) no pixel may differ, and with
 // the bands off (OceanOptions::coastBands false) there is no spray at all.
+#include "CoastScene.h"
 #include "RenderFixture.h"
 
-#include "globe/camera/Camera.h"
-#include "globe/geo/Ellipsoid.h"
 #include "globe/gl/Framebuffer.h"
-#include "globe/raster/Raster.h"
-#include "globe/world/WorldData.h"
-#include "plugin/ocean/Ocean.h"
 
 #include <gtest/gtest.h>
 
@@ -33,70 +29,47 @@
 namespace geocean::render::test {
 namespace {
 
-constexpr int kW = 400, kH = 800;
-const raster::GeoTransform kPlace{-0.02, 0.34, 0.0001, -0.0001, false};
-constexpr double kShoreLon = 0.005, kSlope = 0.02, kMPerDeg = 111320.0;
+constexpr double kShoreLon = kSpillingShoreLon, kSlope = kSpillingSlope, kMPerDeg = 111320.0;
 
 double depthAt(double lonDeg) { return std::max(1.0, std::min(200.0, -kSlope * (lonDeg - kShoreLon) * kMPerDeg)); }
 
-struct Beach {
-  std::shared_ptr<const world::WorldGrids> grids;
-  std::shared_ptr<const WorldTextures> world;
-  ocean::Ocean o;
-  std::shared_ptr<const ocean::Snapshot> snap;
-};
-
-std::unique_ptr<Beach> makeBeach() {
-  auto b = std::make_unique<Beach>();
-  std::vector<float> elev(std::size_t(kW) * kH), land(std::size_t(kW) * kH);
-  for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x) {
-      const double eastOfShoreM = (-0.02 + (x + 0.5) * 0.0001 - kShoreLon) * kMPerDeg;
-      elev[std::size_t(y) * kW + x] = float(std::max(-200.0, kSlope * eastOfShoreM));
-      land[std::size_t(y) * kW + x] = eastOfShoreM > 0.0 ? 1.0f : 0.0f;
-    }
-  const auto elevation = raster::Raster::fromPixels(elev, kW, kH, 1, kPlace, std::nullopt, "beach");
-  const auto mask = raster::Raster::fromPixels(land, kW, kH, 1, kPlace, std::nullopt, "beach_mask");
-  b->o.setRasters(mask, elevation);
-  waves::SeaState sea;
-  sea.windSpeedMps = 10.0;
-  sea.windFromDeg = 270.0;
-  sea.anchorLatDeg = 0.3;
-  b->o.setSeaState(waves::Model::Gerstner, sea);
-  waves::CoastField::Region r;
-  r.latDeg = 0.3, r.lonDeg = 0.0, r.cellM = 8.0, r.nodes = 501, r.islandRadiusM = 50.0;
-  b->o.setCoastRegion(r);
-  b->snap = b->o.current();
-  b->grids = std::make_shared<const world::WorldGrids>(world::layerOf(*elevation, 0), world::waterLayerOf(*mask));
-  std::vector<float> sand(std::size_t(kW) * kH * 3);
-  for (std::size_t i = 0; i < sand.size(); i += 3) sand[i] = 194.0f, sand[i + 1] = 178.0f, sand[i + 2] = 128.0f;
-  world::WorldData wd = world::loadDefaultWorld();
-  wd.imagery = world::layerOf(*raster::Raster::fromPixels(sand, kW, kH, 3, kPlace, std::nullopt, "sand"));
-  wd.elevation = world::layerOf(*elevation, 0);
-  wd.water = world::waterLayerOf(*mask);
-  b->world = std::make_shared<const WorldTextures>(wd);
-  return b;
-}
-
-// Where the ray through a pixel's centre meets the ellipsoid (bisection on
-// the geodetic height); false if it does not within 5 km.
-bool seaPoint(const camera::Camera& cam, int x, int y, geo::Geodetic& out) {
-  const glm::dvec3 eye = cam.eyeEcef(), ray = cam.pixelRay(x + 0.5, y + 0.5);
-  double lo = 0.0, hi = 5000.0;
-  if (geo::fromEcef(eye + hi * ray).heightM > 0.0) return false;
-  for (int i = 0; i < 60; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (geo::fromEcef(eye + mid * ray).heightM > 0.0 ? lo : hi) = mid;
+// The spray's pixels in views from poses (those that differ between the
+// frame with it and without it), written as <name>_<i>.png for looking at.
+std::vector<std::vector<bool>> sprayPixels(const CoastScene& scene, const std::vector<ViewPose>& poses, double timeS,
+                                           const std::string& name) {
+  const auto ocean = std::make_shared<ocean_render::OceanRenderer>(scene.grids, scene.snap->landSea, scene.options());
+  GlobeRenderer renderer(scene.world);
+  renderer.addLayer(std::make_shared<DirectOceanLayer>(ocean));
+  std::vector<std::vector<bool>> out;
+  for (const ViewPose& p : poses) {
+    Framebuffer fb(p.width, p.height, true);
+    fb.bind();
+    FrameSettings fs;
+    fs.sunEcef = sunForView(p, 150.0, 40.0);
+    fs.timeS = timeS;
+    ocean->setSpray(true);
+    renderer.render(p, fs);
+    const Image with = fb.readColor();
+    ocean->setSpray(false);
+    renderer.render(p, fs);
+    const Image without = fb.readColor();
+    gl::writePng(::testing::TempDir() + "/" + name + "_" + std::to_string(out.size()) + ".png", with);
+    std::vector<bool> px(std::size_t(p.width) * p.height);
+    Image mask = with;  // the spray's pixels red (looked at)
+    for (std::size_t i = 0; i < px.size(); ++i)
+      if ((px[i] = std::memcmp(&with.rgba[i * 4], &without.rgba[i * 4], 3) != 0))
+        mask.rgba[i * 4] = 255, mask.rgba[i * 4 + 1] = mask.rgba[i * 4 + 2] = 0;
+    gl::writePng(::testing::TempDir() + "/" + name + "_" + std::to_string(out.size()) + "_mask.png", mask);
+    out.push_back(std::move(px));
   }
-  out = geo::fromEcef(eye + hi * ray);
-  return true;
+  return out;
 }
 
 }  // namespace
 
 TEST(Spray, OnlyWhereTheWavesBreakNearTheEye) {
   session();
-  const auto beach = makeBeach();
+  const auto beach = spillingBeach();
   const auto& snap = beach->snap;
   ASSERT_NE(snap->waves->coastField(), nullptr);
   // The breaking zone across the beach at the view's latitude: the CPU's
@@ -115,10 +88,7 @@ TEST(Spray, OnlyWhereTheWavesBreakNearTheEye) {
   std::printf("breaking from %.0f m off the shore (depth %.2f m)\n", breakWidthM, depthAt(breakWestLon));
 
   auto render = [&](bool bands, double offBreakM, double timeS, const std::string& name, int& sprayPx, int& outsidePx) {
-    ocean_render::OceanOptions oo;
-    oo.model = waves::Model::Gerstner;
-    oo.sea = snap->seaState;
-    oo.coast = snap->waves->coastFieldShared();
+    ocean_render::OceanOptions oo = beach->options();
     oo.coastBands = bands;
     const auto ocean = std::make_shared<ocean_render::OceanRenderer>(beach->grids, snap->landSea, oo);
     // 30 m up, offBreakM seaward of the break line, looking east at the shore.
@@ -190,6 +160,43 @@ TEST(Spray, OnlyWhereTheWavesBreakNearTheEye) {
   int off = 0, offOut = 0;
   render(false, 40.0, 30.0, "bands_off", off, offOut);
   EXPECT_EQ(off, 0) << "spray with the coast bands off";
+}
+
+// The spray's seed is continuous across 180 degrees: the 1:50 beach with
+// its surf zone 40 .. 340 m ahead of an eye on the meridian, at 0 and at
+// 180 degrees (the same rasters and coast region shifted), each seen from
+// 1 cm west and 1 cm east of its meridian. At 180 the nadir's longitude
+// wraps from +180 to -180 between the two frames (at 0 nothing wraps):
+// the same sites must throw the same clusters, so the two frames' spray
+// pixels are nearly one set (overlap: shared over either's), as at 0.
+TEST(Spray, SeedIsContinuousAcrossTheAntimeridian) {
+  session();
+  const double aheadDeg = 340.0 / kMPerDeg;  // the shore east of the eye
+  auto overlapAt = [&](double meridian, const std::string& name) {
+    waves::CoastField::Region r;
+    r.latDeg = 0.3, r.lonDeg = meridian, r.cellM = 8.0, r.nodes = 501, r.islandRadiusM = 50.0;
+    const auto scene = makeCoastScene(
+        straightBeach(400, 800, {meridian - 0.02, 0.34, 0.0001, -0.0001, false}, meridian + aheadDeg, kSlope), r);
+    std::vector<ViewPose> poses;
+    for (double side : {-1.0, 1.0}) {
+      ViewPose p;
+      const double lon = meridian + side * 1e-7;  // 1.1 cm
+      p.latDeg = 0.3, p.lonDeg = lon > 180.0 ? lon - 360.0 : lon, p.altM = 30.0, p.headingDeg = 90.0, p.pitchDeg = -40.0;
+      p.width = p.height = 256;
+      poses.push_back(p);
+    }
+    const auto px = sprayPixels(*scene, poses, 30.0, "spray_meridian_" + name);
+    int both = 0, either = 0;
+    for (std::size_t i = 0; i < px[0].size(); ++i) both += px[0][i] && px[1][i], either += px[0][i] || px[1][i];
+    std::printf("%s: %d and %d spray pixels, %d in either frame, %d in both (overlap %.3f)\n", name.c_str(),
+                int(std::count(px[0].begin(), px[0].end(), true)), int(std::count(px[1].begin(), px[1].end(), true)),
+                either, both, double(both) / std::max(either, 1));
+    EXPECT_GT(either, 100) << name << ": no spray in view";
+    return double(both) / std::max(either, 1);
+  };
+  const double at0 = overlapAt(0.0, "0"), at180 = overlapAt(180.0, "180");
+  EXPECT_GT(at0, 0.8);
+  EXPECT_GT(at180, at0 - 0.1) << "the spray changes where the nadir's longitude wraps";
 }
 
 }  // namespace geocean::render::test

@@ -217,6 +217,28 @@ TEST(ViewWindow, ThePanelOpensAtTheTopRightAndLeavesTheGlobeBelowAsItWas) {
   EXPECT_EQ(elsewhere, 0) << "the globe below is as without it";
 }
 
+// The shader warm-up (an off-screen descent before the first frame, so
+// llvmpipe's first-use compiles do not stall the user's flight) leaves no
+// trace in the picture: the flight's last frame, with boats and the
+// mirrored pass reused over 5 frames, is the same pixel for pixel as
+// without it (state a frame leaves behind would show). The HUD's fps line
+// is off.
+TEST(ViewWindow, TheShaderWarmUpLeavesThePictureAsItWas) {
+  REQUIRE_XVFB();
+  const std::string warm = tempPath("warm_up.png"), cold = tempPath("no_warm_up.png");
+  const std::string common = " --size 320x180 --frames 24 --fly-to 36.0,-5.6 --boats 3 --reflection-every 5 --no-hud --screenshot ";
+  auto r = view(common + warm);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  r = view(common + cold + " --no-warm-up");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto a = geocean::raster::readImage8(warm), b = geocean::raster::readImage8(cold);
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) differ += a.pixels[i] != b.pixels[i];
+  EXPECT_EQ(differ, 0u);
+}
+
 TEST(ViewWindow, BadOptionsExit2NamingTheOption) {
   REQUIRE_XVFB();
   auto r = view("--frames 2 --fly-to 95,0");
