@@ -24,6 +24,7 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace geocean::render::test {
@@ -32,6 +33,22 @@ namespace {
 constexpr double kShoreLon = kSpillingShoreLon, kSlope = kSpillingSlope, kMPerDeg = 111320.0;
 
 double depthAt(double lonDeg) { return std::max(1.0, std::min(200.0, -kSlope * (lonDeg - kShoreLon) * kMPerDeg)); }
+
+// The frame with the spray and without it, at the spray's sun.
+std::pair<Image, Image> withAndWithoutSpray(GlobeRenderer& renderer, ocean_render::OceanRenderer& ocean,
+                                            const ViewPose& p, double timeS) {
+  Framebuffer fb(p.width, p.height, true);
+  fb.bind();
+  FrameSettings fs;
+  fs.sunEcef = sunForView(p, 150.0, 40.0);
+  fs.timeS = timeS;
+  ocean.setSpray(true);
+  renderer.render(p, fs);
+  Image with = fb.readColor();
+  ocean.setSpray(false);
+  renderer.render(p, fs);
+  return {std::move(with), fb.readColor()};
+}
 
 // The spray's pixels in views from poses (those that differ between the
 // frame with it and without it), written as <name>_<i>.png for looking at.
@@ -42,17 +59,7 @@ std::vector<std::vector<bool>> sprayPixels(const CoastScene& scene, const std::v
   renderer.addLayer(std::make_shared<DirectOceanLayer>(ocean));
   std::vector<std::vector<bool>> out;
   for (const ViewPose& p : poses) {
-    Framebuffer fb(p.width, p.height, true);
-    fb.bind();
-    FrameSettings fs;
-    fs.sunEcef = sunForView(p, 150.0, 40.0);
-    fs.timeS = timeS;
-    ocean->setSpray(true);
-    renderer.render(p, fs);
-    const Image with = fb.readColor();
-    ocean->setSpray(false);
-    renderer.render(p, fs);
-    const Image without = fb.readColor();
+    const auto [with, without] = withAndWithoutSpray(renderer, *ocean, p, timeS);
     gl::writePng(::testing::TempDir() + "/" + name + "_" + std::to_string(out.size()) + ".png", with);
     std::vector<bool> px(std::size_t(p.width) * p.height);
     Image mask = with;  // the spray's pixels red (looked at)
@@ -98,17 +105,7 @@ TEST(Spray, OnlyWhereTheWavesBreakNearTheEye) {
     p.width = p.height = 384;
     GlobeRenderer renderer(beach->world);
     renderer.addLayer(std::make_shared<DirectOceanLayer>(ocean));
-    Framebuffer fb(p.width, p.height, true);
-    fb.bind();
-    FrameSettings fs;
-    fs.sunEcef = sunForView(p, 150.0, 40.0);
-    fs.timeS = timeS;
-    ocean->setSpray(true);
-    renderer.render(p, fs);
-    const Image with = fb.readColor();
-    ocean->setSpray(false);
-    renderer.render(p, fs);
-    const Image without = fb.readColor();
+    const auto [with, without] = withAndWithoutSpray(renderer, *ocean, p, timeS);
     gl::writePng(::testing::TempDir() + "/spray_" + name + ".png", with);
     const camera::Camera cam = camera::Camera::fromView(p);
     sprayPx = outsidePx = 0;
