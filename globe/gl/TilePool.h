@@ -21,6 +21,7 @@
 
 #include <epoxy/gl.h>
 
+#include <cmath>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -43,6 +44,16 @@ struct TilePoolOptions {
   GLenum internalFormat = GL_R8;
   float nodataValue = 0.0f;  // what NaN texels become
 };
+
+// A streamed water layer's pool when several are chained (the host's
+// terrain and the ocean alike): a layer whose raster declares nodata keeps
+// it (NaN) in an R32F pool, so the next layer answers there (R8 would make
+// it land); past a layer's edge the shader knows by position, so a layer
+// without nodata, or a lone layer, stays R8.
+inline TilePoolOptions chainedWaterPool(TilePoolOptions o, const raster::Raster& source, bool several) {
+  if (several && source.nodata()) o.internalFormat = GL_R32F, o.nodataValue = NAN;
+  return o;
+}
 
 class TilePool {
  public:

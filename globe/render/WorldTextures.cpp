@@ -49,10 +49,8 @@ WorldTextures::WorldTextures(const world::WorldData& data)
     o.nodataValue = NAN;  // the shader falls back to the elevation grid there
     elevationTiles_ = std::make_unique<gl::TilePool>(data.elevationTiles, o);
   }
-  // Several streamed masks: a layer with nodata keeps it (NaN) in an R32F
-  // pool, where the next layer answers (an R8 pool makes it land; past a
-  // layer's edge the shader knows by position); the layers below hold half
-  // the slots (they answer only where those above have no data).
+  // Several streamed masks (gl::chainedWaterPool); the layers below hold
+  // half the slots (they answer only where those above have no data).
   const bool several = !data.waterSourcesBelow.empty();
   if (data.waterSourcesBelow.size() + 1 > std::size_t(world::kMaxStreamedLayers))
     throw std::invalid_argument(data.waterSourcesBelow.back()->path() + ": more than " +
@@ -60,8 +58,7 @@ WorldTextures::WorldTextures(const world::WorldData& data)
   const auto options = [&](const raster::Raster& r, bool below) {
     gl::TilePoolOptions o;
     if (below) o.slots /= 2;
-    if (several && r.nodata()) o.internalFormat = GL_R32F, o.nodataValue = NAN;
-    return o;
+    return gl::chainedWaterPool(o, r, several);
   };
   if (data.waterSource)
     waterTiles_ = std::make_unique<gl::TilePool>(data.waterFromRelief ? world::reliefWaterPyramid(data.waterSource)

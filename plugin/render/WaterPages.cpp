@@ -46,17 +46,11 @@ WaterPages::WaterPages(std::shared_ptr<const raster::TilePyramid> pyramid, gl::T
     throw std::invalid_argument("water pages: " + std::to_string(below.size() + 1) + " streamed layers, at most " +
                                 std::to_string(world::kMaxStreamedLayers) + " (the first: " + pyramid->source().path() +
                                 ")");
-  // Several layers: a layer with nodata keeps it (NaN) in an R32F pool, so
-  // the next layer answers there (R8 would make it land); past a layer's
-  // edge the shader knows by position, so a layer without nodata stays R8.
-  const auto keepNodata = [&](gl::TilePoolOptions o, const raster::TilePyramid& p) {
-    if (!below.empty() && p.source().nodata()) o.internalFormat = GL_R32F, o.nodataValue = NAN;
-    return o;
-  };
-  const gl::TilePoolOptions first = keepNodata(pool, *pyramid);
+  const bool several = !below.empty();
+  const gl::TilePoolOptions first = gl::chainedWaterPool(pool, pyramid->source(), several);
   layers_.push_back(makeLayer(std::move(pyramid), first));
   for (auto& b : below) {
-    const gl::TilePoolOptions o = keepNodata(belowPool, *b);
+    const gl::TilePoolOptions o = gl::chainedWaterPool(belowPool, b->source(), several);
     layers_.push_back(makeLayer(std::move(b), o));
   }
 }
