@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <string>
 #include <cstdlib>
+#include <limits>
 #include <vector>
 
 namespace geocean::render::test {
@@ -303,6 +304,59 @@ TEST(Ocean, DeferredShadingDrawsTheForwardPicture) {
     EXPECT_LE(d.max, v.expectDeferred ? 4 : 0) << "at " << v.pose.altM << " m: mean " << d.mean;
     EXPECT_LE(share, v.maxChanged) << "at " << v.pose.altM << " m: " << changed << " pixels changed";
   }
+}
+
+// The noise sea's programs without the per-pixel octave loop, used where
+// OceanRenderer's bound says no pixel is under half the longest octave,
+// draw the full programs' picture bit for bit: straight down from 4 heights
+// around the bound (the lowest two below it: the full programs draw there)
+// and tilted views at 400 km and 60 km. With the margin at 0.5 (a bound
+// half as strict as the footprint allows) the variant is taken at 0.6 x
+// the bound's height, where some pixels do resolve the longest octave, and
+// the picture changes: the comparison sees a wrong bound.
+TEST(Ocean, ProgramsWithoutPixelOctavesDrawTheFullPictureBitForBit) {
+  OceanGuard guard;
+  ocean_render::OceanOptions bounded, full, loose;
+  full.noPixelOctaveMargin = std::numeric_limits<double>::infinity();
+  loose.noPixelOctaveMargin = 0.5;
+  const auto withBound = sessionOceanWith(bounded), withLoop = sessionOceanWith(full),
+             withLoose = sessionOceanWith(loose);
+  // The height from which a straight-down 256 px view takes the variant:
+  // found by bisection on the renderer's own choice.
+  const auto variantAt = [&](const ViewPose& p) {
+    useOcean(withBound);
+    renderAt(p, 20.0, 135.0, 60.0);
+    return withBound->lastDrawWithoutPixelOctaves();
+  };
+  double lo = 100.0, hi = 1.0e6;
+  ASSERT_FALSE(variantAt(seaPose(30.0, -40.0, lo, 0.0, -90.0)));
+  ASSERT_TRUE(variantAt(seaPose(30.0, -40.0, hi, 0.0, -90.0)));
+  while (hi / lo > 1.01) {
+    const double mid = std::sqrt(lo * hi);
+    (variantAt(seaPose(30.0, -40.0, mid, 0.0, -90.0)) ? hi : lo) = mid;
+  }
+  const ViewPose views[] = {seaPose(30.0, -40.0, 0.9 * hi, 0.0, -90.0),  seaPose(30.0, -40.0, 0.99 * hi, 0.0, -90.0),
+                            seaPose(30.0, -40.0, 1.01 * hi, 0.0, -90.0), seaPose(30.0, -40.0, 1.5 * hi, 0.0, -90.0),
+                            seaPose(30.0, -40.0, 4.0e5, 30.0, -40.0),     seaPose(36.0, -5.9, 6.0e4, 90.0, -60.0)};
+  int variantViews = 0;
+  for (const ViewPose& v : views) {
+    useOcean(withBound);
+    const Image a = renderAt(v, 20.0, 135.0, 60.0);
+    variantViews += withBound->lastDrawWithoutPixelOctaves() ? 1 : 0;
+    useOcean(withLoop);
+    const Image b = renderAt(v, 20.0, 135.0, 60.0);
+    EXPECT_FALSE(withLoop->lastDrawWithoutPixelOctaves());
+    const ImageDiff d = compare(a, b);
+    EXPECT_EQ(d.max, 0) << "at " << v.altM << " m, pitch " << v.pitchDeg << ": mean " << d.mean;
+  }
+  EXPECT_GE(variantViews, 3);  // 1.01 and 1.5 x the bound's height, and 400 km at least
+  const ViewPose wrong = seaPose(30.0, -40.0, 0.6 * hi, 0.0, -90.0);
+  useOcean(withLoose);
+  const Image a = renderAt(wrong, 20.0, 135.0, 60.0);
+  ASSERT_TRUE(withLoose->lastDrawWithoutPixelOctaves());
+  useOcean(withLoop);
+  const Image b = renderAt(wrong, 20.0, 135.0, 60.0);
+  EXPECT_GT(compare(a, b).max, 0) << "dropping resolved octaves must show";
 }
 
 // The off-screen cull near the eye (offscreenSides: one wave height per
