@@ -536,5 +536,23 @@ TEST(Ocean, NoBlackPixelsAlongTheHorizonFrom2m) {
   }
 }
 
+// The quick-start flight's last frame (`geocean fly --to 36.0,-5.6`: 2 m
+// above the Strait at Tarifa, heading 90, pitch -8, the sun at 135 / 35
+// degrees, 960 x 540, frame 89 at 30 fps) had a white line one pixel high
+// along the horizon in its PNG: the sea's coverage blend there (a ~ 0.5)
+// left the frame's alpha at a^2 + (1 - a) (191-255 of 255 along the row),
+// and the PNG writer, taking the frame as premultiplied, divided those
+// pixels' colour by it, to white (651 of 960 pixels of the row with every
+// channel >= 235 in the file; the colour drawn was the sky's). With alpha
+// composited "over" (OceanRenderer) the frame is opaque.
+TEST(Ocean, TheFlightsLastFrameIsOpaqueAlongTheHorizon) {
+  ViewPose p = seaPose(36.0, -5.6, 2.0, 90.0, -8.0);
+  p.width = 960, p.height = 540;
+  const Image img = renderAt(p, 89.0 / 30.0, 135.0, 35.0);
+  int translucent = 0;
+  for (std::size_t i = 0; i < std::size_t(img.width) * img.height; ++i) translucent += img.rgba[i * 4 + 3] != 255;
+  EXPECT_EQ(translucent, 0);
+}
+
 }  // namespace
 }  // namespace geocean::render::test
