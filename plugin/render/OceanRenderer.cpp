@@ -915,12 +915,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   };
 
   glEnable(GL_BLEND);
-  // Alpha composited "over" (a + d (1 - a)): the frame stays opaque where
-  // the sea's coverage blends over sky or land (a^2 + d (1 - a) left 0.75
-  // along the horizon at a = 0.5, and the PNG writer, taking the frame as
-  // premultiplied, divided those pixels to white: the quick-start flight's
-  // white line along the horizon).
-  glBlendFuncSeparatei(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glBlendFunci(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glBlendFunci(1, GL_ONE, GL_ZERO);
   // The sea wins over coastal terrain at the same depth: pull it towards
   // the eye by a few hundred float-depth units (reversed Z: positive = nearer).

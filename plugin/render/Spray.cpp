@@ -75,7 +75,7 @@ void Spray::draw(const camera::Camera& cam, const glm::dvec3& originEcef, double
   glDepthMask(GL_FALSE);
   glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   glEnable(GL_BLEND);
-  glBlendFuncSeparatei(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // alpha "over": opaque stays opaque
+  glBlendFunci(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glEnable(GL_PROGRAM_POINT_SIZE);
   glBindVertexArray(vao_);
   glDrawArrays(GL_POINTS, 0, kSites * kSites);

@@ -543,15 +543,19 @@ TEST(Ocean, NoBlackPixelsAlongTheHorizonFrom2m) {
 // left the frame's alpha at a^2 + (1 - a) (191-255 of 255 along the row),
 // and the PNG writer, taking the frame as premultiplied, divided those
 // pixels' colour by it, to white (651 of 960 pixels of the row with every
-// channel >= 235 in the file; the colour drawn was the sky's). With alpha
-// composited "over" (OceanRenderer) the frame is opaque.
-TEST(Ocean, TheFlightsLastFrameIsOpaqueAlongTheHorizon) {
+// channel >= 235 in the file; the colour drawn was the sky's). The frame
+// is opaque now (Session::image) and its PNG reads back as drawn.
+TEST(Ocean, TheFlightsLastFramesPngIsTheFrameAsDrawn) {
   ViewPose p = seaPose(36.0, -5.6, 2.0, 90.0, -8.0);
   p.width = 960, p.height = 540;
   const Image img = renderAt(p, 89.0 / 30.0, 135.0, 35.0);
   int translucent = 0;
   for (std::size_t i = 0; i < std::size_t(img.width) * img.height; ++i) translucent += img.rgba[i * 4 + 3] != 255;
   EXPECT_EQ(translucent, 0);
+  const std::string path = ::testing::TempDir() + "/flight_last_frame.png";
+  gl::writePng(path, img);
+  const ImageDiff d = compare(img, gl::readImage(path));
+  EXPECT_EQ(d.max, 0) << "mean " << d.mean << ", over 16: " << d.fractionOver16;
 }
 
 }  // namespace
