@@ -47,7 +47,8 @@ vec4 noiseOctave(int i, vec3 d) { return noiseOctaveOf(wvOctaves[i], d); }
 // cost on llvmpipe (docs/PERFORMANCE.md). uOctaveTexels: the octave SSBO
 // itself as RGBA32F, 6 texels per WvOctave (row0, row1, row2, fracO, cellO
 // as bits, vel); uOctaveBands: per octave (wavelength m, uMssAbove,
-// uOctaveHeightVar, 0), the uniform arrays' values.
+// uOctaveHeightVar, the sum of uOctaveHeightVar from it on), the uniform
+// arrays' values.
 layout(binding = 12) uniform samplerBuffer uOctaveTexels;
 layout(binding = 13) uniform samplerBuffer uOctaveBands;
 vec4 noiseOctaveFetched(int i, vec3 d) {

@@ -240,6 +240,15 @@ void main() {
   int i = clamp(int(floor(log2(uOctaveWavelengthM[0] / (6.0 * vCellAlongM)))) + 1, 0, n);
   float mss = 0.0;
   vec4 band = texelFetch(uOctaveBands, i);
+#ifdef GEOCEAN_NO_PIXEL_OCTAVES
+  // No pixel of the view is under half the longest octave (OceanRenderer's
+  // bound): every f below is 0, so the loop and the slopes it adds are left
+  // out (llvmpipe would run the loop's body once, masked), and the
+  // trailing loop's sum is read whole (OceanRenderer: the same float sum).
+  mss += band.y;
+  varU = band.w;
+  vec3 nrm = normalize(upD - grad);
+#else
   // A do-while tested at the end: llvmpipe runs a loop's body once more,
   // masked, when every pixel leaves it at the top (an octave's noise).
   float f = i < n ? noisePixelWeight(band.x, footprint) : 0.0;
@@ -271,6 +280,7 @@ void main() {
   float along = dot(gAdd, windD);
   grad += windD * along * sqrt(2.0 * share) + (gAdd - windD * along) * sqrt(2.0 * (1.0 - share));
   vec3 nrm = normalize(upD - grad);
+#endif
   crest = noiseCrestFoam(hRes, varU, uFoamSoftM, uWhitecapCover);
 #else
   vec3 nDrawn = normalize(vNormal);

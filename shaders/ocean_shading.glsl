@@ -25,6 +25,25 @@ uniform vec2 uWind;
 // to the mirrored eye, uReflEyeOffset = eye - mirrored eye from the eye).
 uniform int uRefraction;
 uniform int uReflection;
+// The refraction and crests' subsurface light on or off: fixed in the
+// per-pixel programs (GEOCEAN_OPTICS_FIXED, OceanRenderer makes one per
+// switch; llvmpipe runs both sides of a branch on a uniform), uniforms in
+// the per-vertex far program.
+#ifdef GEOCEAN_OPTICS_FIXED
+#ifdef GEOCEAN_NO_REFRACTION
+const bool kRefractionOn = false;
+#else
+const bool kRefractionOn = true;
+#endif
+#ifdef GEOCEAN_NO_SUBSURFACE
+const bool kSubsurfaceOn = false;
+#else
+const bool kSubsurfaceOn = true;
+#endif
+#else
+#define kRefractionOn (uRefraction != 0)
+#define kSubsurfaceOn (uSubsurface != 0)
+#endif
 uniform mat4 uReflViewProj;
 uniform vec3 uReflEyeOffset;
 uniform vec3 uNadirUp;
@@ -100,7 +119,7 @@ uniform float uHsM;
 uniform int uSubsurface;
 const vec3 kSubsurface = vec3(0.10, 0.93, 0.72);
 vec3 crestSubsurface(vec3 n, vec3 v, vec3 sunDir, vec3 sun, float heightM, float far) {
-  if (uSubsurface == 0) return vec3(0.0);
+  if (!kSubsurfaceOn) return vec3(0.0);
   float h = clamp(heightM / max(0.5 * uHsM, 1e-3), 0.0, 1.0) * (1.0 - far);
   float back = max(dot(v, -sunDir), 0.0), away = 0.5 - 0.5 * dot(sunDir, n);
   float back2 = back * back;
@@ -135,12 +154,12 @@ vec3 oceanColorCrest(vec3 eyeRel, vec3 normal, vec3 upIn, vec3 sun, vec3 hazeTr,
   // Seen through the water: the relief's depth where it has one (the
   // coverage's 60 m floor above would hide every shelf); the coverage's only
   // where the relief puts the water on land.
-  float seen = uRefraction != 0 && reliefDepthM > 0.0 ? reliefDepthM : depth;
+  float seen = kRefractionOn && reliefDepthM > 0.0 ? reliefDepthM : depth;
   vec3 east = cross(vec3(0.0, 0.0, 1.0), up);
   east = dot(east, east) > 1e-12 ? normalize(east) : vec3(0.0, 1.0, 0.0);  // at a pole any axis
   vec3 north = cross(up, east);
   vec3 windAxis = sin(uWind.y) * east + cos(uWind.y) * north;  // the sign does not matter
-  vec3 c = seaColorOptics(n, v, up, uSunDir, sun, seen, mss, foam, refl, uRefraction != 0, windAxis,
+  vec3 c = seaColorOptics(n, v, up, uSunDir, sun, seen, mss, foam, refl, kRefractionOn, windAxis,
                           coxMunkUpwindShare(uWind.x));
   // Leaving the water through the surface (1 - Fresnel), under the foam.
   c += crestSubsurface(n, v, uSunDir, sun, heightM, far) * (1.0 - fresnelSchlick(dot(n, v))) * (1.0 - foam);

@@ -123,7 +123,18 @@ vec3 seaColorOptics(vec3 n, vec3 v, vec3 up, vec3 sunDir, vec3 sun, float depthM
   // G / (4 n.v (n.h)^4), p the Beckmann density of mean square slope mss.
   float m = max(mss, 1e-4) + kSunDiscMss;
   vec3 h = normalize(sunDir + v);
-  if (uSunPhong != 0) {
+#ifdef GEOCEAN_OPTICS_FIXED
+  // The ocean's per-pixel programs are made per model (OceanRenderer):
+  // llvmpipe runs both sides of a branch on a uniform.
+#ifdef GEOCEAN_SUN_PHONG
+  const bool phong = true;
+#else
+  const bool phong = false;
+#endif
+#else
+  bool phong = uSunPhong != 0;
+#endif
+  if (phong) {
     // Paper 001 eq. 19's I_s = k_s I cos^n(phi), phi between the mirrored
     // view ray and the sun; k_s = F (n + 2) / 2 pi (normalised: the lobe
     // keeps the reflected energy F E whatever n).

@@ -20,7 +20,16 @@ struct Session {
   // Throws std::runtime_error (no GL context) or raster::RasterError (data).
   static Session headless(const world::WorldData& data, int width, int height, TerrainOptions terrain = {});
   FrameTimes render(const camera::ViewPose& pose, const FrameSettings& settings);
-  gl::Image image() const { return target->readColor(); }
+  // The frame, opaque: its alpha is not the picture's (the sea's coverage
+  // blend leaves a^2 + (1 - a) at the horizon), and PNG writers take RGBA as
+  // premultiplied, dividing such pixels towards white (the quick-start
+  // flight's white line along the horizon). Blending alpha "over" instead
+  // cost the sea's draws ~10-25 ms a frame on llvmpipe (docs/PERFORMANCE.md).
+  gl::Image image() const {
+    gl::Image img = target->readColor();
+    for (std::size_t i = 3; i < img.rgba.size(); i += 4) img.rgba[i] = 255;
+    return img;
+  }
 };
 
 // Default sun: `elevationDeg` above the horizon at the camera's nadir, from `azimuthDeg`.

@@ -96,7 +96,7 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     smoothDefines_ = shaded;
     smoothDefines_.push_back("GEOCEAN_VERTEX_COVERAGE 1");
     if (pages_) smoothDefines_.push_back("GEOCEAN_WATER_PAGES 1");  // read per vertex from the pages
-    pixelPrograms(false, true);
+    pixelPrograms(false, true, true, false, false);
     auto far = model;
     far.push_back("GEOCEAN_FAR_SHADED 1");
     farShaded_ = gl::GlProgram::graphics("ocean.vert", "ocean.frag", far);
@@ -180,13 +180,20 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   }
   // ocean.frag's uOctaveBands (noise_bands.glsl): per octave k <= 16 the
   // uniform arrays' values (0 past those set), (wavelength, mss above,
-  // height variance, 0); and uOctaveTexels, the octave SSBO as RGBA32F.
+  // height variance, the height variances from k on); and uOctaveTexels,
+  // the octave SSBO as RGBA32F. The last: the sum ocean.frag's trailing
+  // loop makes, in float and its order (k up), so the programs without
+  // pixel octaves, whose sum starts at 0, read it bit for bit.
   {
     std::vector<glm::vec4> bands(17, glm::vec4(0.0f));
+    const std::size_t heightVars = std::min<std::size_t>(octaveHeightVar_.size(), 16);
     for (std::size_t k = 0; k < 17; ++k) {
       if (k < std::min<std::size_t>(octaveWavelengthM_.size(), 16)) bands[k].x = octaveWavelengthM_[k];
       bands[k].y = mssAbove_[k];
-      if (k < std::min<std::size_t>(octaveHeightVar_.size(), 16)) bands[k].z = octaveHeightVar_[k];
+      if (k < heightVars) bands[k].z = octaveHeightVar_[k];
+      float suffix = 0.0f;
+      for (std::size_t j = k; j < heightVars; ++j) suffix += octaveHeightVar_[j];
+      bands[k].w = suffix;
     }
     glCreateBuffers(1, &octaveBandBuf_);
     glNamedBufferData(octaveBandBuf_, GLsizeiptr(bands.size() * sizeof(glm::vec4)), bands.data(), GL_STATIC_DRAW);
@@ -950,7 +957,33 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   glActiveTexture(GLenum(hostActive));
   glBindTextureUnit(12, octaveTexelTex_);
   glBindTextureUnit(13, octaveBandTex_);
-  const PixelPrograms& pixel = pixelPrograms(!wakes.empty(), reflect || bare);  // no variant made for a bare draw
+  // Noise: no pixel of the view under half the longest octave, so no
+  // fragment visits one (ocean.frag's f = 0 for all): its programs without
+  // the octave loop (llvmpipe ran its body once, masked, for ~40 ms of a
+  // frame at 42 km; docs/PERFORMANCE.md). The bound: a pixel's back-
+  // projection onto a plane at distance h, of normal n (camera axes, away
+  // from the eye), has area h^2 / (f^2 (n.u)^3) for the pixel's ray u =
+  // (x / f, y / f, 1), f the focal length in pixels; n.u is at most K =
+  // n_z + tanX |n_x| + tanY |n_y| over the view, and the fragments'
+  // footprint (the pixel's longer axis) is at least the square root of
+  // that area. The sea is the ellipsoid below its tangent plane at the
+  // nadir (farther, and seen more obliquely: a larger area), h the eye's
+  // height less the waves' bound; 5 % for the cells' chords and the
+  // derivatives' finite differences (OceanOptions::noPixelOctaveMargin).
+  bool noPixelOctaves = false;
+  if (options_.model == waves::Model::Noise && !octaveWavelengthM_.empty() && !bare) {
+    const glm::dvec3 down = -geo::surfaceNormal(g.latDeg, g.lonDeg);
+    const double k = glm::dot(down, cull.forward) + cull.tanX * std::abs(glm::dot(down, cull.right)) +
+                     cull.tanY * std::abs(glm::dot(down, cull.up));
+    const double h = g.heightM - maxDisplacementM_;
+    noPixelOctaves = k > 0.0 && h > 0.0 &&
+                     h * (cull.cellRadians / options_.cellPx) / std::pow(k, 1.5) >=
+                                                options_.noPixelOctaveMargin * 0.5 * double(octaveWavelengthM_[0]);
+  }
+  lastNoPixelOctaves_ = noPixelOctaves;
+  // No reflection variant made for a bare draw.
+  const PixelPrograms& pixel =
+      pixelPrograms(!wakes.empty(), reflect || bare, inputs_.refraction, inputs_.sunPhong, noPixelOctaves);
   std::size_t first = 0;
   const auto drawGroup = [&](const gl::GlProgram& prog, std::size_t count, bool coverage) {
     if (count > 0) {
@@ -1090,18 +1123,28 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     }
 }
 
-const OceanRenderer::PixelPrograms& OceanRenderer::pixelPrograms(bool wakes, bool reflection) {
-  PixelPrograms& v = pixel_[(wakes ? 1 : 0) | (reflection ? 0 : 2)];
+const OceanRenderer::PixelPrograms& OceanRenderer::pixelPrograms(bool wakes, bool reflection, bool refraction,
+                                                                 bool sunPhong, bool noPixelOctaves) {
+  PixelPrograms& v = pixel_[(wakes ? 1 : 0) | (reflection ? 0 : 2) | (refraction ? 0 : 4) | (sunPhong ? 8 : 0) |
+                            (noPixelOctaves ? 16 : 0)];
   if (v.sharp.id() == 0) {
-    const auto make = [&](std::vector<std::string> d) {
+    const auto optics = [&](std::vector<std::string>& d) {
       if (wakes) d.push_back("GEOCEAN_WAKES 1");
       if (!reflection) d.push_back("GEOCEAN_NO_REFLECTION 1");
+      d.push_back("GEOCEAN_OPTICS_FIXED 1");
+      if (!refraction) d.push_back("GEOCEAN_NO_REFRACTION 1");
+      if (sunPhong) d.push_back("GEOCEAN_SUN_PHONG 1");
+      if (!options_.subsurface) d.push_back("GEOCEAN_NO_SUBSURFACE 1");
+      if (noPixelOctaves) d.push_back("GEOCEAN_NO_PIXEL_OCTAVES 1");
+    };
+    const auto make = [&](std::vector<std::string> d) {
+      optics(d);
       return gl::GlProgram::graphics("ocean.vert", "ocean.frag", d);
     };
     v.sharp = make(sharpDefines_);
     v.smooth = make(smoothDefines_);
     v.open = make(openDefines_);
-    if (options_.deferred && options_.model == waves::Model::Noise) {
+    if (options_.deferred && options_.model == waves::Model::Noise && !noPixelOctaves) {  // deferred: octaves per pixel
       const auto gMake = [&](std::vector<std::string> d) {
         d.push_back("GEOCEAN_GBUFFER 1");
         return gl::GlProgram::graphics("ocean.vert", "ocean.frag", d);
@@ -1111,8 +1154,7 @@ const OceanRenderer::PixelPrograms& OceanRenderer::pixelPrograms(bool wakes, boo
       v.gOpen = gMake(openDefines_);
       auto d = openDefines_;
       d.push_back("GEOCEAN_DEFERRED 1");
-      if (wakes) d.push_back("GEOCEAN_WAKES 1");
-      if (!reflection) d.push_back("GEOCEAN_NO_REFLECTION 1");
+      optics(d);
       v.shade = gl::GlProgram::graphics("ocean_deferred.vert", "ocean.frag", d);
     }
   }

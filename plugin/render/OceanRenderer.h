@@ -84,6 +84,11 @@ struct OceanOptions {
   // Used where octaves are drawn per pixel and the host's target allows it
   // (gBufferFor), else forward.
   bool deferred = true;
+  // The noise sea's per-pixel programs without the octave loop for a view
+  // where no pixel is under this x half the longest octave (OceanRenderer::
+  // draw states the bound; 1.05 its margin): the same picture bit for bit.
+  // Tests set another margin (infinity: always the loop).
+  double noPixelOctaveMargin = 1.05;
 };
 
 // Reorders a grid frame's compacted cell indices (6 per cell) into three
@@ -271,6 +276,8 @@ class OceanRenderer {
   double lastGridMs() const { return gridMs_; }
   // Whether the last draw shaded through the G-buffer (OceanOptions::deferred).
   bool lastDrawDeferred() const { return lastDeferred_; }
+  // The last draw's per-pixel programs had no octave loop (OceanOptions::noPixelOctaveMargin).
+  bool lastDrawWithoutPixelOctaves() const { return lastNoPixelOctaves_; }
 
  private:
   std::shared_ptr<const world::WorldGrids> world_;
@@ -284,18 +291,22 @@ class OceanRenderer {
   gl::GlProgram farShaded_, bare_;
   // The per-pixel programs (coast cut, smooth coast, open water) by what a
   // draw needs: [1] the bodies' foam (wake.glsl's GEOCEAN_WAKES), [2] no
-  // planar reflection (GEOCEAN_NO_REFLECTION); [0] made with the renderer,
-  // the others at their first draw. llvmpipe runs both sides of a branch
-  // on a uniform and a loop's body once even for no iteration, so a term
-  // not drawn still cost every pixel (docs/PERFORMANCE.md).
+  // planar reflection (GEOCEAN_NO_REFLECTION), [4] no refraction
+  // (GEOCEAN_NO_REFRACTION), [8] paper 001's Phong sun (GEOCEAN_SUN_PHONG),
+  // [16] the noise sea with no octave per pixel (GEOCEAN_NO_PIXEL_OCTAVES);
+  // [0] made with the renderer, the others at their first draw. llvmpipe
+  // runs both sides of a branch on a uniform and a loop's body once even
+  // for no iteration, so a term not drawn still cost every pixel
+  // (docs/PERFORMANCE.md).
   // The noise sea's deferred programs beside them: the grid's G-buffer
   // writers (g*) and the shading over the tiles with sea (shade).
   struct PixelPrograms {
     gl::GlProgram sharp, smooth, open, gSharp, gSmooth, gOpen, shade;
   };
-  PixelPrograms pixel_[4];
+  PixelPrograms pixel_[32];
   std::vector<std::string> sharpDefines_, smoothDefines_, openDefines_;
-  const PixelPrograms& pixelPrograms(bool wakes, bool reflection);
+  const PixelPrograms& pixelPrograms(bool wakes, bool reflection, bool refraction, bool sunPhong,
+                                     bool noPixelOctaves);
   // The G-buffer for a host target and viewport, made or resized, with the
   // host's depth attached (the draw detaches it after the grid's pass);
   // false (draw forward) for a target whose depth it cannot attach: the
@@ -309,6 +320,7 @@ class OceanRenderer {
   GLuint gFbo_ = 0, gTex_[kGTargets] = {}, gTiles_ = 0, gVao_ = 0, gVbo_ = 0;
   int gWidth_ = 0, gHeight_ = 0;
   bool lastDeferred_ = false;
+  bool lastNoPixelOctaves_ = false;
   std::size_t gVboBytes_ = 0;
   std::vector<std::uint8_t> gTileMask_;
   std::vector<float> gRects_;

@@ -8,6 +8,9 @@
 //   bench_render [--frames N] [--size WxH] [--to LAT,LON] [--csv FILE] [--no-ocean]
 //                [--pixel-error PX]  (terrain LOD: split while a cell spans more pixels)
 //                [--repeat N] [--sea-proxy]  (TerrainOptions::seaProxy)
+//                [--min-of N]  (each frame drawn N times, per figure the least:
+//                one process's own noise floor, for comparing shader variants)
+//                [--only I,J,...]  (draw only these frames of the flight)
 //                [--reflection-size N] [--no-reflections] [--no-refraction]
 //                (the optics' switches, issue 13 item 7; `refl` is the
 //                mirrored pass alone, inside `ocean`)
@@ -67,6 +70,8 @@ int main(int argc, char** argv) {
   std::string size = "1280x720", to = "36.0,-5.6", csvPath;
   bool ocean = true;
   int repeat = 1;  // draws per frame before the timed one
+  int minOf = 1;   // timed draws per frame, the least of each figure kept
+  std::vector<int> only;
   bool detail = true;
   double cellPx = 0.0;
   int reflectionSize = 0;
@@ -90,6 +95,18 @@ int main(int argc, char** argv) {
     else if (a == "--no-ocean") ocean = false;
     else if (a == "--pixel-error") terrain.pixelErrorPx = std::atof(next().c_str());
     else if (a == "--repeat") repeat = std::atoi(next().c_str());
+    else if (a == "--min-of") minOf = std::max(1, std::atoi(next().c_str()));
+    else if (a == "--only") {
+      try {
+        const std::string list = next();
+        for (double v : render::parseNumbers(list, std::size_t(std::count(list.begin(), list.end(), ',')) + 1,
+                                             "--only I,J,..."))
+          only.push_back(int(v));
+      } catch (const render::ArgError& e) {
+        std::fprintf(stderr, "bench_render: %s\n", e.what());
+        return 2;
+      }
+    }
     else if (a == "--sea-proxy") terrain.seaProxy = true;
     else if (a == "--cell-px") cellPx = std::atof(next().c_str());
     else if (a == "--no-detail") detail = false;  // the ocean without its detail normal layer
@@ -141,6 +158,7 @@ int main(int argc, char** argv) {
            "total_cpu_ms,grid_ms,bare_terrain_cpu_ms,bare_ocean_cpu_ms,bare_total_cpu_ms,reflection_cpu_ms,shadow_cpu_ms\n";
   }
   for (int f = 0; f < frames; ++f) {
+    if (!only.empty() && std::find(only.begin(), only.end(), f) == only.end()) continue;
     const camera::ViewPose pose = render::flightPose(plan, double(f) / (frames - 1), base);
     render::FrameSettings fs;
     fs.timeS = f / 30.0;
@@ -156,10 +174,18 @@ int main(int argc, char** argv) {
     r.altM = pose.altM;
     for (int k = 1; k < repeat; ++k) s.render(pose, fs);
     r.t = s.render(pose, fs);
+    for (int k = 1; k < minOf; ++k) {
+      const render::FrameTimes t = s.render(pose, fs);
+      for (auto m : {&render::FrameTimes::skyCpuMs, &render::FrameTimes::terrainCpuMs, &render::FrameTimes::layersCpuMs,
+                     &render::FrameTimes::totalCpuMs, &render::FrameTimes::reflectionCpuMs,
+                     &render::FrameTimes::shadowCpuMs, &render::FrameTimes::skyMs, &render::FrameTimes::terrainMs,
+                     &render::FrameTimes::layersMs, &render::FrameTimes::totalMs})
+        r.t.*m = std::min(r.t.*m, t.*m);
+    }
     r.gridMs = oceanLayer ? oceanLayer->lastGridMs() : 0.0;
     fs.bare = true;
     r.bare = s.render(pose, fs);
-    if (f > 0) rows.push_back(r);  // frame 0 compiles shaders
+    if (f > 0 || !only.empty()) rows.push_back(r);  // frame 0 compiles shaders
     if (csv.is_open()) {
       char line[512];
       std::snprintf(line, sizeof line, "%d,%.1f,%d,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f,%.2f\n",

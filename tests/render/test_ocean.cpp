@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <string>
 #include <cstdlib>
+#include <limits>
 #include <vector>
 
 namespace geocean::render::test {
@@ -305,6 +306,59 @@ TEST(Ocean, DeferredShadingDrawsTheForwardPicture) {
   }
 }
 
+// The noise sea's programs without the per-pixel octave loop, used where
+// OceanRenderer's bound says no pixel is under half the longest octave,
+// draw the full programs' picture bit for bit: straight down from 4 heights
+// around the bound (the lowest two below it: the full programs draw there)
+// and tilted views at 400 km and 60 km. With the margin at 0.5 (a bound
+// half as strict as the footprint allows) the variant is taken at 0.6 x
+// the bound's height, where some pixels do resolve the longest octave, and
+// the picture changes: the comparison sees a wrong bound.
+TEST(Ocean, ProgramsWithoutPixelOctavesDrawTheFullPictureBitForBit) {
+  OceanGuard guard;
+  ocean_render::OceanOptions bounded, full, loose;
+  full.noPixelOctaveMargin = std::numeric_limits<double>::infinity();
+  loose.noPixelOctaveMargin = 0.5;
+  const auto withBound = sessionOceanWith(bounded), withLoop = sessionOceanWith(full),
+             withLoose = sessionOceanWith(loose);
+  // The height from which a straight-down 256 px view takes the variant:
+  // found by bisection on the renderer's own choice.
+  const auto variantAt = [&](const ViewPose& p) {
+    useOcean(withBound);
+    renderAt(p, 20.0, 135.0, 60.0);
+    return withBound->lastDrawWithoutPixelOctaves();
+  };
+  double lo = 100.0, hi = 1.0e6;
+  ASSERT_FALSE(variantAt(seaPose(30.0, -40.0, lo, 0.0, -90.0)));
+  ASSERT_TRUE(variantAt(seaPose(30.0, -40.0, hi, 0.0, -90.0)));
+  while (hi / lo > 1.01) {
+    const double mid = std::sqrt(lo * hi);
+    (variantAt(seaPose(30.0, -40.0, mid, 0.0, -90.0)) ? hi : lo) = mid;
+  }
+  const ViewPose views[] = {seaPose(30.0, -40.0, 0.9 * hi, 0.0, -90.0),  seaPose(30.0, -40.0, 0.99 * hi, 0.0, -90.0),
+                            seaPose(30.0, -40.0, 1.01 * hi, 0.0, -90.0), seaPose(30.0, -40.0, 1.5 * hi, 0.0, -90.0),
+                            seaPose(30.0, -40.0, 4.0e5, 30.0, -40.0),     seaPose(36.0, -5.9, 6.0e4, 90.0, -60.0)};
+  int variantViews = 0;
+  for (const ViewPose& v : views) {
+    useOcean(withBound);
+    const Image a = renderAt(v, 20.0, 135.0, 60.0);
+    variantViews += withBound->lastDrawWithoutPixelOctaves() ? 1 : 0;
+    useOcean(withLoop);
+    const Image b = renderAt(v, 20.0, 135.0, 60.0);
+    EXPECT_FALSE(withLoop->lastDrawWithoutPixelOctaves());
+    const ImageDiff d = compare(a, b);
+    EXPECT_EQ(d.max, 0) << "at " << v.altM << " m, pitch " << v.pitchDeg << ": mean " << d.mean;
+  }
+  EXPECT_GE(variantViews, 3);  // 1.01 and 1.5 x the bound's height, and 400 km at least
+  const ViewPose wrong = seaPose(30.0, -40.0, 0.6 * hi, 0.0, -90.0);
+  useOcean(withLoose);
+  const Image a = renderAt(wrong, 20.0, 135.0, 60.0);
+  ASSERT_TRUE(withLoose->lastDrawWithoutPixelOctaves());
+  useOcean(withLoop);
+  const Image b = renderAt(wrong, 20.0, 135.0, 60.0);
+  EXPECT_GT(compare(a, b).max, 0) << "dropping resolved octaves must show";
+}
+
 // The off-screen cull near the eye (offscreenSides: one wave height per
 // block of grid vertices bounds the block's others by the noise's
 // Lipschitz constant) only drops cells no wave brings on screen: below 10 m,
@@ -480,6 +534,28 @@ TEST(Ocean, NoBlackPixelsAlongTheHorizonFrom2m) {
       black += img.rgba[i * 4] + img.rgba[i * 4 + 1] + img.rgba[i * 4 + 2] < 24;
     EXPECT_EQ(black, 0) << "heading " << heading;
   }
+}
+
+// The quick-start flight's last frame (`geocean fly --to 36.0,-5.6`: 2 m
+// above the Strait at Tarifa, heading 90, pitch -8, the sun at 135 / 35
+// degrees, 960 x 540, frame 89 at 30 fps) had a white line one pixel high
+// along the horizon in its PNG: the sea's coverage blend there (a ~ 0.5)
+// left the frame's alpha at a^2 + (1 - a) (191-255 of 255 along the row),
+// and the PNG writer, taking the frame as premultiplied, divided those
+// pixels' colour by it, to white (651 of 960 pixels of the row with every
+// channel >= 235 in the file; the colour drawn was the sky's). The frame
+// is opaque now (Session::image) and its PNG reads back as drawn.
+TEST(Ocean, TheFlightsLastFramesPngIsTheFrameAsDrawn) {
+  ViewPose p = seaPose(36.0, -5.6, 2.0, 90.0, -8.0);
+  p.width = 960, p.height = 540;
+  const Image img = renderAt(p, 89.0 / 30.0, 135.0, 35.0);
+  int translucent = 0;
+  for (std::size_t i = 0; i < std::size_t(img.width) * img.height; ++i) translucent += img.rgba[i * 4 + 3] != 255;
+  EXPECT_EQ(translucent, 0);
+  const std::string path = ::testing::TempDir() + "/flight_last_frame.png";
+  gl::writePng(path, img);
+  const ImageDiff d = compare(img, gl::readImage(path));
+  EXPECT_EQ(d.max, 0) << "mean " << d.mean << ", over 16: " << d.fractionOver16;
 }
 
 }  // namespace
