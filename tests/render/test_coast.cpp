@@ -1109,7 +1109,9 @@ TEST(Coast, TwoOverlappingRegionalMasksAreDrawnAndAnsweredAsTheStackSays) {
   EXPECT_GT(counted[2][0], 1000);
   EXPECT_GT(overlap, 1000);
   EXPECT_GT(inHole, 100);
-  EXPECT_GT(controlBad, 300) << "B drawn from the 5' grid should lose its islands";
+  // 93 pixels (B2 and B1 from the 5' grid); more (over 300) while a lone
+  // layer's nodata was drawn as land (gl::chainedWaterPool's R8 then).
+  EXPECT_GT(controlBad, 50) << "B drawn from the 5' grid should lose its islands";
   EXPECT_GT(land, 1000);
   EXPECT_GT(water, 5000);
   // The host's terrain streams both too: B2 (only B has it) is the
