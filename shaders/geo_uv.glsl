@@ -132,65 +132,28 @@ uniform vec4 uWaterLevelGeo;  // origin lon, origin lat, lon step, lat step of a
 // ever need it), so the coast runs on into the grid's without a gap.
 #ifdef GEOCEAN_WATER_TILES_LAYERS
 // Several streamed masks on the terrain (world::streamedWaterLayers, 2 to
-// 4), in answer order: layer 0 is uWater* above, layer k >= 1 uWaterB<k>*
-// (its pool on unit 15 + k, its 2 x 2 block as layer 0's; slots -1 where
-// the terrain tile is clear of it). As the ocean's pages (waterPagesChain):
+// 4), in answer order: layer 0 is uWater* above, layer k >= 1 element
+// k - 1 of the uWaterB* arrays (its pool on unit 15 + k, its 2 x 2 block as
+// layer 0's; slots -1 where the terrain tile is clear of it). As the ocean's pages (waterPagesChain):
 // the first layer with a texel of its own within the filter's reach draws
 // the point; its texels past its edge or without data (NaN) take the next
 // layers' texel at the pixel (one lookup a pixel), the grid past the last.
 layout(binding = 16) uniform sampler2DArray uWaterPoolB1;
-uniform ivec4 uWaterB1Slots, uWaterB1Block;
-uniform ivec3 uWaterB1Level;
-uniform vec4 uWaterB1LevelGeo;
 #if GEOCEAN_WATER_TILES_LAYERS > 2
 layout(binding = 17) uniform sampler2DArray uWaterPoolB2;
-uniform ivec4 uWaterB2Slots, uWaterB2Block;
-uniform ivec3 uWaterB2Level;
-uniform vec4 uWaterB2LevelGeo;
 #endif
 #if GEOCEAN_WATER_TILES_LAYERS > 3
 layout(binding = 18) uniform sampler2DArray uWaterPoolB3;
-uniform ivec4 uWaterB3Slots, uWaterB3Block;
-uniform ivec3 uWaterB3Level;
-uniform vec4 uWaterB3LevelGeo;
 #endif
+uniform ivec4 uWaterBSlots[3], uWaterBBlock[3];
+uniform ivec3 uWaterBLevel[3];
+uniform vec4 uWaterBLevelGeo[3];
 
-ivec4 wSlots(int k) {
-#if GEOCEAN_WATER_TILES_LAYERS > 2
-  if (k == 2) return uWaterB2Slots;
-#endif
-#if GEOCEAN_WATER_TILES_LAYERS > 3
-  if (k == 3) return uWaterB3Slots;
-#endif
-  return k == 1 ? uWaterB1Slots : uWaterSlots;
-}
-ivec4 wBlock(int k) {
-#if GEOCEAN_WATER_TILES_LAYERS > 2
-  if (k == 2) return uWaterB2Block;
-#endif
-#if GEOCEAN_WATER_TILES_LAYERS > 3
-  if (k == 3) return uWaterB3Block;
-#endif
-  return k == 1 ? uWaterB1Block : uWaterBlock;
-}
-ivec3 wLevel(int k) {
-#if GEOCEAN_WATER_TILES_LAYERS > 2
-  if (k == 2) return uWaterB2Level;
-#endif
-#if GEOCEAN_WATER_TILES_LAYERS > 3
-  if (k == 3) return uWaterB3Level;
-#endif
-  return k == 1 ? uWaterB1Level : uWaterLevel;
-}
-vec4 wGeo(int k) {
-#if GEOCEAN_WATER_TILES_LAYERS > 2
-  if (k == 2) return uWaterB2LevelGeo;
-#endif
-#if GEOCEAN_WATER_TILES_LAYERS > 3
-  if (k == 3) return uWaterB3LevelGeo;
-#endif
-  return k == 1 ? uWaterB1LevelGeo : uWaterLevelGeo;
-}
+// Only the pool's fetch is spelled out per layer (a constant index selects one sampler).
+ivec4 wSlots(int k) { return k == 0 ? uWaterSlots : uWaterBSlots[k - 1]; }
+ivec4 wBlock(int k) { return k == 0 ? uWaterBlock : uWaterBBlock[k - 1]; }
+ivec3 wLevel(int k) { return k == 0 ? uWaterLevel : uWaterBLevel[k - 1]; }
+vec4 wGeo(int k) { return k == 0 ? uWaterLevelGeo : uWaterBLevelGeo[k - 1]; }
 float wFetch(int k, ivec3 at) {
 #if GEOCEAN_WATER_TILES_LAYERS > 2
   if (k == 2) return texelFetch(uWaterPoolB2, at, 0).r;

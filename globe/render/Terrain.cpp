@@ -345,25 +345,24 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
   gl::TilePool* pool = world_.waterTiles();
   const bool streamed = pool && prog.uniform("uWaterSlots") >= 0;
   if (streamed) glBindTextureUnit(5, pool->texture());
-  // Streamed masks under the first (GEOCEAN_WATER_TILES_LAYERS): pools on units 15 + k, uniforms uWaterB<k>*.
+  // Streamed masks under the first (GEOCEAN_WATER_TILES_LAYERS): pools on units 15 + k,
+  // uniforms uWaterB*[k - 1]; reliefs likewise below.
   const int waterLayers = streamed ? world_.waterTileLayers() : 0;
-  static const char* const kBelow[] = {"", "uWaterB1", "uWaterB2", "uWaterB3"};
+  static const char* const kBelow[] = {"", "[0]", "[1]", "[2]"};
   for (int w = 1; w < waterLayers; ++w) glBindTextureUnit(GLuint(15 + w), world_.waterTiles(w)->texture());
   gl::TilePool* elevPool = world_.elevationTiles();
   const bool elevStreamed = elevPool && prog.uniform("uElevSlots") >= 0;
   if (elevStreamed) glBindTextureUnit(4, elevPool->texture());
-  // Streamed reliefs under the first (GEOCEAN_ELEVATION_TILES_LAYERS): pools on units 18 + k,
-  // uniforms uElevB*[k - 1].
+  // Streamed reliefs under the first (GEOCEAN_ELEVATION_TILES_LAYERS): pools on units 18 + k.
   const int elevLayers = elevStreamed ? world_.elevationTileLayers() : 0;
-  static const char* const kElevBelow[] = {"", "[0]", "[1]", "[2]"};
   for (int e = 1; e < elevLayers; ++e) glBindTextureUnit(GLuint(18 + e), world_.elevationTiles(e)->texture());
   glBindVertexArray(vao_);
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const Key& k = tiles[i];
     if (streamed) bindWaterBlock(&prog, k);
-    for (int w = 1; w < waterLayers; ++w) bindBlock(&prog, *world_.waterTiles(w), k, kBelow[w]);
+    for (int w = 1; w < waterLayers; ++w) bindBlock(&prog, *world_.waterTiles(w), k, "uWaterB", kBelow[w]);
     if (elevStreamed) bindBlock(&prog, *elevPool, k, "uElev");
-    for (int e = 1; e < elevLayers; ++e) bindBlock(&prog, *world_.elevationTiles(e), k, "uElevB", kElevBelow[e]);
+    for (int e = 1; e < elevLayers; ++e) bindBlock(&prog, *world_.elevationTiles(e), k, "uElevB", kBelow[e]);
     const glm::vec3 off(slots[i]->centerEcef - cam.eyeEcef());  // double difference, then float
     glUniform3fv(locOffset, 1, &off[0]);
     // Skirts hang deeper than the largest height error between levels
