@@ -2,7 +2,7 @@
 // headless to PNG frames plus a CSV of per-frame timings.
 #include "globe/app/Command.h"
 #include "globe/app/BoatOptions.h"
-#include "globe/app/CoastOption.h"
+#include "globe/app/DrawnScene.h"
 #include "globe/app/LayerOptions.h"
 #include "globe/app/SeaOptions.h"
 #include "globe/render/CliParse.h"
@@ -34,21 +34,9 @@ struct FlyArgs {
   double fps = 30.0;
   double heading = 90.0;
   bool noImages = false;
-  bool noOcean = false;
-  bool noReflections = false, noRefraction = false;
-  LightOptions light;
-  std::string waves = "noise";
-  WindOptions wind;
-  double windFromDeg = 270.0;
-  int reflectionSize = 0;
-  int reflectionEvery = 1;
-  std::string grid = "direct";
-  std::string coastRegion;
-  bool coastFollow = false;
   bool reference = false;
   bool hud = false;
-  LayerOptions layers;
-  BoatOptions boats;
+  DrawnSceneOptions scene;
 };
 
 int runFly(const FlyArgs& a) {
@@ -78,19 +66,14 @@ int runFly(const FlyArgs& a) {
       throw render::ArgError(b);
     }
     if (!a.sun.empty()) sunAzEl = render::parseNumbers(a.sun, 2, "--sun AZ,EL");
-    render::checkReflectionSize(a.reflectionSize);
-    render::checkReflectionEvery(a.reflectionEvery);
     // The sea's options before the GL context (the plugin would say it by its field names).
-    for (const std::string& e : {checkDrawnSea(a.waves, a.wind.windMps, a.windFromDeg),
-                                 a.coastRegion.empty() ? std::string() : checkCoastRegion(a.coastRegion),
-                                 checkCoastFollow(a.coastFollow, a.coastRegion), checkBoatOptions(a.boats)})
-      if (!e.empty()) throw render::ArgError(e);
+    if (auto e = checkDrawnScene(a.scene); !e.empty()) throw render::ArgError(e);
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean fly: %s\n", e.what());
     return kExitBadInput;
   }
   double windMps = 0.0;
-  if (const int rc = resolveWind("fly", a.wind, windMps); rc != kExitOk) return rc;
+  if (const int rc = resolveWind("fly", a.scene.wind, windMps); rc != kExitOk) return rc;
   plan.headingDeg = a.heading;
   std::error_code ec;
   std::filesystem::create_directories(a.out, ec);
@@ -106,7 +89,7 @@ int runFly(const FlyArgs& a) {
   }
   std::vector<world::LayerSource> sources;
   world::WorldData data;
-  if (const int rc = loadDrawnWorld("fly", a.layers, sources, data); rc != kExitOk) return rc;
+  if (const int rc = loadDrawnWorld("fly", a.scene.layers, sources, data); rc != kExitOk) return rc;
   render::Session s;
   try {
     s = render::Session::headless(data, base.width, base.height);
@@ -117,18 +100,9 @@ int runFly(const FlyArgs& a) {
     return kExitNoDisplay;
   }
   std::shared_ptr<host::PluginOceanLayer> ocean;
-  if (!a.noOcean) {
-    const std::string err = host::addPluginOcean(*s.renderer, a.waves, windMps, a.windFromDeg, &ocean, sources,
-                                                 !a.layers.noDefaultWorld);
-    if (!err.empty()) {
-      std::fprintf(stderr, "geocean fly: %s\n", err.c_str());
-      return kExitBadInput;
-    }
-  }
-  if (ocean) ocean->setGridIspg(a.grid == "ispg");
-  if (const int rc = applyCoastRegion("fly", a.coastRegion, ocean.get(), a.coastFollow); rc != kExitOk) return rc;
+  if (const int rc = addDrawnOcean("fly", a.scene, windMps, *s.renderer, sources, ocean); rc != kExitOk) return rc;
   std::shared_ptr<host::PluginBoats> boats;
-  if (const int rc = addBoats("fly", a.boats, *s.renderer, ocean, plan.toLatDeg, plan.toLonDeg, boats); rc != kExitOk)
+  if (const int rc = addBoats("fly", a.scene.boats, *s.renderer, ocean, plan.toLatDeg, plan.toLonDeg, boats); rc != kExitOk)
     return rc;
 #if GEOCEAN_WITH_HUD
   std::unique_ptr<gl::Hud> hud;  // declared after the session: destroyed while its context lives
@@ -156,17 +130,13 @@ int runFly(const FlyArgs& a) {
     camera::ViewPose pose = render::flightPose(plan, sProgress, base);
     render::FrameSettings fs;
     fs.timeS = f / a.fps;
-    if (boats && a.boats.follow > 0) {  // the chase camera instead of the flight
+    if (boats && a.scene.boats.follow > 0) {  // the chase camera instead of the flight
       boats->update(fs.timeS);
-      pose = boats->chase(std::size_t(a.boats.follow - 1), pose);
+      pose = boats->chase(std::size_t(a.scene.boats.follow - 1), pose);
     }
     fs.sunEcef = sun;
     fs.timed = true;
-    fs.reflections = !a.noReflections;
-    fs.refraction = !a.noRefraction;
-    fs.reflectionSize = a.reflectionSize;
-    applyLightOptions(a.light, fs);
-    fs.reflectionEvery = a.reflectionEvery;
+    applyDrawnScene(a.scene, fs);
     const auto t = s.render(pose, fs);
 #if GEOCEAN_WITH_HUD
     if (hud) {  // drawn after the timed passes, so timings.csv is the same with or without it
@@ -220,22 +190,7 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                                    "also draw each frame with trivial shaders (the ratio reference)");
                       sub.add_flag("--hud", a->hud,
                                    "draw the viewer's HUD (lat, lon, altitude, render fps, sea height) in the frames");
-                      sub.add_flag("--no-ocean", a->noOcean, "terrain and distant-sea shading only");
-                      sub.add_flag("--no-reflections", a->noReflections,
-                                   "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
-                      sub.add_flag("--no-refraction", a->noRefraction,
-                                   "no bottom seen through the water (the depth tint alone)");
-                      sub.add_option("--waves", a->waves, "wave model: noise (default), noise-paper (paper 002, with its seam), gerstner, fft");
-                      addWindOptions(sub, a->wind);
-                      addReflectionSizeOption(sub, a->reflectionSize);
-                      addLightOptions(sub, a->light);
-                      addReflectionEveryOption(sub, a->reflectionEvery);
-                      addGridOption(sub, a->grid);
-                      sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
-                      addCoastOption(sub, a->coastRegion, &a->coastFollow);
-                      addLayerOptions(sub, a->layers);
-                      addImageryOption(sub, a->layers);
-                      addBoatOptions(sub, a->boats);
+                      addDrawnSceneOptions(sub, a->scene, DrawnCommand::Fly);
                       return [a] { return runFly(*a); };
                     }}};
 

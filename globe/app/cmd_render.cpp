@@ -1,7 +1,7 @@
 // `geocean render`: one frame, headless (EGL), to a PNG.
 #include "globe/app/Command.h"
 #include "globe/app/BoatOptions.h"
-#include "globe/app/CoastOption.h"
+#include "globe/app/DrawnScene.h"
 #include "globe/app/LayerOptions.h"
 #include "globe/app/QueryIo.h"
 #include "globe/app/SeaOptions.h"
@@ -24,17 +24,7 @@ struct RenderArgs {
   double timeS = 0.0;
   double fovDeg = 45.0;
   double exaggeration = 1.0;
-  bool noOcean = false;
-  bool noReflections = false, noRefraction = false;
-  LightOptions light;
-  std::string waves = "noise";
-  WindOptions wind;
-  double windFromDeg = 270.0;
-  int reflectionSize = 0;
-  std::string grid = "direct";
-  std::string coastRegion;
-  LayerOptions layers;
-  BoatOptions boats;
+  DrawnSceneOptions scene;
 };
 
 int runRender(const RenderArgs& a) {
@@ -49,7 +39,6 @@ int runRender(const RenderArgs& a) {
       throw render::ArgError("--exaggeration: " + std::to_string(a.exaggeration) + " must be in [0, 100]");
     if (!std::isfinite(a.timeS)) throw render::ArgError("--time " + std::to_string(a.timeS) + " is not a finite number");
     if (auto e = checkTime(a.timeS, "--time"); !e.empty()) throw render::ArgError(e);
-    render::checkReflectionSize(a.reflectionSize);
     pose.fovYDeg = a.fovDeg;
     sun = render::sunForView(pose);
     if (!a.sun.empty()) {
@@ -57,19 +46,16 @@ int runRender(const RenderArgs& a) {
       sun = render::sunForView(pose, v[0], v[1]);
     }
     // The sea's options before the GL context (the plugin would say it by its field names).
-    for (const std::string& e : {checkDrawnSea(a.waves, a.wind.windMps, a.windFromDeg),
-                                 a.coastRegion.empty() ? std::string() : checkCoastRegion(a.coastRegion),
-                                 checkBoatOptions(a.boats)})
-      if (!e.empty()) throw render::ArgError(e);
+    if (auto e = checkDrawnScene(a.scene); !e.empty()) throw render::ArgError(e);
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean render: %s\n", e.what());
     return kExitBadInput;
   }
   double windMps = 0.0;
-  if (const int rc = resolveWind("render", a.wind, windMps); rc != kExitOk) return rc;
+  if (const int rc = resolveWind("render", a.scene.wind, windMps); rc != kExitOk) return rc;
   std::vector<world::LayerSource> sources;
   world::WorldData data;
-  if (const int rc = loadDrawnWorld("render", a.layers, sources, data); rc != kExitOk) return rc;
+  if (const int rc = loadDrawnWorld("render", a.scene.layers, sources, data); rc != kExitOk) return rc;
   render::TerrainOptions terrain;
   terrain.exaggeration = a.exaggeration;
   terrain.waitForTiles = true;  // one picture: the streamed tiles it needs, not their ancestors
@@ -83,34 +69,21 @@ int runRender(const RenderArgs& a) {
     return kExitNoDisplay;
   }
   std::shared_ptr<host::PluginOceanLayer> ocean;
-  if (!a.noOcean) {
-    const std::string err =
-        host::addPluginOcean(*s.renderer, a.waves, windMps, a.windFromDeg, &ocean, sources,
-                             !a.layers.noDefaultWorld);
-    if (!err.empty()) {
-      std::fprintf(stderr, "geocean render: %s\n", err.c_str());
-      return kExitBadInput;
-    }
-  }
+  if (const int rc = addDrawnOcean("render", a.scene, windMps, *s.renderer, sources, ocean); rc != kExitOk) return rc;
   if (ocean) ocean->setCompleteTiles(true);  // as terrain.waitForTiles
-  if (ocean) ocean->setGridIspg(a.grid == "ispg");
-  if (const int rc = applyCoastRegion("render", a.coastRegion, ocean.get()); rc != kExitOk) return rc;
   std::shared_ptr<host::PluginBoats> boats;
   double targetLat = 0, targetLon = 0;
   host::viewTarget(pose, targetLat, targetLon);
-  if (const int rc = addBoats("render", a.boats, *s.renderer, ocean, targetLat, targetLon, boats); rc != kExitOk)
+  if (const int rc = addBoats("render", a.scene.boats, *s.renderer, ocean, targetLat, targetLon, boats); rc != kExitOk)
     return rc;
-  if (boats && a.boats.follow > 0) {
+  if (boats && a.scene.boats.follow > 0) {
     boats->update(a.timeS);
-    pose = boats->chase(std::size_t(a.boats.follow - 1), pose);
+    pose = boats->chase(std::size_t(a.scene.boats.follow - 1), pose);
   }
   render::FrameSettings fs;
   fs.timeS = a.timeS;
   fs.sunEcef = sun;
-  fs.reflections = !a.noReflections;
-  fs.refraction = !a.noRefraction;
-  fs.reflectionSize = a.reflectionSize;
-  applyLightOptions(a.light, fs);
+  applyDrawnScene(a.scene, fs);
   const auto t = s.render(pose, fs);
   gl::writePng(a.out, s.image());
   std::fprintf(stderr, "geocean render: wrote %s (%dx%d, %d terrain tiles, %.1f ms)\n", a.out.c_str(), pose.width,
@@ -131,21 +104,7 @@ const Register reg{{"render", "Render one frame headless to a PNG",
                       sub.add_option("--fov", a->fovDeg, "vertical field of view, degrees");
                       sub.add_option("--sun", a->sun, "AZ,EL of the sun at the camera's nadir, degrees");
                       sub.add_option("--exaggeration", a->exaggeration, "vertical exaggeration of the terrain");
-                      sub.add_flag("--no-ocean", a->noOcean, "terrain and distant-sea shading only");
-                      sub.add_flag("--no-reflections", a->noReflections,
-                                   "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
-                      sub.add_flag("--no-refraction", a->noRefraction,
-                                   "no bottom seen through the water (the depth tint alone)");
-                      sub.add_option("--waves", a->waves, "wave model: noise (default), noise-paper (paper 002, with its seam), gerstner, fft");
-                      addWindOptions(sub, a->wind);
-                      addReflectionSizeOption(sub, a->reflectionSize);
-                      addLightOptions(sub, a->light);
-                      addGridOption(sub, a->grid);
-                      sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees");
-                      addCoastOption(sub, a->coastRegion);
-                      addLayerOptions(sub, a->layers);
-                      addImageryOption(sub, a->layers);
-                      addBoatOptions(sub, a->boats);
+                      addDrawnSceneOptions(sub, a->scene, DrawnCommand::Render);
                       return [a] { return runRender(*a); };
                     }}};
 

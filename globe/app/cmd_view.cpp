@@ -5,6 +5,7 @@
 #include "globe/app/Command.h"
 #include "globe/app/BoatOptions.h"
 #include "globe/app/CoastOption.h"
+#include "globe/app/DrawnScene.h"
 #include "globe/app/LayerOptions.h"
 #include "globe/app/QueryIo.h"
 #include "globe/app/SeaOptions.h"
@@ -53,20 +54,9 @@ struct ViewArgs {
   bool noWarmUp = false;   // no off-screen descent before the first frame
   bool noHud = false;
   bool panel = false;  // the control panel open from the start (P toggles it)
-  bool noReflections = false, noRefraction = false;
-  LightOptions light;
-  LayerOptions layers;
-  BoatOptions boats;
-  std::string waves = "noise";  // as render and fly
-  WindOptions wind;
-  double windFromDeg = 270.0;
   std::string sun;     // AZ,EL at the camera's nadir (default 135,40)
   double timeS = 0.0;  // simulation time of the first frame
-  int reflectionSize = 0;
-  int reflectionEvery = 1;
-  std::string grid = "direct";
-  std::string coastRegion;  // LAT,LON[,SIZE_M] (CoastOption.h)
-  bool coastFollow = false;
+  DrawnSceneOptions scene;  // as render and fly
 };
 
 // Height of the drawn sea surface above the ellipsoid exactly under the
@@ -203,20 +193,15 @@ int runView(const ViewArgs& a) {
     if (auto e = checkTime(a.timeS, "--time"); !e.empty()) throw render::ArgError(e);
     // The last scripted frame's time too (1/30 s per frame).
     if (auto e = checkTime(a.timeS + a.frames / 30.0, "--time + --frames / 30"); !e.empty()) throw render::ArgError(e);
-    render::checkReflectionSize(a.reflectionSize);
-    render::checkReflectionEvery(a.reflectionEvery);
     // Bad input is exit 2 with or without a display: every check that needs
     // no window comes before the display's (--beaufort: resolveWind below).
-    for (const std::string& e : {checkDrawnSea(a.waves, a.wind.windMps, a.windFromDeg),
-                                 a.coastRegion.empty() ? std::string() : checkCoastRegion(a.coastRegion),
-                                 checkCoastFollow(a.coastFollow, a.coastRegion), checkBoatOptions(a.boats)})
-      if (!e.empty()) throw render::ArgError(e);
+    if (auto e = checkDrawnScene(a.scene); !e.empty()) throw render::ArgError(e);
   } catch (const render::ArgError& e) {
     std::fprintf(stderr, "geocean view: %s\n", e.what());
     return kExitBadInput;
   }
   double windMps = 0.0;
-  if (const int rc = resolveWind("view", a.wind, windMps); rc != kExitOk) return rc;
+  if (const int rc = resolveWind("view", a.scene.wind, windMps); rc != kExitOk) return rc;
   const char* display = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
   if ((!display || !*display) && (!wayland || !*wayland)) {
@@ -237,7 +222,7 @@ int runView(const ViewArgs& a) {
   }
   std::vector<world::LayerSource> sources;
   world::WorldData data;
-  if (const int rc = loadDrawnWorld("view", a.layers, sources, data); rc != kExitOk) return rc;
+  if (const int rc = loadDrawnWorld("view", a.scene.layers, sources, data); rc != kExitOk) return rc;
   if (!glfwInit()) {
     std::fprintf(stderr, "geocean view: cannot open the display '%s'; use geocean render\n", display ? display : "");
     return kExitNoDisplay;
@@ -266,29 +251,17 @@ int runView(const ViewArgs& a) {
     auto renderer = std::make_unique<render::GlobeRenderer>(std::make_shared<render::WorldTextures>(data));
     // The ocean through the plugin's C ABI, as any host engine loads it.
     std::shared_ptr<host::PluginOceanLayer> ocean;
-    if (const std::string oceanErr = host::addPluginOcean(*renderer, a.waves, windMps, a.windFromDeg, &ocean, sources,
-                                                                    !a.layers.noDefaultWorld);
-        !oceanErr.empty()) {
-      std::fprintf(stderr, "geocean view: %s\n", oceanErr.c_str());
-      rc = kExitBadInput;
-      glfwSetWindowShouldClose(win, GLFW_TRUE);  // leave through the normal cleanup, context still current
-    }
-    if (rc == kExitOk) {
-      if (ocean) ocean->setGridIspg(a.grid == "ispg");
-      if (const int crc = applyCoastRegion("view", a.coastRegion, ocean.get(), a.coastFollow); crc != kExitOk) {
-        rc = crc;
-        glfwSetWindowShouldClose(win, GLFW_TRUE);
-      }
-    }
+    rc = addDrawnOcean("view", a.scene, windMps, *renderer, sources, ocean);
+    if (rc != kExitOk) glfwSetWindowShouldClose(win, GLFW_TRUE);  // leave through the normal cleanup, context still current
     // Boats around the --fly-to point (else under the first view); F cycles
     // the boat the camera chases (none, 1, .., N).
     std::shared_ptr<host::PluginBoats> boats;
-    int follow = a.boats.follow;
+    int follow = a.scene.boats.follow;
     bool fKeyWasDown = false;
     if (rc == kExitOk) {
       double tLat = plan.toLatDeg, tLon = plan.toLonDeg;
       if (!flying) host::viewTarget(c.pose, tLat, tLon);
-      if (const int brc = addBoats("view", a.boats, *renderer, ocean, tLat, tLon, boats); brc != kExitOk) {
+      if (const int brc = addBoats("view", a.scene.boats, *renderer, ocean, tLat, tLon, boats); brc != kExitOk) {
         rc = brc;
         glfwSetWindowShouldClose(win, GLFW_TRUE);
       }
@@ -303,18 +276,18 @@ int runView(const ViewArgs& a) {
     // The control panel: the sea state and the light, live (P toggles it).
     gl::PanelState panel;
     for (int i = 0; i < int(std::size(gl::kPanelWaveModels)); ++i)
-      if (a.waves == gl::kPanelWaveModels[i]) panel.waveModel = i;
-    panel.windMps = float(windMps), panel.windFromDeg = float(a.windFromDeg);
+      if (a.scene.waves == gl::kPanelWaveModels[i]) panel.waveModel = i;
+    panel.windMps = float(windMps), panel.windFromDeg = float(a.scene.windFromDeg);
     panel.sunAzimuthDeg = float(sunAzEl[0]), panel.sunElevationDeg = float(sunAzEl[1]);
-    panel.reflections = !a.noReflections, panel.refraction = !a.noRefraction, panel.shadows = !a.light.noShadows;
-    panel.layerNames = layerLabels(a.layers);
+    panel.reflections = !a.scene.noReflections, panel.refraction = !a.scene.noRefraction, panel.shadows = !a.scene.light.noShadows;
+    panel.layerNames = layerLabels(a.scene.layers);
     panel.layerShown.assign(panel.layerNames.size(), 1);
     // The layers as the panel shows them, drawn and queried alike: the host's
     // world from the shown files and the ocean's stack from the same (a
     // failure keeps the picture as it was and says why).
     std::vector<char> layersDrawn = panel.layerShown;
     auto applyShownLayers = [&] {
-      const LayerOptions shown = shownLayers(a.layers, panel.layerShown);
+      const LayerOptions shown = shownLayers(a.scene.layers, panel.layerShown);
       std::vector<world::LayerSource> s;
       world::WorldData d;
       if (loadDrawnWorld("view", shown, s, d) != kExitOk) {
@@ -325,7 +298,7 @@ int runView(const ViewArgs& a) {
         if (const std::string err = host::setPluginLayers(*ocean, s); !err.empty()) {
           std::fprintf(stderr, "geocean view: %s\n", err.c_str());
           // Back to what is drawn, so query and picture stay one stack.
-          (void)host::setPluginLayers(*ocean, layerSources(shownLayers(a.layers, layersDrawn)));
+          (void)host::setPluginLayers(*ocean, layerSources(shownLayers(a.scene.layers, layersDrawn)));
           panel.layerShown = layersDrawn;
           return;
         }
@@ -345,12 +318,11 @@ int runView(const ViewArgs& a) {
       render::FrameSettings fs;
       fs.timeS = simT;
       fs.sunEcef = render::sunFromLocal(pose.latDeg, pose.lonDeg, panel.sunAzimuthDeg, panel.sunElevationDeg);
+      applyDrawnScene(a.scene, fs);
+      // The panel's switches (the options are their initial state).
       fs.reflections = panel.reflections;
       fs.refraction = panel.refraction;
-      fs.reflectionSize = a.reflectionSize;
-      applyLightOptions(a.light, fs);
-      fs.shadows = panel.shadows;  // --no-shadows is the panel's initial state
-      fs.reflectionEvery = a.reflectionEvery;
+      fs.shadows = panel.shadows;
       return fs;
     };
     // llvmpipe JIT-compiles each shader variant on its first draw: 1-2 s
@@ -535,25 +507,11 @@ const Register reg{{"view", "Interactive globe viewer (needs a display; otherwis
                       sub.add_flag("--panel", a->panel,
                                    "open the control panel (P toggles it): wave model, wind, sun, reflections, "
                                    "refraction, shadows, raster layers shown (also keys 1-9), changed live");
-                      sub.add_flag("--no-reflections", a->noReflections,
-                                   "no planar reflection of sky and terrain in the sea (the sky BRDF alone)");
-                      sub.add_flag("--no-refraction", a->noRefraction,
-                                   "no bottom seen through the water (the depth tint alone)");
-                      sub.add_option("--waves", a->waves, "wave model: noise (default), noise-paper (paper 002, with its seam), gerstner, fft");
-                      addWindOptions(sub, a->wind);
                       sub.add_option("--sun", a->sun,
                                      "AZ,EL of the sun at the camera's nadir, degrees (default 135,40; it follows "
                                      "the camera)");
                       sub.add_option("--time", a->timeS, "simulation time of the first frame, seconds");
-                      addReflectionSizeOption(sub, a->reflectionSize);
-                      addLightOptions(sub, a->light);
-                      addReflectionEveryOption(sub, a->reflectionEvery);
-                      addGridOption(sub, a->grid);
-                      sub.add_option("--wind-dir", a->windFromDeg, "direction the wind blows from, degrees (default 270)");
-                      addCoastOption(sub, a->coastRegion, &a->coastFollow);
-                      addLayerOptions(sub, a->layers);
-                      addImageryOption(sub, a->layers);
-                      addBoatOptions(sub, a->boats);
+                      addDrawnSceneOptions(sub, a->scene, DrawnCommand::View);
                       return [a] { return runView(*a); };
                     }}};
 

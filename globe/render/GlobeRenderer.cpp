@@ -130,7 +130,7 @@ void GlobeRenderer::makeShadowMap(const camera::Camera& cam, const camera::Light
   glDepthFunc(GL_GREATER);
   glDisable(GL_CULL_FACE);
   const glm::mat4 m(sv.matrix);
-  terrain_.drawDepth(m, cam, waterLayer);
+  terrain_.drawDepth(m, cam, waterLayer, sv.region);
   for (const auto& o : objects_) o->drawDepth(m, cam.eyeEcef());
   glBindFramebuffer(GL_FRAMEBUFFER, GLuint(target));
   glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);

@@ -235,6 +235,18 @@ void TerrainRenderer::select(const Key& k, const camera::Camera& cam, std::vecto
   // The ocean layer answers from its own stack (a regional mask over the
   // grid), which can call water what the host grid calls land.
   if (waterLayer_ && underOpenWater(lat0, lat1, lon0, lon1, b, dist, cam, pxPerM)) return;
+  if (refines(k, b, cam, dist) && depth < 40) {
+    for (int cy = 0; cy < 2; ++cy)
+      for (int cx = 0; cx < 2; ++cx) select({k.level + 1, 2 * k.x + cx, 2 * k.y + cy}, cam, out, depth + 1);
+    return;
+  }
+  out.push_back(k);
+}
+
+bool TerrainRenderer::refines(const Key& k, const Bounds& b, const camera::Camera& cam, double dist) const {
+  double lat0, lat1, lon0, lon1;
+  tileRange(k, lat0, lat1, lon0, lon1);
+  const double pxPerM = cam.heightPx() / (2.0 * std::tan(0.5 * cam.vfovDeg() * kDeg));
   const double latEq = (lat0 <= 0.0 && lat1 >= 0.0) ? 0.0 : std::min(std::abs(lat0), std::abs(lat1));
   const double extentM = std::max((lat1 - lat0), (lon1 - lon0) * std::cos(latEq * kDeg)) * kDeg * geo::kWgs84A;
   const double nearest = std::max(dist - b.radius, cam.nearM());
@@ -243,9 +255,29 @@ void TerrainRenderer::select(const Key& k, const camera::Camera& cam, std::vecto
   // already follow the ellipsoid within 0.12 m (chord sag s^2 / 8R), far
   // below the 30 m the water areas sit under the sea.
   const int maxLevel = b.allWater ? std::min(maxLevel_, 7) : maxLevel_;
-  if (k.level < maxLevel && cellPx > options_.pixelErrorPx && depth < 40) {
+  return k.level < maxLevel && cellPx > options_.pixelErrorPx;
+}
+
+void TerrainRenderer::selectCasters(const Key& k, const camera::Camera& cam, const double region[4],
+                                    std::vector<Key>& out, int depth) {
+  double lat0, lat1, lon0, lon1;
+  tileRange(k, lat0, lat1, lon0, lon1);
+  if (lat1 < region[0] || lat0 > region[1]) return;
+  // The region's longitudes are unwrapped around the eye's (may pass +-180).
+  bool meets = false;
+  for (double shift : {-360.0, 0.0, 360.0}) meets = meets || (lon1 + shift >= region[2] && lon0 + shift <= region[3]);
+  if (!meets) return;
+  const Bounds b = bounds(k);
+  if (b.allWater) return;  // nothing above the sea to cast
+  const double dist = glm::length(b.center - cam.eyeEcef());
+  if (waterLayer_) {
+    const double pxPerM = cam.heightPx() / (2.0 * std::tan(0.5 * cam.vfovDeg() * kDeg));
+    if (underOpenWater(lat0, lat1, lon0, lon1, b, dist, cam, pxPerM)) return;
+  }
+  if (refines(k, b, cam, dist) && depth < 40) {
     for (int cy = 0; cy < 2; ++cy)
-      for (int cx = 0; cx < 2; ++cx) select({k.level + 1, 2 * k.x + cx, 2 * k.y + cy}, cam, out, depth + 1);
+      for (int cx = 0; cx < 2; ++cx)
+        selectCasters({k.level + 1, 2 * k.x + cx, 2 * k.y + cy}, cam, region, out, depth + 1);
     return;
   }
   out.push_back(k);
@@ -481,16 +513,19 @@ TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const
 }
 
 TerrainStats TerrainRenderer::drawDepth(const glm::mat4& viewProj, const camera::Camera& selectFrom,
-                                        const Layer* waterLayer) {
+                                        const Layer* waterLayer, const double region[4]) {
   TerrainStats stats;
   std::vector<Key> tiles;
   std::vector<const Slot*> slots;
   if (depth_.id() == 0)  // compiled on the first shadow map a layer asks for
     depth_ = gl::GlProgram::graphics("terrain.vert", "bare.frag", depthDefines_);
   waterLayer_ = options_.skipOpenWater && waterLayer && waterLayer->info().opaqueWater ? waterLayer : nullptr;
-  selectTiles(selectFrom, tiles, slots, stats);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) selectCasters({0, x, y}, selectFrom, region, tiles, 0);
+  // As selectTiles: never more than the pool holds (the coarsest first).
+  if (int(tiles.size()) > options_.poolTiles) tiles.resize(options_.poolTiles);
   // Only the tiles whose bounding sphere (corners at sea level, 9 km of
-  // relief) meets the map's box: the view's tiles reach to its horizon.
+  // relief) meets the map's box (the region's lat/lon box is wider).
   const glm::dmat4 m(viewProj);
   const double sx = glm::length(glm::dvec3(m[0][0], m[1][0], m[2][0])), sy = glm::length(glm::dvec3(m[0][1], m[1][1], m[2][1]));
   std::size_t kept = 0;
@@ -504,9 +539,14 @@ TerrainStats TerrainRenderer::drawDepth(const glm::mat4& viewProj, const camera:
     r += 9000.0;
     const glm::dvec4 q = m * glm::dvec4(c - selectFrom.eyeEcef(), 1.0);
     if (std::abs(q.x) > 1.0 + r * sx || std::abs(q.y) > 1.0 + r * sy) continue;
-    tiles[kept] = tiles[i], slots[kept] = slots[i], ++kept;
+    tiles[kept++] = tiles[i];
   }
-  tiles.resize(kept), slots.resize(kept);
+  tiles.resize(kept);
+  slots.reserve(kept);
+  for (const Key& k : tiles) slots.push_back(&acquire(k, stats));
+  // The casters at the relief's and the mask's level a view of them would
+  // draw (those behind the eye are not the view's: not asked for yet).
+  waitForBlocks(tiles, true, true);
   // Only what stands above the sea casts onto it (water areas 30 m under it, skirts).
   glEnable(GL_CLIP_DISTANCE0);
   drawTiles(depth_, selectFrom, camera::Lighting{}, SeaShading::None, 0.0, tiles, slots, &viewProj);
@@ -514,6 +554,34 @@ TerrainStats TerrainRenderer::drawDepth(const glm::mat4& viewProj, const camera:
   stats.tilesDrawn = int(tiles.size());
   glBindVertexArray(0);
   return stats;
+}
+
+void TerrainRenderer::waitForBlocks(const std::vector<Key>& tiles, bool water, bool elevation) {
+  if (!options_.waitForTiles) return;
+  // A picture, not an interactive view: wait for the tiles these terrain
+  // tiles ask for (bounded: a view needing more than the pool holds draws what fits).
+  if (water && world_.waterTiles()) {
+    for (int round = 0; round < 64; ++round) {
+      bool complete = true;
+      for (const Key& k : tiles)
+        for (int w = 0; w < world_.waterTileLayers(); ++w)
+          complete = bindBlock(nullptr, *world_.waterTiles(w), k, "") && complete;
+      if (complete) break;
+      for (int w = 0; w < world_.waterTileLayers(); ++w) world_.waterTiles(w)->waitIdle();
+      for (int w = 0; w < world_.waterTileLayers(); ++w) world_.waterTiles(w)->endFrame();
+    }
+  }
+  if (world_.elevationTiles() && elevation) {
+    for (int round = 0; round < 64; ++round) {
+      bool complete = true;
+      for (const Key& k : tiles)
+        for (int e = 0; e < world_.elevationTileLayers(); ++e)
+          complete = bindBlock(nullptr, *world_.elevationTiles(e), k, "") && complete;
+      if (complete) break;
+      for (int e = 0; e < world_.elevationTileLayers(); ++e) world_.elevationTiles(e)->waitIdle();
+      for (int e = 0; e < world_.elevationTileLayers(); ++e) world_.elevationTiles(e)->endFrame();
+    }
+  }
 }
 
 TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Lighting& light, bool bare,
@@ -529,30 +597,7 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
   const auto pass = [&](const gl::GlProgram& prog) { drawTiles(prog, cam, light, sea, oceanCellPx, tiles, slots); };
   const gl::GlProgram& colour =
       bare ? bare_ : sea == SeaShading::UnderOcean && (!options_.seaProxy || world_.waterTiles()) ? underOcean_ : program_;
-  if (gl::TilePool* pool = world_.waterTiles(); pool && options_.waitForTiles && (&colour == &program_ || &colour == &underOcean_)) {
-    // A picture, not an interactive view: wait for the tiles this view asks
-    // for (bounded: a view needing more than the pool holds draws what fits).
-    for (int round = 0; round < 64; ++round) {
-      bool complete = true;
-      for (const Key& k : tiles)
-        for (int w = 0; w < world_.waterTileLayers(); ++w)
-          complete = bindBlock(nullptr, *world_.waterTiles(w), k, "") && complete;
-      if (complete) break;
-      for (int w = 0; w < world_.waterTileLayers(); ++w) world_.waterTiles(w)->waitIdle();
-      for (int w = 0; w < world_.waterTileLayers(); ++w) world_.waterTiles(w)->endFrame();
-    }
-  }
-  if (world_.elevationTiles() && options_.waitForTiles && !bare) {
-    for (int round = 0; round < 64; ++round) {
-      bool complete = true;
-      for (const Key& k : tiles)
-        for (int e = 0; e < world_.elevationTileLayers(); ++e)
-          complete = bindBlock(nullptr, *world_.elevationTiles(e), k, "") && complete;
-      if (complete) break;
-      for (int e = 0; e < world_.elevationTileLayers(); ++e) world_.elevationTiles(e)->waitIdle();
-      for (int e = 0; e < world_.elevationTileLayers(); ++e) world_.elevationTiles(e)->endFrame();
-    }
-  }
+  waitForBlocks(tiles, &colour == &program_ || &colour == &underOcean_, !bare);
   // Not with a streamed mask: the proxy's cut is the single water texture's.
   if (!bare && sea == SeaShading::UnderOcean && options_.seaProxy && !world_.waterTiles()) {
     // Depth only, where the ocean layer will cover the pixel: the same

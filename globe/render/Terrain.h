@@ -88,10 +88,14 @@ class TerrainRenderer {
                             const camera::Lighting& light);
 
   // Depth only into the sun's shadow map: the terrain above the sea drawn
-  // with viewProj (positions relative to selectFrom's eye), its tiles chosen
-  // from the real camera; tiles that waterLayer covers opaquely (open
-  // water, nothing above the sea) are left out.
-  TerrainStats drawDepth(const glm::mat4& viewProj, const camera::Camera& selectFrom, const Layer* waterLayer);
+  // with viewProj (positions relative to selectFrom's eye). Its tiles are
+  // chosen over `region` (lat0, lat1, lon0, lon1; the sea in view widened
+  // towards the sun: ShadowView::region), not the view's frustum, so a
+  // caster behind the eye or beside the view still shades the sea in it;
+  // their level follows selectFrom's distance as the view's would. Tiles of
+  // open water (nothing above the sea) are left out.
+  TerrainStats drawDepth(const glm::mat4& viewProj, const camera::Camera& selectFrom, const Layer* waterLayer,
+                         const double region[4]);
 
   const TerrainOptions& options() const { return options_; }
   void setSkipOpenWater(bool on) { options_.skipOpenWater = on; }
@@ -120,6 +124,16 @@ class TerrainRenderer {
   };
 
   void select(const Key& k, const camera::Camera& cam, std::vector<Key>& out, int depth);
+  // The shadow pass's casters: tiles over `region` with land, at the level
+  // the view's screen-space error gives them, without the frustum.
+  void selectCasters(const Key& k, const camera::Camera& cam, const double region[4], std::vector<Key>& out,
+                     int depth);
+  // The level-of-detail rule select and selectCasters share: true if k's
+  // cells are coarser on screen than the pixel error allows.
+  bool refines(const Key& k, const Bounds& b, const camera::Camera& cam, double dist) const;
+  // With options_.waitForTiles (a picture): load the streamed mask's
+  // (water) and relief's (elevation) blocks these tiles ask for first.
+  void waitForBlocks(const std::vector<Key>& tiles, bool water, bool elevation);
   Bounds bounds(const Key& k) const;
   const Slot& acquire(const Key& k, TerrainStats& stats);
   void selectTiles(const camera::Camera& cam, std::vector<Key>& tiles, std::vector<const Slot*>& slots,

@@ -24,6 +24,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 namespace geocean::render::test {
 namespace {
 
@@ -454,6 +456,16 @@ TEST(Shadows, AnIslandsCliffShadowAtALowSunFallsWhereGeometrySays) {
 // the ray from its point on the (calm, 1 m/s) sea towards the sun, marched
 // over the raster's bilinear surface; the picture's shadow: the pixels the
 // paper's model darkens (ratio < 0.8 against --no-shadows).
+// A folder of this process's own: the cliff tests run in parallel under
+// ctest -j, each writing the rasters and the tile cache.
+std::string plateauDir() {
+  static const std::string d = [] {
+    const std::string p = ::testing::TempDir() + "/shadow_plateau_" + std::to_string(::getpid());
+    std::filesystem::create_directories(p);
+    return p;
+  }();
+  return d;
+}
 double plateauElevation(double lat, double lon) {
   if (std::abs(lat - 30.0) < 0.5 && std::abs(lon + 40.0) < 0.5)
     return std::abs(lat - 30.0) < 7.5 / 60.0 && std::abs(lon + 40.0) < 7.5 / 60.0 ? 300.0 : -4000.0;
@@ -462,9 +474,9 @@ double plateauElevation(double lat, double lon) {
 std::string plateauTif() {
   constexpr int W = 21600, H = 10800;
   static const std::string p = [] {
-    const std::string path = ::testing::TempDir() + "/shadow_plateau.tif";
+    const std::string path = plateauDir() + "/shadow_plateau.tif";
     std::filesystem::remove(path);
-    std::filesystem::remove_all(::testing::TempDir() + "/shadow_tile_cache");
+    std::filesystem::remove_all(plateauDir() + "/shadow_tile_cache");
     raster::GeoTiffWriteOptions wo;
     wo.transform = {-180.0, 90.0, 360.0 / W, -180.0 / H, true};
     wo.nodata = -32768.0;
@@ -482,7 +494,7 @@ std::string plateauTif() {
 // 1 x 1 degree block, land (1) where the relief is above the sea.
 std::string plateauMask() {
   static const std::string p = [] {
-    const std::string path = ::testing::TempDir() + "/shadow_plateau_mask.tif";
+    const std::string path = plateauDir() + "/shadow_plateau_mask.tif";
     std::vector<float> px(60 * 60);
     for (int y = 0; y < 60; ++y)
       for (int x = 0; x < 60; ++x) px[std::size_t(y) * 60 + x] = plateauElevation(30.5 - (y + 0.5) / 60.0, -40.5 + (x + 0.5) / 60.0) > 0.0 ? 1.0f : 0.0f;
@@ -512,26 +524,31 @@ Image renderCli(const std::string& args, const std::string& name) {
   return readImage(out);
 }
 
-TEST(Shadows, ACliffsShadowAtALowSunFallsWhereItsReliefSays) {
-  setenv("GEOCEAN_TILE_CACHE", (::testing::TempDir() + "/shadow_tile_cache").c_str(), 1);
-  // 150 m up, 2.5 km west of the plateau's west side, in its shadow, looking north-east at the cliff.
-  ViewPose pose;
-  pose.latDeg = 29.93, pose.lonDeg = -40.0 - 7.0 / 60.0 - 0.026, pose.altM = 150.0;
-  pose.headingDeg = 45.0, pose.pitchDeg = -6.0, pose.fovYDeg = 50.0, pose.width = kW, pose.height = kH;
+// The plateau's shadow over the sea seen from `pose` (sun 90, 6; calm sea),
+// drawn without shadows, with the paper's model and (withPhysical) the default; the
+// sea pixels within 0.8 of the map's reach counted against the relief.
+struct CliffShadow {
+  Image none, paper, physical;
+  int sea = 0, drawn = 0, geometric = 0, both = 0;
+};
+CliffShadow cliffShadow(const ViewPose& pose, const std::string& name, bool withPhysical = true) {
+  setenv("GEOCEAN_TILE_CACHE", (plateauDir() + "/shadow_tile_cache").c_str(), 1);
   char cam[160];
   std::snprintf(cam, sizeof cam, " --camera %.6f,%.6f,%.1f,%.1f,%.1f --size %dx%d --fov %.1f --sun 90,6 --wind 1",
                 pose.latDeg, pose.lonDeg, pose.altM, pose.headingDeg, pose.pitchDeg, kW, kH, pose.fovYDeg);
   const std::string view = std::string(cam) + " --elevation " + plateauTif() + " --mask " + plateauMask();
-  const Image none = renderCli(view + " --no-shadows", "shadow_cliff_none");
-  const Image paper = renderCli(view + " --shadow-model paper", "shadow_cliff_paper");
-  const Image physical = renderCli(view, "shadow_cliff");
+  CliffShadow r;
+  r.none = renderCli(view + " --no-shadows", name + "_none");
+  r.paper = renderCli(view + " --shadow-model paper", name + "_paper");
+  if (withPhysical) r.physical = renderCli(view, name);
   unsetenv("GEOCEAN_TILE_CACHE");
-  ASSERT_EQ(none.width, kW);
-  ASSERT_EQ(paper.width, kW);
+  if (r.none.width != kW || r.paper.width != kW || (withPhysical && r.physical.width != kW)) {
+    ADD_FAILURE() << name << ": a render failed";
+    return r;
+  }
   const camera::Camera c = camera::Camera::fromView(pose);
   const glm::dvec3 sun = sunForView(pose, 90.0, 6.0);
   const double reach = std::clamp(kShadowReachPerHeight * pose.altM, kShadowReachMinM, kShadowReachMaxM);
-  int sea = 0, drawn = 0, geometric = 0, both = 0;
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
       const glm::dvec3 ray = c.pixelRay(x + 0.5, y + 0.5);
@@ -543,35 +560,59 @@ TEST(Shadows, ACliffsShadowAtALowSunFallsWhereItsReliefSays) {
       if (hit.tFirst() > 0.8 * reach) continue;
       const geo::Geodetic g = geo::fromEcef(p);
       if (bilinear(g.latDeg, g.lonDeg) > -1000.0) continue;
-      // The view of it must not cross the plateau (it does not: the eye is
-      // south-west of it, looking past its west side).
+      // The view of it must not cross the plateau (it does not in either
+      // view: the eye is beside it or has it behind).
       bool shaded = false;
       for (double t = 20.0; t < 8000.0 && !shaded; t += 20.0) {
         const geo::Geodetic q = geo::fromEcef(p + t * sun);
         shaded = bilinear(q.latDeg, q.lonDeg) > q.heightM;
       }
       const std::size_t i = std::size_t(y) * kW + x;
-      const bool dark = grey(paper, i) < 0.8 * grey(none, i);
-      ++sea, drawn += dark, geometric += shaded, both += dark && shaded;
+      const bool dark = grey(r.paper, i) < 0.8 * grey(r.none, i);
+      ++r.sea, r.drawn += dark, r.geometric += shaded, r.both += dark && shaded;
     }
-  std::printf("[ measured ] cliff: %d sea px within reach, shadow drawn %d, by the relief %d, both %d\n", sea, drawn,
-              geometric, both);
-  ASSERT_GT(geometric, 500) << "the cliff's shadow is in view";
+  std::printf("[ measured ] %s: %d sea px within reach, shadow drawn %d, by the relief %d, both %d\n", name.c_str(),
+              r.sea, r.drawn, r.geometric, r.both);
+  return r;
+}
+
+TEST(Shadows, ACliffsShadowAtALowSunFallsWhereItsReliefSays) {
+  // 150 m up, 2.5 km west of the plateau's west side, in its shadow, looking north-east at the cliff.
+  ViewPose pose;
+  pose.latDeg = 29.93, pose.lonDeg = -40.0 - 7.0 / 60.0 - 0.026, pose.altM = 150.0;
+  pose.headingDeg = 45.0, pose.pitchDeg = -6.0, pose.fovYDeg = 50.0, pose.width = kW, pose.height = kH;
+  const CliffShadow r = cliffShadow(pose, "shadow_cliff");
+  ASSERT_GT(r.geometric, 500) << "the cliff's shadow is in view";
   // The terrain's mesh draws the cliff's cell as a ramp over its vertices
   // (cells of ~115 m at its finest level) and the map's texels are ~3 m
   // here: the shadow's edge moves by up to 115 m / tan(6 deg) ~ 1 km only
   // where the ramp's top is cut, so 80 % agreement each way.
-  EXPECT_GT(both, 0.8 * geometric);
-  EXPECT_GT(both, 0.8 * drawn);
+  EXPECT_GT(r.both, 0.8 * r.geometric);
+  EXPECT_GT(r.both, 0.8 * r.drawn);
   // The default model removes the sun's direct light there: darker too.
   int darker = 0, n = 0;
   for (std::size_t i = 0; i < std::size_t(kW) * kH; ++i)
-    if (grey(paper, i) < 0.6 * grey(none, i)) ++n, darker += grey(physical, i) < grey(none, i);
+    if (grey(r.paper, i) < 0.6 * grey(r.none, i)) ++n, darker += grey(r.physical, i) < grey(r.none, i);
   EXPECT_GT(darker, 0.9 * n);
   // Looked at: the cliff's dark face and its shadow band over the sea to
   // the eye (the paper's model; the default's is faint, the sky's
   // reflection being most of the water's light at this grazing view).
-  expectMatchesGolden(paper, "shadow_cliff_low_sun_paper", 2.0, 0.005);
+  expectMatchesGolden(r.paper, "shadow_cliff_low_sun_paper", 2.0, 0.005);
+}
+
+// The same cliff BEHIND the eye: 150 m up, 1 km west of the plateau's top
+// edge (its westmost 300 m cell centre, 6.5' west of 40 W), looking west (away from it and from the sun) down at the sea in its
+// shadow. The casters are chosen from the map's region, not from the view's
+// tiles (which hold none of the plateau): the shadow is drawn all the same.
+TEST(Shadows, ACliffBehindTheEyeStillShadowsTheSeaInView) {
+  ViewPose pose;
+  pose.latDeg = 30.0, pose.lonDeg = -40.0 - 6.5 / 60.0 - 1000.0 / (111320.0 * std::cos(30.0 * 3.14159265358979 / 180.0));
+  pose.altM = 150.0, pose.headingDeg = 260.0, pose.pitchDeg = -20.0, pose.fovYDeg = 50.0, pose.width = kW, pose.height = kH;
+  const CliffShadow r = cliffShadow(pose, "shadow_cliff_behind", false);
+  ASSERT_GT(r.geometric, 5000) << "the cliff's shadow is in view (the near third of the sea within reach)";
+  // As above: 80 % agreement each way (the ramp of the cliff's cell).
+  EXPECT_GT(r.both, 0.8 * r.geometric);
+  EXPECT_GT(r.both, 0.8 * r.drawn);
 }
 
 }  // namespace
