@@ -132,65 +132,28 @@ uniform vec4 uWaterLevelGeo;  // origin lon, origin lat, lon step, lat step of a
 // ever need it), so the coast runs on into the grid's without a gap.
 #ifdef GEOCEAN_WATER_TILES_LAYERS
 // Several streamed masks on the terrain (world::streamedWaterLayers, 2 to
-// 4), in answer order: layer 0 is uWater* above, layer k >= 1 uWaterB<k>*
-// (its pool on unit 15 + k, its 2 x 2 block as layer 0's; slots -1 where
-// the terrain tile is clear of it). As the ocean's pages (waterPagesChain):
+// 4), in answer order: layer 0 is uWater* above, layer k >= 1 element
+// k - 1 of the uWaterB* arrays (its pool on unit 15 + k, its 2 x 2 block as
+// layer 0's; slots -1 where the terrain tile is clear of it). As the ocean's pages (waterPagesChain):
 // the first layer with a texel of its own within the filter's reach draws
 // the point; its texels past its edge or without data (NaN) take the next
 // layers' texel at the pixel (one lookup a pixel), the grid past the last.
 layout(binding = 16) uniform sampler2DArray uWaterPoolB1;
-uniform ivec4 uWaterB1Slots, uWaterB1Block;
-uniform ivec3 uWaterB1Level;
-uniform vec4 uWaterB1LevelGeo;
 #if GEOCEAN_WATER_TILES_LAYERS > 2
 layout(binding = 17) uniform sampler2DArray uWaterPoolB2;
-uniform ivec4 uWaterB2Slots, uWaterB2Block;
-uniform ivec3 uWaterB2Level;
-uniform vec4 uWaterB2LevelGeo;
 #endif
 #if GEOCEAN_WATER_TILES_LAYERS > 3
 layout(binding = 18) uniform sampler2DArray uWaterPoolB3;
-uniform ivec4 uWaterB3Slots, uWaterB3Block;
-uniform ivec3 uWaterB3Level;
-uniform vec4 uWaterB3LevelGeo;
 #endif
+uniform ivec4 uWaterBSlots[3], uWaterBBlock[3];
+uniform ivec3 uWaterBLevel[3];
+uniform vec4 uWaterBLevelGeo[3];
 
-ivec4 wSlots(int k) {
-#if GEOCEAN_WATER_TILES_LAYERS > 2
-  if (k == 2) return uWaterB2Slots;
-#endif
-#if GEOCEAN_WATER_TILES_LAYERS > 3
-  if (k == 3) return uWaterB3Slots;
-#endif
-  return k == 1 ? uWaterB1Slots : uWaterSlots;
-}
-ivec4 wBlock(int k) {
-#if GEOCEAN_WATER_TILES_LAYERS > 2
-  if (k == 2) return uWaterB2Block;
-#endif
-#if GEOCEAN_WATER_TILES_LAYERS > 3
-  if (k == 3) return uWaterB3Block;
-#endif
-  return k == 1 ? uWaterB1Block : uWaterBlock;
-}
-ivec3 wLevel(int k) {
-#if GEOCEAN_WATER_TILES_LAYERS > 2
-  if (k == 2) return uWaterB2Level;
-#endif
-#if GEOCEAN_WATER_TILES_LAYERS > 3
-  if (k == 3) return uWaterB3Level;
-#endif
-  return k == 1 ? uWaterB1Level : uWaterLevel;
-}
-vec4 wGeo(int k) {
-#if GEOCEAN_WATER_TILES_LAYERS > 2
-  if (k == 2) return uWaterB2LevelGeo;
-#endif
-#if GEOCEAN_WATER_TILES_LAYERS > 3
-  if (k == 3) return uWaterB3LevelGeo;
-#endif
-  return k == 1 ? uWaterB1LevelGeo : uWaterLevelGeo;
-}
+// Only the pool's fetch is spelled out per layer (a constant index selects one sampler).
+ivec4 wSlots(int k) { return k == 0 ? uWaterSlots : uWaterBSlots[k - 1]; }
+ivec4 wBlock(int k) { return k == 0 ? uWaterBlock : uWaterBBlock[k - 1]; }
+ivec3 wLevel(int k) { return k == 0 ? uWaterLevel : uWaterBLevel[k - 1]; }
+vec4 wGeo(int k) { return k == 0 ? uWaterLevelGeo : uWaterBLevelGeo[k - 1]; }
 float wFetch(int k, ivec3 at) {
 #if GEOCEAN_WATER_TILES_LAYERS > 2
   if (k == 2) return texelFetch(uWaterPoolB2, at, 0).r;
@@ -439,10 +402,93 @@ uniform ivec4 uElevBlock;
 uniform ivec3 uElevLevel;
 uniform vec4 uElevLevelGeo;
 
+#ifdef GEOCEAN_ELEVATION_TILES_LAYERS
+// Several streamed reliefs (world::streamedElevationLayers, 2 to 4), in
+// answer order: layer 0 is uElev* above, layer k >= 1 element k - 1 of the
+// uElevB* arrays (its pool on unit 18 + k, its 2 x 2 block as layer 0's,
+// slots -1 where the terrain tile is clear of it). As the query
+// (LayerStack::elevationBatch, raster::Raster::sampleBilinear): the first
+// layer whose nearest texel lies inside it and whose 4 bilinear texels
+// (clamped to its edge) have any data answers, with the bilinear mean of
+// those that have; the grid past the last. Only the pool's fetch is
+// spelled out per layer (a constant index selects one sampler).
+layout(binding = 19) uniform sampler2DArray uElevPoolB1;
+#if GEOCEAN_ELEVATION_TILES_LAYERS > 2
+layout(binding = 20) uniform sampler2DArray uElevPoolB2;
+#endif
+#if GEOCEAN_ELEVATION_TILES_LAYERS > 3
+layout(binding = 21) uniform sampler2DArray uElevPoolB3;
+#endif
+uniform ivec4 uElevBSlots[3], uElevBBlock[3];
+uniform ivec3 uElevBLevel[3];
+uniform vec4 uElevBLevelGeo[3];
+
+ivec4 eSlots(int k) { return k == 0 ? uElevSlots : uElevBSlots[k - 1]; }
+ivec4 eBlock(int k) { return k == 0 ? uElevBlock : uElevBBlock[k - 1]; }
+ivec3 eLevel(int k) { return k == 0 ? uElevLevel : uElevBLevel[k - 1]; }
+vec4 eGeo(int k) { return k == 0 ? uElevLevelGeo : uElevBLevelGeo[k - 1]; }
+float eFetch(int k, ivec3 at) {
+  if (k == 0) return texelFetch(uElevPool, at, 0).r;
+#if GEOCEAN_ELEVATION_TILES_LAYERS > 2
+  if (k == 2) return texelFetch(uElevPoolB2, at, 0).r;
+#endif
+#if GEOCEAN_ELEVATION_TILES_LAYERS > 3
+  if (k == 3) return texelFetch(uElevPoolB3, at, 0).r;
+#endif
+  return texelFetch(uElevPoolB1, at, 0).r;
+}
+
+// Layer k's bilinear sample at lon/lat (v): false where it has no data.
+bool eLayer(int k, vec2 lonLatDeg, out float v) {
+  v = 0.0;
+  ivec4 S = eSlots(k);
+  if (S.x < 0) return false;
+  vec4 G = eGeo(k);
+  ivec3 L = eLevel(k);
+  if (L.z == 0) lonLatDeg.x = lonNear(lonLatDeg.x, G.x + 0.5 * float(L.x) * G.z);
+  vec2 p = vec2((lonLatDeg.x - G.x) / G.z, (lonLatDeg.y - G.y) / G.w) - 0.5;
+  ivec2 n = ivec2(floor(p + 0.5));  // the nearest texel: past a regional layer's edge it has no data
+  if (L.z == 0 && (any(lessThan(n, ivec2(0))) || any(greaterThanEqual(n, L.xy)))) return false;
+  p.y = clamp(p.y, 0.0, float(L.y - 1));
+  vec2 i = floor(p);
+  vec2 f = p - i;
+  ivec4 B = eBlock(k);
+  float s = 0.0, ws = 0.0;
+  for (int q = 0; q < 4; ++q) {
+    ivec2 g = ivec2(i) + ivec2(q & 1, q >> 1);
+    float t = eFetch(k, blockTexel(g, L, B, S));  // clamped or wrapped into the level
+    float w = ((q & 1) != 0 ? f.x : 1.0 - f.x) * ((q >> 1) != 0 ? f.y : 1.0 - f.y);
+    if (!isnan(t)) s += w * t, ws += w;
+  }
+  v = s / ws;
+  return ws > 0.0;
+}
+
+bool eDrawn(int k) { return eSlots(k).x >= 0; }
+
+float elevChain(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
+  float v;
+  if (eLayer(0, lonLatDeg, v)) return v;
+  if (eLayer(1, lonLatDeg, v)) return v;
+#if GEOCEAN_ELEVATION_TILES_LAYERS > 2
+  if (eLayer(2, lonLatDeg, v)) return v;
+#endif
+#if GEOCEAN_ELEVATION_TILES_LAYERS > 3
+  if (eLayer(3, lonLatDeg, v)) return v;
+#endif
+  return textureLod(grid, geoUv(lonLatDeg, gridGeo), 0.0).r;
+}
+#endif
+
 // A regional layer (GEOCEAN_ELEVATION_REGIONAL): texels past its edge are
 // the grid's too; a terrain tile clear of it draws the grid alone (no
 // slots, -1).
 bool elevTilesDrawn() {
+#ifdef GEOCEAN_ELEVATION_TILES_LAYERS
+  for (int k = 0; k < GEOCEAN_ELEVATION_TILES_LAYERS; ++k)
+    if (eDrawn(k)) return true;
+  return false;
+#endif
 #ifdef GEOCEAN_ELEVATION_REGIONAL
   return uElevSlots.x >= 0;
 #else
@@ -464,8 +510,21 @@ float elevTexel(ivec2 g, sampler2D grid, vec4 gridGeo) {
   return v;
 }
 
+// The texel (degrees, lon and lat) of the streamed level drawn: the first
+// layer's bound one (for the relief's gradient).
+vec2 elevTilesStep() {
+#ifdef GEOCEAN_ELEVATION_TILES_LAYERS
+  for (int k = 0; k < GEOCEAN_ELEVATION_TILES_LAYERS; ++k)
+    if (eDrawn(k)) return abs(eGeo(k).zw);
+#endif
+  return abs(uElevLevelGeo.zw);
+}
+
 // Bilinear elevation (m) at lon/lat from the streamed level.
 float elevTiles(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
+#ifdef GEOCEAN_ELEVATION_TILES_LAYERS
+  return elevChain(lonLatDeg, grid, gridGeo);
+#endif
   vec2 lonLatE = lonLatDeg;  // the grid's longitude stays as it came
 #ifdef GEOCEAN_ELEVATION_REGIONAL
   lonLatE.x = lonNear(lonLatDeg.x, uElevLevelGeo.x + 0.5 * float(uElevLevel.x) * uElevLevelGeo.z);

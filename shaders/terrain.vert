@@ -79,7 +79,7 @@ void main() {
 #ifdef GEOCEAN_ELEVATION_TILES
   if (elevTilesDrawn()) {
     // One texel of the streamed level either side.
-    vec2 st = abs(uElevLevelGeo.zw);
+    vec2 st = elevTilesStep();
     hE = elevTiles(aLonLat + vec2(st.x, 0.0), uElevation, uElevationGeo);
     hW = elevTiles(aLonLat - vec2(st.x, 0.0), uElevation, uElevationGeo);
     hN = elevTiles(aLonLat + vec2(0.0, st.y), uElevation, uElevationGeo);

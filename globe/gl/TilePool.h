@@ -45,13 +45,14 @@ struct TilePoolOptions {
   float nodataValue = 0.0f;  // what NaN texels become
 };
 
-// A streamed water layer's pool when several are chained (the host's
-// terrain and the ocean alike): a layer whose raster declares nodata keeps
-// it (NaN) in an R32F pool, so the next layer answers there (R8 would make
-// it land); past a layer's edge the shader knows by position, so a layer
-// without nodata, or a lone layer, stays R8.
+// A streamed water layer's pool (the host's terrain and the ocean alike):
+// a layer whose raster declares nodata keeps it (NaN) in an R32F pool, so
+// the next layer (or, for a lone regional layer, the grid below) answers
+// there, as the query's (R8 would make it land); past a layer's edge the
+// shader knows by position, so a layer without nodata, or a lone global
+// one (its pyramid's nodata is land, world::waterPyramid), stays R8.
 inline TilePoolOptions chainedWaterPool(TilePoolOptions o, const raster::Raster& source, bool several) {
-  if (several && source.nodata()) o.internalFormat = GL_R32F, o.nodataValue = NAN;
+  if (source.nodata() && (several || !source.transform().global)) o.internalFormat = GL_R32F, o.nodataValue = NAN;
   return o;
 }
 

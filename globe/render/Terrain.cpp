@@ -48,8 +48,8 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
   double texelDeg = world_.finestShapeTexelDeg();
   for (int w = 0; w < world_.waterTileLayers(); ++w)  // the streamed masks' own texels
     texelDeg = std::min(texelDeg, std::abs(world_.waterTiles(w)->pyramid().source().transform().lonStepDeg));
-  if (world_.elevationTiles())  // the streamed relief's
-    texelDeg = std::min(texelDeg, std::abs(world_.elevationTiles()->pyramid().source().transform().lonStepDeg));
+  for (int e = 0; e < world_.elevationTileLayers(); ++e)  // the streamed reliefs'
+    texelDeg = std::min(texelDeg, std::abs(world_.elevationTiles(e)->pyramid().source().transform().lonStepDeg));
   while (maxLevel_ > 0 && texelDeg > 0.0 && 90.0 / double(1 << (maxLevel_ - 1)) / (kGrid - 1) <= texelDeg / 16.0)
     --maxLevel_;
   // Streamed water (WorldTextures::waterTiles): the same programs reading the tile pool.
@@ -63,6 +63,8 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
     if (world_.elevationTiles() && !world_.elevationTiles()->pyramid().source().transform().global)
       d.push_back("GEOCEAN_ELEVATION_REGIONAL 1");
     if (world_.waterTileLayers() > 1) d.push_back("GEOCEAN_WATER_TILES_LAYERS " + std::to_string(world_.waterTileLayers()));
+    if (world_.elevationTileLayers() > 1)
+      d.push_back("GEOCEAN_ELEVATION_TILES_LAYERS " + std::to_string(world_.elevationTileLayers()));
     return d;
   };
   // Under an ocean layer too: the ocean draws a streamed mask's coast from
@@ -375,19 +377,24 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
   gl::TilePool* pool = world_.waterTiles();
   const bool streamed = pool && prog.uniform("uWaterSlots") >= 0;
   if (streamed) glBindTextureUnit(5, pool->texture());
-  // Streamed masks under the first (GEOCEAN_WATER_TILES_LAYERS): pools on units 15 + k, uniforms uWaterB<k>*.
+  // Streamed masks under the first (GEOCEAN_WATER_TILES_LAYERS): pools on units 15 + k,
+  // uniforms uWaterB*[k - 1]; reliefs likewise below.
   const int waterLayers = streamed ? world_.waterTileLayers() : 0;
-  static const char* const kBelow[] = {"", "uWaterB1", "uWaterB2", "uWaterB3"};
+  static const char* const kBelow[] = {"", "[0]", "[1]", "[2]"};
   for (int w = 1; w < waterLayers; ++w) glBindTextureUnit(GLuint(15 + w), world_.waterTiles(w)->texture());
   gl::TilePool* elevPool = world_.elevationTiles();
   const bool elevStreamed = elevPool && prog.uniform("uElevSlots") >= 0;
   if (elevStreamed) glBindTextureUnit(4, elevPool->texture());
+  // Streamed reliefs under the first (GEOCEAN_ELEVATION_TILES_LAYERS): pools on units 18 + k.
+  const int elevLayers = elevStreamed ? world_.elevationTileLayers() : 0;
+  for (int e = 1; e < elevLayers; ++e) glBindTextureUnit(GLuint(18 + e), world_.elevationTiles(e)->texture());
   glBindVertexArray(vao_);
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const Key& k = tiles[i];
     if (streamed) bindWaterBlock(&prog, k);
-    for (int w = 1; w < waterLayers; ++w) bindBlock(&prog, *world_.waterTiles(w), k, kBelow[w]);
+    for (int w = 1; w < waterLayers; ++w) bindBlock(&prog, *world_.waterTiles(w), k, "uWaterB", kBelow[w]);
     if (elevStreamed) bindBlock(&prog, *elevPool, k, "uElev");
+    for (int e = 1; e < elevLayers; ++e) bindBlock(&prog, *world_.elevationTiles(e), k, "uElevB", kBelow[e]);
     const glm::vec3 off(slots[i]->centerEcef - cam.eyeEcef());  // double difference, then float
     glUniform3fv(locOffset, 1, &off[0]);
     // Skirts hang deeper than the largest height error between levels
@@ -402,7 +409,8 @@ bool TerrainRenderer::bindWaterBlock(const gl::GlProgram* prog, const Key& k) {
   return bindBlock(prog, *world_.waterTiles(), k, "uWater");
 }
 
-bool TerrainRenderer::bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, const Key& k, const char* prefix) {
+bool TerrainRenderer::bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, const Key& k, const char* prefix,
+                                const char* index) {
   // The finest pyramid level whose 2 x 2 tiles hold this terrain tile and
   // the filter's reach (3 texels: the B-spline's 2 and a skirt's), and are
   // resident; the finest such level is asked for. The terrain tile's cells
@@ -426,7 +434,7 @@ bool TerrainRenderer::bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, c
     // nothing is asked for and every level agrees with the grid there.
     const double m = kReach * double(1 << top);
     if (x1 + m < 0.0 || x0 - m > pyr.levelWidth(0) || y1 + m < 0.0 || y0 - m > pyr.levelHeight(0)) {
-      if (prog) glUniform4i(prog->uniform((std::string(prefix) + "Slots").c_str()), -1, -1, -1, -1);
+      if (prog) glUniform4i(prog->uniform((std::string(prefix) + "Slots" + index).c_str()), -1, -1, -1, -1);
       return true;
     }
   }
@@ -461,11 +469,11 @@ bool TerrainRenderer::bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, c
   }
   if (!prog) return level == want;
   const double s = double(1 << level);
-  const std::string p(prefix);
-  glUniform4i(prog->uniform((p + "Slots").c_str()), slots[0], slots[1], slots[2], slots[3]);
-  glUniform4i(prog->uniform((p + "Block").c_str()), bx, by, pyr.tilesX(level), T);
-  glUniform3i(prog->uniform((p + "Level").c_str()), pyr.levelWidth(level), pyr.levelHeight(level), wrap ? 1 : 0);
-  glUniform4f(prog->uniform((p + "LevelGeo").c_str()), float(t0.originLonDeg), float(t0.originLatDeg),
+  const std::string p(prefix), i(index);
+  glUniform4i(prog->uniform((p + "Slots" + i).c_str()), slots[0], slots[1], slots[2], slots[3]);
+  glUniform4i(prog->uniform((p + "Block" + i).c_str()), bx, by, pyr.tilesX(level), T);
+  glUniform3i(prog->uniform((p + "Level" + i).c_str()), pyr.levelWidth(level), pyr.levelHeight(level), wrap ? 1 : 0);
+  glUniform4f(prog->uniform((p + "LevelGeo" + i).c_str()), float(t0.originLonDeg), float(t0.originLatDeg),
               float(t0.lonStepDeg * s), float(t0.latStepDeg * s));
   return level == want;
 }
@@ -485,6 +493,8 @@ TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const
       d.push_back("GEOCEAN_ELEVATION_TILES 1");
       if (!e->pyramid().source().transform().global) d.push_back("GEOCEAN_ELEVATION_REGIONAL 1");
     }
+    if (world_.elevationTileLayers() > 1)
+      d.push_back("GEOCEAN_ELEVATION_TILES_LAYERS " + std::to_string(world_.elevationTileLayers()));
     mirrored_ = gl::GlProgram::graphics("terrain.vert", "terrain.frag", d);
   }
   TerrainStats stats;
@@ -561,13 +571,15 @@ void TerrainRenderer::waitForBlocks(const std::vector<Key>& tiles, bool water, b
       for (int w = 0; w < world_.waterTileLayers(); ++w) world_.waterTiles(w)->endFrame();
     }
   }
-  if (gl::TilePool* pool = world_.elevationTiles(); pool && elevation) {
+  if (world_.elevationTiles() && elevation) {
     for (int round = 0; round < 64; ++round) {
       bool complete = true;
-      for (const Key& k : tiles) complete = bindBlock(nullptr, *pool, k, "uElev") && complete;
+      for (const Key& k : tiles)
+        for (int e = 0; e < world_.elevationTileLayers(); ++e)
+          complete = bindBlock(nullptr, *world_.elevationTiles(e), k, "") && complete;
       if (complete) break;
-      pool->waitIdle();
-      pool->endFrame();
+      for (int e = 0; e < world_.elevationTileLayers(); ++e) world_.elevationTiles(e)->waitIdle();
+      for (int e = 0; e < world_.elevationTileLayers(); ++e) world_.elevationTiles(e)->endFrame();
     }
   }
 }
@@ -602,7 +614,7 @@ TerrainStats TerrainRenderer::draw(const camera::Camera& cam, const camera::Ligh
   pass(colour);
   // Finished tile loads go up after the frame's draws (they never wait).
   for (int w = 0; w < world_.waterTileLayers(); ++w) world_.waterTiles(w)->endFrame();
-  if (gl::TilePool* pool = world_.elevationTiles()) pool->endFrame();
+  for (int e = 0; e < world_.elevationTileLayers(); ++e) world_.elevationTiles(e)->endFrame();
   stats.tilesDrawn = int(tiles.size());
   glBindVertexArray(0);
   return stats;

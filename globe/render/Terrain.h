@@ -151,8 +151,10 @@ class TerrainRenderer {
   // (none with a null prog: only the requests). True when they are of the
   // level the tile wants.
   bool bindWaterBlock(const gl::GlProgram* prog, const Key& k);
-  // The same for any pool: uniforms prefix + Slots, Block, Level, LevelGeo.
-  bool bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, const Key& k, const char* prefix);
+  // The same for any pool: uniforms prefix + Slots, Block, Level, LevelGeo
+  // (each + index: an array's element, e.g. "[0]").
+  bool bindBlock(const gl::GlProgram* prog, gl::TilePool& pool, const Key& k, const char* prefix,
+                 const char* index = "");
 
   const WorldTextures& world_;
   TerrainOptions options_;

@@ -43,11 +43,16 @@ WorldTextures::WorldTextures(const world::WorldData& data)
     imageryLayers_.push_back(t);
     imageryLayerGeo_.push_back(il.geo());
   }
+  if (data.elevationTilesBelow.size() + 1 > std::size_t(world::kMaxStreamedLayers))
+    throw std::invalid_argument(data.elevationTilesBelow.back()->source().path() + ": more than " +
+                                std::to_string(world::kMaxStreamedLayers) + " streamed elevation layers");
   if (data.elevationTiles) {
     gl::TilePoolOptions o;
     o.internalFormat = GL_R32F;
     o.nodataValue = NAN;  // the shader falls back to the elevation grid there
     elevationTiles_ = std::make_unique<gl::TilePool>(data.elevationTiles, o);
+    o.slots /= 2;  // as the water's: a layer below answers only where those above have no data
+    for (const auto& p : data.elevationTilesBelow) elevationTilesBelow_.push_back(std::make_unique<gl::TilePool>(p, o));
   }
   // Several streamed masks (gl::chainedWaterPool); the layers below hold
   // half the slots (they answer only where those above have no data).
@@ -64,10 +69,13 @@ WorldTextures::WorldTextures(const world::WorldData& data)
     waterTiles_ = std::make_unique<gl::TilePool>(data.waterFromRelief ? world::reliefWaterPyramid(data.waterSource)
                                                                        : world::waterPyramid(data.waterSource, data.waterEncoding),
                                                  options(*data.waterSource, false));
-  for (std::size_t i = 0; i < data.waterSourcesBelow.size(); ++i)
+  for (std::size_t i = 0; i < data.waterSourcesBelow.size(); ++i) {
+    const bool relief = i < data.waterFromReliefBelow.size() && data.waterFromReliefBelow[i];
     waterTilesBelow_.push_back(std::make_unique<gl::TilePool>(
-        world::waterPyramid(data.waterSourcesBelow[i], data.waterEncodingsBelow[i]),
+        relief ? world::reliefWaterPyramid(data.waterSourcesBelow[i])
+               : world::waterPyramid(data.waterSourcesBelow[i], data.waterEncodingsBelow[i]),
         options(*data.waterSourcesBelow[i], true)));
+  }
   indexRegionalWater();
 }
 

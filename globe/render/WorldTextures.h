@@ -65,6 +65,12 @@ class WorldTextures {
   // The streamed elevation (WorldData::elevationTiles: R32F, NaN where the
   // raster has no data), or null.
   gl::TilePool* elevationTiles() const { return elevationTiles_.get(); }
+  // All streamed elevation layers in answer order (WorldData::elevationTilesBelow
+  // after elevationTiles, each its own pool): 0 without streamed elevation.
+  int elevationTileLayers() const { return elevationTiles_ ? 1 + int(elevationTilesBelow_.size()) : 0; }
+  gl::TilePool* elevationTiles(int layer) const {
+    return layer == 0 ? elevationTiles_.get() : elevationTilesBelow_[std::size_t(layer - 1)].get();
+  }
 
  private:
   std::shared_ptr<const world::WorldGrids> grids_;
@@ -73,7 +79,7 @@ class WorldTextures {
   std::vector<GLuint> imageryLayers_;
   std::vector<glm::vec4> imageryLayerGeo_;
   std::unique_ptr<gl::TilePool> waterTiles_, elevationTiles_;
-  std::vector<std::unique_ptr<gl::TilePool>> waterTilesBelow_;
+  std::vector<std::unique_ptr<gl::TilePool>> waterTilesBelow_, elevationTilesBelow_;
   std::vector<std::unique_ptr<world::WaterIndex>> regionalIndex_;  // per streamed water layer
   void indexRegionalWater();
 };

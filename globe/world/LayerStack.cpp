@@ -288,22 +288,35 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
   const auto e = stack.drawingElevation();
   const double elevationStep =
       e && globalInMemory(*e) ? e->transform().lonStepDeg : globalGridFor(e.get()).lonStepDeg;
-  const RasterLayer* streamedElevation = streamedElevationLayer(stack, elevationStep);
+  const RasterLayer* beyondElevation = nullptr;
+  const auto elevationChain = streamedElevationLayers(stack, elevationStep, &beyondElevation);
+  if (beyondElevation)
+    std::fprintf(stderr,
+                 "geocean: warning: %s: more than %d elevation layers to stream; it and the ones after it are drawn "
+                 "from the %.4g' elevation grid (the query still answers at their cells)\n",
+                 beyondElevation->raster->path().c_str(), kMaxStreamedLayers, elevationStep * 60.0);
+  for (std::size_t i = 1; i < elevationChain.size(); ++i)
+    d.elevationTilesBelow.push_back(raster::TilePyramid::open(elevationChain[i]->raster));
+  const RasterLayer* streamedElevation = elevationChain.empty() ? nullptr : elevationChain.back();
   if (streamedElevation && isStreamedRegional(*streamedElevation->raster)) {
-    // A regional layer's tiles are drawn over the stack's resampled grid
-    // (geo_uv.glsl: outside the layer and at its nodata the grid answers;
-    // relief is continuous, and the grid keeps the layer's relief at 5' for
+    // Regional layers' tiles are drawn over the stack's resampled grid
+    // (geo_uv.glsl: outside the layers and at their nodata the grid answers;
+    // relief is continuous, and the grid keeps the layers' relief at 5' for
     // the terrain's LOD bounds).
-    d.elevationTiles = raster::TilePyramid::open(streamedElevation->raster);
+    d.elevationTiles = raster::TilePyramid::open(elevationChain.front()->raster);
     d.elevation = elevationLayerOf(stack);
   } else if (const RasterLayer* l = streamedElevation) {
-    // Its tiles are drawn; the CPU grid is the pyramid's coarse level (means
-    // of its cells), cells without data from the layers below it.
-    d.elevationTiles = raster::TilePyramid::open(l->raster);
-    d.elevation = levelLayerOf(*d.elevationTiles, elevationStep);
+    // A global last layer: its tiles are drawn; the CPU grid is its
+    // pyramid's coarse level (means of its cells), cells without data from
+    // the layers below the chain.
+    const auto last = raster::TilePyramid::open(l->raster);
+    d.elevationTiles = elevationChain.size() == 1 ? last : raster::TilePyramid::open(elevationChain.front()->raster);
+    d.elevation = levelLayerOf(*last, elevationStep);
     std::vector<RasterLayer> below;
     for (const RasterLayer& o : stack.layers())
-      if (&o != l && o.kind == LayerKind::Elevation) below.push_back(o);
+      if (o.kind == LayerKind::Elevation &&
+          std::find(elevationChain.begin(), elevationChain.end(), &o) == elevationChain.end())
+        below.push_back(o);
     std::vector<std::size_t> holes;
     for (std::size_t i = 0; i < d.elevation.values.size(); ++i)
       if (std::isnan(d.elevation.values[i])) holes.push_back(i);
@@ -343,7 +356,7 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
   const auto chain = streamedWaterLayers(stack, gridStep, &beyond);
   if (beyond)
     std::fprintf(stderr,
-                 "geocean: warning: %s: more than %d masks to stream; it and the masks after it are drawn from the "
+                 "geocean: warning: %s: more than %d water layers to stream; it and the layers after it are drawn from the "
                  "%.4g' water grid (the query still answers at their cells)\n",
                  beyond->raster->path().c_str(), kMaxStreamedLayers, gridStep * 60.0);
   if (!chain.empty()) {
@@ -354,6 +367,7 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
     for (std::size_t i = 1; i < chain.size(); ++i) {
       d.waterSourcesBelow.push_back(chain[i]->raster);
       d.waterEncodingsBelow.push_back(chain[i]->encoding);
+      d.waterFromReliefBelow.push_back(chain[i]->kind == LayerKind::Elevation);
     }
     // A regional mask (or relief) is drawn over the grid of the layers below it.
     d.water = waterGridBelow(stack, chain, gridStep);

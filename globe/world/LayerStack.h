@@ -100,9 +100,11 @@ LayerStack openLayerStack(const std::vector<LayerSource>& layers, bool defaultWo
 ImageryLayer imageryLayerOf(std::shared_ptr<const raster::Raster> r, int maxSide = 8192);
 
 // The host's world: the default imagery, elevation and water from
-// openLayerStack by the drawing rule (grids at most 5'; the first masks
-// (up to 4, streamedWaterLayers) and the first elevation layer finer than
-// that, global or regional, streamed as tiles: WaterPyramid.h), the
+// openLayerStack by the drawing rule (grids at most 5'; the first water
+// layers (up to 4, streamedWaterLayers) and elevation layers (up to 4,
+// streamedElevationLayers) finer than that, global or regional, streamed
+// as tiles: WaterPyramid.h; a fifth of either is drawn from the grid with
+// a warning on stderr naming its file), the
 // imagery layers over the default
 // imagery (at most kMaxImageryLayers). Without layers exactly
 // loadDefaultWorld(). Throws raster::RasterError naming the file,

@@ -113,7 +113,6 @@ std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, dou
   const RasterLayer* first = streamedWaterLayer(stack, gridLonStepDeg);
   if (!first) return chain;
   chain.push_back(first);
-  if (first->kind != LayerKind::Mask) return chain;
   bool after = false;
   for (const RasterLayer& l : stack.layers()) {
     if (&l == first) {
@@ -122,8 +121,11 @@ std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, dou
     }
     if (!after || l.kind == LayerKind::Imagery) continue;
     if (!isStreamedRegional(*chain.back()->raster)) break;
-    // A relief answers by sign where it has data: it ends the chain (drawn in the grid below).
-    if (l.kind != LayerKind::Mask || !streams(l, gridLonStepDeg)) break;
+    // A relief answers by sign where it has data (reliefWaterPyramid), a
+    // mask by its encoding: either streams. A global relief with nodata
+    // does not (its pyramid makes nodata land: streamedWaterLayer's rule).
+    if (!streams(l, gridLonStepDeg)) break;
+    if (l.kind == LayerKind::Elevation && !isStreamedRegional(*l.raster) && l.raster->nodata()) break;
     if (int(chain.size()) == kMaxStreamedLayers) {
       if (beyondLimit) *beyondLimit = &l;
       break;
@@ -143,6 +145,30 @@ WorldLayer waterGridBelow(const LayerStack& stack, const std::vector<const Raste
 
 const RasterLayer* streamedElevationLayer(const LayerStack& stack, double gridLonStepDeg) {
   return firstIfStreamed(stack, LayerKind::Elevation, gridLonStepDeg);
+}
+
+std::vector<const RasterLayer*> streamedElevationLayers(const LayerStack& stack, double gridLonStepDeg,
+                                                        const RasterLayer** beyondLimit) {
+  if (beyondLimit) *beyondLimit = nullptr;
+  std::vector<const RasterLayer*> chain;
+  const RasterLayer* first = streamedElevationLayer(stack, gridLonStepDeg);
+  if (!first) return chain;
+  chain.push_back(first);
+  bool after = false;
+  for (const RasterLayer& l : stack.layers()) {
+    if (&l == first) {
+      after = true;
+      continue;
+    }
+    if (!after || l.kind != LayerKind::Elevation) continue;  // masks and imagery have no elevation
+    if (!isStreamedRegional(*chain.back()->raster) || !streams(l, gridLonStepDeg)) break;
+    if (int(chain.size()) == kMaxStreamedLayers) {
+      if (beyondLimit) *beyondLimit = &l;
+      break;
+    }
+    chain.push_back(&l);
+  }
+  return chain;
 }
 
 namespace {

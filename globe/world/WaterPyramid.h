@@ -50,15 +50,16 @@ constexpr int kMaxStreamedLayers = 4;
 const RasterLayer* streamedWaterLayer(const LayerStack& stack, double gridLonStepDeg);
 
 // The streamed water layers in answer order (issue 12 item 2: several of a
-// kind): streamedWaterLayer first, then each next layer of the stack while
-// it is a mask that streams by the same rule (north up, finer than the
-// grid), up to kMaxStreamedLayers. The chain ends after a global layer (it
-// answers everywhere), at a relief or a mask that does not stream (it is in
-// the grid below, waterGridBelow) and for a relief's coast (one layer).
-// Empty when streamedWaterLayer is null. A fifth streamable mask is drawn
-// from the grid below, resampled at its step (design: plugin/render/README.md).
-// beyondLimit (optional): the first mask that would stream but is past
-// the limit, else null.
+// kind): streamedWaterLayer first, then each next mask or relief layer of
+// the stack while it streams by the same rule (north up, finer than the
+// grid; a global relief only without nodata), up to kMaxStreamedLayers: a
+// relief's water is its 0 m line (waterPyramid(const RasterLayer&)), as
+// the query classifies it by sign. The chain ends after a global layer
+// (it answers everywhere) and at a layer that does not stream (it is in
+// the grid below, waterGridBelow). Empty when streamedWaterLayer is null.
+// A fifth streamable layer is drawn from the grid below, resampled at its
+// step (design: plugin/render/README.md). beyondLimit (optional): the
+// first layer that would stream but is past the limit, else null.
 std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, double gridLonStepDeg,
                                                     const RasterLayer** beyondLimit = nullptr);
 // The water grid drawn where the streamed layers of `chain` have no data:
@@ -88,6 +89,17 @@ WorldLayer levelLayerOf(const raster::TilePyramid& pyramid, double stepDeg);
 // elevation grid's step (gridLonStepDeg); null otherwise. Regional ones as
 // the mask's: over the stack's resampled grid.
 const RasterLayer* streamedElevationLayer(const LayerStack& stack, double gridLonStepDeg);
+// The streamed elevation layers in answer order (issue 12 item 2, several
+// reliefs): streamedElevationLayer first, then each next elevation layer
+// (masks and imagery have no elevation) while it streams by the same rule,
+// up to kMaxStreamedLayers; the chain ends after a global layer and at a
+// relief that does not stream (it is in the grid below). The host's
+// terrain draws at a point the first of them whose bilinear sample has
+// data there, as LayerStack::elevationBatch (geo_uv.glsl,
+// GEOCEAN_ELEVATION_TILES_LAYERS). beyondLimit (optional): the first
+// relief that would stream but is past the limit, else null.
+std::vector<const RasterLayer*> streamedElevationLayers(const LayerStack& stack, double gridLonStepDeg,
+                                                        const RasterLayer** beyondLimit = nullptr);
 // A streamed layer that does not cover the Earth (drawn over the grid).
 bool isStreamedRegional(const raster::Raster& r);
 

@@ -70,10 +70,16 @@ struct WorldData {
   // `water` is the grid under them all. Empty: waterSource alone.
   std::vector<std::shared_ptr<const raster::Raster>> waterSourcesBelow;
   std::vector<MaskEncoding> waterEncodingsBelow;
+  // Per waterSourcesBelow: a relief whose 0 m line is drawn (as waterFromRelief).
+  std::vector<bool> waterFromReliefBelow;
   // A global elevation layer finer than `elevation` that answers first: the
   // host draws it streamed (NaN texels fall back to `elevation`), the grid
   // stays for the CPU. Null: `elevation` is what is drawn.
   std::shared_ptr<const raster::TilePyramid> elevationTiles;
+  // Streamed reliefs under elevationTiles, in answer order
+  // (world::streamedElevationLayers): the first whose bilinear sample has
+  // data at a point is drawn, `elevation` is the grid under them all.
+  std::vector<std::shared_ptr<const raster::TilePyramid>> elevationTilesBelow;
 };
 
 // An in-memory raster as a layer: all channels, or only `channel` (>= 0).

@@ -240,12 +240,53 @@ TEST(WaterIndex, SeveralStreamedMasksChainInAnswerOrderUpToTheLimit) {
     ASSERT_EQ(chain.size(), 2u);
     EXPECT_EQ(chain[1]->raster, global1m);
   }
-  {  // a relief between two masks ends the chain
+  {  // a relief between two masks streams too (its 0 m line), a global relief with nodata ends the chain
     const auto relief = raster::Raster::fromPixels(std::vector<float>(60 * 60, -5.0f), 60, 60, 1,
                                                    {50.0, 10.0, 2.0 * kStep, -2.0 * kStep, false});
     const LayerStack stack({layers[0], RasterLayer{LayerKind::Elevation, relief, {}, 10}, layers[1], layers[6]});
     ASSERT_EQ(stack.layers()[1].kind, LayerKind::Elevation);
-    EXPECT_EQ(streamedWaterLayers(stack, kGrid).size(), 1u);
+    const auto chain = streamedWaterLayers(stack, kGrid);
+    ASSERT_EQ(chain.size(), 3u);
+    EXPECT_EQ(chain[1]->raster, relief);
+    EXPECT_EQ(chain[2]->raster, layers[1].raster);
+    const auto holed = raster::Raster::fromPixels(std::vector<float>(21600 * 2, -5.0f), 21600, 2, 1,
+                                                  {-180.0, 90.0, kStep, -90.0, true}, -9999.0);
+    const LayerStack withHoles({layers[0], RasterLayer{LayerKind::Elevation, holed, {}, 10}, layers[1], layers[6]});
+    EXPECT_EQ(streamedWaterLayers(withHoles, kGrid).size(), 1u) << "its nodata would be drawn as land";
+  }
+}
+
+// Several streamed reliefs (world::streamedElevationLayers): elevation
+// layers in answer order (masks between them have no elevation), at most
+// kMaxStreamedLayers, the one past the limit named; the chain ends at a
+// relief no finer than the grid and after a global one.
+TEST(WaterIndex, SeveralStreamedReliefsChainInAnswerOrderUpToTheLimit) {
+  constexpr double kStep = 1.0 / 60.0, kGrid = 5.0 / 60.0;
+  const auto regional = [&](double lon0) {
+    return raster::Raster::fromPixels(std::vector<float>(60 * 60, 10.0f), 60, 60, 1, {lon0, 10.0, kStep, -kStep, false});
+  };
+  const auto mask = raster::Raster::fromPixels(std::vector<float>(60 * 60, 0.0f), 60, 60, 1,
+                                               {0.0, 10.0, kStep / 2.0, -kStep / 2.0, false});
+  const auto coarse = raster::Raster::fromPixels(std::vector<float>(360 * 180, 0.0f), 360, 180, 1,
+                                                 {-180.0, 90.0, 1.0, -1.0, true});
+  std::vector<RasterLayer> layers;
+  for (int i = 0; i < 6; ++i) layers.push_back({LayerKind::Elevation, regional(i), {}, 10 - i});
+  layers.push_back({LayerKind::Elevation, coarse, {}, kDefaultWorldPriority});
+  {
+    std::vector<RasterLayer> all = layers;
+    all.push_back({LayerKind::Mask, mask, {}, 9});  // between the reliefs in answer order
+    const LayerStack stack(all);
+    const RasterLayer* beyond = nullptr;
+    const auto chain = streamedElevationLayers(stack, kGrid, &beyond);
+    ASSERT_EQ(int(chain.size()), kMaxStreamedLayers);
+    for (int i = 0; i < kMaxStreamedLayers; ++i) EXPECT_EQ(chain[std::size_t(i)]->priority, 10 - i);
+    ASSERT_NE(beyond, nullptr);
+    EXPECT_EQ(beyond->priority, 10 - kMaxStreamedLayers);
+    EXPECT_EQ(chain[0], streamedElevationLayer(stack, kGrid));
+  }
+  {  // a relief no finer than the grid ends it
+    const LayerStack stack({layers[0], RasterLayer{LayerKind::Elevation, coarse, {}, 10}, layers[1]});
+    EXPECT_EQ(streamedElevationLayers(stack, kGrid).size(), 1u);
   }
 }
 
