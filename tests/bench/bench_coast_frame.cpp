@@ -14,12 +14,13 @@
 // median process-CPU and wall time per frame (FrameTimes, glFinish between
 // passes) and the ratio. Not run by ctest; figures in docs/PERFORMANCE.md.
 // --split (issue 15 item 4, the middle band's mesh): instead, where the
-// ocean pass's time goes, in the island's views and the 1:50 spilling
+// ocean pass's time goes and what the middle band's coarse mesh saves, in the island's views and the 1:50 spilling
 // beach's (CoastScene.h; the band-edge test's view from 60 m, and 30 m and
 // 300 m): the field's renderer drawn whole, and drawn with
 // GL_RASTERIZER_DISCARD (the grid's CPU build, the uploads and the vertex
-// stage with primitive assembly, no fragment), alternately; the vertex
-// share is their ratio, the rest is fragments.
+// stage with primitive assembly, no fragment), each with and without the
+// coarse mesh, alternately; the vertex share is their ratio, the rest is
+// fragments.
 //   bench_coast_frame [--frames N] [--size WxH] [--split]
 #include "globe/geo/Ellipsoid.h"
 #include "globe/raster/Raster.h"
@@ -61,24 +62,31 @@ class VertexOnlyLayer : public render::test::DirectOceanLayer {
   }
 };
 
-// Ocean pass CPU ms of `layer`'s ocean drawn whole and vertex-only,
-// alternately, medians of frames - 1 (the first dropped), and the share.
+// Ocean pass CPU ms of `layer`'s ocean drawn whole and vertex-only, each
+// with the middle band's coarse mesh (blocks of 2 cells) and without it
+// (OceanRenderer::setMiddleMeshBlock(1)): the four alternately, medians of
+// frames - 1 (the first dropped); the vertex share and the mesh's ratios.
 void splitRow(const char* name, int frames, const std::function<render::FrameTimes(const render::FrameSettings&)>& draw,
               VertexOnlyLayer& layer, double lat, double lon) {
-  std::vector<double> cpu[2];
+  std::vector<double> cpu[4];
+  std::size_t blocks = 0;
   for (int f = 0; f < frames; ++f)
-    for (int k = 0; k < 2; ++k) {
-      layer.discard = k == 1;
+    for (int k = 0; k < 4; ++k) {
+      layer.discard = k >= 2;
+      layer.ocean()->setMiddleMeshBlock(k % 2 == 0 ? 1 : 2);
       render::FrameSettings fs;
       fs.timeS = 30.0 + f / 30.0;
       fs.sunEcef = render::sunFromLocal(lat, lon, 150.0, 40.0);
       fs.timed = true;
       const render::FrameTimes t = draw(fs);
+      if (k == 1) blocks = layer.ocean()->lastCoarseBlocks();
       if (f > 0) cpu[k].push_back(t.layersCpuMs);
     }
   layer.discard = false;
-  const double whole = median(cpu[0]), vertex = median(cpu[1]);
-  std::printf("%-22s | %8.1f %8.1f  %5.3f | %8.1f\n", name, whole, vertex, vertex / whole, whole - vertex);
+  layer.ocean()->setMiddleMeshBlock(2);
+  const double whole = median(cpu[0]), wholeC = median(cpu[1]), vertex = median(cpu[2]), vertexC = median(cpu[3]);
+  std::printf("%-22s | %8.1f %8.1f  %5.3f | %8.1f | %8.1f %8.1f  %5.3f | %5.3f | %6zu\n", name, whole, vertex,
+              vertex / whole, whole - vertex, wholeC, vertexC, vertexC / vertex, wholeC / whole, blocks);
 }
 
 constexpr int kW = 400, kH = 400;
@@ -161,7 +169,9 @@ int main(int argc, char** argv) {
   oo.model = waves::Model::Gerstner;
   oo.sea = snap->seaState;
   oo.coast = snap->waves->coastFieldShared();
+  oo.coarseMiddle = split;  // --split compares the middle band's coarse mesh with the fine one
   auto withCoast = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  oo.coarseMiddle = false;
   oo.coastBands = false;  // issue 15 item 4's distance bands compiled out
   auto noBands = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
   oo.coastBands = true;
@@ -175,7 +185,8 @@ int main(int argc, char** argv) {
   if (split) {
     std::printf("bench_coast_frame --split %dx%d, %d frames per view and mode (the first dropped); ocean pass CPU ms\n",
                 base.width, base.height, frames);
-    std::printf("%-22s |    whole   vertex  share | fragment\n", "view");
+    std::printf("%-22s | fine mesh:  whole   vertex  share | fragment | coarse middle: whole vertex  "
+                "vertex/fine | whole/fine | blocks\n", "view");
     for (const auto& [name, northM, altM, pitchDeg] :
          {std::tuple{"island 30 m", 350.0, 30.0, -12.0}, std::tuple{"island 300 m", 900.0, 300.0, -35.0}}) {
       camera::ViewPose p = base;
@@ -185,7 +196,9 @@ int main(int argc, char** argv) {
     }
     // The 1:50 spilling beach (CoastScene.h), its own world, in this context.
     const auto beach = render::test::spillingBeach();
-    auto beachOcean = std::make_shared<ocean_render::OceanRenderer>(beach->grids, beach->snap->landSea, beach->options());
+    ocean_render::OceanOptions bo = beach->options();
+    bo.coarseMiddle = true;
+    auto beachOcean = std::make_shared<ocean_render::OceanRenderer>(beach->grids, beach->snap->landSea, bo);
     auto beachLayer = std::make_shared<VertexOnlyLayer>(beachOcean);
     render::GlobeRenderer beachRenderer(beach->world);
     beachRenderer.addLayer(beachLayer);
