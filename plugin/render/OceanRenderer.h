@@ -248,7 +248,8 @@ class OceanRenderer {
   // The longest the breaking sea's amplitude-weighted wavelength gets
   // (wv_breakingFoamMean's lambda) over water depths 0.05 m to deep, without
   // refraction: where a cell exceeds a share of it, it exceeds that share
-  // of the local lambda, which shoaling only shortens. 0 without the bands.
+  // of the local lambda, which shoaling only shortens. 0 without the bands
+  // or without OceanOptions::coarseMiddle.
   double middleWavelengthM() const { return middleWavelengthM_; }
   // Coarse blocks in the last draw (grid::coarseIndices).
   std::size_t lastCoarseBlocks() const { return coarseBlocks_; }
