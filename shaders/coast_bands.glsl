@@ -18,7 +18,9 @@
 // band-edge test, tests/render/test_coast_bands.cpp). Only the foam changes:
 // heights and normals stay wv_gerstnerCoast's, the query's function (item 5).
 // uCoastBandMode (OceanRenderer::setCoastBands, for tests): 0 the bands by
-// distance, 1 the near band everywhere, 2 the middle/far bands everywhere.
+// distance, 1 the near band everywhere, 2 the middle/far bands everywhere,
+// 3 the middle band's texture everywhere (no fade to the far band's mean),
+// 4 the far band's mean everywhere.
 // GEOCEAN_NO_COAST_BANDS (OceanOptions::coastBands false): none of it.
 #ifndef GEOCEAN_NO_COAST_BANDS
 uniform int uCoastBandMode;
@@ -29,7 +31,7 @@ out float vBreakLambdaM;
 
 void coastBands(WvBreakMean m, float cellAlongM) {
   float w = smoothstep(0.125, 0.333, cellAlongM / max(m.m.y, 1e-3));
-  if (uCoastBandMode != 0) w = uCoastBandMode == 2 ? 1.0 : 0.0;
+  if (uCoastBandMode != 0) w = uCoastBandMode == 1 ? 0.0 : 1.0;
   vBreakBand = vec4(w, max(m.m.w, 1e-3), m.shareTex > 0.0 ? m.m.x / m.shareTex : 0.0, m.m.x);
   vBreakPhase = m.phase;
   vBreakAmp = m.amp;

@@ -287,6 +287,68 @@ std::vector<std::uint32_t> compactIndices(const GridFrame& f) {
   return out;
 }
 
+std::size_t coarseIndices(const GridFrame& f, const std::vector<std::uint8_t>& coarse, int block,
+                          std::vector<std::uint32_t>& out) {
+  if (block != 2 && block != 4 && block != 8) throw std::invalid_argument("grid: coarse block must be 2, 4 or 8");
+  if (coarse.size() != f.vertices.size()) throw std::invalid_argument("grid: one coarse flag per vertex");
+  out.clear();
+  out.reserve(f.indices.size());
+  const int cols = f.cols, rows = f.rows, B = block;
+  const int bc = std::max(0, (cols - 1) / B), br = std::max(0, (rows - 1) / B);
+  const auto vid = [&](int i, int j) { return std::uint32_t(j * cols + i); };
+  std::vector<std::uint8_t> isCoarse(std::size_t(bc) * br, 0);
+  for (int bj = 0; bj < br; ++bj)
+    for (int bi = 0; bi < bc; ++bi) {
+      bool ok = true;
+      for (int j = bj * B; j <= bj * B + B && ok; ++j)
+        for (int i = bi * B; i <= bi * B + B && ok; ++i) {
+          const std::uint32_t v = vid(i, j);
+          ok = coarse[v] != 0 && !(f.vertices[v].flags & kVertexHorizon);
+          if (ok && i < bi * B + B && j < bj * B + B) ok = !f.cellSkip[std::size_t(j) * (cols - 1) + i];
+        }
+      isCoarse[std::size_t(bj) * bc + bi] = ok;
+    }
+  const auto coarseAt = [&](int bi, int bj) {
+    return bi >= 0 && bj >= 0 && bi < bc && bj < br && isCoarse[std::size_t(bj) * bc + bi];
+  };
+  for (int j = 0; j + 1 < rows; ++j)
+    for (int i = 0; i + 1 < cols; ++i) {
+      const std::size_t c = std::size_t(j) * (cols - 1) + i;
+      if (f.cellSkip[c] || coarseAt(i / B, j / B)) continue;
+      out.insert(out.end(), f.indices.begin() + std::ptrdiff_t(6 * c), f.indices.begin() + std::ptrdiff_t(6 * c + 6));
+    }
+  std::size_t blocks = 0;
+  std::vector<std::uint32_t> loop;
+  for (int bj = 0; bj < br; ++bj)
+    for (int bi = 0; bi < bc; ++bi) {
+      if (!isCoarse[std::size_t(bj) * bc + bi]) continue;
+      ++blocks;
+      const int i0 = bi * B, j0 = bj * B, i1 = i0 + B, j1 = j0 + B;
+      // A side keeps its vertices where cells lie beyond it that are not a coarse block.
+      const bool fineS = j0 > 0 && !coarseAt(bi, bj - 1), fineE = i1 < cols - 1 && !coarseAt(bi + 1, bj);
+      const bool fineN = j1 < rows - 1 && !coarseAt(bi, bj + 1), fineW = i0 > 0 && !coarseAt(bi - 1, bj);
+      if (!(fineS || fineE || fineN || fineW)) {
+        // The fine cells' diagonal (v00, v11), their winding.
+        for (std::uint32_t v : {vid(i0, j0), vid(i1, j0), vid(i1, j1), vid(i0, j0), vid(i1, j1), vid(i0, j1)})
+          out.push_back(v);
+        continue;
+      }
+      // The boundary counter-clockwise (i right, j up, as the cells' own
+      // winding), then a fan from the centre: the block is convex, so every
+      // fan triangle keeps the cells' orientation.
+      loop.clear();
+      for (int i = i0; i < i1; i += fineS ? 1 : B) loop.push_back(vid(i, j0));
+      for (int j = j0; j < j1; j += fineE ? 1 : B) loop.push_back(vid(i1, j));
+      for (int i = i1; i > i0; i -= fineN ? 1 : B) loop.push_back(vid(i, j1));
+      for (int j = j1; j > j0; j -= fineW ? 1 : B) loop.push_back(vid(i0, j));
+      const std::uint32_t m = vid(i0 + B / 2, j0 + B / 2);
+      for (std::size_t k = 0; k < loop.size(); ++k)
+        for (std::uint32_t v : {m, loop[k], loop[(k + 1) % loop.size()]}) out.push_back(v);
+      if (loop.size() % 2) out.insert(out.end(), {m, m, m});
+    }
+  return blocks;
+}
+
 struct ScreenGrid::Impl {
   std::optional<tbb::task_arena> arena;
 };

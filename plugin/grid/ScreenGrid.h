@@ -93,6 +93,21 @@ struct GridFrame {
 // Triangles of the non-skipped cells only (for renderers without a per-cell discard).
 std::vector<std::uint32_t> compactIndices(const GridFrame& frame);
 
+// compactIndices with a coarser mesh where `coarse` says (issue 15 item 4,
+// paper 003's middle band): the cells in blocks of `block` x `block`
+// (block 2, 4 or 8; blocks start at cell (0, 0), a partial block at the far
+// edges stays fine) are drawn as one cell where every vertex of the block
+// has coarse[v] != 0 (coarse: one flag per vertex), none is on the horizon
+// and none of its cells is skipped. A coarse block's side that borders
+// cells of any other kind keeps that side's vertices (a fan from the
+// block's centre vertex), so the fine cells' vertices on it are vertices of
+// both: no T-junction, no crack; a side between two coarse blocks, or on
+// the grid's edge, is one edge. Writes `out` in groups of 6 indices (a
+// pair of counter-clockwise triangles; a fan's odd count padded with a
+// degenerate one), as compactIndices' cells; returns the coarse blocks.
+std::size_t coarseIndices(const GridFrame& frame, const std::vector<std::uint8_t>& coarse, int block,
+                          std::vector<std::uint32_t>& out);
+
 // Clamp-sphere rectangle (002 sec. 3.2, generalised): the base-ellipsoid
 // points seen along the screen border, displaced by maxDisplacementM in every
 // direction, projected back to the screen; the rectangle grows by the largest

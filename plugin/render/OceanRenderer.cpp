@@ -105,6 +105,23 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   bare_ = gl::GlProgram::graphics("ocean.vert", "bare.frag", model);
   // Issue 15 item 4 hook: the bands' breaking spray (Spray.h).
   if (coast && options_.coastBands && options_.model == waves::Model::Gerstner) spray_ = std::make_unique<Spray>();
+  // Issue 15 item 4: the middle band's mesh is measured against lambda =
+  // 2 pi sum az / sum az kP (wv_breakingFoamMean), at its largest over the
+  // depths, each component's az and kP from the kernel's own
+  // wv_coastAmplitude (shoaling, Miche's cap; no refraction, no taper).
+  if (coast && options_.coastBands && options_.coarseMiddle && options_.model == waves::Model::Gerstner) {
+    waves::WaveField::CpuPatch cp;
+    waves_->cpuPatch(geo::toEcef({options_.sea.anchorLatDeg, options_.sea.anchorLonDeg, 0.0}), 0.0, cp);
+    waves::kd::Kernel k;
+    for (double depth = 0.05; depth < 2e4; depth *= 1.1) {
+      double sumAz = 0.0, sumAzK = 0.0;
+      for (const auto& wave : cp.waves) {
+        const glm::dvec3 a = k.wv_coastAmplitude(wave, 1.0, 0.0, depth, true);
+        sumAz += a.x, sumAzK += a.x * a.z;
+      }
+      if (sumAzK > 0.0) middleWavelengthM_ = std::max(middleWavelengthM_, 6.283185307179586 * sumAz / sumAzK);
+    }
+  }
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
   glCreateBuffers(1, &ibo_);
@@ -652,7 +669,51 @@ void OceanRenderer::setGridMode(grid::GridMode mode) { grid_->setMode(mode); }
 void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& light, bool bare) {
   const auto t0 = std::chrono::steady_clock::now();
   grid_->build(cam, frame_);
-  std::vector<std::uint32_t> idx = grid::compactIndices(frame_);
+  std::vector<std::uint32_t> idx;
+  coarseBlocks_ = 0;
+  if (middleWavelengthM_ > 0.0 && middleBlock_ > 1 && !bare) {
+    // Issue 15 item 4, paper 003's middle band: a vertex may join a coarse
+    // block where its cell along the view (ocean.vert's: footprint over the
+    // sine of the elevation angle, at least 0.02) is kMiddleMeshFromR of
+    // the longest breaking wavelength, 1 % over it for ocean.vert's floats.
+    const double cellRadians = 2.0 * std::tan(0.5 * cam.vfovDeg() * 3.14159265358979 / 180.0) / cam.heightPx() *
+                               options_.cellPx;
+    // And where the water is at least kMiddleMeshMinDepth of that
+    // wavelength deep (the relief's shallowest of the 2 x 2 texels
+    // ocean.vert's bilinear read blends, repeated in longitude as the
+    // texture): no breaking there, and the phases the fragments take from
+    // the vertices (the foam texture's, the whitecaps' rest point) are
+    // linear across a coarse cell. Over the shoaling beach they are not: the
+    // foam texture's crests zigzagged along the fans (beach_breakers_300m).
+    const double fromM = 1.01 * kMiddleMeshFromR * middleWavelengthM_;
+    const float maxElevM = float(-kMiddleMeshMinDepth * middleWavelengthM_);
+    const world::WorldLayer& relief = world_->elevation();
+    const glm::dvec3 eye = cam.eyeEcef();
+    constexpr double a2 = geo::kWgs84A * geo::kWgs84A, b2 = geo::kWgs84B * geo::kWgs84B;
+    coarseVertex_.resize(frame_.vertices.size());
+    for (std::size_t i = 0; i < frame_.vertices.size(); ++i) {
+      const grid::GridVertex& v = frame_.vertices[i];
+      const glm::dvec3 rel(v.eyeRelM[0], v.eyeRelM[1], v.eyeRelM[2]), p = eye + rel;
+      const double dist = glm::length(rel);
+      const glm::dvec3 up = glm::normalize(glm::dvec3(p.x / a2, p.y / a2, p.z / b2));
+      const double sinE = std::abs(glm::dot(rel, up)) / std::max(dist, 1e-9);
+      bool coarse = dist * cellRadians >= fromM * std::max(sinE, 0.02);
+      if (coarse && relief.width > 0) {
+        const double fx = (v.lonDeg - relief.originLonDeg) / relief.lonStepDeg - 0.5;
+        const double fy = (v.latDeg - relief.originLatDeg) / relief.latStepDeg - 0.5;
+        const long x0 = long(std::floor(fx)), y0 = long(std::floor(fy)), w = relief.width, h = relief.height;
+        for (long dy = 0; dy < 2 && coarse; ++dy)
+          for (long dx = 0; dx < 2 && coarse; ++dx) {
+            const long x = ((x0 + dx) % w + w) % w, y = std::clamp(y0 + dy, 0L, h - 1);
+            coarse = relief.values[std::size_t(y * w + x) * std::size_t(relief.channels)] <= maxElevM;
+          }
+      }
+      coarseVertex_[i] = coarse;
+    }
+    coarseBlocks_ = grid::coarseIndices(frame_, coarseVertex_, middleBlock_, idx);
+  } else {
+    idx = grid::compactIndices(frame_);
+  }
   if (pages_) {
     if (completeTiles_) pages_->complete(frame_, options_.cellPx);
     else pages_->request(frame_, options_.cellPx);

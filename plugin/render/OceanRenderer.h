@@ -49,6 +49,15 @@ struct OceanOptions {
   // (shaders/coast_bands.glsl); false: the kernel's per-vertex foam at every
   // distance, as before (compiled out; bench_coast_frame's reference).
   bool coastBands = true;
+  // Issue 15 item 4, with the bands: paper 003's coarser mesh in the middle
+  // band (grid::coarseIndices): blocks of 2 x 2 grid cells drawn as one
+  // where the cell along the view is at least kMiddleMeshFromR of the
+  // breaking sea's longest wavelength (middleWavelengthM) and the water
+  // kMiddleMeshMinDepth of it deep. Off by default: on llvmpipe it saved
+  // nothing measurable (the vertex side is 3-11 % of the ocean pass; bench
+  // _coast_frame --split, docs/PERFORMANCE.md) and it softens the far sea's
+  // vertex-sampled normals (two coast goldens moved past their margins).
+  bool coarseMiddle = false;
   // A streamed mask's coverage (world::waterPyramid of
   // world::streamedMaskLayer, the host terrain's pyramid): the shoreline is
   // drawn from its tiles (WaterPages.h), so the query's coverage rule on the
@@ -222,11 +231,33 @@ class OceanRenderer {
   void setFarVertexShading(bool on) { options_.farVertexShading = on; }
   // Issue 15 item 4: the breaking foam's distance bands (shaders/coast_bands.glsl),
   // or one band everywhere (tests compare them).
-  enum class CoastBands { ByDistance = 0, NearOnly = 1, FarOnly = 2 };
+  // MiddleTextureOnly, FarMeanOnly: the two ends of the middle -> far fade
+  // (the middle band's texture, the far band's mean) everywhere.
+  enum class CoastBands { ByDistance = 0, NearOnly = 1, FarOnly = 2, MiddleTextureOnly = 3, FarMeanOnly = 4 };
   void setCoastBands(CoastBands mode) { coastBands_ = mode; }
   // Issue 15 item 4: the near band's breaking spray (Spray.h); on with the
   // bands (Gerstner with a coast field), off for tests.
   void setSpray(bool on) { sprayOn_ = on; }
+  // Issue 15 item 4: the middle band's coarser mesh (OceanOptions::
+  // coarseMiddle), its blocks of `cells` x `cells` grid cells: 2 by
+  // default, 1 none; 4 and 8 for tests (a mesh too coarse for the waves).
+  void setMiddleMeshBlock(int cells) { middleBlock_ = cells; }
+  // A vertex joins a coarse block where the grid cell's footprint along the
+  // view (ocean.vert's, coast_bands.glsl's) is at least this times
+  // middleWavelengthM: the middle band is whole there (r > 1/3), so the
+  // foam is the fragments' texture and no vertex's.
+  static constexpr double kMiddleMeshFromR = 0.5;
+  // And where the relief's water is at least this times middleWavelengthM
+  // deep (k h >= pi for that wavelength: no breaking, no shoaling of it).
+  static constexpr double kMiddleMeshMinDepth = 0.5;
+  // The longest the breaking sea's amplitude-weighted wavelength gets
+  // (wv_breakingFoamMean's lambda) over water depths 0.05 m to deep, without
+  // refraction: where a cell exceeds a share of it, it exceeds that share
+  // of the local lambda, which shoaling only shortens. 0 without the bands
+  // or without OceanOptions::coarseMiddle.
+  double middleWavelengthM() const { return middleWavelengthM_; }
+  // Coarse blocks in the last draw (grid::coarseIndices).
+  std::size_t lastCoarseBlocks() const { return coarseBlocks_; }
   // Single pictures: each draw first waits (bounded) for the streamed
   // tiles its view asks for, instead of drawing their ancestors.
   void setCompleteTiles(bool on) { completeTiles_ = on; }
@@ -351,6 +382,10 @@ class OceanRenderer {
   CoastBands coastBands_ = CoastBands::ByDistance;  // issue 15 item 4
   std::unique_ptr<Spray> spray_;                    // issue 15 item 4: null without the bands
   bool sprayOn_ = true;
+  int middleBlock_ = 2;               // issue 15 item 4: the middle band's mesh (setMiddleMeshBlock)
+  double middleWavelengthM_ = 0.0;    // 0: no coarse mesh (no bands, or off)
+  std::size_t coarseBlocks_ = 0;
+  std::vector<std::uint8_t> coarseVertex_;
   bool glAbandoned_ = false;
   GLuint shadowSampler_ = 0;  // the shadow map's comparison and filter, whatever the host's texture says
   std::unique_ptr<WaterPages> pages_;

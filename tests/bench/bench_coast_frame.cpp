@@ -13,7 +13,15 @@
 // (the bands' ratio is taken without it). Reports the ocean pass's
 // median process-CPU and wall time per frame (FrameTimes, glFinish between
 // passes) and the ratio. Not run by ctest; figures in docs/PERFORMANCE.md.
-//   bench_coast_frame [--frames N] [--size WxH]
+// --split (issue 15 item 4, the middle band's mesh): instead, where the
+// ocean pass's time goes and what the middle band's coarse mesh saves, in the island's views and the 1:50 spilling
+// beach's (CoastScene.h; the band-edge test's view from 60 m, and 30 m and
+// 300 m): the field's renderer drawn whole, and drawn with
+// GL_RASTERIZER_DISCARD (the grid's CPU build, the uploads and the vertex
+// stage with primitive assembly, no fragment), each with and without the
+// coarse mesh, alternately; the vertex share is their ratio, the rest is
+// fragments.
+//   bench_coast_frame [--frames N] [--size WxH] [--split]
 #include "globe/geo/Ellipsoid.h"
 #include "globe/raster/Raster.h"
 #include "globe/render/CliParse.h"
@@ -21,6 +29,7 @@
 #include "globe/render/Terrain.h"
 #include "globe/world/WorldData.h"
 #include "plugin/ocean/Ocean.h"
+#include "tests/render/CoastScene.h"
 #include "tests/render/DirectOcean.h"
 #include "tests/support/Median.h"
 
@@ -28,6 +37,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <tuple>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,6 +48,46 @@ using namespace geocean;
 namespace {
 
 using geocean::test::median;
+
+// The ocean layer with the rasteriser off for its draw (--split).
+class VertexOnlyLayer : public render::test::DirectOceanLayer {
+ public:
+  using DirectOceanLayer::DirectOceanLayer;
+  bool discard = false;
+  void draw(const camera::Camera& cam, const camera::Lighting& light, bool bare,
+            const render::LayerInputs& in) override {
+    if (discard) glEnable(GL_RASTERIZER_DISCARD);
+    DirectOceanLayer::draw(cam, light, bare, in);
+    if (discard) glDisable(GL_RASTERIZER_DISCARD);
+  }
+};
+
+// Ocean pass CPU ms of `layer`'s ocean drawn whole and vertex-only, each
+// with the middle band's coarse mesh (blocks of 2 cells) and without it
+// (OceanRenderer::setMiddleMeshBlock(1)): the four alternately, medians of
+// frames - 1 (the first dropped); the vertex share and the mesh's ratios.
+void splitRow(const char* name, int frames, const std::function<render::FrameTimes(const render::FrameSettings&)>& draw,
+              VertexOnlyLayer& layer, double lat, double lon) {
+  std::vector<double> cpu[4];
+  std::size_t blocks = 0;
+  for (int f = 0; f < frames; ++f)
+    for (int k = 0; k < 4; ++k) {
+      layer.discard = k >= 2;
+      layer.ocean()->setMiddleMeshBlock(k % 2 == 0 ? 1 : 2);
+      render::FrameSettings fs;
+      fs.timeS = 30.0 + f / 30.0;
+      fs.sunEcef = render::sunFromLocal(lat, lon, 150.0, 40.0);
+      fs.timed = true;
+      const render::FrameTimes t = draw(fs);
+      if (k == 1) blocks = layer.ocean()->lastCoarseBlocks();
+      if (f > 0) cpu[k].push_back(t.layersCpuMs);
+    }
+  layer.discard = false;
+  layer.ocean()->setMiddleMeshBlock(2);
+  const double whole = median(cpu[0]), wholeC = median(cpu[1]), vertex = median(cpu[2]), vertexC = median(cpu[3]);
+  std::printf("%-22s | %8.1f %8.1f  %5.3f | %8.1f | %8.1f %8.1f  %5.3f | %5.3f | %6zu\n", name, whole, vertex,
+              vertex / whole, whole - vertex, wholeC, vertexC, vertexC / vertex, wholeC / whole, blocks);
+}
 
 constexpr int kW = 400, kH = 400;
 // On a tile corner (lat 0, lon 0), as the test: the host terrain sees the island.
@@ -48,8 +99,13 @@ const raster::GeoTransform kPlace{-0.02, 0.02, 0.0001, -0.0001, false};
 int main(int argc, char** argv) {
   int frames = 15;
   std::string size = "960x540";
+  bool split = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a == "--split") {
+      split = true;
+      continue;
+    }
     if (i + 1 >= argc) {
       std::fprintf(stderr, "bench_coast_frame: %s needs a value\n", a.c_str());
       return 2;
@@ -113,7 +169,9 @@ int main(int argc, char** argv) {
   oo.model = waves::Model::Gerstner;
   oo.sea = snap->seaState;
   oo.coast = snap->waves->coastFieldShared();
+  oo.coarseMiddle = split;  // --split compares the middle band's coarse mesh with the fine one
   auto withCoast = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
+  oo.coarseMiddle = false;
   oo.coastBands = false;  // issue 15 item 4's distance bands compiled out
   auto noBands = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
   oo.coastBands = true;
@@ -121,8 +179,46 @@ int main(int argc, char** argv) {
   noSpray->setSpray(false);  // issue 15 item 4's spray (Spray.h) left out
   oo.coast = nullptr;
   auto deepOnly = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
-  auto layer = std::make_shared<render::test::DirectOceanLayer>(withCoast);
+  auto layer = std::make_shared<VertexOnlyLayer>(withCoast);
   s.renderer->addLayer(layer);
+
+  if (split) {
+    std::printf("bench_coast_frame --split %dx%d, %d frames per view and mode (the first dropped); ocean pass CPU ms\n",
+                base.width, base.height, frames);
+    std::printf("%-22s | fine mesh:  whole   vertex  share | fragment | coarse middle: whole vertex  "
+                "vertex/fine | whole/fine | blocks\n", "view");
+    for (const auto& [name, northM, altM, pitchDeg] :
+         {std::tuple{"island 30 m", 350.0, 30.0, -12.0}, std::tuple{"island 300 m", 900.0, 300.0, -35.0}}) {
+      camera::ViewPose p = base;
+      p.latDeg = kLat + northM / 110574.0, p.lonDeg = kLon, p.altM = altM;
+      p.headingDeg = 180.0, p.pitchDeg = pitchDeg;
+      splitRow(name, frames, [&](const render::FrameSettings& fs) { return s.render(p, fs); }, *layer, kLat, kLon);
+    }
+    // The 1:50 spilling beach (CoastScene.h), its own world, in this context.
+    const auto beach = render::test::spillingBeach();
+    ocean_render::OceanOptions bo = beach->options();
+    bo.coarseMiddle = true;
+    auto beachOcean = std::make_shared<ocean_render::OceanRenderer>(beach->grids, beach->snap->landSea, bo);
+    auto beachLayer = std::make_shared<VertexOnlyLayer>(beachOcean);
+    render::GlobeRenderer beachRenderer(beach->world);
+    beachRenderer.addLayer(beachLayer);
+    constexpr double kShore = render::test::kSpillingShoreLon, kMPerDeg = 111320.0;
+    struct BeachView {
+      const char* name;
+      double latDeg, lonDeg, altM, headingDeg, pitchDeg;
+    };
+    for (const BeachView& v : {BeachView{"beach 60 m (band test)", 0.284, kShore - 70.0 / kMPerDeg, 60.0, 0.0, -30.0},
+                               BeachView{"beach 30 m", 0.3, kShore - 400.0 / kMPerDeg, 30.0, 75.0, -22.0},
+                               BeachView{"beach 300 m", 0.3, kShore - 1500.0 / kMPerDeg, 300.0, 80.0, -40.0}}) {
+      camera::ViewPose p = base;
+      p.latDeg = v.latDeg, p.lonDeg = v.lonDeg, p.altM = v.altM, p.headingDeg = v.headingDeg, p.pitchDeg = v.pitchDeg;
+      splitRow(v.name, frames, [&](const render::FrameSettings& fs) {
+        s.target->bind();
+        return beachRenderer.render(p, fs);
+      }, *beachLayer, v.latDeg, v.lonDeg);
+    }
+    return 0;
+  }
 
   // The test's two views (from the north, looking south across the island) and one straight down.
   struct View {

@@ -6,7 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <map>
+#include <utility>
+#include <vector>
 #include <stdexcept>
 
 using namespace geocean;
@@ -248,4 +252,84 @@ TEST(ScreenGrid, HorizonVerticesCarryTheirOwnLatLonAndClass) {
   EXPECT_GT(horizon, 500u);
   EXPECT_GT(land, 100u);
   EXPECT_GT(horizonLand, 10u);
+}
+
+// Issue 15 item 4, the middle band's coarser mesh (grid::coarseIndices):
+// on a real grid with land cells and patches of coarse flags, for blocks
+// of 2, 4 and 8 cells, the triangles face the eye, cover every drawn cell
+// exactly once (their areas in grid units sum to the drawn cells' count,
+// none lies in a skipped cell) and meet edge to edge: every edge is shared
+// with its reverse by the neighbouring triangle, except on the border of
+// what is drawn (the grid's edge, a skipped cell). A T-junction (a coarse
+// block's long side against two fine cells' short ones) leaves both unpaired
+// inside the sea, the crack this guards against.
+TEST(ScreenGrid, CoarseBlocksCoverTheCellsOnceEdgeToEdge) {
+  const Camera cam = Camera::fromGeodetic({-20.0, -30.0, 2000.0, 0.0, -60.0, 0.0}, 60.0, 640, 480);
+  ScreenGrid g(GridOptions{});
+  GridFrame f;
+  g.build(cam, f);
+  const int cols = f.cols, rows = f.rows;
+  ASSERT_GT(cols, 20);
+  ASSERT_GT(rows, 16);
+  // Land: a few cells here and there (the renderer skips them).
+  std::size_t drawnCells = 0;
+  for (int j = 0; j + 1 < rows; ++j)
+    for (int i = 0; i + 1 < cols; ++i) {
+      std::uint8_t& s = f.cellSkip[std::size_t(j) * (cols - 1) + i];
+      s = (i * 7 + j * 13) % 89 == 0;
+      drawnCells += !s;
+    }
+  // Coarse flags: two round patches and the grid's upper part.
+  std::vector<std::uint8_t> coarse(f.vertices.size());
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < cols; ++i)
+      coarse[std::size_t(j) * cols + i] = j > rows * 2 / 3 || std::hypot(i - cols * 0.3, j - rows * 0.4) < rows * 0.25 ||
+                                          std::hypot(i - cols * 0.7, j - rows * 0.3) < rows * 0.2;
+  for (int block : {2, 4, 8}) {
+    std::vector<std::uint32_t> idx;
+    const std::size_t blocks = grid::coarseIndices(f, coarse, block, idx);
+    EXPECT_GT(blocks, 3u) << block;
+    ASSERT_EQ(idx.size() % 6, 0u);
+    const auto at = [&](std::uint32_t v) { return glm::ivec2(int(v) % cols, int(v) / cols); };
+    double area = 0.0;
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+    for (std::size_t k = 0; k < idx.size(); k += 3) {
+      const std::uint32_t t[3] = {idx[k], idx[k + 1], idx[k + 2]};
+      if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;  // padding
+      const glm::ivec2 a = at(t[0]), b = at(t[1]), c = at(t[2]);
+      const int twice = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+      EXPECT_GT(twice, 0) << "block " << block << ": a triangle against the cells' winding";
+      area += 0.5 * twice;
+      const glm::dvec3 pa = rel(f.vertices[t[0]]), pb = rel(f.vertices[t[1]]), pc = rel(f.vertices[t[2]]);
+      EXPECT_LT(glm::dot(glm::cross(pb - pa, pc - pa), pa), 0.0) << "block " << block << ": a triangle facing away";
+      // Its centroid's cell is drawn.
+      const glm::dvec2 m = (glm::dvec2(a) + glm::dvec2(b) + glm::dvec2(c)) / 3.0;
+      EXPECT_FALSE(f.cellSkip[std::size_t(std::floor(m.y)) * (cols - 1) + std::size_t(std::floor(m.x))]);
+      for (int e = 0; e < 3; ++e) ++edges[{t[e], t[(e + 1) % 3]}];
+    }
+    EXPECT_DOUBLE_EQ(area, double(drawnCells)) << "block " << block;
+    int unpaired = 0, inside = 0;
+    for (const auto& [e, n] : edges) {
+      EXPECT_EQ(n, 1) << "block " << block << ": an edge drawn twice the same way";
+      if (edges.count({e.second, e.first})) continue;
+      ++unpaired;
+      // On the border: every unit step's cell to its right (outside a
+      // counter-clockwise triangle) is off the grid or skipped.
+      const glm::ivec2 p = at(e.first), q = at(e.second), d = q - p;
+      if (d.x != 0 && d.y != 0) {
+        ++inside;  // a diagonal is always inside a cell
+        continue;
+      }
+      const glm::ivec2 u = d / std::max(std::abs(d.x), std::abs(d.y)), right(u.y, -u.x);
+      for (glm::ivec2 s = p; s != q; s += u) {
+        const glm::dvec2 mid = glm::dvec2(s) + 0.5 * glm::dvec2(u) + 0.5 * glm::dvec2(right);
+        const int ci = int(std::floor(mid.x)), cj = int(std::floor(mid.y));
+        if (ci >= 0 && cj >= 0 && ci < cols - 1 && cj < rows - 1 && !f.cellSkip[std::size_t(cj) * (cols - 1) + ci])
+          ++inside;
+      }
+    }
+    std::printf("blocks of %d: %zu coarse, %zu triangles, %d border edges, %d open inside\n", block, blocks,
+                idx.size() / 3, unpaired, inside);
+    EXPECT_EQ(inside, 0) << "block " << block << ": T-junctions";
+  }
 }

@@ -106,10 +106,11 @@ Fit fitLine(const std::vector<double>& v, int from, int to, double at) {
 }
 
 // The gap at the edge (between bins kBinsSide - 1 and kBinsSide) of lines
-// fitted to the 24 bins either side, 2 left out next to it.
-double stepAt(const std::vector<double>& v) {
+// fitted to the `window` bins either side, 2 left out next to it.
+double stepAt(const std::vector<double>& v, int window = 24) {
   const double at = kBinsSide;
-  return fitLine(v, kBinsSide - 26, kBinsSide - 2, at).value - fitLine(v, kBinsSide + 2, kBinsSide + 26, at).value;
+  return fitLine(v, kBinsSide - 2 - window, kBinsSide - 2, at).value -
+         fitLine(v, kBinsSide + 2, kBinsSide + 2 + window, at).value;
 }
 
 }  // namespace
@@ -245,6 +246,315 @@ TEST(CoastBands, BreakingFoamBandEdgeHasNoStep) {
   const double la = sa / (kFrames * (fadeBottom + 1.0) * w), lb = sb / (kFrames * (fadeBottom + 1.0) * w);
   std::printf("mean luma over the middle band and the fade: %.3f with the bands, %.3f near band everywhere\n", la, lb);
   EXPECT_NEAR(la, lb, 0.01 * lb);
+}
+
+// Issue 15 item 4, the middle -> far edge (coast_bands_frag.glsl): the
+// middle band's crest-line texture fades into the far band's mean as a
+// pixel along the view grows from 1/4 to 1 local wavelength, q = pixel /
+// lambda, half way at q_e = 0.625. Tested as the near -> middle edge: the
+// beach's surf zone along the shore from 150 m (the far band's foam is the
+// breaking sea's, so only pixels whose CPU mean foam, WaveField::
+// breakingFoamMean, is over 0.02 count), drawn by distance (A), with the
+// middle band's texture everywhere (M, no fade) and the far band's mean
+// everywhere (F); q per pixel on the CPU from the sea-level points of its
+// neighbours (the longer of the two steps, as the shader's dFdx / dFdy)
+// and the local lambda. The steps at q_e over 6 frames (lines over 12 bins
+// either side): A's mean luma over M's and A's own log detail, within 3
+// standard errors of 0; the control, M below q_e and F above (the fade
+// removed), must fail.
+TEST(CoastBands, MiddleToFarFadeHasNoStep) {
+  session();
+  const auto beach = spillingBeach();
+  const auto& snap = beach->snap;
+  const auto ocean = std::make_shared<ocean_render::OceanRenderer>(beach->grids, snap->landSea, beach->options());
+  ocean->setSpray(false);
+  constexpr double kEdgeQ = 0.625;
+  // Lines over 12 bins either side, not 24: A - M is the fade itself, a
+  // sigmoid in ln q (the texture's display mean is not its mean foam's, the
+  // tone curve being curved), and over 24 bins its curvature read as a
+  // step of -1.14 (se 0.26).
+  constexpr int kWindow = 12;
+  ViewPose p;
+  p.latDeg = 0.284, p.lonDeg = kShoreLon - 70.0 / 111320.0, p.altM = 150.0, p.headingDeg = 0.0, p.pitchDeg = -9.0;
+  p.width = p.height = 512;
+  GlobeRenderer renderer(beach->world);
+  renderer.addLayer(std::make_shared<DirectOceanLayer>(ocean));
+  Framebuffer fb(p.width, p.height, true);
+  fb.bind();
+  FrameSettings fs;
+  fs.sunEcef = sunForView(p, 150.0, 40.0);
+  using Bands = ocean_render::OceanRenderer::CoastBands;
+  auto drawWith = [&](Bands mode, double timeS, const std::string& name) {
+    ocean->setCoastBands(mode);
+    fs.timeS = timeS;
+    renderer.render(p, fs);
+    const Image im = fb.readColor();
+    if (!name.empty()) gl::writePng(::testing::TempDir() + "/far_fade_" + name + ".png", im);
+    return im;
+  };
+  const int w = p.width, h = p.height;
+  const camera::Camera cam = renderer.camera(p);
+  std::vector<glm::dvec3> at(std::size_t(w) * h, glm::dvec3(0.0));
+  std::vector<geo::Geodetic> geod(std::size_t(w) * h);
+  std::vector<std::uint8_t> hit(std::size_t(w) * h, 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      geo::Geodetic g;
+      if (!seaPoint(cam, x, y, g)) continue;
+      hit[std::size_t(y) * w + x] = 1, geod[std::size_t(y) * w + x] = g, at[std::size_t(y) * w + x] = geo::toEcef(g);
+    }
+  std::vector<int> bin(std::size_t(w) * h, -1);
+  std::vector<double> qOf(std::size_t(w) * h, -1.0);
+  std::vector<int> perBin(kBins, 0);
+  for (int y = 0; y + 1 < h; ++y)
+    for (int x = 0; x + 1 < w; ++x) {
+      const std::size_t i = std::size_t(y) * w + x;
+      if (!hit[i] || !hit[i + 1] || !hit[i + std::size_t(w)]) continue;
+      const geo::Geodetic& g = geod[i];
+      const double eastOfShoreM = (g.lonDeg - kShoreLon) * 111320.0;
+      if (eastOfShoreM > -5.0) continue;
+      const double depth = std::max(1.0, std::min(200.0, -kSlope * eastOfShoreM));
+      const auto mean = snap->waves->breakingFoamMean(g.latDeg, g.lonDeg, 30.0, depth);
+      if (!(mean.foam > 0.02)) continue;  // no breaking: every band draws no foam
+      const double pixelM = std::max(glm::length(at[i + 1] - at[i]), glm::length(at[i + std::size_t(w)] - at[i]));
+      const double q = pixelM / std::max(mean.wavelengthM, 1e-3);
+      qOf[i] = q;
+      const int b = int(std::floor(std::log(q / kEdgeQ) / kBinLn)) + kBinsSide;
+      if (b < 0 || b >= kBins) continue;
+      bin[i] = b;
+      ++perBin[std::size_t(b)];
+    }
+  const int fewest = *std::min_element(perBin.begin(), perBin.end());
+  std::printf("far fade bins: ln q / q_e in steps of %.2f from %.2f, fewest pixels in a bin %d\n", kBinLn,
+              -kBinsSide * kBinLn, fewest);
+  ASSERT_GT(fewest, 60) << "the view does not cover the fade's neighbourhood over breaking water";
+
+  constexpr int kFrames = 6;
+  struct Steps {
+    std::vector<double> luma, hi;
+  };
+  Steps bands, hard;
+  for (int f = 0; f < kFrames; ++f) {
+    const double t = 30.0 + 3.7 * f;
+    const bool keep = f == 0;
+    const Image a = drawWith(Bands::ByDistance, t, keep ? "bands" : ""),
+                m = drawWith(Bands::MiddleTextureOnly, t, keep ? "middle" : ""),
+                c = drawWith(Bands::FarMeanOnly, t, keep ? "far" : "");
+    Image cut = m;
+    for (std::size_t i = 0; i < qOf.size(); ++i)
+      if (qOf[i] >= kEdgeQ) std::memcpy(&cut.rgba[i * 4], &c.rgba[i * 4], 4);
+    if (keep) gl::writePng(::testing::TempDir() + "/far_fade_hard.png", cut);
+    const Bins middle = binStats(m, bin);
+    for (auto [im, st] : {std::pair{&a, &bands}, std::pair{static_cast<const Image*>(&cut), &hard}}) {
+      const Bins s = binStats(*im, bin);
+      std::vector<double> dl;
+      for (int k = 0; k < kBins; ++k) dl.push_back(s.luma[std::size_t(k)] - middle.luma[std::size_t(k)]);
+      st->luma.push_back(stepAt(dl, kWindow));
+      st->hi.push_back(stepAt(s.hi, kWindow));
+    }
+  }
+  ocean->setCoastBands(Bands::ByDistance);
+  auto meanSe = [](const std::vector<double>& v) {
+    double m = 0.0, var = 0.0;
+    for (double x : v) m += x / v.size();
+    for (double x : v) var += (x - m) * (x - m) / (v.size() - 1);
+    return std::pair{m, std::sqrt(var / v.size())};
+  };
+  for (auto [name, st] : {std::pair{"with the fade", &bands}, std::pair{"hard switch (no fade)", &hard}}) {
+    const auto [ml, sl] = meanSe(st->luma);
+    const auto [mh, sh] = meanSe(st->hi);
+    const bool lumaOk = std::abs(ml) < 3.0 * sl, hiOk = std::abs(mh) < 3.0 * sh;
+    std::printf("%s: mean luma step %.3f (se %.3f), log detail step %.3f (se %.3f) over %d frames\n", name, ml, sl,
+                mh, sh, kFrames);
+    if (st == &bands) {
+      EXPECT_TRUE(lumaOk) << "mean luma steps by " << ml << " across the middle -> far fade (se " << sl << ")";
+      EXPECT_TRUE(hiOk) << "the detail steps by " << mh << " across the middle -> far fade (se " << sh << ")";
+    } else {
+      EXPECT_FALSE(lumaOk && hiOk) << "the test cannot see a hard switch from the middle band to the far band";
+    }
+  }
+}
+
+// Issue 15 item 4, paper 003's coarser mesh in the middle band
+// (OceanOptions::coarseMiddle: blocks of 2 x 2 grid cells drawn as one
+// where the cell along the view is at least kMiddleMeshFromR of
+// middleWavelengthM over water kMiddleMeshMinDepth of it deep;
+// grid::coarseIndices stitches them to the fine cells with fans). The 1:50
+// beach from 150 m, 1.5 km off the shore, so the mesh edge (r = cell along
+// the view / middleWavelengthM = kMiddleMeshFromR) lies across the deep
+// water, the beach on the right: drawn with the coarse mesh (A), the fine
+// mesh everywhere (B) and, the test's negative control, blocks of 8 x 8
+// cells (C, a mesh too coarse for the waves) cut in per pixel at the edge
+// (B below it, C above: a hard switch). Pixels are binned by ln(r / edge),
+// r computed on the CPU at the pixel ray's sea-level point as ocean.vert
+// measures a cell (pixels over water the depth rule keeps fine left out);
+// the steps across the edge as CoastBands.BreakingFoam-
+// BandEdgeHasNoStep's (lines fitted to 24 bins either side, 2 left out):
+// A's mean luma over B's, and A's own log high-frequency power, over 6
+// frames 3.7 s apart, each within 3 standard errors of 0; the control must
+// fail. And no crack: no pixel that B draws as sea, all 8 neighbours too,
+// is left without sea in A (the data attachment), here and over open water.
+TEST(CoastBands, MiddleMeshEdgeHasNoStepAndNoCrack) {
+  session();
+  const auto beach = spillingBeach();
+  const auto& snap = beach->snap;
+  ocean_render::OceanOptions oo = beach->options();
+  oo.coarseMiddle = true;
+  const auto ocean = std::make_shared<ocean_render::OceanRenderer>(beach->grids, snap->landSea, oo);
+  ocean->setSpray(false);  // as the band test: the foam and the surface alone
+  ocean->setWriteData(true);
+  const double lambdaM = ocean->middleWavelengthM(), edgeR = ocean_render::OceanRenderer::kMiddleMeshFromR;
+  std::printf("middle mesh: blocks of 2 x 2 cells from cell along the view / %.1f m >= %.2f\n", lambdaM, edgeR);
+  ASSERT_GT(lambdaM, 0.0);
+
+  // 1.5 km off the shore looking north-north-east: the beach on the right,
+  // the mesh edge over water deeper than kMiddleMeshMinDepth x lambda.
+  ViewPose p;
+  p.latDeg = 0.284, p.lonDeg = kShoreLon - 1500.0 / 111320.0, p.altM = 150.0, p.headingDeg = 20.0, p.pitchDeg = -25.0;
+  p.width = p.height = 384;
+  GlobeRenderer renderer(beach->world);
+  renderer.addLayer(std::make_shared<DirectOceanLayer>(ocean));
+  Framebuffer fb(p.width, p.height, true);
+  fb.bind();
+  FrameSettings fs;
+  fs.sunEcef = sunForView(p, 150.0, 40.0);
+  struct Frame {
+    Image im;
+    std::vector<float> data;
+    std::size_t blocks = 0;
+  };
+  auto drawWith = [&](const ViewPose& v, int block, double timeS, const std::string& name) {
+    ocean->setMiddleMeshBlock(block);
+    fs.timeS = timeS;
+    renderer.render(v, fs);
+    Frame f{fb.readColor(), fb.readData(), ocean->lastCoarseBlocks()};
+    if (!name.empty()) gl::writePng(::testing::TempDir() + "/middle_mesh_" + name + ".png", f.im);
+    return f;
+  };
+  const int w = p.width, h = p.height;
+  const camera::Camera cam = renderer.camera(p);
+  const double cellRadians = 2.0 * std::tan(0.5 * cam.vfovDeg() * 3.14159265358979 / 180.0) / h * ocean->cellPx();
+  std::vector<int> bin(std::size_t(w) * h, -1);
+  std::vector<double> bandR(std::size_t(w) * h, -1.0);
+  std::vector<int> perBin(kBins, 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      geo::Geodetic g;
+      if (!seaPoint(cam, x, y, g)) continue;
+      // Water the rule lets coarsen (a block, 2 x 16 m, further than its depth bound).
+      if (-kSlope * (g.lonDeg - kShoreLon) * 111320.0 < ocean_render::OceanRenderer::kMiddleMeshMinDepth * lambdaM + 1.0)
+        continue;
+      const glm::dvec3 rel = geo::toEcef(g) - cam.eyeEcef();
+      const double sinE = std::abs(glm::dot(glm::normalize(rel), geo::surfaceNormal(g.latDeg, g.lonDeg)));
+      const double rr = glm::length(rel) * cellRadians / std::max(sinE, 0.02) / lambdaM;
+      bandR[std::size_t(y) * w + x] = rr;
+      const int b = int(std::floor(std::log(rr / edgeR) / kBinLn)) + kBinsSide;
+      if (b < 0 || b >= kBins) continue;
+      bin[std::size_t(y) * w + x] = b;
+      ++perBin[std::size_t(b)];
+    }
+  const int fewest = *std::min_element(perBin.begin(), perBin.end());
+  std::printf("mesh edge bins: fewest pixels in a bin %d\n", fewest);
+  ASSERT_GT(fewest, 200) << "the view does not cover the mesh edge's neighbourhood";
+
+  // A pixel is the sea's where the data attachment's eye-relative point
+  // (the clear and the sky leave other values there) projects into it; a
+  // crack: sea in B with its 8 neighbours, not in A.
+  const auto seaMask = [&](const Frame& f, const camera::Camera& c) {
+    std::vector<std::uint8_t> m(std::size_t(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const float* q = &f.data[(std::size_t(y) * w + x) * 4];
+        const auto ndc = c.projectEyeRelative(glm::dvec3(q[0], q[1], q[2]));
+        m[std::size_t(y) * w + x] = ndc && std::abs((ndc->x * 0.5 + 0.5) * w - (x + 0.5)) <= 1.0 &&
+                                    std::abs((0.5 - ndc->y * 0.5) * h - (y + 0.5)) <= 1.0;
+      }
+    return m;
+  };
+  const auto cracks = [&](const Frame& a, const Frame& b, const camera::Camera& c, int& seaPixels) {
+    const auto ma = seaMask(a, c), mb = seaMask(b, c);
+    int n = 0;
+    seaPixels = 0;
+    for (int y = 1; y + 1 < h; ++y)
+      for (int x = 1; x + 1 < w; ++x) {
+        bool all = true;
+        for (int dy = -1; dy <= 1 && all; ++dy)
+          for (int dx = -1; dx <= 1 && all; ++dx) all = mb[std::size_t(y + dy) * w + x + dx] != 0;
+        seaPixels += all;
+        n += all && !ma[std::size_t(y) * w + x];
+      }
+    return n;
+  };
+
+  constexpr int kFrames = 6;
+  struct Steps {
+    std::vector<double> luma, hi;
+  };
+  Steps mesh, hard;
+  for (int f = 0; f < kFrames; ++f) {
+    const double t = 30.0 + 3.7 * f;
+    const bool keep = f == 0;
+    const Frame a = drawWith(p, 2, t, keep ? "coarse" : ""), b = drawWith(p, 1, t, keep ? "fine" : ""),
+                c = drawWith(p, 8, t, keep ? "coarse8" : "");
+    if (f == 0) {
+      std::printf("coarse blocks: %zu of 2 x 2, %zu of 8 x 8\n", a.blocks, c.blocks);
+      ASSERT_GT(a.blocks, 100u) << "no middle-band mesh in the view";
+    }
+    int sea = 0;
+    const int crack = cracks(a, b, cam, sea);
+    if (f == 0) std::printf("beach: %d sea pixels (with their neighbours) in the fine frame\n", sea);
+    EXPECT_GT(sea, w * h / 2);
+    EXPECT_EQ(crack, 0) << "sea pixels left open by the coarse mesh, frame " << f;
+    Image cut = b.im;
+    for (std::size_t i = 0; i < bandR.size(); ++i)
+      if (bandR[i] >= edgeR) std::memcpy(&cut.rgba[i * 4], &c.im.rgba[i * 4], 4);
+    if (keep) gl::writePng(::testing::TempDir() + "/middle_mesh_hard.png", cut);
+    const Bins fine = binStats(b.im, bin);
+    for (auto [im, st] : {std::pair{&a.im, &mesh}, std::pair{static_cast<const Image*>(&cut), &hard}}) {
+      const Bins s = binStats(*im, bin);
+      std::vector<double> dl;
+      for (int k = 0; k < kBins; ++k) dl.push_back(s.luma[std::size_t(k)] - fine.luma[std::size_t(k)]);
+      st->luma.push_back(stepAt(dl));
+      st->hi.push_back(stepAt(s.hi));
+    }
+  }
+  ocean->setMiddleMeshBlock(2);
+  auto meanSe = [](const std::vector<double>& v) {
+    double m = 0.0, var = 0.0;
+    for (double x : v) m += x / v.size();
+    for (double x : v) var += (x - m) * (x - m) / (v.size() - 1);
+    return std::pair{m, std::sqrt(var / v.size())};
+  };
+  for (auto [name, st] : {std::pair{"coarse middle mesh", &mesh}, std::pair{"8 x 8 blocks cut in (hard)", &hard}}) {
+    const auto [ml, sl] = meanSe(st->luma);
+    const auto [mh, sh] = meanSe(st->hi);
+    // Luma: half an 8-bit unit (Render.FarShadingBandEdgeHasNoStep's
+    // bound; A differs from B only above the edge, so the frames' scatter
+    // of A - B is small, and a step of 0.1 unit would be significant and
+    // invisible); the detail: 3 standard errors of the frames' scatter.
+    const bool lumaOk = std::abs(ml) < 0.5, hiOk = std::abs(mh) < 3.0 * sh;
+    std::printf("%s: mean luma step %.3f (se %.3f), log detail step %.3f (se %.3f) over %d frames\n", name, ml, sl, mh,
+                sh, kFrames);
+    if (st == &mesh) {
+      EXPECT_TRUE(lumaOk) << "mean luma steps by " << ml << " across the mesh edge (se " << sl << ")";
+      EXPECT_TRUE(hiOk) << "the detail steps by " << mh << " across the mesh edge (se " << sh << ")";
+    } else {
+      EXPECT_FALSE(lumaOk && hiOk) << "the test cannot see a hard switch to a too coarse mesh";
+    }
+  }
+
+  // Open water: 1.2 km off the shore (24 m deep and more), steeper, the
+  // raster's water alone in sight.
+  ViewPose o = p;
+  o.lonDeg = kShoreLon - 1200.0 / 111320.0;
+  o.pitchDeg = -35.0;
+  const Frame a = drawWith(o, 2, 30.0, "open_coarse"), b = drawWith(o, 1, 30.0, "open_fine");
+  int sea = 0;
+  const int crack = cracks(a, b, renderer.camera(o), sea);
+  std::printf("open water: %zu coarse blocks, %d sea pixels, %d cracks\n", a.blocks, sea, crack);
+  EXPECT_GT(a.blocks, 100u);
+  EXPECT_GT(sea, w * h / 2);
+  EXPECT_EQ(crack, 0) << "sea pixels left open by the coarse mesh over open water";
 }
 
 }  // namespace geocean::render::test
