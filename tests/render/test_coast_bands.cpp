@@ -43,6 +43,7 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace geocean::render::test {
@@ -107,10 +108,42 @@ Fit fitLine(const std::vector<double>& v, int from, int to, double at) {
 
 // The gap at the edge (between bins kBinsSide - 1 and kBinsSide) of lines
 // fitted to the `window` bins either side, 2 left out next to it.
-double stepAt(const std::vector<double>& v, int window = 24) {
+constexpr int kEdgeWindow = 24;
+double stepAt(const std::vector<double>& v, int window = kEdgeWindow) {
   const double at = kBinsSide;
   return fitLine(v, kBinsSide - 2 - window, kBinsSide - 2, at).value -
          fitLine(v, kBinsSide + 2, kBinsSide + 2 + window, at).value;
+}
+
+// The negative controls' hard switch: `below` where pos < edge (and off
+// the sea, pos -1), `above` from the edge on.
+Image cutAt(const Image& below, const Image& above, const std::vector<double>& pos, double edge) {
+  Image cut = below;
+  for (std::size_t i = 0; i < pos.size(); ++i)
+    if (pos[i] >= edge) std::memcpy(&cut.rgba[i * 4], &above.rgba[i * 4], 4);
+  return cut;
+}
+
+// Each frame's steps at the edge: the drawn frame's (and the control's)
+// mean luma over the reference's (the view's own trend and content
+// removed), and its own log detail.
+struct Steps {
+  std::vector<double> luma, hi;
+  void add(const Image& im, const Bins& ref, const std::vector<int>& bin, int window = kEdgeWindow) {
+    const Bins s = binStats(im, bin);
+    std::vector<double> dl;
+    for (int k = 0; k < kBins; ++k) dl.push_back(s.luma[std::size_t(k)] - ref.luma[std::size_t(k)]);
+    luma.push_back(stepAt(dl, window));
+    hi.push_back(stepAt(s.hi, window));
+  }
+};
+
+// Mean over frames and its standard error.
+std::pair<double, double> meanSe(const std::vector<double>& v) {
+  double m = 0.0, var = 0.0;
+  for (double x : v) m += x / v.size();
+  for (double x : v) var += (x - m) * (x - m) / (v.size() - 1);
+  return {m, std::sqrt(var / v.size())};
 }
 
 }  // namespace
@@ -183,9 +216,6 @@ TEST(CoastBands, BreakingFoamBandEdgeHasNoStep) {
   // steps' noise is their scatter from frame to frame.
   constexpr int kFrames = 6;
   int fadeBottom = -1;
-  struct Steps {
-    std::vector<double> luma, hi;
-  };
   Steps bands, hard;
   double sa = 0.0, sb = 0.0;
   for (int f = 0; f < kFrames; ++f) {
@@ -203,31 +233,16 @@ TEST(CoastBands, BreakingFoamBandEdgeHasNoStep) {
     }
     // The blend removed: per pixel, the near band below the edge, the
     // middle band above.
-    Image cut = b;
-    for (std::size_t i = 0; i < bandR.size(); ++i)
-      if (bandR[i] >= kEdgeR) std::memcpy(&cut.rgba[i * 4], &c.rgba[i * 4], 4);
+    const Image cut = cutAt(b, c, bandR, kEdgeR);
     if (keep) gl::writePng(::testing::TempDir() + "/coast_bands_hard.png", cut);
+    // Luma over B's (the near band's content removed).
     const Bins near = binStats(b, bin);
-    for (auto [im, st] : {std::pair{&a, &bands}, std::pair{static_cast<const Image*>(&cut), &hard}}) {
-      // Luma: over B's (the view's own trend and the near band's content
-      // removed); the detail: its own.
-      const Bins s = binStats(*im, bin);
-      std::vector<double> dl;
-      for (int k = 0; k < kBins; ++k) dl.push_back(s.luma[std::size_t(k)] - near.luma[std::size_t(k)]);
-      st->luma.push_back(stepAt(dl));
-      st->hi.push_back(stepAt(s.hi));
-    }
+    bands.add(a, near, bin);
+    hard.add(cut, near, bin);
     for (int y = 0; y <= fadeBottom; ++y)
       for (int x = 0; x < w; ++x) sa += luma(a, x, y), sb += luma(b, x, y);
   }
   ocean->setCoastBands(Bands::ByDistance);
-  // Mean over frames and its standard error.
-  auto meanSe = [](const std::vector<double>& v) {
-    double m = 0.0, var = 0.0;
-    for (double x : v) m += x / v.size();
-    for (double x : v) var += (x - m) * (x - m) / (v.size() - 1);
-    return std::pair{m, std::sqrt(var / v.size())};
-  };
   for (auto [name, st] : {std::pair{"with the bands", &bands}, std::pair{"hard switch (no blend)", &hard}}) {
     const auto [ml, sl] = meanSe(st->luma);
     const auto [mh, sh] = meanSe(st->hi);
@@ -330,9 +345,6 @@ TEST(CoastBands, MiddleToFarFadeHasNoStep) {
   ASSERT_GT(fewest, 60) << "the view does not cover the fade's neighbourhood over breaking water";
 
   constexpr int kFrames = 6;
-  struct Steps {
-    std::vector<double> luma, hi;
-  };
   Steps bands, hard;
   for (int f = 0; f < kFrames; ++f) {
     const double t = 30.0 + 3.7 * f;
@@ -340,26 +352,13 @@ TEST(CoastBands, MiddleToFarFadeHasNoStep) {
     const Image a = drawWith(Bands::ByDistance, t, keep ? "bands" : ""),
                 m = drawWith(Bands::MiddleTextureOnly, t, keep ? "middle" : ""),
                 c = drawWith(Bands::FarMeanOnly, t, keep ? "far" : "");
-    Image cut = m;
-    for (std::size_t i = 0; i < qOf.size(); ++i)
-      if (qOf[i] >= kEdgeQ) std::memcpy(&cut.rgba[i * 4], &c.rgba[i * 4], 4);
+    const Image cut = cutAt(m, c, qOf, kEdgeQ);
     if (keep) gl::writePng(::testing::TempDir() + "/far_fade_hard.png", cut);
     const Bins middle = binStats(m, bin);
-    for (auto [im, st] : {std::pair{&a, &bands}, std::pair{static_cast<const Image*>(&cut), &hard}}) {
-      const Bins s = binStats(*im, bin);
-      std::vector<double> dl;
-      for (int k = 0; k < kBins; ++k) dl.push_back(s.luma[std::size_t(k)] - middle.luma[std::size_t(k)]);
-      st->luma.push_back(stepAt(dl, kWindow));
-      st->hi.push_back(stepAt(s.hi, kWindow));
-    }
+    bands.add(a, middle, bin, kWindow);
+    hard.add(cut, middle, bin, kWindow);
   }
   ocean->setCoastBands(Bands::ByDistance);
-  auto meanSe = [](const std::vector<double>& v) {
-    double m = 0.0, var = 0.0;
-    for (double x : v) m += x / v.size();
-    for (double x : v) var += (x - m) * (x - m) / (v.size() - 1);
-    return std::pair{m, std::sqrt(var / v.size())};
-  };
   for (auto [name, st] : {std::pair{"with the fade", &bands}, std::pair{"hard switch (no fade)", &hard}}) {
     const auto [ml, sl] = meanSe(st->luma);
     const auto [mh, sh] = meanSe(st->hi);
@@ -487,9 +486,6 @@ TEST(CoastBands, MiddleMeshEdgeHasNoStepAndNoCrack) {
   };
 
   constexpr int kFrames = 6;
-  struct Steps {
-    std::vector<double> luma, hi;
-  };
   Steps mesh, hard;
   for (int f = 0; f < kFrames; ++f) {
     const double t = 30.0 + 3.7 * f;
@@ -505,26 +501,13 @@ TEST(CoastBands, MiddleMeshEdgeHasNoStepAndNoCrack) {
     if (f == 0) std::printf("beach: %d sea pixels (with their neighbours) in the fine frame\n", sea);
     EXPECT_GT(sea, w * h / 2);
     EXPECT_EQ(crack, 0) << "sea pixels left open by the coarse mesh, frame " << f;
-    Image cut = b.im;
-    for (std::size_t i = 0; i < bandR.size(); ++i)
-      if (bandR[i] >= edgeR) std::memcpy(&cut.rgba[i * 4], &c.im.rgba[i * 4], 4);
+    const Image cut = cutAt(b.im, c.im, bandR, edgeR);
     if (keep) gl::writePng(::testing::TempDir() + "/middle_mesh_hard.png", cut);
     const Bins fine = binStats(b.im, bin);
-    for (auto [im, st] : {std::pair{&a.im, &mesh}, std::pair{static_cast<const Image*>(&cut), &hard}}) {
-      const Bins s = binStats(*im, bin);
-      std::vector<double> dl;
-      for (int k = 0; k < kBins; ++k) dl.push_back(s.luma[std::size_t(k)] - fine.luma[std::size_t(k)]);
-      st->luma.push_back(stepAt(dl));
-      st->hi.push_back(stepAt(s.hi));
-    }
+    mesh.add(a.im, fine, bin);
+    hard.add(cut, fine, bin);
   }
   ocean->setMiddleMeshBlock(2);
-  auto meanSe = [](const std::vector<double>& v) {
-    double m = 0.0, var = 0.0;
-    for (double x : v) m += x / v.size();
-    for (double x : v) var += (x - m) * (x - m) / (v.size() - 1);
-    return std::pair{m, std::sqrt(var / v.size())};
-  };
   for (auto [name, st] : {std::pair{"coarse middle mesh", &mesh}, std::pair{"8 x 8 blocks cut in (hard)", &hard}}) {
     const auto [ml, sl] = meanSe(st->luma);
     const auto [mh, sh] = meanSe(st->hi);
