@@ -14,6 +14,16 @@ namespace geocean::world {
 
 namespace {
 
+// A layer beyond kMaxStreamedLayers of its kind is drawn from the grid
+// below the streamed ones (the query still answers at its cells): say so.
+void warnBeyondStreamLimit(const RasterLayer* beyond, const char* kind, double gridStepDeg) {
+  if (!beyond) return;
+  std::fprintf(stderr,
+               "geocean: warning: %s: more than %d %s layers to stream; it and the layers after it are drawn from the "
+               "%.4g' %s grid (the query still answers at their cells)\n",
+               beyond->raster->path().c_str(), kMaxStreamedLayers, kind, gridStepDeg * 60.0, kind);
+}
+
 bool globalInMemory(const raster::Raster& r) {
   const auto& t = r.transform();
   return r.inMemory() && t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * r.height() + 180.0) < 1e-6;
@@ -290,11 +300,7 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
       e && globalInMemory(*e) ? e->transform().lonStepDeg : globalGridFor(e.get()).lonStepDeg;
   const RasterLayer* beyondElevation = nullptr;
   const auto elevationChain = streamedElevationLayers(stack, elevationStep, &beyondElevation);
-  if (beyondElevation)
-    std::fprintf(stderr,
-                 "geocean: warning: %s: more than %d elevation layers to stream; it and the ones after it are drawn "
-                 "from the %.4g' elevation grid (the query still answers at their cells)\n",
-                 beyondElevation->raster->path().c_str(), kMaxStreamedLayers, elevationStep * 60.0);
+  warnBeyondStreamLimit(beyondElevation, "elevation", elevationStep);
   for (std::size_t i = 1; i < elevationChain.size(); ++i)
     d.elevationTilesBelow.push_back(raster::TilePyramid::open(elevationChain[i]->raster));
   const RasterLayer* streamedElevation = elevationChain.empty() ? nullptr : elevationChain.back();
@@ -354,11 +360,7 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
       m && globalInMemory(*m) ? m->transform().lonStepDeg : globalGridFor((m ? m : stack.drawingElevation()).get()).lonStepDeg;
   const RasterLayer* beyond = nullptr;
   const auto chain = streamedWaterLayers(stack, gridStep, &beyond);
-  if (beyond)
-    std::fprintf(stderr,
-                 "geocean: warning: %s: more than %d water layers to stream; it and the layers after it are drawn from the "
-                 "%.4g' water grid (the query still answers at their cells)\n",
-                 beyond->raster->path().c_str(), kMaxStreamedLayers, gridStep * 60.0);
+  warnBeyondStreamLimit(beyond, "water", gridStep);
   if (!chain.empty()) {
     const RasterLayer* l = chain.front();
     d.waterSource = l->raster;

@@ -106,11 +106,17 @@ const RasterLayer* streamedWaterLayer(const LayerStack& stack, double gridLonSte
   return nullptr;
 }
 
-std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, double gridLonStepDeg,
-                                                    const RasterLayer** beyondLimit) {
+namespace {
+// The layers answering after `first` in the stack's order that stream too,
+// up to kMaxStreamedLayers: a layer of a kind `takes` does not answer for
+// is passed over; the chain ends at the first layer that cannot stream
+// (`streamsHere`), or after a layer covering the Earth (nothing answers
+// below it where it has data).
+template <class Takes, class StreamsHere>
+std::vector<const RasterLayer*> chainFrom(const LayerStack& stack, const RasterLayer* first,
+                                          const RasterLayer** beyondLimit, Takes takes, StreamsHere streamsHere) {
   if (beyondLimit) *beyondLimit = nullptr;
   std::vector<const RasterLayer*> chain;
-  const RasterLayer* first = streamedWaterLayer(stack, gridLonStepDeg);
   if (!first) return chain;
   chain.push_back(first);
   bool after = false;
@@ -119,13 +125,8 @@ std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, dou
       after = true;
       continue;
     }
-    if (!after || l.kind == LayerKind::Imagery) continue;
-    if (!isStreamedRegional(*chain.back()->raster)) break;
-    // A relief answers by sign where it has data (reliefWaterPyramid), a
-    // mask by its encoding: either streams. A global relief with nodata
-    // does not (its pyramid makes nodata land: streamedWaterLayer's rule).
-    if (!streams(l, gridLonStepDeg)) break;
-    if (l.kind == LayerKind::Elevation && !isStreamedRegional(*l.raster) && l.raster->nodata()) break;
+    if (!after || !takes(l)) continue;
+    if (!isStreamedRegional(*chain.back()->raster) || !streamsHere(l)) break;
     if (int(chain.size()) == kMaxStreamedLayers) {
       if (beyondLimit) *beyondLimit = &l;
       break;
@@ -133,6 +134,21 @@ std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, dou
     chain.push_back(&l);
   }
   return chain;
+}
+}  // namespace
+
+std::vector<const RasterLayer*> streamedWaterLayers(const LayerStack& stack, double gridLonStepDeg,
+                                                    const RasterLayer** beyondLimit) {
+  return chainFrom(
+      stack, streamedWaterLayer(stack, gridLonStepDeg), beyondLimit,
+      [](const RasterLayer& l) { return l.kind != LayerKind::Imagery; },
+      [&](const RasterLayer& l) {
+        // A relief answers by sign where it has data (reliefWaterPyramid), a
+        // mask by its encoding: either streams. A global relief with nodata
+        // does not (its pyramid makes nodata land: streamedWaterLayer's rule).
+        return streams(l, gridLonStepDeg) &&
+               !(l.kind == LayerKind::Elevation && !isStreamedRegional(*l.raster) && l.raster->nodata());
+      });
 }
 
 WorldLayer waterGridBelow(const LayerStack& stack, const std::vector<const RasterLayer*>& chain, double gridLonStepDeg) {
@@ -149,26 +165,10 @@ const RasterLayer* streamedElevationLayer(const LayerStack& stack, double gridLo
 
 std::vector<const RasterLayer*> streamedElevationLayers(const LayerStack& stack, double gridLonStepDeg,
                                                         const RasterLayer** beyondLimit) {
-  if (beyondLimit) *beyondLimit = nullptr;
-  std::vector<const RasterLayer*> chain;
-  const RasterLayer* first = streamedElevationLayer(stack, gridLonStepDeg);
-  if (!first) return chain;
-  chain.push_back(first);
-  bool after = false;
-  for (const RasterLayer& l : stack.layers()) {
-    if (&l == first) {
-      after = true;
-      continue;
-    }
-    if (!after || l.kind != LayerKind::Elevation) continue;  // masks and imagery have no elevation
-    if (!isStreamedRegional(*chain.back()->raster) || !streams(l, gridLonStepDeg)) break;
-    if (int(chain.size()) == kMaxStreamedLayers) {
-      if (beyondLimit) *beyondLimit = &l;
-      break;
-    }
-    chain.push_back(&l);
-  }
-  return chain;
+  return chainFrom(
+      stack, streamedElevationLayer(stack, gridLonStepDeg), beyondLimit,
+      [](const RasterLayer& l) { return l.kind == LayerKind::Elevation; },  // masks and imagery have no elevation
+      [&](const RasterLayer& l) { return streams(l, gridLonStepDeg); });
 }
 
 namespace {
