@@ -444,9 +444,8 @@ TEST(Shadows, AnIslandsCliffShadowAtALowSunFallsWhereGeometrySays) {
 }
 
 // A cliff at a low sun, drawn by `geocean render` through the plugin (ABI
-// 1.8's shadow map and flag): a global 1' elevation raster (streamed at its
-// own cells; a regional one is drawn resampled to 5'), nodata but for a
-// 1 x 1 degree block of 4000 m deep sea around (30 N, 40 W) with a 300 m
+// 1.8's shadow map and flag): a regional 1' elevation raster (streamed at
+// its own cells), a 1 x 1 degree block of 4000 m deep sea around (30 N, 40 W) with a 300 m
 // plateau of 15 x 15 cells (0.25 degrees) at its centre, land in a 1' mask
 // of the block (without it the 5' default mask calls it sea and the host
 // draws the ground under the sea there, casting nothing): its edge falls to
@@ -471,38 +470,30 @@ double plateauElevation(double lat, double lon) {
     return std::abs(lat - 30.0) < 7.5 / 60.0 && std::abs(lon + 40.0) < 7.5 / 60.0 ? 300.0 : -4000.0;
   return -32768.0;
 }
+// The block's 1' cells as a regional GeoTIFF: the relief, or its mask
+// (the host's and the ocean's land and sea: land (1) above the sea).
+std::string writePlateau(const std::string& name, bool mask) {
+  const std::string path = plateauDir() + "/" + name;
+  std::vector<float> px(60 * 60);
+  for (int y = 0; y < 60; ++y)
+    for (int x = 0; x < 60; ++x) {
+      const double e = plateauElevation(30.5 - (y + 0.5) / 60.0, -40.5 + (x + 0.5) / 60.0);
+      px[std::size_t(y) * 60 + x] = mask ? (e > 0.0 ? 1.0f : 0.0f) : float(e);
+    }
+  raster::GeoTiffWriteOptions wo;
+  wo.transform = {-40.5, 30.5, 1.0 / 60.0, -1.0 / 60.0, false};
+  raster::writeGeoTiff(path, px.data(), 60, 60, 1, raster::SampleType::F32, wo);
+  return path;
+}
 std::string plateauTif() {
-  constexpr int W = 21600, H = 10800;
   static const std::string p = [] {
-    const std::string path = plateauDir() + "/shadow_plateau.tif";
-    std::filesystem::remove(path);
     std::filesystem::remove_all(plateauDir() + "/shadow_tile_cache");
-    raster::GeoTiffWriteOptions wo;
-    wo.transform = {-180.0, 90.0, 360.0 / W, -180.0 / H, true};
-    wo.nodata = -32768.0;
-    raster::writeGeoTiffTiles(path, W, H, 1, raster::SampleType::F32, wo, [&](int x0, int y0, void* tile) {
-      float* v = static_cast<float*>(tile);
-      for (int y = 0; y < 256; ++y)
-        for (int x = 0; x < 256; ++x)
-          v[y * 256 + x] = float(plateauElevation(90.0 - (y0 + y + 0.5) / 60.0, -180.0 + (x0 + x + 0.5) / 60.0));
-    });
-    return path;
+    return writePlateau("shadow_plateau.tif", false);
   }();
   return p;
 }
-// Its mask (the host's and the ocean's land and sea): 1' cells over the
-// 1 x 1 degree block, land (1) where the relief is above the sea.
 std::string plateauMask() {
-  static const std::string p = [] {
-    const std::string path = plateauDir() + "/shadow_plateau_mask.tif";
-    std::vector<float> px(60 * 60);
-    for (int y = 0; y < 60; ++y)
-      for (int x = 0; x < 60; ++x) px[std::size_t(y) * 60 + x] = plateauElevation(30.5 - (y + 0.5) / 60.0, -40.5 + (x + 0.5) / 60.0) > 0.0 ? 1.0f : 0.0f;
-    raster::GeoTiffWriteOptions wo;
-    wo.transform = {-40.5, 30.5, 1.0 / 60.0, -1.0 / 60.0, false};
-    raster::writeGeoTiff(path, px.data(), 60, 60, 1, raster::SampleType::F32, wo);
-    return path;
-  }();
+  static const std::string p = writePlateau("shadow_plateau_mask.tif", true);
   return p;
 }
 // The raster's bilinear surface (cell centres on the 1' grid).
