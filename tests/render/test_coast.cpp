@@ -113,11 +113,12 @@ struct FacadeOcean {
   ocean_render::OceanOptions options;
   std::shared_ptr<const world::WorldGrids> grids;
 };
-FacadeOcean facadeOcean(const std::string& maskPath, world::LayerKind kind = world::LayerKind::Mask) {
+FacadeOcean facadeOcean(const std::vector<std::string>& paths, world::LayerKind kind = world::LayerKind::Mask) {
   ocean::Ocean o;
   o.setDefaultWorld(ocean::Ocean::defaultWorldDir());
-  if (kind == world::LayerKind::Elevation) o.addElevationLayerFile(maskPath);
-  else o.addMaskLayerFile(maskPath);
+  for (const std::string& path : paths)
+    if (kind == world::LayerKind::Elevation) o.addElevationLayerFile(path);
+    else o.addMaskLayerFile(path);
   FacadeOcean f;
   f.snap = o.current();
   f.options.waterTiles = ocean_render::oceanWaterTiles(f.snap->landSea.get(), f.snap->mask);
@@ -125,6 +126,10 @@ FacadeOcean facadeOcean(const std::string& maskPath, world::LayerKind kind = wor
                                      f.options.waterTiles.get());
   f.options.elevationTiles = ocean_render::oceanElevationTileLayers(f.snap->landSea.get(), f.snap->elevation);
   return f;
+}
+
+FacadeOcean facadeOcean(const std::string& path, world::LayerKind kind = world::LayerKind::Mask) {
+  return facadeOcean(std::vector<std::string>{path}, kind);
 }
 
 // The bundled 1.25' mask as a layer over the default world, built the way
@@ -145,7 +150,7 @@ struct Streamed {
 
 Streamed& streamed() {
   static Streamed s = [] {
-    scene();  // the session's context
+    session();  // the GL context (scene() would build the 3" Gibraltar world too)
     Streamed c;
     // A cache of this test's own (the pyramid is built once per process).
     const std::string cache = ::testing::TempDir() + "/coast_tiles." + std::to_string(::getpid());
@@ -196,19 +201,22 @@ struct Regional {
 };
 
 // kind Elevation: a relief finer than every mask, whose 0 m line is the coast.
-Regional makeRegional(const std::string& maskPath, world::LayerKind kind = world::LayerKind::Mask) {
-  scene();  // the session's context
+// Several paths: layers of one kind at one priority (the stack orders them).
+Regional makeRegional(const std::vector<std::string>& paths, world::LayerKind kind = world::LayerKind::Mask) {
+  session();  // the GL context (scene() would build the 3" Gibraltar world too)
   Regional c;
   const std::string cache = ::testing::TempDir() + "/coast_regional_tiles." + std::to_string(::getpid());
   ::setenv("GEOCEAN_TILE_CACHE", cache.c_str(), 1);
-  world::WorldData d = world::loadLayeredWorld({{kind, maskPath, "", 0}}, true);
+  std::vector<world::LayerSource> sources;
+  for (const std::string& path : paths) sources.push_back({kind, path, "", 0});
+  world::WorldData d = world::loadLayeredWorld(sources, true);
   EXPECT_EQ(d.waterFromRelief, kind == world::LayerKind::Elevation);
   EXPECT_TRUE(d.waterSource) << "the regional 3\" mask should be streamed";
   TerrainOptions t;
   t.waitForTiles = true;  // as geocean render
   c.world = std::make_shared<WorldTextures>(d);
   c.renderer = std::make_unique<GlobeRenderer>(c.world, t);
-  const FacadeOcean f = facadeOcean(maskPath, kind);
+  const FacadeOcean f = facadeOcean(paths, kind);
   const auto& snap = f.snap;
   EXPECT_TRUE(f.options.waterTiles) << "the ocean should stream the regional 3\" mask";
   c.ocean = std::make_shared<ocean_render::OceanRenderer>(f.grids, snap->landSea, f.options);
@@ -216,6 +224,10 @@ Regional makeRegional(const std::string& maskPath, world::LayerKind kind = world
   c.renderer->addLayer(std::make_shared<DirectOceanLayer>(c.ocean));
   c.landSea = snap->landSea;
   return c;
+}
+
+Regional makeRegional(const std::string& path, world::LayerKind kind = world::LayerKind::Mask) {
+  return makeRegional(std::vector<std::string>{path}, kind);
 }
 
 Regional& regional() {
@@ -963,8 +975,8 @@ TEST(Coast, AReliefIslandOnTheAntimeridianIsDrawnAndQueriedOnBothSides) {
 // the antimeridian (the raster spanning 179.98 E .. 179.98 W, the step at
 // 180): the same pictures' depths pixel for pixel within 0.01 m (the eye-
 // relative texel positions; float longitudes near 180 are 1.7 m apart, a
-// 2 m depth error on the ramp). One test for both: each render is a
-// relief world of its own.
+// 2 m depth error on the ramp). One test for both, one world with both
+// shelves as two streamed reliefs.
 struct ShelfDepth {
   std::vector<float> drawn;  // vDepthM, NaN where the sea did not draw
   std::vector<double> query;  // -elevation at the drawn surface point, NaN off the sea
@@ -975,8 +987,10 @@ struct ShelfDepth {
   int shallowN = 0, deepN = 0;
 };
 
-ShelfDepth shelfDepth(double lat0, double stepLon, const std::string& tag) {
-  constexpr double kC = 1.0 / 3600.0;  // 1"
+constexpr double kShelfCellDeg = 1.0 / 3600.0;  // 1"
+
+std::string writeShelf(double lat0, double stepLon, const std::string& tag) {
+  constexpr double kC = kShelfCellDeg;
   constexpr int kN = 144;
   const double originLon = stepLon - 72 * kC, originLat = lat0 + 72 * kC;
   const std::string path = ::testing::TempDir() + "/shelf_" + tag + "." + std::to_string(::getpid()) + ".tif";
@@ -988,9 +1002,12 @@ ShelfDepth shelfDepth(double lat0, double stepLon, const std::string& tag) {
     wo.transform = {originLon, originLat, kC, -kC, false};
     raster::writeGeoTiff(path, px.data(), kN, kN, 1, raster::SampleType::F32, wo);
   }
-  Regional r = makeRegional(path, world::LayerKind::Elevation);
+  return path;
+}
+
+ShelfDepth shelfDepth(Regional& r, double lat0, double stepLon, const std::string& tag) {
+  constexpr double kC = kShelfCellDeg;
   ShelfDepth out;
-  EXPECT_EQ(r.ocean->elevationPages() ? r.ocean->elevationPages()->layers() : 0, 1) << "the relief should stream";
   const ViewPose p = pose(lat0, std::remainder(stepLon, 360.0), 60.0, 0.0, -90.0);
   const Frame f = render(p, *r.renderer, r.ocean.get(), "shelf_" + tag);  // positions, colour
   r.ocean->setWriteDepthData(true);
@@ -1062,13 +1079,19 @@ ShelfDepth shelfDepth(double lat0, double stepLon, const std::string& tag) {
   EXPECT_GT(out.ramp, 10000) << tag;
   EXPECT_GT(out.shallowN, 5000) << tag;
   EXPECT_GT(out.deepN, 5000) << tag;
-  fs::remove(path);
   return out;
 }
 
 TEST(Coast, TheSeasDepthFollowsAStreamedShelfStepAtZeroAndOnTheAntimeridian) {
-  const ShelfDepth a = shelfDepth(-21.5, 0.0, "0e");
-  const ShelfDepth b = shelfDepth(-21.5, 180.0, "180");
+  // Both shelves in one stack (one world to build): two streamed reliefs,
+  // each answering where the other has no data (GEOCEAN_ELEV_PAGES 2).
+  const std::vector<std::string> paths = {writeShelf(-21.5, 0.0, "0e"), writeShelf(-21.5, 180.0, "180")};
+  Regional r = makeRegional(paths, world::LayerKind::Elevation);
+  ASSERT_TRUE(r.ocean->elevationPages()) << "the reliefs should stream";
+  EXPECT_EQ(r.ocean->elevationPages()->layers(), 2);
+  const ShelfDepth a = shelfDepth(r, -21.5, 0.0, "0e");
+  const ShelfDepth b = shelfDepth(r, -21.5, 180.0, "180");
+  for (const std::string& p : paths) fs::remove(p);
   // The same interpolation error on the ramp at 180 as at 0 E: the grid's
   // vertices lie alike on the relief (the waves, anchored to the Earth,
   // differ: drawn points move by their displacement, hence a margin).
@@ -1166,7 +1189,7 @@ TEST(Coast, TwoOverlappingRegionalMasksAreDrawnAndAnsweredAsTheStackSays) {
     return std::pair{layer, uniform};
   };
 
-  scene();  // the session's context
+  session();  // the GL context (scene() would build the 3" Gibraltar world too)
   const std::string cache = dir + "/tiles";
   ::setenv("GEOCEAN_TILE_CACHE", cache.c_str(), 1);
   world::WorldData d = world::loadLayeredWorld({{world::LayerKind::Mask, b.path, "", 0}, {world::LayerKind::Mask, a.path, "", 0}}, true);
@@ -1409,7 +1432,7 @@ TEST(Coast, TwoOverlappingRegionalReliefsAreDrawnAndAnsweredAsTheStackSays) {
     return true;
   };
 
-  scene();  // the session's context
+  session();  // the GL context (scene() would build the 3" Gibraltar world too)
   const std::string cache = dir + "/tiles";
   ::setenv("GEOCEAN_TILE_CACHE", cache.c_str(), 1);
   world::WorldData d = world::loadLayeredWorld(
