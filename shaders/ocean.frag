@@ -317,6 +317,7 @@ void main() {
   outColor = vec4(uShadow == 2 ? col * mix(0.5, 1.0, sunVis) : col, alpha);
 #endif
 #ifndef GEOCEAN_GBUFFER
-  outData = uWriteData != 0 ? vec4(vEyeRel, 1.0) : vec4(0.0);
+  // 2 (tests): the water depth drawn (vDepthM), w 2 where the sea drew.
+  outData = uWriteData == 2 ? vec4(vDepthM, 0.0, 0.0, 2.0) : uWriteData != 0 ? vec4(vEyeRel, 1.0) : vec4(0.0);
 #endif
 }

@@ -33,6 +33,7 @@ out float vHeightA;        // the height of the octaves in the vertex normal, by
 out float vCellAlongM;     // a grid cell's footprint along the view (noise_bands.glsl)
 #endif
 #include "geo_uv.glsl"
+#include "elev_pages.glsl"
 #include "atmosphere.glsl"
 
 layout(location = 0) in vec3 aEyeRel;
@@ -52,6 +53,7 @@ uniform float uMssAbove[17];
 uniform float uFoamHeightM[17];
 uniform float uCellRadians;
 uniform float uRefLonDeg;  // the eye's longitude
+uniform float uRefLatDeg;  // and latitude (the streamed reliefs' eye-relative texels)
 uniform vec4 uElevationGeo;
 uniform vec3 uSunDir;
 uniform float uEyeAltM;
@@ -121,8 +123,21 @@ void main() {
   float footprint = length(aEyeRel) * uCellRadians;
   int count = 0;
   while (count < uOctaveCount && count < 16 && uOctaveWavelengthM[count] > 3.0 * footprint) ++count;
+#ifdef GEOCEAN_ELEV_PAGES
+  // The streamed reliefs (elev_pages.glsl) at the cell's level, as the
+  // query reads them at level 0: one read for the waves' depth and vDepthM;
+  // the grid past them at vDepthM's level of detail.
+  float elevGridLod =
+      max(log2(footprint / (abs(uElevationGeo.w) / float(textureSize(uElevation, 0).y) * 111320.0)), 0.0);
+  float pagedElev = elevPages(vec2(float(lonD), float(aLatLon.x - double(uRefLatDeg))), footprint, lonLat, uElevation,
+                              uElevationGeo, elevGridLod);
+#endif
 #if WV_MODEL == 1
+#ifdef GEOCEAN_ELEV_PAGES
+  float elev = pagedElev;
+#else
   float elev = textureLod(uElevation, geoUv(lonLat, uElevationGeo), 0.0).r;
+#endif
   float depth = elev < -500.0 ? 1e30 : max(-elev, 1.0);
 #ifdef FOAM_TIMES
   vWaveDepthM = depth;
@@ -216,10 +231,14 @@ void main() {
   float t = hazeAmount(length(p), uEyeAltM, 0.0);
   vHazeTr = exp(-t * vec3(1.2, 2.0, 3.6));
   vHazeIn = vec3(0.30, 0.45, 0.80) * (vSun + vec3(0.02)) * 0.3 * (1.0 - vHazeTr);
+#ifdef GEOCEAN_ELEV_PAGES
+  vDepthM = -pagedElev;
+#else
   // Relief texels are ~37 km: read the level whose texel matches the cell.
   float texelM = abs(uElevationGeo.w) / float(textureSize(uElevation, 0).y) * 111320.0;
   float lod = max(log2(footprint / texelM), 0.0);
   vDepthM = -textureLod(uElevation, geoUv(lonLat, uElevationGeo), lod).r;
+#endif
   // Distant sea: geometry fades to the mean normal, slopes to roughness.
   vFar = smoothstep(0.02, 0.5, footprint / max(uOctaveWavelengthM[0], 1e-3));
   // ocean_shading.glsl turns the drawn normal towards the mean by 0.7 far

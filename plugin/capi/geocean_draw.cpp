@@ -94,11 +94,14 @@ struct WorldCache {
   // A layer's streamed mask (the host terrain's rule and pyramid), or null.
   std::shared_ptr<const geocean::raster::TilePyramid> waterTiles;
   std::vector<std::shared_ptr<const geocean::raster::TilePyramid>> waterTilesBelow;  // several streamed masks
+  // The streamed reliefs (the host terrain's): the water depth drawn.
+  std::vector<std::shared_ptr<const geocean::raster::TilePyramid>> elevationTiles;
   const geocean::world::WorldGrids& of(const Snapshot& snap) {
     if (!grids || landSea != snap.landSea || mask != snap.mask || elevation != snap.elevation) {
       waterTilesBelow = geocean::ocean_render::oceanWaterTileLayers(snap.landSea.get(), snap.mask);
       waterTiles = waterTilesBelow.empty() ? nullptr : waterTilesBelow.front();
       if (!waterTilesBelow.empty()) waterTilesBelow.erase(waterTilesBelow.begin());
+      elevationTiles = geocean::ocean_render::oceanElevationTileLayers(snap.landSea.get(), snap.elevation);
       grids = geocean::ocean_render::oceanWorld(snap.mask, snap.elevation, snap.landSea.get(), snap.maskEncoding,
                                                 waterTiles.get());
       landSea = snap.landSea;
@@ -423,6 +426,7 @@ GEOCEAN_API geocean_status geocean_draw(geocean_ocean* ocean) {
         o.waves = snap->waves;  // the query's field: its FFT tables are built once for both
         o.waterTiles = ds.world.waterTiles;
         o.waterTilesBelow = ds.world.waterTilesBelow;
+        o.elevationTiles = ds.world.elevationTiles;
         gl.renderer.reset();
         gl.renderer = std::make_unique<geocean::ocean_render::OceanRenderer>(ds.world.grids, snap->landSea, o);
       }

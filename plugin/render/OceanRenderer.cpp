@@ -72,6 +72,10 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
                                     : options_.model == waves::Model::NoisePaper ? "WV_MODEL 4"
                                                                                  : "WV_MODEL 0"};
   if (options_.model == waves::Model::Fft) model.push_back("WV_FFT 1");
+  if (!options_.elevationTiles.empty()) {
+    elevPages_ = std::make_unique<ElevationPages>(options_.elevationTiles);
+    for (const std::string& d : elevPages_->defines()) model.push_back(d);
+  }
   if (coast) model.push_back("WV_COAST 1");
   if (coast && !options_.coastBands) model.push_back("GEOCEAN_NO_COAST_BANDS 1");  // issue 15 item 4
   // Gerstner and FFT whitecaps per fragment from the Jacobian (foam.glsl);
@@ -440,6 +444,7 @@ void OceanRenderer::abandonGl() {
   for (PixelPrograms& v : pixel_)
     for (gl::GlProgram* p : {&v.sharp, &v.smooth, &v.open, &v.gSharp, &v.gSmooth, &v.gOpen, &v.shade}) p->abandon();
   if (pages_) pages_->abandonGl();
+  if (elevPages_) elevPages_->abandonGl();
 }
 
 namespace {
@@ -718,6 +723,12 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     if (completeTiles_) pages_->complete(frame_, options_.cellPx);
     else pages_->request(frame_, options_.cellPx);
   }
+  const double cellRadians = 2.0 * std::tan(0.5 * cam.vfovDeg() * 3.14159265358979 / 180.0) / cam.heightPx() *
+                             options_.cellPx;  // ocean.vert's uCellRadians (cull.cellRadians below)
+  if (elevPages_) {
+    if (completeTiles_) elevPages_->complete(frame_, cellRadians);
+    else elevPages_->request(frame_, cellRadians);
+  }
   // Cells no wave can bring on screen are dropped; open water (coverage 1
   // throughout, WaterIndex) and cells much smaller than a water texel are
   // drawn by variants without the per-pixel coverage lookup, which was half
@@ -781,6 +792,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   gridMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (idx.empty()) {
     if (pages_) pages_->endFrame();
+    if (elevPages_) elevPages_->endFrame();
     lastDeferred_ = false;
     return;
   }
@@ -913,8 +925,10 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glUniform1f(p.uniform("uEyeRadiusM"), float(glm::length(cam.eyeEcef())));
     glUniform1f(p.uniform("uEyeAltM"), float(g.heightM));
     glUniform1f(p.uniform("uRefLonDeg"), float(g.lonDeg));
+    glUniform1f(p.uniform("uRefLatDeg"), float(g.latDeg));
+    if (elevPages_) elevPages_->bind(p, float(g.latDeg), float(g.lonDeg));
     glUniform1f(p.uniform("uTimeS"), float(std::fmod(light.timeS, 3600.0)));
-    glUniform1i(p.uniform("uWriteData"), writeData_ ? 1 : 0);
+    glUniform1i(p.uniform("uWriteData"), writeDepthData_ ? 2 : writeData_ ? 1 : 0);
     glUniform1i(p.uniform("uCoastBandMode"), int(coastBands_));  // issue 15 item 4 (coast_bands.glsl)
     glUniform1i(p.uniform("uWakeCount"), GLint(wakes.size()));
     if (!wakes.empty()) {
@@ -1174,6 +1188,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   glDisable(GL_POLYGON_OFFSET_FILL);
   glDisable(GL_BLEND);
   if (pages_) pages_->endFrame();  // finished loads go up after the draws
+  if (elevPages_) elevPages_->endFrame();
   if (fft || coast)
     for (int i = 0; i < 2; ++i) {
       if (hostSsbo[i] != 0 && hostSize[i] > 0)

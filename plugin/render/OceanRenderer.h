@@ -12,6 +12,7 @@
 #include "plugin/grid/ScreenGrid.h"
 #include "plugin/landsea/LandSea.h"
 #include "plugin/render/Spray.h"
+#include "plugin/render/ElevationPages.h"
 #include "plugin/render/WaterPages.h"
 #include "plugin/waves/WaveField.h"
 
@@ -73,6 +74,12 @@ struct OceanOptions {
   // Streamed masks under waterTiles, in answer order (oceanWaterTileLayers):
   // the first with data at a point is drawn (WaterPages.h).
   std::vector<std::shared_ptr<const raster::TilePyramid>> waterTilesBelow;
+  // The streamed reliefs in answer order (oceanElevationTileLayers, the
+  // host terrain's): the water depth (the Gerstner depth, refraction's
+  // bottom, the shore foam) is read from their tiles per vertex by the
+  // query's rule (ElevationPages.h), the elevation grid past them. Empty:
+  // the elevation grid alone.
+  std::vector<std::shared_ptr<const raster::TilePyramid>> elevationTiles;
   // False: a streamed mask's cells all per pixel and coversOpaquely false
   // (the shortcuts' reference in tests). Either way a global mask's grid
   // cells are classed from the level (nearWaterClassifier).
@@ -226,6 +233,9 @@ class OceanRenderer {
   const grid::GridFrame& lastFrame() const { return frame_; }
   // Draw the eye-relative surface position into colour attachment 1 (tests).
   void setWriteData(bool on) { writeData_ = on; }
+  // Tests: the data target holds the drawn water depth (vDepthM) in x, w 2
+  // where the sea drew (ocean.frag), instead of positions.
+  void setWriteDepthData(bool on) { writeDepthData_ = on; }
   void setCheapCoverage(bool on) { options_.cheapCoverage = on; }
   void setCullOffscreen(bool on) { options_.cullOffscreen = on; }
   void setFarVertexShading(bool on) { options_.farVertexShading = on; }
@@ -265,6 +275,7 @@ class OceanRenderer {
   // drawable for comparison (--grid ispg).
   void setGridMode(grid::GridMode mode);
   const WaterPages* waterPages() const { return pages_.get(); }
+  const ElevationPages* elevationPages() const { return elevPages_.get(); }
   // The shading's sea statistics: mean square slope of the spectrum's waves
   // not drawn (ocean.vert's uMssAbove), and the whitecaps' crest height.
   const std::vector<float>& mssAbove() const { return mssAbove_; }
@@ -378,7 +389,7 @@ class OceanRenderer {
   glm::dvec3 foamCalibratedAt_{0.0};  // the origin: never a nadir, so the first draw calibrates
   OceanInputs inputs_;
   std::vector<Wake> wakes_;
-  bool writeData_ = false;
+  bool writeData_ = false, writeDepthData_ = false;
   CoastBands coastBands_ = CoastBands::ByDistance;  // issue 15 item 4
   std::unique_ptr<Spray> spray_;                    // issue 15 item 4: null without the bands
   bool sprayOn_ = true;
@@ -389,6 +400,7 @@ class OceanRenderer {
   bool glAbandoned_ = false;
   GLuint shadowSampler_ = 0;  // the shadow map's comparison and filter, whatever the host's texture says
   std::unique_ptr<WaterPages> pages_;
+  std::unique_ptr<ElevationPages> elevPages_;
   // The world's water index is the streamed pyramid's (waterIndexFollowsTiles):
   // open water and coversOpaquely as without pages.
   bool pagesIndexed_ = false;

@@ -23,6 +23,12 @@ double waterGridStep(const ocean::LayeredLandSea* layered, const std::shared_ptr
   const auto grid = layered && mask ? mask : layered ? layered->stack().drawingElevation() : nullptr;
   return grid ? world::globalGridFor(grid.get()).lonStepDeg : 0.0;
 }
+
+// A global raster in memory, north up, pole to pole: copied pixel for pixel.
+bool directlyCopied(const std::shared_ptr<const raster::Raster>& r) {
+  return r && r->inMemory() && r->transform().global && r->transform().latStepDeg < 0 &&
+         std::abs(r->transform().latStepDeg * r->height() + 180.0) < 1e-6;
+}
 }  // namespace
 
 // The ocean's global equirectangular layers from its rasters: a global raster in memory is copied pixel for pixel (the
@@ -35,10 +41,7 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
   using world::WorldLayer;
   using raster::Raster;
   world::WorldData d;
-  auto directly = [](const std::shared_ptr<const Raster>& r) {
-    return r && r->inMemory() && r->transform().global && r->transform().latStepDeg < 0 &&
-           std::abs(r->transform().latStepDeg * r->height() + 180.0) < 1e-6;
-  };
+  const auto directly = directlyCopied;
   std::vector<double> lat, lon;
   if (elevation && directly(elevation)) {
     d.elevation = world::layerOf(*elevation, 0);
@@ -97,6 +100,19 @@ std::vector<std::shared_ptr<const raster::TilePyramid>> oceanWaterTileLayers(
   if (!(step > 0.0)) return out;
   for (const world::RasterLayer* l : world::streamedWaterLayers(layered->stack(), step))
     out.push_back(world::waterPyramid(*l));
+  return out;
+}
+
+std::vector<std::shared_ptr<const raster::TilePyramid>> oceanElevationTileLayers(
+    const ocean::LandSea* landSea, const std::shared_ptr<const raster::Raster>& elevation) {
+  std::vector<std::shared_ptr<const raster::TilePyramid>> out;
+  const auto* layered = dynamic_cast<const ocean::LayeredLandSea*>(landSea);
+  if (!layered || !elevation) return out;
+  // oceanWorld's elevation grid step (and loadLayeredWorld's for the host).
+  const double step = directlyCopied(elevation) ? elevation->transform().lonStepDeg
+                                                : world::globalGridFor(elevation.get()).lonStepDeg;
+  for (const world::RasterLayer* l : world::streamedElevationLayers(layered->stack(), step))
+    out.push_back(raster::TilePyramid::open(l->raster));
   return out;
 }
 

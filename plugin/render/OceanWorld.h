@@ -44,6 +44,14 @@ std::shared_ptr<const raster::TilePyramid> oceanWaterTiles(const ocean::LandSea*
 std::vector<std::shared_ptr<const raster::TilePyramid>> oceanWaterTileLayers(
     const ocean::LandSea* landSea, const std::shared_ptr<const raster::Raster>& mask);
 
+// Every streamed relief's pyramid in answer order, as the host terrain
+// draws them (world::streamedElevationLayers at the ocean's elevation grid
+// step for `elevation`, the snapshot's drawing elevation; the host's
+// raster::TilePyramid::open, so its disk cache): the ocean reads its water
+// depth from them (ElevationPages). Empty: none, or no layer stack.
+std::vector<std::shared_ptr<const raster::TilePyramid>> oceanElevationTileLayers(
+    const ocean::LandSea* landSea, const std::shared_ptr<const raster::Raster>& elevation);
+
 bool waterIndexFollowsTiles(const world::WorldGrids& world, const raster::TilePyramid& water);
 
 // The screen grid's classifier for a streamed global mask whose water

@@ -15,12 +15,13 @@ gl::TilePoolOptions WaterPages::defaultBelowPool() {
   return o;
 }
 
-WaterPages::Layer WaterPages::makeLayer(std::shared_ptr<const raster::TilePyramid> pyramid, gl::TilePoolOptions pool) {
-  Layer l;
+PagedPool PagedPool::make(std::shared_ptr<const raster::TilePyramid> pyramid, gl::TilePoolOptions pool,
+                          const char* what) {
+  PagedPool l;
   l.pool = std::make_unique<gl::TilePool>(std::move(pyramid), pool);
   const raster::TilePyramid& p = l.pool->pyramid();
   if (p.levels() > 24)
-    throw std::invalid_argument(p.source().path() + ": water pages: more than 24 pyramid levels");
+    throw std::invalid_argument(p.source().path() + ": " + what + ": more than 24 pyramid levels");
   l.tableW = p.tilesX(0);
   for (int k = 0; k < p.levels(); ++k) {
     l.rowOf.push_back(l.tableH);
@@ -29,7 +30,7 @@ WaterPages::Layer WaterPages::makeLayer(std::shared_ptr<const raster::TilePyrami
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
   if (l.tableW > maxSize || l.tableH > maxSize)
-    throw std::invalid_argument(p.source().path() + ": water pages: the page table (" + std::to_string(l.tableW) +
+    throw std::invalid_argument(p.source().path() + ": " + what + ": the page table (" + std::to_string(l.tableW) +
                                 " x " + std::to_string(l.tableH) + ") exceeds GL_MAX_TEXTURE_SIZE " +
                                 std::to_string(maxSize));
   glCreateTextures(GL_TEXTURE_2D, 1, &l.table);
@@ -40,6 +41,23 @@ WaterPages::Layer WaterPages::makeLayer(std::shared_ptr<const raster::TilePyrami
   return l;
 }
 
+void PagedPool::refresh() {
+  if (pool->residencyVersion() == version) return;
+  version = pool->residencyVersion();
+  std::fill(cpu.begin(), cpu.end(), -1);
+  for (const auto& [id, slot] : pool->residentTiles())
+    cpu[std::size_t(rowOf[std::size_t(id.level)] + id.y) * tableW + id.x] = slot;
+  glTextureSubImage2D(table, 0, 0, 0, tableW, tableH, GL_RED_INTEGER, GL_INT, cpu.data());
+}
+
+std::vector<GLint> PagedPool::levelsUniform() const {
+  const raster::TilePyramid& p = pool->pyramid();
+  std::vector<GLint> levels;
+  for (int l = 0; l < p.levels(); ++l)
+    levels.insert(levels.end(), {p.levelWidth(l), p.levelHeight(l), p.tilesX(l), rowOf[std::size_t(l)]});
+  return levels;
+}
+
 WaterPages::WaterPages(std::shared_ptr<const raster::TilePyramid> pyramid, gl::TilePoolOptions pool,
                        std::vector<std::shared_ptr<const raster::TilePyramid>> below, gl::TilePoolOptions belowPool) {
   if (below.size() + 1 > std::size_t(world::kMaxStreamedLayers))
@@ -48,10 +66,10 @@ WaterPages::WaterPages(std::shared_ptr<const raster::TilePyramid> pyramid, gl::T
                                 ")");
   const bool several = !below.empty();
   const gl::TilePoolOptions first = gl::chainedWaterPool(pool, pyramid->source(), several);
-  layers_.push_back(makeLayer(std::move(pyramid), first));
+  layers_.push_back(PagedPool::make(std::move(pyramid), first, "water pages"));
   for (auto& b : below) {
     const gl::TilePoolOptions o = gl::chainedWaterPool(belowPool, b->source(), several);
-    layers_.push_back(makeLayer(std::move(b), o));
+    layers_.push_back(PagedPool::make(std::move(b), o, "water pages"));
   }
 }
 
@@ -134,24 +152,13 @@ void WaterPages::complete(const grid::GridFrame& f, double cellPx) {
   }
 }
 
-void WaterPages::refreshTable(Layer& l) {
-  if (l.pool->residencyVersion() == l.version) return;
-  l.version = l.pool->residencyVersion();
-  std::fill(l.cpu.begin(), l.cpu.end(), -1);
-  for (const auto& [id, slot] : l.pool->residentTiles())
-    l.cpu[std::size_t(l.rowOf[std::size_t(id.level)] + id.y) * l.tableW + id.x] = slot;
-  glTextureSubImage2D(l.table, 0, 0, 0, l.tableW, l.tableH, GL_RED_INTEGER, GL_INT, l.cpu.data());
-}
-
 void WaterPages::bind(const gl::GlProgram& prog) {
   for (std::size_t k = 0; k < layers_.size(); ++k) {
     Layer& layer = layers_[k];
-    refreshTable(layer);
+    layer.refresh();
     const raster::TilePyramid& p = layer.pool->pyramid();
     const raster::GeoTransform& t = p.source().transform();
-    std::vector<GLint> levels;
-    for (int l = 0; l < p.levels(); ++l)
-      levels.insert(levels.end(), {p.levelWidth(l), p.levelHeight(l), p.tilesX(l), layer.rowOf[std::size_t(l)]});
+    const std::vector<GLint> levels = layer.levelsUniform();
     if (k == 0) {
       glBindTextureUnit(6, layer.pool->texture());
       glBindTextureUnit(7, layer.table);

@@ -29,6 +29,25 @@
 
 namespace geocean::ocean_render {
 
+// One streamed layer of pages: its pyramid's pool and the page table
+// (per level, per tile: its pool layer, -1 when not resident; levels'
+// rows one under another). Shared by WaterPages and ElevationPages.
+struct PagedPool {
+  std::unique_ptr<gl::TilePool> pool;
+  GLuint table = 0;
+  int tableW = 0, tableH = 0;
+  std::vector<int> rowOf;  // first table row of each level
+  std::vector<std::int32_t> cpu;
+  std::uint64_t version = ~std::uint64_t(0);
+  // Needs a current GL context; throws std::invalid_argument (naming the
+  // file and `what`) for more than 24 levels or a table over GL_MAX_TEXTURE_SIZE.
+  static PagedPool make(std::shared_ptr<const raster::TilePyramid> pyramid, gl::TilePoolOptions pool, const char* what);
+  // Uploads the table when residency changed.
+  void refresh();
+  // Per level: width, height, tiles across, first table row (uPageLevel's layout).
+  std::vector<GLint> levelsUniform() const;
+};
+
 class WaterPages {
  public:
   // Needs a current GL context; loads the top tile. below: the streamed
@@ -64,16 +83,7 @@ class WaterPages {
   int layers() const { return int(layers_.size()); }
 
  private:
-  struct Layer {
-    std::unique_ptr<gl::TilePool> pool;
-    GLuint table = 0;
-    int tableW = 0, tableH = 0;
-    std::vector<int> rowOf;  // first table row of each level
-    std::vector<std::int32_t> cpu;
-    std::uint64_t version = ~std::uint64_t(0);
-  };
-  static Layer makeLayer(std::shared_ptr<const raster::TilePyramid> pyramid, gl::TilePoolOptions pool);
-  static void refreshTable(Layer& l);
+  using Layer = PagedPool;
   std::size_t request(Layer& l, const grid::GridFrame& frame, double cellPx);
   std::vector<Layer> layers_;
   bool abandoned_ = false;

@@ -37,6 +37,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -112,17 +113,23 @@ struct FacadeOcean {
   ocean_render::OceanOptions options;
   std::shared_ptr<const world::WorldGrids> grids;
 };
-FacadeOcean facadeOcean(const std::string& maskPath, world::LayerKind kind = world::LayerKind::Mask) {
+FacadeOcean facadeOcean(const std::vector<std::string>& paths, world::LayerKind kind = world::LayerKind::Mask) {
   ocean::Ocean o;
   o.setDefaultWorld(ocean::Ocean::defaultWorldDir());
-  if (kind == world::LayerKind::Elevation) o.addElevationLayerFile(maskPath);
-  else o.addMaskLayerFile(maskPath);
+  for (const std::string& path : paths)
+    if (kind == world::LayerKind::Elevation) o.addElevationLayerFile(path);
+    else o.addMaskLayerFile(path);
   FacadeOcean f;
   f.snap = o.current();
   f.options.waterTiles = ocean_render::oceanWaterTiles(f.snap->landSea.get(), f.snap->mask);
   f.grids = ocean_render::oceanWorld(f.snap->mask, f.snap->elevation, f.snap->landSea.get(), f.snap->maskEncoding,
                                      f.options.waterTiles.get());
+  f.options.elevationTiles = ocean_render::oceanElevationTileLayers(f.snap->landSea.get(), f.snap->elevation);
   return f;
+}
+
+FacadeOcean facadeOcean(const std::string& path, world::LayerKind kind = world::LayerKind::Mask) {
+  return facadeOcean(std::vector<std::string>{path}, kind);
 }
 
 // The bundled 1.25' mask as a layer over the default world, built the way
@@ -143,7 +150,7 @@ struct Streamed {
 
 Streamed& streamed() {
   static Streamed s = [] {
-    scene();  // the session's context
+    session();  // the GL context (scene() would build the 3" Gibraltar world too)
     Streamed c;
     // A cache of this test's own (the pyramid is built once per process).
     const std::string cache = ::testing::TempDir() + "/coast_tiles." + std::to_string(::getpid());
@@ -194,19 +201,22 @@ struct Regional {
 };
 
 // kind Elevation: a relief finer than every mask, whose 0 m line is the coast.
-Regional makeRegional(const std::string& maskPath, world::LayerKind kind = world::LayerKind::Mask) {
-  scene();  // the session's context
+// Several paths: layers of one kind at one priority (the stack orders them).
+Regional makeRegional(const std::vector<std::string>& paths, world::LayerKind kind = world::LayerKind::Mask) {
+  session();  // the GL context (scene() would build the 3" Gibraltar world too)
   Regional c;
   const std::string cache = ::testing::TempDir() + "/coast_regional_tiles." + std::to_string(::getpid());
   ::setenv("GEOCEAN_TILE_CACHE", cache.c_str(), 1);
-  world::WorldData d = world::loadLayeredWorld({{kind, maskPath, "", 0}}, true);
+  std::vector<world::LayerSource> sources;
+  for (const std::string& path : paths) sources.push_back({kind, path, "", 0});
+  world::WorldData d = world::loadLayeredWorld(sources, true);
   EXPECT_EQ(d.waterFromRelief, kind == world::LayerKind::Elevation);
   EXPECT_TRUE(d.waterSource) << "the regional 3\" mask should be streamed";
   TerrainOptions t;
   t.waitForTiles = true;  // as geocean render
   c.world = std::make_shared<WorldTextures>(d);
   c.renderer = std::make_unique<GlobeRenderer>(c.world, t);
-  const FacadeOcean f = facadeOcean(maskPath, kind);
+  const FacadeOcean f = facadeOcean(paths, kind);
   const auto& snap = f.snap;
   EXPECT_TRUE(f.options.waterTiles) << "the ocean should stream the regional 3\" mask";
   c.ocean = std::make_shared<ocean_render::OceanRenderer>(f.grids, snap->landSea, f.options);
@@ -214,6 +224,10 @@ Regional makeRegional(const std::string& maskPath, world::LayerKind kind = world
   c.renderer->addLayer(std::make_shared<DirectOceanLayer>(c.ocean));
   c.landSea = snap->landSea;
   return c;
+}
+
+Regional makeRegional(const std::string& path, world::LayerKind kind = world::LayerKind::Mask) {
+  return makeRegional(std::vector<std::string>{path}, kind);
 }
 
 Regional& regional() {
@@ -946,6 +960,152 @@ TEST(Coast, AReliefIslandOnTheAntimeridianIsDrawnAndQueriedOnBothSides) {
   reliefIslandIsDrawnAndQueried(-21.5, 180.0, "relief_island_180");
 }
 
+// The sea's water depth from a streamed relief (issues 12 and 15): a
+// regional 1" shelf whose depth steps from 4 m to 40 m at one texel edge
+// (a step the 5' grid cannot have: 144 x 144 texels over 0.04 deg, inside
+// one 5' cell), seen straight down from 60 m, centred on the step. The
+// drawn depth (ocean.vert's vDepthM, the data target's depth mode) at each
+// sea pixel against the query's (-elevation at the drawn surface point,
+// LayerStack::elevationBatch): where the 4 query texels round every grid
+// vertex within reach are one depth (farther than a grid cell plus a texel
+// from the step) exactly that depth (float: 1e-3 m); on the 1-texel ramp
+// between the two texel centres within the linear interpolation's error
+// over a grid cell of a piecewise linear function whose slope jumps by s =
+// 36 m / 30.9 m: s x (cell diagonal) / 4, plus 0.05 m. Placed at 0 E and on
+// the antimeridian (the raster spanning 179.98 E .. 179.98 W, the step at
+// 180): the same pictures' depths pixel for pixel within 0.01 m (the eye-
+// relative texel positions; float longitudes near 180 are 1.7 m apart, a
+// 2 m depth error on the ramp). One test for both, one world with both
+// shelves as two streamed reliefs.
+struct ShelfDepth {
+  std::vector<float> drawn;  // vDepthM, NaN where the sea did not draw
+  std::vector<double> query;  // -elevation at the drawn surface point, NaN off the sea
+  std::vector<int> kind;      // 0 off the sea, 1 flat (one depth within reach), 2 ramp
+  int flat = 0, ramp = 0, flatWrong = 0, rampWrong = 0;
+  double flatMaxErr = 0.0, rampMaxErr = 0.0, rampMaxBound = 0.0, rampRmsErr = 0.0;
+  glm::dvec3 shallowRgb{0.0}, deepRgb{0.0};  // median colour of the flat pixels on each side
+  int shallowN = 0, deepN = 0;
+};
+
+constexpr double kShelfCellDeg = 1.0 / 3600.0;  // 1"
+
+std::string writeShelf(double lat0, double stepLon, const std::string& tag) {
+  constexpr double kC = kShelfCellDeg;
+  constexpr int kN = 144;
+  const double originLon = stepLon - 72 * kC, originLat = lat0 + 72 * kC;
+  const std::string path = ::testing::TempDir() + "/shelf_" + tag + "." + std::to_string(::getpid()) + ".tif";
+  {
+    std::vector<float> px(std::size_t(kN) * kN);
+    for (int y = 0; y < kN; ++y)
+      for (int x = 0; x < kN; ++x) px[std::size_t(y) * kN + x] = x < 72 ? -4.0f : -40.0f;
+    raster::GeoTiffWriteOptions wo;
+    wo.transform = {originLon, originLat, kC, -kC, false};
+    raster::writeGeoTiff(path, px.data(), kN, kN, 1, raster::SampleType::F32, wo);
+  }
+  return path;
+}
+
+ShelfDepth shelfDepth(Regional& r, double lat0, double stepLon, const std::string& tag) {
+  constexpr double kC = kShelfCellDeg;
+  ShelfDepth out;
+  const ViewPose p = pose(lat0, std::remainder(stepLon, 360.0), 60.0, 0.0, -90.0);
+  const Frame f = render(p, *r.renderer, r.ocean.get(), "shelf_" + tag);  // positions, colour
+  r.ocean->setWriteDepthData(true);
+  std::vector<float> data;
+  {
+    gl::Framebuffer fb(p.width, p.height, true);
+    fb.bind();
+    FrameSettings fs;
+    fs.timeS = 0.0;
+    fs.sunEcef = sunForView(p, 135.0, 50.0);
+    r.renderer->render(p, fs);
+    data = fb.readData();
+  }
+  r.ocean->setWriteDepthData(false);
+  const std::size_t n = std::size_t(p.width) * p.height;
+  out.drawn.assign(n, NAN);
+  out.query.assign(n, NAN);
+  out.kind.assign(n, 0);
+  const double cosLat = std::cos(lat0 * kDeg), texelM = kC * kDeg * geo::kWgs84A * cosLat;
+  const double slope = 36.0 / texelM;
+  std::array<std::vector<int>, 3> shallowC, deepC;
+  for (int y = 0; y + 1 < p.height; ++y)
+    for (int x = 0; x + 1 < p.width; ++x) {
+      const std::size_t i = std::size_t(y) * p.width + x;
+      if (!f.drawn(x, y) || data[4 * i + 3] != 2.0f || !awayFromShore(f, x, y)) continue;
+      geo::Geodetic g, gx, gy;
+      if (!groundPoint(f, x, y, g) || !groundPoint(f, x + 1, y, gx) || !groundPoint(f, x, y + 1, gy)) continue;
+      const auto metres = [&](const geo::Geodetic& a) { return glm::length(geo::toEcef(a) - geo::toEcef(g)); };
+      const double cellM = 8.0 * std::max(metres(gx), metres(gy));  // OceanOptions::cellPx
+      float e = NAN;
+      r.landSea->elevationBatch(&g.latDeg, &g.lonDeg, 1, &e);
+      const double q = -double(e), d = double(data[4 * i]);
+      out.drawn[i] = float(d), out.query[i] = q;
+      // Metres east of the step (the texel edge); the ramp spans +-half a texel.
+      const double eastM = std::remainder(g.lonDeg - stepLon, 360.0) * kDeg * geo::kWgs84A * cosLat;
+      const double err = std::abs(d - q);
+      if (std::abs(eastM) > 0.5 * texelM + cellM * std::sqrt(2.0)) {
+        out.kind[i] = 1, ++out.flat;
+        out.flatMaxErr = std::max(out.flatMaxErr, err);
+        if (err > 1e-3 && ++out.flatWrong <= 5)
+          ADD_FAILURE() << tag << " flat pixel " << x << "," << y << " drawn depth " << d << " m, query " << q << " m";
+        const std::uint8_t* c = &f.image.rgba[4 * i];
+        for (int k = 0; k < 3; ++k) (eastM < 0.0 ? shallowC : deepC)[k].push_back(c[k]);
+        ++(eastM < 0.0 ? out.shallowN : out.deepN);
+      } else {
+        out.kind[i] = 2, ++out.ramp;
+        const double bound = slope * cellM * std::sqrt(2.0) / 4.0 + 0.05;
+        out.rampMaxErr = std::max(out.rampMaxErr, err);
+        out.rampRmsErr += err * err;
+        out.rampMaxBound = std::max(out.rampMaxBound, bound);
+        if (err > bound && ++out.rampWrong <= 5)
+          ADD_FAILURE() << tag << " ramp pixel " << x << "," << y << " drawn depth " << d << " m, query " << q
+                        << " m, bound " << bound << " m";
+      }
+    }
+  out.rampRmsErr = std::sqrt(out.rampRmsErr / std::max(out.ramp, 1));
+  const auto median = [](std::vector<int>& v) {
+    if (v.empty()) return 0.0;
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+    return double(v[v.size() / 2]);
+  };
+  for (int k = 0; k < 3; ++k) out.shallowRgb[k] = median(shallowC[k]), out.deepRgb[k] = median(deepC[k]);
+  std::printf("%s: %d flat px (max |drawn - query| %.2g m, %d wrong), %d ramp px (max %.3f m, bound <= %.3f m, %d "
+              "wrong, rms %.3f m); median colour 4 m side %.1f %.1f %.1f (%d px), 40 m side %.1f %.1f %.1f (%d px)\n",
+              tag.c_str(), out.flat, out.flatMaxErr, out.flatWrong, out.ramp, out.rampMaxErr, out.rampMaxBound,
+              out.rampWrong, out.rampRmsErr, out.shallowRgb.r, out.shallowRgb.g, out.shallowRgb.b, out.shallowN, out.deepRgb.r,
+              out.deepRgb.g, out.deepRgb.b, out.deepN);
+  EXPECT_GT(out.flat, 20000) << tag;
+  EXPECT_GT(out.ramp, 10000) << tag;
+  EXPECT_GT(out.shallowN, 5000) << tag;
+  EXPECT_GT(out.deepN, 5000) << tag;
+  return out;
+}
+
+TEST(Coast, TheSeasDepthFollowsAStreamedShelfStepAtZeroAndOnTheAntimeridian) {
+  // Both shelves in one stack (one world to build): two streamed reliefs,
+  // each answering where the other has no data (GEOCEAN_ELEV_PAGES 2).
+  const std::vector<std::string> paths = {writeShelf(-21.5, 0.0, "0e"), writeShelf(-21.5, 180.0, "180")};
+  Regional r = makeRegional(paths, world::LayerKind::Elevation);
+  ASSERT_TRUE(r.ocean->elevationPages()) << "the reliefs should stream";
+  EXPECT_EQ(r.ocean->elevationPages()->layers(), 2);
+  const ShelfDepth a = shelfDepth(r, -21.5, 0.0, "0e");
+  const ShelfDepth b = shelfDepth(r, -21.5, 180.0, "180");
+  for (const std::string& p : paths) fs::remove(p);
+  // The same interpolation error on the ramp at 180 as at 0 E: the grid's
+  // vertices lie alike on the relief (the waves, anchored to the Earth,
+  // differ: drawn points move by their displacement, hence a margin).
+  // Float longitudes (1.7 m apart near 180) gave 0.94 m there, 0.39 at 0 E.
+  std::printf("ramp error 0 E: max %.3f rms %.3f m; 180: max %.3f rms %.3f m\n", a.rampMaxErr, a.rampRmsErr,
+              b.rampMaxErr, b.rampRmsErr);
+  EXPECT_LT(std::abs(b.rampMaxErr - a.rampMaxErr), 0.05);
+  EXPECT_LT(std::abs(b.rampRmsErr - a.rampRmsErr), 0.1 * a.rampRmsErr);
+  // The picture: refraction's bottom shows the 4 m shelf greener than the
+  // 40 m side (both places alike; whitecaps differ, hence medians).
+  for (const ShelfDepth* s : {&a, &b})
+    EXPECT_GT(s->shallowRgb.g - s->deepRgb.g, 5.0) << "the 4 m side's bottom should show";
+}
+
 // Several streamed masks of a kind (issue 12 item 2): two overlapping
 // regional masks over the default world, both streamed (the ocean's pages
 // fall through them in answer order, world::streamedWaterLayers). In the
@@ -1029,7 +1189,7 @@ TEST(Coast, TwoOverlappingRegionalMasksAreDrawnAndAnsweredAsTheStackSays) {
     return std::pair{layer, uniform};
   };
 
-  scene();  // the session's context
+  session();  // the GL context (scene() would build the 3" Gibraltar world too)
   const std::string cache = dir + "/tiles";
   ::setenv("GEOCEAN_TILE_CACHE", cache.c_str(), 1);
   world::WorldData d = world::loadLayeredWorld({{world::LayerKind::Mask, b.path, "", 0}, {world::LayerKind::Mask, a.path, "", 0}}, true);
@@ -1272,7 +1432,7 @@ TEST(Coast, TwoOverlappingRegionalReliefsAreDrawnAndAnsweredAsTheStackSays) {
     return true;
   };
 
-  scene();  // the session's context
+  session();  // the GL context (scene() would build the 3" Gibraltar world too)
   const std::string cache = dir + "/tiles";
   ::setenv("GEOCEAN_TILE_CACHE", cache.c_str(), 1);
   world::WorldData d = world::loadLayeredWorld(
