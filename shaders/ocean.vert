@@ -174,7 +174,6 @@ void main() {
   float mssDrawn = uMssAbove[0] - uMssAbove[count], mssRest = uMssAbove[count];
   vFoamM = uFoamHeightM[count];
 #else
-  WvResult r = wv_solidNoise(0, count, d, fr);
   vFoamM = uFoamHeightM[count];
   // The normal: the octaves over 3-6 cells along the view
   // (noise_bands.glsl), the rest per fragment or roughness.
@@ -184,6 +183,12 @@ void main() {
   vHeightA = 0.0;
   float mssRest = uMssAbove[min(uFragOctaves, 16)];
   noiseVarUnresolved = 0.0;
+  // The height: wv_solidNoise's sum over the `count` octaves (its normal
+  // is not used here), each octave's noise evaluated once for the height
+  // and the normal: the normal's octaves are the first ones, so they add
+  // to the height in the same order and with the same operations (the
+  // vertex noise was up to ~40 % of the G-buffer pass, docs/PERFORMANCE.md).
+  float h = 0.0;
   // The octaves in the normal (a > 0) come first, the wavelengths
   // decreasing: their noise in a loop of their own, tested at its end
   // (llvmpipe runs a masked-off branch, and a loop's body once more when
@@ -194,11 +199,15 @@ void main() {
     mssRest += (uMssAbove[i] - uMssAbove[i + 1]) * (1.0 - a * a);
     if (i < uOctaveCount) noiseVarUnresolved += uOctaveHeightVar[i] * (1.0 - a * a);
     vec4 o = noiseOctave(i, d);
+    if (i < count) h += o.x;
     grad += a * o.yzw;
     if (i < uOctaveCount) vHeightA += a * noiseCrestWeight(i) * o.x;
     ++i;
     a = i < nv ? noiseVertexWeight(uOctaveWavelengthM[i], vCellAlongM) : 0.0;
   } while (a > 0.0);
+  for (int k = i; k < count; ++k) h += noiseOctave(k, d).x;
+  WvResult r;
+  r.disp = vec4(up * h, h);
   for (; i < nv; ++i) {
     a = noiseVertexWeight(uOctaveWavelengthM[i], vCellAlongM);
     mssRest += (uMssAbove[i] - uMssAbove[i + 1]) * (1.0 - a * a);

@@ -456,6 +456,30 @@ void upload(GLuint buf, const std::vector<T>& v) {
   if (!v.empty()) std::memcpy(tmp.data(), v.data(), v.size() * sizeof(T));
   glNamedBufferData(buf, GLsizeiptr(bytes), tmp.data(), GL_STREAM_DRAW);
 }
+
+// The cells (6 indices each) in strips of kStripRows grid rows, column by
+// column, each column's cells bottom to top; the order within a strip's
+// column as given. llvmpipe's vertex cache (the draw module's) is reset
+// every few dozen vertices, so row by row it shaded ~2 vertices a cell
+// (each row's top vertices again for the next row); down a strip's columns
+// it shades ~(k + 1) / k a cell (docs/PERFORMANCE.md). Counting sort: O(n).
+constexpr std::uint32_t kStripRows = 8;
+void stripOrder(std::vector<std::uint32_t>& idx, std::uint32_t cols, std::uint32_t rows,
+                std::vector<std::uint32_t>& bucketOf, std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& out) {
+  if (cols == 0 || rows == 0) return;
+  const std::size_t cells = idx.size() / 6, buckets = std::size_t((rows + kStripRows - 1) / kStripRows) * cols;
+  bucketOf.resize(cells);
+  start.assign(buckets + 1, 0);
+  for (std::size_t c = 0; c < cells; ++c) {
+    const std::uint32_t v = idx[6 * c], row = std::min(v / cols, rows - 1), col = v % cols;
+    bucketOf[c] = (row / kStripRows) * cols + col;
+    ++start[bucketOf[c] + 1];
+  }
+  for (std::size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
+  out.resize(idx.size());
+  for (std::size_t c = 0; c < cells; ++c) std::copy_n(idx.begin() + std::ptrdiff_t(6 * c), 6, out.begin() + std::ptrdiff_t(6 * start[bucketOf[c]]++));
+  idx.swap(out);
+}
 }  // namespace
 
 std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenCull& v) {
@@ -719,6 +743,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   } else {
     idx = grid::compactIndices(frame_);
   }
+  stripOrder(idx, std::uint32_t(frame_.cols), std::uint32_t(frame_.rows), stripBucket_, stripStart_, stripIdx_);
   if (pages_) {
     if (completeTiles_) pages_->complete(frame_, options_.cellPx);
     else pages_->request(frame_, options_.cellPx);

@@ -366,6 +366,7 @@ class OceanRenderer {
   std::size_t gVboBytes_ = 0;
   std::vector<std::uint8_t> gTileMask_;
   std::vector<float> gRects_;
+  std::vector<std::uint32_t> stripBucket_, stripStart_, stripIdx_;  // stripOrder's scratch (no allocation a frame)
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0, ssbo_[5] = {0, 0, 0, 0, 0};  // octaves, waves, frame, FFT planes | coast, FFT | coast texels
   std::size_t vboBytes_ = 0, iboBytes_ = 0;
   std::vector<float> octaveWavelengthM_;
