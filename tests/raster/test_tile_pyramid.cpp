@@ -208,9 +208,14 @@ TEST(TilePyramid, CorruptIndexIsRebuiltWithAWarning) {
     index = p->stats().cachePath + "/index";
   }
   {
+    // Flip the byte's bits: byte 40 is in the source's path, whose temp
+    // folder's name is random, so writing a fixed 'U' left the index intact
+    // whenever the name had a 'U' there (failed once under ASan, 2026-12-04).
     std::fstream f(index, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekg(40);
+    const char was = char(f.get());
     f.seekp(40);
-    f.put('\x55');
+    f.put(char(~was));
   }
   testing::internal::CaptureStderr();
   auto p = TilePyramid::open(Raster::open(path), quiet(t.path / "cache"));
