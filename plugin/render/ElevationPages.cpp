@@ -26,15 +26,8 @@ ElevationPages::ElevationPages(std::vector<std::shared_ptr<const raster::TilePyr
   }
 }
 
-ElevationPages::~ElevationPages() {
-  if (abandoned_) return;
-  for (const PagedPool& l : layers_)
-    if (l.table) glDeleteTextures(1, &l.table);
-}
-
 void ElevationPages::abandonGl() {
-  abandoned_ = true;
-  for (PagedPool& l : layers_) l.pool->abandonGl();
+  for (PagedPool& l : layers_) l.abandonGl();
 }
 
 void ElevationPages::endFrame() {
@@ -57,8 +50,7 @@ std::size_t ElevationPages::request(const grid::GridFrame& f, double cellRadians
 }
 
 std::size_t ElevationPages::request(PagedPool& layer, const grid::GridFrame& f, double cellRadians) {
-  gl::TilePool& pool = *layer.pool;
-  const raster::TilePyramid& p = pool.pyramid();
+  const raster::TilePyramid& p = layer.pool->pyramid();
   const raster::GeoTransform& t = p.source().transform();
   const int T = p.tileSize(), top = p.levels() - 1;
   std::vector<std::uint8_t> drawn(f.vertices.size(), 0);
@@ -86,13 +78,7 @@ std::size_t ElevationPages::request(PagedPool& layer, const grid::GridFrame& f, 
         long gx = x0 + dx;
         gx = t.global ? ((gx % W) + W) % W : std::clamp(gx, 0L, long(W - 1));
         const long gy = std::clamp(y0 + dy, 0L, long(H - 1));
-        const raster::TileId id{level, int(gx / T), int(gy / T)};
-        const std::uint64_t key = (std::uint64_t(level) << 56) | (std::uint64_t(id.y) << 28) | std::uint64_t(id.x);
-        if (!seen.insert(key).second) continue;
-        if (pool.residentSlot(id) < 0) {
-          ++missing;
-          pool.request(id);
-        }
+        missing += layer.ask({level, int(gx / T), int(gy / T)}, seen);
       }
   }
   return missing;

@@ -25,7 +25,6 @@ class ElevationPages {
   // order, 1 to world::kMaxStreamedLayers (else std::invalid_argument
   // naming the first file).
   explicit ElevationPages(std::vector<std::shared_ptr<const raster::TilePyramid>> layers);
-  ~ElevationPages();
   ElevationPages(const ElevationPages&) = delete;
   ElevationPages& operator=(const ElevationPages&) = delete;
   void abandonGl();
@@ -52,7 +51,6 @@ class ElevationPages {
  private:
   std::size_t request(PagedPool& l, const grid::GridFrame& frame, double cellRadians);
   std::vector<PagedPool> layers_;
-  bool abandoned_ = false;
 };
 
 }  // namespace geocean::ocean_render

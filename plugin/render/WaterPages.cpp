@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <unordered_set>
+#include <utility>
 
 namespace geocean::ocean_render {
 
@@ -41,6 +42,36 @@ PagedPool PagedPool::make(std::shared_ptr<const raster::TilePyramid> pyramid, gl
   return l;
 }
 
+PagedPool::PagedPool(PagedPool&& o) noexcept { *this = std::move(o); }
+
+PagedPool& PagedPool::operator=(PagedPool&& o) noexcept {
+  if (this == &o) return *this;
+  if (table) glDeleteTextures(1, &table);
+  pool = std::move(o.pool);
+  table = std::exchange(o.table, 0);
+  tableW = o.tableW, tableH = o.tableH;
+  rowOf = std::move(o.rowOf);
+  cpu = std::move(o.cpu);
+  version = o.version;
+  return *this;
+}
+
+PagedPool::~PagedPool() {
+  if (table) glDeleteTextures(1, &table);
+}
+
+void PagedPool::abandonGl() {
+  if (pool) pool->abandonGl();
+  table = 0;
+}
+
+std::size_t PagedPool::ask(const raster::TileId& id, std::unordered_set<std::uint64_t>& seen) {
+  const std::uint64_t key = (std::uint64_t(id.level) << 56) | (std::uint64_t(id.y) << 28) | std::uint64_t(id.x);
+  if (!seen.insert(key).second || pool->residentSlot(id) >= 0) return 0;
+  pool->request(id);
+  return 1;
+}
+
 void PagedPool::refresh() {
   if (pool->residencyVersion() == version) return;
   version = pool->residencyVersion();
@@ -73,15 +104,8 @@ WaterPages::WaterPages(std::shared_ptr<const raster::TilePyramid> pyramid, gl::T
   }
 }
 
-WaterPages::~WaterPages() {
-  if (abandoned_) return;
-  for (const Layer& l : layers_)
-    if (l.table) glDeleteTextures(1, &l.table);
-}
-
 void WaterPages::abandonGl() {
-  abandoned_ = true;
-  for (Layer& l : layers_) l.pool->abandonGl();
+  for (Layer& l : layers_) l.abandonGl();
 }
 
 void WaterPages::endFrame() {
@@ -102,8 +126,7 @@ std::size_t WaterPages::request(const grid::GridFrame& f, double cellPx) {
 }
 
 std::size_t WaterPages::request(Layer& layer, const grid::GridFrame& f, double cellPx) {
-  gl::TilePool* pool_ = layer.pool.get();
-  const raster::TilePyramid& p = pool_->pyramid();
+  const raster::TilePyramid& p = layer.pool->pyramid();
   const raster::GeoTransform& t = p.source().transform();
   const int T = p.tileSize(), top = p.levels() - 1;
   const double sx = 1.0 / std::abs(t.lonStepDeg), sy = 1.0 / std::abs(t.latStepDeg);
@@ -132,13 +155,7 @@ std::size_t WaterPages::request(Layer& layer, const grid::GridFrame& f, double c
         if (!t.global && (x < -2.0 || y < -2.0 || x > W + 2.0 || y > H + 2.0)) continue;
         if (t.global) x = x - W * std::floor(x / W);
         x = std::clamp(x, 0.0, W - 1.0), y = std::clamp(y, 0.0, H - 1.0);
-        const raster::TileId id{want, int(x) / T, int(y) / T};
-        const std::uint64_t key = (std::uint64_t(want) << 56) | (std::uint64_t(id.y) << 28) | std::uint64_t(id.x);
-        if (!seen.insert(key).second) continue;
-        if (pool_->residentSlot(id) < 0) {
-          ++missing;
-          pool_->request(id);
-        }
+        missing += layer.ask({want, int(x) / T, int(y) / T}, seen);
       }
     }
   return missing;

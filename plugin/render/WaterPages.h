@@ -25,14 +25,21 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 namespace geocean::ocean_render {
 
 // One streamed layer of pages: its pyramid's pool and the page table
 // (per level, per tile: its pool layer, -1 when not resident; levels'
-// rows one under another). Shared by WaterPages and ElevationPages.
+// rows one under another). Shared by WaterPages and ElevationPages. Owns
+// the table's GL name (deleted with it unless abandoned): a layer made
+// before a later one throws is not leaked.
 struct PagedPool {
+  PagedPool() = default;
+  PagedPool(PagedPool&& o) noexcept;
+  PagedPool& operator=(PagedPool&& o) noexcept;
+  ~PagedPool();
   std::unique_ptr<gl::TilePool> pool;
   GLuint table = 0;
   int tableW = 0, tableH = 0;
@@ -46,6 +53,11 @@ struct PagedPool {
   void refresh();
   // Per level: width, height, tiles across, first table row (uPageLevel's layout).
   std::vector<GLint> levelsUniform() const;
+  // The GL names are left to their context (OceanRenderer::abandonGl).
+  void abandonGl();
+  // A frame's tile, once per frame (`seen`): asks for it when it is not
+  // resident; returns 1 then, else 0.
+  std::size_t ask(const raster::TileId& id, std::unordered_set<std::uint64_t>& seen);
 };
 
 class WaterPages {
@@ -58,7 +70,6 @@ class WaterPages {
                       std::vector<std::shared_ptr<const raster::TilePyramid>> below = {},
                       gl::TilePoolOptions belowPool = defaultBelowPool());
   static gl::TilePoolOptions defaultBelowPool();
-  ~WaterPages();
   WaterPages(const WaterPages&) = delete;
   WaterPages& operator=(const WaterPages&) = delete;
   // The GL names are left to their context (OceanRenderer::abandonGl).
@@ -86,7 +97,6 @@ class WaterPages {
   using Layer = PagedPool;
   std::size_t request(Layer& l, const grid::GridFrame& frame, double cellPx);
   std::vector<Layer> layers_;
-  bool abandoned_ = false;
 };
 
 }  // namespace geocean::ocean_render
