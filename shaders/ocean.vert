@@ -97,6 +97,13 @@ layout(binding = 2) uniform sampler2D uWater;
 out float vCoverage;
 #endif
 
+// Relief texels are ~37 km: the grid's level whose texel matches a cell of
+// footprint m (vDepthM's read, and past the streamed reliefs).
+float gridElevLod(float footprint) {
+  float texelM = abs(uElevationGeo.w) / float(textureSize(uElevation, 0).y) * 111320.0;
+  return max(log2(footprint / texelM), 0.0);
+}
+
 void main() {
 #if WV_MODEL == 0
   vHeightA = 0.0, vCellAlongM = 1.0;
@@ -127,10 +134,8 @@ void main() {
   // The streamed reliefs (elev_pages.glsl) at the cell's level, as the
   // query reads them at level 0: one read for the waves' depth and vDepthM;
   // the grid past them at vDepthM's level of detail.
-  float elevGridLod =
-      max(log2(footprint / (abs(uElevationGeo.w) / float(textureSize(uElevation, 0).y) * 111320.0)), 0.0);
   float pagedElev = elevPages(vec2(float(lonD), float(aLatLon.x - double(uRefLatDeg))), footprint, lonLat, uElevation,
-                              uElevationGeo, elevGridLod);
+                              uElevationGeo, gridElevLod(footprint));
 #endif
 #if WV_MODEL == 1
 #ifdef GEOCEAN_ELEV_PAGES
@@ -243,10 +248,7 @@ void main() {
 #ifdef GEOCEAN_ELEV_PAGES
   vDepthM = -pagedElev;
 #else
-  // Relief texels are ~37 km: read the level whose texel matches the cell.
-  float texelM = abs(uElevationGeo.w) / float(textureSize(uElevation, 0).y) * 111320.0;
-  float lod = max(log2(footprint / texelM), 0.0);
-  vDepthM = -textureLod(uElevation, geoUv(lonLat, uElevationGeo), lod).r;
+  vDepthM = -textureLod(uElevation, geoUv(lonLat, uElevationGeo), gridElevLod(footprint)).r;
 #endif
   // Distant sea: geometry fades to the mean normal, slopes to roughness.
   vFar = smoothstep(0.02, 0.5, footprint / max(uOctaveWavelengthM[0], 1e-3));
