@@ -49,6 +49,7 @@ void expand(std::string_view name, std::set<std::string>& seen, std::ostringstre
 std::string assemble(std::string_view stageName, const std::vector<std::string>& defines) {
   std::ostringstream out;
   out << "#version 450 core\n";
+  out << "#define GEOCEAN_REFLECTION_REACH_M " << std::fixed << kReflectionReachM << '\n';
   for (const auto& d : defines) out << "#define " << d << '\n';
   std::set<std::string> seen;
   expand(stageName, seen, out, "");

@@ -54,10 +54,10 @@ uniform float uReflEyeMovedM;
 layout(binding = 3) uniform sampler2D uReflectionMap;
 // The single plane lies d^2/2R above the sea at distance d (31 m at 20 km):
 // the map is used out to kReflectionNearM and fades to the sky BRDF by
-// kReflectionFarM (globe/render/Layer.h's kReflectionReachM: the host skips
+// kReflectionFarM (shaders/Shaders.h's kReflectionReachM: the host skips
 // the pass for an eye higher than that, where every weight here is 0).
-const float kReflectionNearM = 20000.0;
-const float kReflectionFarM = 40000.0;
+const float kReflectionFarM = GEOCEAN_REFLECTION_REACH_M;
+const float kReflectionNearM = 0.5 * kReflectionFarM;
 
 // The map holds display colours (toDisplay): back to linear radiance,
 // saturated texels at the shoulder's 0.995.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "globe/camera/Camera.h"
+#include "shaders/Shaders.h"
 
 #include <epoxy/gl.h>
 
@@ -38,12 +39,12 @@ enum class ShadowModel { Physical, Paper };
 enum class SunModel { Microfacet, Phong };
 
 // The reach of a reflection: layers use the mirrored pass's map only for
-// points within this distance of the eye (the ocean fades it out from 20 km
-// to here: ocean_shading.glsl's kReflectionFarM, the same number). No point
+// points within this distance of the eye (the ocean fades it out from half
+// of it: ocean_shading.glsl's kReflectionFarM, the same constant). No point
 // of the sea is nearer than the eye's height, so above it the host skips the
 // pass (from orbit it cost a third of the frame on llvmpipe and drew nothing
 // the sea shows).
-constexpr double kReflectionReachM = 40000.0;
+constexpr double kReflectionReachM = shaders::kReflectionReachM;
 
 struct LayerInfo {
   // The layer draws water opaquely where coversOpaquely() says so: the

@@ -10,6 +10,7 @@
 
 #include "globe/camera/Camera.h"
 #include "globe/raster/World.h"
+#include "shaders/Shaders.h"
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -776,7 +777,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   // (ocean_shading.glsl's kReflectionFarM): vertex-shaded cells there drew
   // it in 8 px steps.
   const bool reflect = !bare && inputs_.reflectionColor != 0 && inputs_.reflectionCamera;
-  if (reflect && cull.farFootprintM > 0.0) cull.farMinDistM = 40000.0;
+  if (reflect && cull.farFootprintM > 0.0) cull.farMinDistM = shaders::kReflectionReachM;
   // The same for the sun's shadow map, per pixel out to its reach.
   const bool shadow = !bare && inputs_.shadowDepth != 0 && inputs_.shadowSize > 0;
   if (shadow && cull.farFootprintM > 0.0) cull.farMinDistM = std::max(cull.farMinDistM, inputs_.shadowReachM);
