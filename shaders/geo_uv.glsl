@@ -612,66 +612,75 @@ int pageLevel(vec2 lonLatDeg, int want) {
 }
 
 #ifndef GEOCEAN_WATER_PAGES_REGIONAL
-// A global pyramid's block of n x n texels from g that lies inside the
-// level and inside one tile with its one-texel border: that tile's layer
-// (.z) and the block's first texel in it (.xy); .z -1 otherwise. The same
-// texels as pageTexel's one by one (a border holds its neighbours'), with
-// one page-table fetch instead of one per texel.
-ivec3 pageBlock(int level, ivec2 g, int n) {
+// A global pyramid's 4 x 4 texels from g (r[y][x], pageTexel's values one
+// by one), without a branch: llvmpipe runs both sides of one, so a fast
+// path for a block inside one tile beside a texel-by-texel fallback cost
+// every pixel both (49 fetches; docs/PERFORMANCE.md). The texels lie in at
+// most 2 x 2 tiles (T >= 4), the corner texels' tiles, which pageLevel
+// found resident: 4 page-table fetches, then each texel from its tile.
+void pageTexels4(int level, ivec2 g, out vec4 r[4]) {
+  ivec4 L = uPageLevel[level];
   int T = uPageTile.x;
-  ivec2 t = (g + 1) / T;  // the tile of the block's second texel
-  ivec2 r = g - t * T;    // from -1
-  if (any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g + n - 1, uPageLevel[level].xy)) ||
-      any(greaterThan(r + n - 1, ivec2(T))))
-    return ivec3(0, 0, -1);
-  return ivec3(r + 1, pageSlot(level, g + 1));  // + 1: the tile's border
+  ivec4 xs = ivec4(g.x) + ivec4(0, 1, 2, 3), ys = clamp(ivec4(g.y) + ivec4(0, 1, 2, 3), ivec4(0), ivec4(L.y - 1));
+  xs = uPageTile.y != 0 ? ((xs % L.x) + L.x) % L.x : clamp(xs, ivec4(0), ivec4(L.x - 1));  // pageWrap's
+  ivec4 tx = xs / T, ty = ys / T;
+  int s00 = texelFetch(uPageTable, ivec2(tx.x, L.w + ty.x), 0).r, s10 = texelFetch(uPageTable, ivec2(tx.w, L.w + ty.x), 0).r;
+  int s01 = texelFetch(uPageTable, ivec2(tx.x, L.w + ty.w), 0).r, s11 = texelFetch(uPageTable, ivec2(tx.w, L.w + ty.w), 0).r;
+  ivec4 lx = xs - tx * T + 1, ly = ys - ty * T + 1;  // + 1: the tile's border
+  bvec4 first = equal(tx, ivec4(tx.x));
+  for (int y = 0; y < 4; ++y) {
+    bool top = ty[y] == ty.x;
+    int a = top ? s00 : s01, b = top ? s10 : s11;
+    r[y] = vec4(texelFetch(uPagePool, ivec3(lx.x, ly[y], first.x ? a : b), 0).r,
+                texelFetch(uPagePool, ivec3(lx.y, ly[y], first.y ? a : b), 0).r,
+                texelFetch(uPagePool, ivec3(lx.z, ly[y], first.z ? a : b), 0).r,
+                texelFetch(uPagePool, ivec3(lx.w, ly[y], first.w ? a : b), 0).r);
+  }
 }
+
+// The B-spline of the 4 x 4 texels about p's cell, and the bilinear of its
+// middle 2 x 2 (f: p's fraction in the cell).
+float pageBSplineOf(vec4 r[4], vec2 f) {
+  vec4 wx = bsplineWeights4(f.x), wy = bsplineWeights4(f.y);
+  float s = 0.0;
+  for (int y = 0; y < 4; ++y) s += wy[y] * dot(r[y], wx);
+  return s;
+}
+float pageBilinearOf(vec4 r[4], vec2 f) { return mix(mix(r[1].y, r[1].z, f.x), mix(r[2].y, r[2].z, f.x), f.y); }
 #endif
 
 float pageBSpline(vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo) {
   vec2 p = pagePos(lonLatDeg, level);
   vec2 i = floor(p);
   vec2 f = p - i;
+#ifndef GEOCEAN_WATER_PAGES_REGIONAL
+  vec4 r[4];
+  pageTexels4(level, ivec2(i) - 1, r);
+  return pageBSplineOf(r, f);
+#else
   vec4 wx = bsplineWeights4(f.x), wy = bsplineWeights4(f.y);
   ivec2 g = ivec2(i) - 1;
   float s = 0.0;
-#ifndef GEOCEAN_WATER_PAGES_REGIONAL
-  ivec3 b = pageBlock(level, g, 4);
-  if (b.z >= 0) {
-    for (int y = 0; y < 4; ++y) {
-      vec4 row = vec4(texelFetch(uPagePool, ivec3(b.x, b.y + y, b.z), 0).r,
-                      texelFetch(uPagePool, ivec3(b.x + 1, b.y + y, b.z), 0).r,
-                      texelFetch(uPagePool, ivec3(b.x + 2, b.y + y, b.z), 0).r,
-                      texelFetch(uPagePool, ivec3(b.x + 3, b.y + y, b.z), 0).r);
-      s += wy[y] * dot(row, wx);
-    }
-    return s;
-  }
-#endif
   for (int y = 0; y < 4; ++y) {
     vec4 row = vec4(pageTexel(level, g + ivec2(0, y), grid, gridGeo), pageTexel(level, g + ivec2(1, y), grid, gridGeo),
                     pageTexel(level, g + ivec2(2, y), grid, gridGeo), pageTexel(level, g + ivec2(3, y), grid, gridGeo));
     s += wy[y] * dot(row, wx);
   }
   return s;
+#endif
 }
 
+#ifdef GEOCEAN_WATER_PAGES_REGIONAL
 float pageBilinear(vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo) {
   vec2 p = pagePos(lonLatDeg, level);
   vec2 i = floor(p);
   vec2 f = p - i;
   ivec2 g = ivec2(i);
-#ifndef GEOCEAN_WATER_PAGES_REGIONAL
-  ivec3 b = pageBlock(level, g, 2);
-  if (b.z >= 0)
-    return mix(mix(texelFetch(uPagePool, b, 0).r, texelFetch(uPagePool, b + ivec3(1, 0, 0), 0).r, f.x),
-               mix(texelFetch(uPagePool, b + ivec3(0, 1, 0), 0).r, texelFetch(uPagePool, b + ivec3(1, 1, 0), 0).r, f.x),
-               f.y);
-#endif
   return mix(mix(pageTexel(level, g, grid, gridGeo), pageTexel(level, g + ivec2(1, 0), grid, gridGeo), f.x),
              mix(pageTexel(level, g + ivec2(0, 1), grid, gridGeo), pageTexel(level, g + ivec2(1, 1), grid, gridGeo), f.x),
              f.y);
 }
+#endif
 
 #ifdef GEOCEAN_WATER_PAGES_LAYERS
 // Several streamed masks (WaterPages, world::streamedWaterLayers: 2 to 4),
@@ -916,7 +925,17 @@ float waterPagesAuto(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
   }
 #endif
   int l = pageLevel(lonLatDeg, want);
+#ifdef GEOCEAN_WATER_PAGES_REGIONAL
   return tpp < 1.0 ? pageBSpline(lonLatDeg, l, grid, gridGeo) : pageBilinear(lonLatDeg, l, grid, gridGeo);
+#else
+  // One set of texels for either filter (the bilinear's are the B-spline's
+  // middle four at the same level).
+  vec2 p = pagePos(lonLatDeg, l);
+  vec2 i = floor(p);
+  vec4 r[4];
+  pageTexels4(l, ivec2(i) - 1, r);
+  return tpp < 1.0 ? pageBSplineOf(r, p - i) : pageBilinearOf(r, p - i);
+#endif
 }
 #endif
 #endif
