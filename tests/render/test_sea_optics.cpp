@@ -225,6 +225,57 @@ TEST(SeaOptics, GlitterIsCentredOnTheSpecularPointAndSpreadsWithTheWindAsCoxMunk
   EXPECT_GE(g5.peak, 200.0);
 }
 
+// Issue 13 item 1: the sun is a disc of real radiance against the sky, so
+// the glitter outshines the sky it replaces and its brightest part clips
+// before tone mapping. From 300 m, the sun 20 degrees high ahead (the
+// specular point at the centre of a view pitched 20 degrees down), U10 = 5.
+// Truth, Cox & Munk (1954) at the specular point: L = E F G p(0) /
+// (4 cos v), p(0) = 1 / (pi mss) (mss 0.0286: 11.1), F(70 deg) = 0.13,
+// Smith's G: about E, against the sky's reflection F L_sky ~ 0.05 (~20x).
+// Towards the horizon 1 / cos v and F grow, so the column brightens above
+// the specular point and clips there (display >= 250 in every channel).
+TEST(SeaOptics, TheGlitterMatchesCoxMunkAtTheSpecularPointOutshinesTheSkyAndClips) {
+  Session& s = session();
+  OceanGuard guard;
+  useOcean(oceanAt(5.0));
+  ViewPose p;
+  p.latDeg = 0.0, p.lonDeg = -150.0, p.altM = 300.0, p.headingDeg = 180.0, p.pitchDeg = -20.0;
+  p.width = 160, p.height = 120;
+  FrameSettings fs;
+  fs.sunEcef = sunFromLocal(p.latDeg, p.lonDeg, 180.0, 20.0);
+  s.render(p, fs);
+  const Image lit = s.image();
+  fs.sunEcef = sunFromLocal(p.latDeg, p.lonDeg, 0.0, 20.0);
+  s.render(p, fs);
+  const Image behind = s.image();
+  dump(lit, "glitter_300m_specular");
+  // The specular point: 20 x 8 pixels about the centre (0.6 x 0.25 degrees
+  // of slope, where p changes by under 1 %).
+  double glitter = 0.0, sky = 0.0;
+  int n = 0;
+  for (int y = p.height / 2 - 4; y < p.height / 2 + 4; ++y)
+    for (int x = p.width / 2 - 10; x < p.width / 2 + 10; ++x, ++n)
+      glitter += linearGrey(lit, x, y), sky += linearGrey(behind, x, y);
+  glitter /= n, sky /= n;
+  const double cosV = std::sin(20.0 * kPi / 180.0);
+  const double coxMunk = fresnel(cosV) * shadowing(cosV, cosV, 5.0) / (kPi * coxMunkMss(5.0)) / (4.0 * cosV);
+  int clipped = 0;
+  for (int y = 0; y < p.height / 2; ++y)
+    for (int x = p.width / 2 - 10; x < p.width / 2 + 10; ++x) {
+      const std::uint8_t* px = &lit.rgba[(std::size_t(y) * p.width + x) * 4];
+      clipped += std::min({px[0], px[1], px[2]}) >= 250;
+    }
+  std::printf("specular point: glitter %.3f (Cox-Munk %.3f x E), sky's reflection %.3f, ratio %.1f; %d clipped px above\n",
+              glitter, coxMunk, sky, glitter / sky, clipped);
+  // E, the sun's irradiance after its 20-degree air mass (atmosphere.glsl's
+  // sunLight), is 0.7-1 of the scene's sun; Cox-Munk's mss scatters by 14 %
+  // at U = 5: within 0.5-1.3 of Cox-Munk with E = 1.
+  EXPECT_GT(glitter, 0.5 * coxMunk);
+  EXPECT_LT(glitter, 1.3 * coxMunk);
+  EXPECT_GE(glitter / sky, 10.0);
+  EXPECT_GE(clipped, 100);  // of 1,200 in the column above the specular point
+}
+
 // Top-down: the fraction of foam pixels against Monahan &
 // O'Muircheartaigh (1980), W = 3.84e-6 U10^3.41, within a factor 1.5. The
 // crests are hundreds of metres apart at a gale, so the fraction is counted
