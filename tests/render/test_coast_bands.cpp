@@ -19,10 +19,11 @@
 // Its noise is the scatter of bins within one band, which the moving foam
 // streaks make: the step is taken on 6 frames 3.7 s apart (the streaks move
 // on by more than their width) and its mean must be within 3 standard
-// errors of 0. Measured: luma -2.35 (se 1.60), detail -0.023 (se 0.069).
+// errors of 0. Measured: luma -2.35 (se 1.61), detail -0.034 (se 0.064)
+// (2026-12-05, the normal per fragment; before it -0.023, se 0.069).
 // The test's negative control, the blend removed (B below r_e, C above:
 // the hard switch per pixel, an edge along the curved r contour, looked
-// at) must fail it: its detail steps by 0.237 (se 0.044). Shown once with
+// at) must fail it: its detail steps by 0.225 (se 0.040; 0.237 before). Shown once with
 // the blend removed in the shader (coast_bands.glsl's smoothstep a step at
 // 0.229): the test fails on the detail step, 0.227 (se 0.043), not only on
 // the mean. (Binned by screen row, as before, that switch failed only on
