@@ -64,9 +64,24 @@ float foamInStep(float p0, float c1, float c2, float c3, float a0, float h) {
 }
 
 // OceanRenderer::foamOf is this in double (the calibration's copy).
-float whitecapFoam(vec3 d, WvFrame fr, float depthM) {
+// normal0: the present sample's surface normal (copy 0 is the present), for
+// ocean.frag's per-fragment normal (GEOCEAN_FRAGMENT_NORMAL); the compiler
+// drops its arithmetic where the caller does not read it.
+float whitecapFoam(vec3 d, WvFrame fr, float depthM, out vec3 normal0) {
   float det[FOAM_TIMES];
-  for (int k = 0; k < FOAM_TIMES; ++k) det[k] = foldAt(k, d, fr, depthM);
+#if WV_MODEL == 1
+#ifdef WV_COAST
+  WvResult r0 = wv_gerstnerCoast(0, uWaveCount, d, fr, depthM, wvCoasts[0]);
+#else
+  WvResult r0 = wv_gerstner(0, uWaveCount, d, fr, depthM);
+#endif
+  det[0] = r0.jac.w;
+  normal0 = r0.normal.xyz;
+#else
+  det[0] = foldAt(0, d, fr, depthM);
+  normal0 = vec3(0.0);
+#endif
+  for (int k = 1; k < FOAM_TIMES; ++k) det[k] = foldAt(k, d, fr, depthM);
   float foam = 0.0;
   for (int k = 0; k < FOAM_TIMES; ++k) foam = max(foam, foamOfJacobian(det[k]) * exp(-uFoamAgeS[k] / uFoamDecayS));
   for (int k = 0; k + 1 < FOAM_TIMES; ++k) {

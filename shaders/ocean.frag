@@ -90,6 +90,9 @@ VARYING float vCellAlongM;
 #ifdef FOAM_TIMES
 #include "foam.glsl"
 #endif
+#ifdef GEOCEAN_FRAGMENT_NORMAL
+uniform int uFragmentNormal;  // OceanRenderer::setFragmentNormal
+#endif
 #endif
 
 uniform vec4 uWaterGeo;
@@ -196,7 +199,8 @@ void main() {
   // a pixel (1/8 of the cell's footprint) is under half the shortest wave
   // (peak / 16: vFar ~0.25); the mean cover takes over by vFar 0.75.
   float far = smoothstep(0.25, 0.75, vFar);
-  float crest = far < 1.0 ? whitecapFoam(vRest, wvFrames[0], vWaveDepthM) : 0.0;
+  vec3 fragNormal = vNormal;
+  float crest = far < 1.0 ? whitecapFoam(vRest, wvFrames[0], vWaveDepthM, fragNormal) : 0.0;
   crest = mix(crest, uWhitecapCover, far);
 #ifdef GEOCEAN_BREAK_FOAM
   crest = max(crest, coastBandFoam(vBreakFoam, vEyeRel));
@@ -284,6 +288,15 @@ void main() {
   crest = noiseCrestFoam(hRes, varU, uFoamSoftM, uWhitecapCover);
 #else
   vec3 nDrawn = normalize(vNormal);
+#if defined(GEOCEAN_FRAGMENT_NORMAL) && defined(FOAM_TIMES)
+  // The kernel's normal at the fragment's rest point (the whitecaps' present
+  // sample, so no extra evaluation) where the whitecaps resolve the waves,
+  // the vertices' as they fade (far): the middle band's coarse cells
+  // (OceanOptions::coarseMiddle) would otherwise interpolate the normal
+  // over twice the vertex spacing and soften the sea. uFragmentNormal 0
+  // (tests): the vertices' alone.
+  if (uFragmentNormal != 0) nDrawn = normalize(mix(fragNormal, nDrawn, far));
+#endif
   float mssDrawn = vMss;
   float farKeep = (1.0 - 0.7 * vFar) * (1.0 - 0.7 * vFar);
 #if WV_MODEL == 4

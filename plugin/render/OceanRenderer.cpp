@@ -85,6 +85,11 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   if (jacobianFoam()) {
     shaded.push_back("FOAM_TIMES " + std::to_string(kFoamTimes));
     shaded.push_back("FOAM_SUB " + std::to_string(kFoamSub));
+    // Issue 15 item 4: with the bands, the normal per fragment from the
+    // whitecaps' present sample (ocean.frag; uFragmentNormal), so the middle
+    // band's coarse cells do not soften the sea.
+    if (coast && options_.coastBands && options_.model == waves::Model::Gerstner)
+      shaded.push_back("GEOCEAN_FRAGMENT_NORMAL 1");
   }
   if (options_.waterTiles) {
     pages_ = std::make_unique<WaterPages>(options_.waterTiles, gl::TilePoolOptions{}, options_.waterTilesBelow);
@@ -717,6 +722,13 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     // foam texture's crests zigzagged along the fans (beach_breakers_300m).
     const double fromM = 1.01 * kMiddleMeshFromR * middleWavelengthM_;
     const float maxElevM = float(-kMiddleMeshMinDepth * middleWavelengthM_);
+    // And where ocean.vert's vFar = smoothstep(0.02, 0.5, footprint /
+    // octave wavelength 0) is below kMiddleMeshMaxFar: ocean.frag still
+    // evaluates the whitecaps there, so the normal is the fragment's
+    // (GEOCEAN_FRAGMENT_NORMAL); further on it fades to the vertices', which a
+    // coarse block would soften. The smoothstep inverted, 1 % inside.
+    const double farT = 0.5 - std::sin(std::asin(1.0 - 2.0 * kMiddleMeshMaxFar) / 3.0);
+    const double farToM = 0.99 * (0.02 + 0.48 * farT) * double(octaveWavelengthM_[0]);
     const world::WorldLayer& relief = world_->elevation();
     const glm::dvec3 eye = cam.eyeEcef();
     constexpr double a2 = geo::kWgs84A * geo::kWgs84A, b2 = geo::kWgs84B * geo::kWgs84B;
@@ -727,7 +739,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
       const double dist = glm::length(rel);
       const glm::dvec3 up = glm::normalize(glm::dvec3(p.x / a2, p.y / a2, p.z / b2));
       const double sinE = std::abs(glm::dot(rel, up)) / std::max(dist, 1e-9);
-      bool coarse = dist * cellRadians >= fromM * std::max(sinE, 0.02);
+      bool coarse = dist * cellRadians >= fromM * std::max(sinE, 0.02) && dist * cellRadians <= farToM;
       if (coarse && relief.width > 0) {
         const double fx = (v.lonDeg - relief.originLonDeg) / relief.lonStepDeg - 0.5;
         const double fy = (v.latDeg - relief.originLatDeg) / relief.latStepDeg - 0.5;
@@ -956,6 +968,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glUniform1f(p.uniform("uTimeS"), float(std::fmod(light.timeS, 3600.0)));
     glUniform1i(p.uniform("uWriteData"), writeDepthData_ ? 2 : writeData_ ? 1 : 0);
     glUniform1i(p.uniform("uCoastBandMode"), int(coastBands_));  // issue 15 item 4 (coast_bands.glsl)
+    glUniform1i(p.uniform("uFragmentNormal"), fragmentNormal_ ? 1 : 0);  // issue 15 item 4 (ocean.frag)
     glUniform1i(p.uniform("uWakeCount"), GLint(wakes.size()));
     if (!wakes.empty()) {
       glUniform4fv(p.uniform("uWakeCentre"), GLsizei(wakes.size()), &wakeCentre[0][0]);

@@ -53,12 +53,13 @@ struct OceanOptions {
   // Issue 15 item 4, with the bands: paper 003's coarser mesh in the middle
   // band (grid::coarseIndices): blocks of 2 x 2 grid cells drawn as one
   // where the cell along the view is at least kMiddleMeshFromR of the
-  // breaking sea's longest wavelength (middleWavelengthM) and the water
-  // kMiddleMeshMinDepth of it deep. Off by default: on llvmpipe it saved
-  // nothing measurable (the vertex side is 3-11 % of the ocean pass; bench
-  // _coast_frame --split, docs/PERFORMANCE.md) and it softens the far sea's
-  // vertex-sampled normals (two coast goldens moved past their margins).
-  bool coarseMiddle = false;
+  // breaking sea's longest wavelength (middleWavelengthM), the water
+  // kMiddleMeshMinDepth of it deep and the waves not yet faded
+  // (kMiddleMeshMaxFar). The normal there is the fragment's (ocean.frag's
+  // GEOCEAN_FRAGMENT_NORMAL, on with the bands on either mesh), so the
+  // larger cells do not soften the sea. Saves 1-6 % of the ocean pass on
+  // llvmpipe (bench_coast_frame --split, docs/PERFORMANCE.md).
+  bool coarseMiddle = true;
   // A streamed mask's coverage (world::waterPyramid of
   // world::streamedMaskLayer, the host terrain's pyramid): the shoreline is
   // drawn from its tiles (WaterPages.h), so the query's coverage rule on the
@@ -252,6 +253,11 @@ class OceanRenderer {
   // coarseMiddle), its blocks of `cells` x `cells` grid cells: 2 by
   // default, 1 none; 4 and 8 for tests (a mesh too coarse for the waves).
   void setMiddleMeshBlock(int cells) { middleBlock_ = cells; }
+  // Issue 15 item 4: with the bands, the normal is the kernel's per
+  // fragment (the whitecaps' present sample) until the waves fade (vFar),
+  // on either mesh; false draws the vertices' interpolated normal, as
+  // before (tests: what the coarse mesh did to the sea without it).
+  void setFragmentNormal(bool on) { fragmentNormal_ = on; }
   // A vertex joins a coarse block where the grid cell's footprint along the
   // view (ocean.vert's, coast_bands.glsl's) is at least this times
   // middleWavelengthM: the middle band is whole there (r > 1/3), so the
@@ -260,6 +266,11 @@ class OceanRenderer {
   // And where the relief's water is at least this times middleWavelengthM
   // deep (k h >= pi for that wavelength: no breaking, no shoaling of it).
   static constexpr double kMiddleMeshMinDepth = 0.5;
+  // And where ocean.vert's vFar (the waves' fade by footprint) is below
+  // this at every vertex of the block: ocean.frag's whitecaps, and so the
+  // fragment's normal, are evaluated there (they fade out by vFar 0.75);
+  // beyond, the normal is the vertices' and the far cells stay fine.
+  static constexpr double kMiddleMeshMaxFar = 0.75;
   // The longest the breaking sea's amplitude-weighted wavelength gets
   // (wv_breakingFoamMean's lambda) over water depths 0.05 m to deep, without
   // refraction: where a cell exceeds a share of it, it exceeds that share
@@ -395,6 +406,7 @@ class OceanRenderer {
   std::unique_ptr<Spray> spray_;                    // issue 15 item 4: null without the bands
   bool sprayOn_ = true;
   int middleBlock_ = 2;               // issue 15 item 4: the middle band's mesh (setMiddleMeshBlock)
+  bool fragmentNormal_ = true;        // issue 15 item 4: ocean.frag's uFragmentNormal
   double middleWavelengthM_ = 0.0;    // 0: no coarse mesh (no bands, or off)
   std::size_t coarseBlocks_ = 0;
   std::vector<std::uint8_t> coarseVertex_;

@@ -20,7 +20,8 @@
 // GL_RASTERIZER_DISCARD (the grid's CPU build, the uploads and the vertex
 // stage with primitive assembly, no fragment), each with and without the
 // coarse mesh, alternately; the vertex share is their ratio, the rest is
-// fragments.
+// fragments; and the fine mesh whole with the vertices' normal (the
+// fragment normal's cost: the drawing before the coarse mesh was on).
 //   bench_coast_frame [--frames N] [--size WxH] [--split]
 #include "globe/geo/Ellipsoid.h"
 #include "globe/raster/Raster.h"
@@ -64,16 +65,19 @@ class VertexOnlyLayer : public render::test::DirectOceanLayer {
 
 // Ocean pass CPU ms of `layer`'s ocean drawn whole and vertex-only, each
 // with the middle band's coarse mesh (blocks of 2 cells) and without it
-// (OceanRenderer::setMiddleMeshBlock(1)): the four alternately, medians of
+// (OceanRenderer::setMiddleMeshBlock(1)), and a fifth draw: whole, fine,
+// with the vertices' interpolated normal (setFragmentNormal(false): the
+// drawing before the coarse mesh was on): the five alternately, medians of
 // frames - 1 (the first dropped); the vertex share and the mesh's ratios.
 void splitRow(const char* name, int frames, const std::function<render::FrameTimes(const render::FrameSettings&)>& draw,
               VertexOnlyLayer& layer, double lat, double lon) {
-  std::vector<double> cpu[4];
+  std::vector<double> cpu[5];
   std::size_t blocks = 0;
   for (int f = 0; f < frames; ++f)
-    for (int k = 0; k < 4; ++k) {
-      layer.discard = k >= 2;
-      layer.ocean()->setMiddleMeshBlock(k % 2 == 0 ? 1 : 2);
+    for (int k = 0; k < 5; ++k) {
+      layer.discard = k == 2 || k == 3;
+      layer.ocean()->setMiddleMeshBlock(k % 2 == 0 || k == 4 ? 1 : 2);
+      layer.ocean()->setFragmentNormal(k != 4);
       render::FrameSettings fs;
       fs.timeS = 30.0 + f / 30.0;
       fs.sunEcef = render::sunFromLocal(lat, lon, 150.0, 40.0);
@@ -84,9 +88,12 @@ void splitRow(const char* name, int frames, const std::function<render::FrameTim
     }
   layer.discard = false;
   layer.ocean()->setMiddleMeshBlock(2);
+  layer.ocean()->setFragmentNormal(true);
   const double whole = median(cpu[0]), wholeC = median(cpu[1]), vertex = median(cpu[2]), vertexC = median(cpu[3]);
-  std::printf("%-22s | %8.1f %8.1f  %5.3f | %8.1f | %8.1f %8.1f  %5.3f | %5.3f | %6zu\n", name, whole, vertex,
-              vertex / whole, whole - vertex, wholeC, vertexC, vertexC / vertex, wholeC / whole, blocks);
+  const double old = median(cpu[4]);
+  std::printf("%-22s | %8.1f %8.1f  %5.3f | %8.1f | %8.1f %8.1f  %5.3f | %5.3f | %6zu | %8.1f  %5.3f  %5.3f\n", name,
+              whole, vertex, vertex / whole, whole - vertex, wholeC, vertexC, vertexC / vertex, wholeC / whole, blocks,
+              old, whole / old, wholeC / old);
 }
 
 constexpr int kW = 400, kH = 400;
@@ -169,9 +176,8 @@ int main(int argc, char** argv) {
   oo.model = waves::Model::Gerstner;
   oo.sea = snap->seaState;
   oo.coast = snap->waves->coastFieldShared();
-  oo.coarseMiddle = split;  // --split compares the middle band's coarse mesh with the fine one
+  // The default options: the middle band's coarse mesh on (--split draws it with and without).
   auto withCoast = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
-  oo.coarseMiddle = false;
   oo.coastBands = false;  // issue 15 item 4's distance bands compiled out
   auto noBands = std::make_shared<ocean_render::OceanRenderer>(grids, snap->landSea, oo);
   oo.coastBands = true;
@@ -186,7 +192,7 @@ int main(int argc, char** argv) {
     std::printf("bench_coast_frame --split %dx%d, %d frames per view and mode (the first dropped); ocean pass CPU ms\n",
                 base.width, base.height, frames);
     std::printf("%-22s | fine mesh:  whole   vertex  share | fragment | coarse middle: whole vertex  "
-                "vertex/fine | whole/fine | blocks\n", "view");
+                "vertex/fine | whole/fine | blocks | fine, vertex normal: whole  fine/it  coarse/it\n", "view");
     for (const auto& [name, northM, altM, pitchDeg] :
          {std::tuple{"island 30 m", 350.0, 30.0, -12.0}, std::tuple{"island 300 m", 900.0, 300.0, -35.0}}) {
       camera::ViewPose p = base;
@@ -196,8 +202,7 @@ int main(int argc, char** argv) {
     }
     // The 1:50 spilling beach (CoastScene.h), its own world, in this context.
     const auto beach = render::test::spillingBeach();
-    ocean_render::OceanOptions bo = beach->options();
-    bo.coarseMiddle = true;
+    const ocean_render::OceanOptions bo = beach->options();  // coarseMiddle on by default
     auto beachOcean = std::make_shared<ocean_render::OceanRenderer>(beach->grids, beach->snap->landSea, bo);
     auto beachLayer = std::make_shared<VertexOnlyLayer>(beachOcean);
     render::GlobeRenderer beachRenderer(beach->world);

@@ -19,10 +19,11 @@
 // Its noise is the scatter of bins within one band, which the moving foam
 // streaks make: the step is taken on 6 frames 3.7 s apart (the streaks move
 // on by more than their width) and its mean must be within 3 standard
-// errors of 0. Measured: luma -2.35 (se 1.60), detail -0.023 (se 0.069).
+// errors of 0. Measured: luma -2.35 (se 1.61), detail -0.034 (se 0.064)
+// (2026-12-05, the normal per fragment; before it -0.023, se 0.069).
 // The test's negative control, the blend removed (B below r_e, C above:
 // the hard switch per pixel, an edge along the curved r contour, looked
-// at) must fail it: its detail steps by 0.237 (se 0.044). Shown once with
+// at) must fail it: its detail steps by 0.225 (se 0.040; 0.237 before). Shown once with
 // the blend removed in the shader (coast_bands.glsl's smoothstep a step at
 // 0.229): the test fails on the detail step, 0.227 (se 0.043), not only on
 // the mean. (Binned by screen row, as before, that switch failed only on
@@ -276,7 +277,10 @@ TEST(CoastBands, BreakingFoamBandEdgeHasNoStep) {
 // and the local lambda. The steps at q_e over 6 frames (lines over 12 bins
 // either side): A's mean luma over M's and A's own log detail, within 3
 // standard errors of 0; the control, M below q_e and F above (the fade
-// removed), must fail.
+// removed), must fail. Measured (2026-12-05): luma -0.09 (se 0.36), detail
+// 0.11 (se 0.08); the control -5.58 (se 0.60), 1.23 (se 0.12). Shown once
+// with the fade a step at q_e in coast_bands_frag.glsl: the test fails,
+// -5.52 (se 0.60) and 1.31 (se 0.14).
 TEST(CoastBands, MiddleToFarFadeHasNoStep) {
   session();
   const auto beach = spillingBeach();
@@ -377,14 +381,17 @@ TEST(CoastBands, MiddleToFarFadeHasNoStep) {
 // Issue 15 item 4, paper 003's coarser mesh in the middle band
 // (OceanOptions::coarseMiddle: blocks of 2 x 2 grid cells drawn as one
 // where the cell along the view is at least kMiddleMeshFromR of
-// middleWavelengthM over water kMiddleMeshMinDepth of it deep;
-// grid::coarseIndices stitches them to the fine cells with fans). The 1:50
+// middleWavelengthM over water kMiddleMeshMinDepth of it deep, the waves
+// not faded, kMiddleMeshMaxFar; grid::coarseIndices stitches them to the
+// fine cells with fans; the normal is the fragment's on both meshes). The 1:50
 // beach from 150 m, 1.5 km off the shore, so the mesh edge (r = cell along
 // the view / middleWavelengthM = kMiddleMeshFromR) lies across the deep
 // water, the beach on the right: drawn with the coarse mesh (A), the fine
 // mesh everywhere (B) and, the test's negative control, blocks of 8 x 8
-// cells (C, a mesh too coarse for the waves) cut in per pixel at the edge
-// (B below it, C above: a hard switch). Pixels are binned by ln(r / edge),
+// cells with the vertices' interpolated normal (C, a mesh too coarse for
+// the waves drawn as before the fragment normal; with the fragment's the
+// 8 x 8 blocks step the luma by only -0.19, se 0.06) cut in per pixel at
+// the edge (B below it, C above: a hard switch). Pixels are binned by ln(r / edge),
 // r computed on the CPU at the pixel ray's sea-level point as ocean.vert
 // measures a cell (pixels over water the depth rule keeps fine left out);
 // the steps across the edge as CoastBands.BreakingFoam-
@@ -422,10 +429,12 @@ TEST(CoastBands, MiddleMeshEdgeHasNoStepAndNoCrack) {
     std::vector<float> data;
     std::size_t blocks = 0;
   };
-  auto drawWith = [&](const ViewPose& v, int block, double timeS, const std::string& name) {
+  auto drawWith = [&](const ViewPose& v, int block, double timeS, const std::string& name, bool fragmentNormal = true) {
     ocean->setMiddleMeshBlock(block);
+    ocean->setFragmentNormal(fragmentNormal);
     fs.timeS = timeS;
     renderer.render(v, fs);
+    ocean->setFragmentNormal(true);
     Frame f{fb.readColor(), fb.readData(), ocean->lastCoarseBlocks()};
     if (!name.empty()) gl::writePng(::testing::TempDir() + "/middle_mesh_" + name + ".png", f.im);
     return f;
@@ -491,7 +500,7 @@ TEST(CoastBands, MiddleMeshEdgeHasNoStepAndNoCrack) {
     const double t = 30.0 + 3.7 * f;
     const bool keep = f == 0;
     const Frame a = drawWith(p, 2, t, keep ? "coarse" : ""), b = drawWith(p, 1, t, keep ? "fine" : ""),
-                c = drawWith(p, 8, t, keep ? "coarse8" : "");
+                c = drawWith(p, 8, t, keep ? "coarse8" : "", false);
     if (f == 0) {
       std::printf("coarse blocks: %zu of 2 x 2, %zu of 8 x 8\n", a.blocks, c.blocks);
       ASSERT_GT(a.blocks, 100u) << "no middle-band mesh in the view";
