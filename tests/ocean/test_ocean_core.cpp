@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <string>
@@ -353,6 +354,51 @@ TEST(OceanCore, ClassifierForThePicker) {
 // over a planar beach (straight north-south contours, elevation raster made
 // here) the peak wavelength follows the dispersion relation at the local
 // depth and the direction waves come from turns toward the shore normal.
+// Issue 15 item 2: the island table is recomputed when the wind turns
+// (Ocean::setSeaState publishes a new field). A round island 1.5 km across,
+// 40 m of sea about it; 3 km either side of it along the wind, the lee's
+// waves are lower than the weather side's, and turning the wind round
+// swaps the sides (paper 003 sec. 3: the occlusion lies down-wave).
+TEST(OceanCore, AWindTurnRebuildsTheIslandsShelter) {
+  Ocean o;
+  const int w = 400, h = 400;  // 0.001-degree cells about (0.3, 0)
+  std::vector<float> px(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double lon = -0.2 + (x + 0.5) * 0.001, lat = 0.5 - (y + 0.5) * 0.001;
+      const double r = std::hypot(lon, lat - 0.3) * 111320.0;
+      px[std::size_t(y) * w + x] = float(r < 750.0 ? 20.0 : -40.0);
+    }
+  o.setElevation(geocean::raster::Raster::fromPixels(px, w, h, 1, {-0.2, 0.5, 0.001, -0.001, false}, std::nullopt,
+                                                     "island"));
+  geocean::waves::CoastField::Region r;
+  r.latDeg = 0.3, r.lonDeg = 0.0, r.cellM = 50.0, r.nodes = 201;
+  o.setCoastRegion(r);
+  const std::vector<double> lat = {0.3, 0.3}, lon = {-0.027, 0.027};  // 3 km west, 3 km east
+  auto hs = [&](double windFromDeg) {
+    SeaState s;
+    s.windFromDeg = windFromDeg;
+    s.anchorLatDeg = 0.3;
+    o.setSeaState(Model::Gerstner, s);
+    std::vector<double> out(2, 0.0);
+    SurfaceOutputs so;
+    so.hsM = out.data();
+    const double t = 0.0;
+    o.current()->querySurface({lat.data(), lon.data(), 2, &t, false}, so);
+    return out;
+  };
+  const std::vector<double> fromWest = hs(270.0), fromEast = hs(90.0);
+  std::printf("hs west / east: wind from the west %.3f / %.3f m, from the east %.3f / %.3f m\n", fromWest[0],
+              fromWest[1], fromEast[0], fromEast[1]);
+  ASSERT_NE(o.current()->waves->coastField(), nullptr);
+  EXPECT_LT(fromWest[1], 0.9 * fromWest[0]);  // the lee is east
+  EXPECT_LT(fromEast[0], 0.9 * fromEast[1]);  // now west
+  // The same island, mirrored: the two sides swap within 2 % (the grid's
+  // nodes and the wave directions' sampling are symmetric to that).
+  EXPECT_NEAR(fromWest[1], fromEast[0], 0.02 * fromWest[0]);
+  EXPECT_NEAR(fromWest[0], fromEast[1], 0.02 * fromWest[0]);
+}
+
 TEST(OceanCore, CoastRegionRefractsTheSeaStateOutputs) {
   Ocean o;
   // 0.001-degree cells over lon -0.2 .. 0.2, lat 0.1 .. 0.5; the shoreline at
