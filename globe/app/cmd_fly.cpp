@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 namespace geocean::app {
 namespace {
@@ -92,7 +93,7 @@ int runFly(const FlyArgs& a) {
   if (const int rc = loadDrawnWorld("fly", a.scene.layers, sources, data); rc != kExitOk) return rc;
   render::Session s;
   try {
-    s = render::Session::headless(data, base.width, base.height);
+    s = render::Session::headless(std::move(data), base.width, base.height);
   } catch (const gl::ShaderError&) {
     throw;
   } catch (const std::runtime_error& e) {

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 namespace geocean::app {
 namespace {
@@ -61,7 +62,7 @@ int runRender(const RenderArgs& a) {
   terrain.waitForTiles = true;  // one picture: the streamed tiles it needs, not their ancestors
   render::Session s;
   try {
-    s = render::Session::headless(data, pose.width, pose.height, terrain);
+    s = render::Session::headless(std::move(data), pose.width, pose.height, terrain);
   } catch (const gl::ShaderError&) {
     throw;
   } catch (const std::runtime_error& e) {

@@ -32,6 +32,7 @@
 
 #include <malloc.h>
 #include <unistd.h>
+#include <utility>
 
 namespace geocean::app {
 namespace {
@@ -248,7 +249,7 @@ int runView(const ViewArgs& a) {
   {
     // A pointer: hiding or showing a raster layer (panel, keys 1-9) makes a
     // new world and so a new renderer with the same ocean and boats.
-    auto renderer = std::make_unique<render::GlobeRenderer>(std::make_shared<render::WorldTextures>(data));
+    auto renderer = std::make_unique<render::GlobeRenderer>(std::make_shared<render::WorldTextures>(std::move(data)));
     // The ocean through the plugin's C ABI, as any host engine loads it.
     std::shared_ptr<host::PluginOceanLayer> ocean;
     rc = addDrawnOcean("view", a.scene, windMps, *renderer, sources, ocean);
@@ -303,7 +304,7 @@ int runView(const ViewArgs& a) {
           return;
         }
       }
-      renderer = std::make_unique<render::GlobeRenderer>(std::make_shared<render::WorldTextures>(d));
+      renderer = std::make_unique<render::GlobeRenderer>(std::make_shared<render::WorldTextures>(std::move(d)));
       if (ocean) renderer->addLayer(ocean);
       if (boats) renderer->addSceneObject(boats);
       layersDrawn = panel.layerShown;

@@ -16,6 +16,13 @@ TilePool::TilePool(std::shared_ptr<const raster::TilePyramid> pyramid, TilePoolO
   if (options_.slots < 2) throw std::invalid_argument("tile pool: at least 2 slots");
   if (options_.internalFormat != GL_R8 && options_.internalFormat != GL_R32F)
     throw std::invalid_argument("tile pool: internal format must be GL_R8 or GL_R32F");
+  // A pyramid of fewer tiles than slots (a small regional raster) gets a
+  // slot per tile: all of it fits, nothing is evicted, the slots taken are
+  // the same, and its GPU (and, llvmpipe, CPU) memory is that much less.
+  int tiles = 0;
+  for (int l = 0; l < pyramid_->levels() && tiles < options_.slots; ++l)
+    tiles += pyramid_->tilesX(l) * pyramid_->tilesY(l);
+  options_.slots = std::max(2, std::min(options_.slots, tiles));
   border_ = pyramid_->tileSize() + 2;
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_);
   glTextureStorage3D(texture_, 1, options_.internalFormat, border_, border_, options_.slots);

@@ -35,7 +35,7 @@
 namespace geocean::gl {
 
 struct TilePoolOptions {
-  int slots = 192;
+  int slots = 192;  // at most: a pyramid of fewer tiles gets one per tile (TilePool::slots())
   int workers = 2;
   int maxUploadsPerFrame = 16;
   int maxQueued = 256;  // requests beyond this are dropped (asked again next frame)
@@ -87,6 +87,9 @@ class TilePool {
   std::vector<std::pair<raster::TileId, int>> residentTiles() const;
   std::uint64_t residencyVersion() const { return residency_; }
   const raster::TilePyramid& pyramid() const { return *pyramid_; }
+  // The texture array's layers: the options' slots, or the pyramid's tile
+  // count where that is smaller. gpuBytes() is bounded by the options'
+  // slots whatever the raster's size.
   int slots() const { return options_.slots; }
   std::size_t gpuBytes() const;
   std::size_t cpuBoundBytes() const;

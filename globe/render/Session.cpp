@@ -3,16 +3,17 @@
 #include "globe/gl/GlDebug.h"
 
 #include <stdexcept>
+#include <utility>
 
 namespace geocean::render {
 
-Session Session::headless(const world::WorldData& data, int width, int height, TerrainOptions terrain) {
+Session Session::headless(world::WorldData data, int width, int height, TerrainOptions terrain) {
   Session s;
   std::string err;
   s.context = gl::HeadlessContext::create(err, gl::glDebugWanted());
   if (!s.context) throw std::runtime_error("no headless OpenGL 4.5 context: " + err);
   gl::enableGlDebug();
-  s.world = std::make_shared<WorldTextures>(data);
+  s.world = std::make_shared<WorldTextures>(std::move(data));
   s.renderer = std::make_unique<GlobeRenderer>(s.world, terrain);
   s.target = std::make_unique<gl::Framebuffer>(width, height);
   return s;

@@ -18,7 +18,8 @@ struct Session {
   std::unique_ptr<gl::Framebuffer> target;
 
   // Throws std::runtime_error (no GL context) or raster::RasterError (data).
-  static Session headless(const world::WorldData& data, int width, int height, TerrainOptions terrain = {});
+  // Takes the data (WorldTextures): move it in when done with it.
+  static Session headless(world::WorldData data, int width, int height, TerrainOptions terrain = {});
   FrameTimes render(const camera::ViewPose& pose, const FrameSettings& settings);
   // The frame, opaque: its alpha is not the picture's (the sea's coverage
   // blend leaves a^2 + (1 - a) at the horizon), and PNG writers take RGBA as

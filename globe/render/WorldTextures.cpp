@@ -4,16 +4,19 @@
 #include "globe/world/WaterPyramid.h"
 
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
+#include <utility>
 
 namespace geocean::render {
 
-WorldTextures::WorldTextures(const world::WorldData& data)
-    : grids_(std::make_shared<const world::WorldGrids>(data.elevation, data.water)) {
+WorldTextures::WorldTextures(world::WorldData data)
+    : grids_(std::make_shared<const world::WorldGrids>(std::move(data.elevation), std::move(data.water))) {
   world::checkLayer(data.imagery, "imagery", 3);
   const auto& l = data.imagery;
   imagery_ = gl::srgbGeoTexture(l.values.data(), l.channels, l.width, l.height);
   imageryGeo_ = l.geo();
+  std::vector<float>().swap(data.imagery.values);  // 175 MB of floats for the Blue Marble, on the GPU now
   const auto& e = grids_->elevation();
   elevation_ = gl::redGeoTexture(e.values.data(), e.channels, e.width, e.height, GL_R32F, false);
   // Mipmapped so that far coasts average to partial coverage instead of aliasing.
@@ -21,7 +24,7 @@ WorldTextures::WorldTextures(const world::WorldData& data)
   water_ = gl::redGeoTexture(w.values.data(), w.channels, w.width, w.height, GL_R8, true);
   if (int(data.imageryLayers.size()) > world::kMaxImageryLayers)
     throw std::invalid_argument("more than " + std::to_string(world::kMaxImageryLayers) + " imagery layers");
-  for (const world::ImageryLayer& il : data.imageryLayers) {
+  for (world::ImageryLayer& il : data.imageryLayers) {
     GLint maxSize = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     if (il.width > maxSize || il.height > maxSize)
@@ -40,6 +43,7 @@ WorldTextures::WorldTextures(const world::WorldData& data)
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTextureSubImage2D(t, 0, 0, 0, il.width, il.height, GL_RGBA, GL_UNSIGNED_BYTE, il.rgba.data());
     glGenerateTextureMipmap(t);
+    std::vector<std::uint8_t>().swap(il.rgba);
     imageryLayers_.push_back(t);
     imageryLayerGeo_.push_back(il.geo());
   }
@@ -89,9 +93,9 @@ void WorldTextures::indexRegionalWater() {
   }
 }
 
-WorldTextures::WorldTextures(const world::WorldData& data, std::shared_ptr<const raster::TilePyramid> water,
+WorldTextures::WorldTextures(world::WorldData data, std::shared_ptr<const raster::TilePyramid> water,
                              gl::TilePoolOptions pool)
-    : WorldTextures(data) {
+    : WorldTextures(std::move(data)) {
   if (water) waterTiles_ = std::make_unique<gl::TilePool>(std::move(water), pool);
   indexRegionalWater();
 }

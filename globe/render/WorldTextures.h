@@ -21,12 +21,15 @@ namespace geocean::render {
 
 class WorldTextures {
  public:
-  explicit WorldTextures(const world::WorldData& data);
+  // Takes the data: its elevation and water grids become grids() without a
+  // copy, and its imagery is freed once on the GPU (callers that are done
+  // with the data move it in; issue 12 item 6's peak memory).
+  explicit WorldTextures(world::WorldData data);
   // As above, and the water coverage drawn from a tile pyramid (world::waterPyramid)
   // through a GPU tile pool: rasters of any size (issue 12 item 2). The
   // single water texture stays for the passes that do not stream (the sea
   // proxy) and the CPU grids for picking and LOD bounds.
-  WorldTextures(const world::WorldData& data, std::shared_ptr<const raster::TilePyramid> water,
+  WorldTextures(world::WorldData data, std::shared_ptr<const raster::TilePyramid> water,
                 gl::TilePoolOptions pool = {});
   ~WorldTextures();
   WorldTextures(const WorldTextures&) = delete;

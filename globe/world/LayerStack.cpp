@@ -29,27 +29,6 @@ bool globalInMemory(const raster::Raster& r) {
   return r.inMemory() && t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * r.height() + 180.0) < 1e-6;
 }
 
-
-// f(first, lat, lon, n) over the cell centres of l in whole rows of about
-// 1 M cells: the batch calls copy their points, so the full grid's
-// coordinates (and copies) are never held at once.
-template <class F>
-void forCellChunks(const WorldLayer& l, F f) {
-  const int rows = std::max(1, (1 << 20) / std::max(1, l.width));
-  std::vector<double> lat, lon;
-  for (int y0 = 0; y0 < l.height; y0 += rows) {
-    const int y1 = std::min(l.height, y0 + rows);
-    const std::size_t n = std::size_t(y1 - y0) * l.width;
-    lat.resize(n), lon.resize(n);
-    for (int y = y0; y < y1; ++y)
-      for (int x = 0; x < l.width; ++x) {
-        lat[std::size_t(y - y0) * l.width + x] = l.originLatDeg + (y + 0.5) * l.latStepDeg;
-        lon[std::size_t(y - y0) * l.width + x] = l.originLonDeg + (x + 0.5) * l.lonStepDeg;
-      }
-    f(std::size_t(y0) * l.width, lat.data(), lon.data(), n);
-  }
-}
-
 }  // namespace
 
 const char* toString(LayerKind k) {

@@ -63,14 +63,4 @@ WorldLayer globalGridFor(const raster::Raster* r) {
   return l;
 }
 
-void cellCentres(const WorldLayer& l, std::vector<double>& lat, std::vector<double>& lon) {
-  lat.resize(l.values.size());
-  lon.resize(l.values.size());
-  for (int y = 0; y < l.height; ++y)
-    for (int x = 0; x < l.width; ++x) {
-      lat[std::size_t(y) * l.width + x] = l.originLatDeg + (y + 0.5) * l.latStepDeg;
-      lon[std::size_t(y) * l.width + x] = l.originLonDeg + (x + 0.5) * l.lonStepDeg;
-    }
-}
-
 }  // namespace geocean::world

@@ -8,6 +8,8 @@
 
 #include <glm/vec4.hpp>
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -93,8 +95,26 @@ void nodataToSeaLevel(WorldLayer& elevation);
 // A global lon/lat grid for drawing a raster: the raster's step, but at most
 // 5' (the default mask's) and 1 degree without a raster; values zeroed.
 WorldLayer globalGridFor(const raster::Raster* r);
-// The lat/lon of every cell centre of a layer, row-major.
-void cellCentres(const WorldLayer& l, std::vector<double>& latDeg, std::vector<double>& lonDeg);
+// The lat/lon of a layer's cell centres, row-major, in chunks of whole rows
+// of about 1 M cells: f(first cell, latDeg, lonDeg, n) per chunk. The batch
+// calls copy their points, so the whole grid's coordinates (and copies:
+// 400 MB at 5') are never held at once.
+template <class F>
+void forCellChunks(const WorldLayer& l, F&& f) {
+  const int rows = std::max(1, (1 << 20) / std::max(1, l.width));
+  std::vector<double> lat, lon;
+  for (int y0 = 0; y0 < l.height; y0 += rows) {
+    const int y1 = std::min(l.height, y0 + rows);
+    const std::size_t n = std::size_t(y1 - y0) * std::size_t(l.width);
+    lat.resize(n), lon.resize(n);
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < l.width; ++x) {
+        lat[std::size_t(y - y0) * std::size_t(l.width) + std::size_t(x)] = l.originLatDeg + (y + 0.5) * l.latStepDeg;
+        lon[std::size_t(y - y0) * std::size_t(l.width) + std::size_t(x)] = l.originLonDeg + (x + 0.5) * l.lonStepDeg;
+      }
+    f(std::size_t(y0) * std::size_t(l.width), lat.data(), lon.data(), n);
+  }
+}
 
 // Loads the default world (globe/raster/World.h): imagery, ETOPO relief and
 // the 5' land/sea mask. Throws raster::RasterError naming the file.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <immintrin.h>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 
@@ -77,6 +78,7 @@ struct Cells16 {
   double px, py;  // continuous pixel coordinates of the point
   world::BSplineTaps tx, ty;
   float v[16];
+  double la[16], lo[16];  // the cells' centres
   float at(int cx, int cy) const { return v[(cy - ty.first) * 4 + (cx - tx.first)]; }
 };
 Cells16 gatherCells(const raster::Raster& r, double latDeg, double lonDeg) {
@@ -85,8 +87,9 @@ Cells16 gatherCells(const raster::Raster& r, double latDeg, double lonDeg) {
   double px = t.pixelX(lonDeg);
   if (t.global) px -= std::floor(px / w) * w;
   const double py = t.pixelY(latDeg);
-  Cells16 c{px, py, world::BSplineTaps(px), world::BSplineTaps(py), {}};
-  double la[16], lo[16];
+  Cells16 c{px, py, world::BSplineTaps(px), world::BSplineTaps(py), {}, {}, {}};
+  double* la = c.la;
+  double* lo = c.lo;
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) {
       int cx = c.tx.first + i;
@@ -149,10 +152,36 @@ world::CoverageClass LandSea::reliefCoverage(double latDeg, double lonDeg, float
     return c;
   }
   const Cells16 c = gatherCells(*elevation_, latDeg, lonDeg);
-  return world::coverageClassAt(c.px, c.py, [&](int cx, int cy) {
-    const float x = c.at(cx, cy);
-    return !std::isnan(x) && x < 0.0f ? Surface::Ocean : Surface::Land;
-  });
+  const bool nodata = below_ && std::any_of(std::begin(c.v), std::end(c.v), [](float x) { return std::isnan(x); });
+  if (!nodata)
+    return world::coverageClassAt(c.px, c.py, [&](int cx, int cy) {
+      const float x = c.at(cx, cy);
+      return !std::isnan(x) && x < 0.0f ? Surface::Ocean : Surface::Land;
+    });
+  // Cells without data take the layers below at their centre, as the
+  // relief's pages are drawn (a NaN texel takes the water grid below at
+  // its centre, geo_uv.glsl), instead of counting as land: near a
+  // relief's nodata edge the query's class is the drawn one. The same
+  // row-by-row sums as world::coverageClassAt.
+  float coverage = 0.0f;
+  for (int j = 0; j < 4; ++j) {
+    float row = 0.0f;
+    for (int i = 0; i < 4; ++i) {
+      const int k = j * 4 + i;
+      const float water = std::isnan(c.v[k]) ? std::clamp(below_(c.la[k], c.lo[k]), 0.0f, 1.0f) : c.v[k] < 0.0f ? 1.0f : 0.0f;
+      row += c.tx.w[i] * water;
+    }
+    coverage += c.ty.w[j] * row;
+  }
+  world::CoverageClass out;
+  out.coverage = coverage;
+  out.surface = world::coverageIsWater(coverage) ? Surface::Ocean : Surface::Land;
+  return out;
+}
+
+float LandSea::reliefWaterCoverage(double latDeg, double lonDeg) const {
+  if (!elevation_ || !std::isfinite(latDeg) || !std::isfinite(lonDeg)) return 0.0f;
+  return reliefCoverage(latDeg, lonDeg, elevation_->sampleBilinear(latDeg, lonDeg)).coverage;
 }
 
 Surface LandSea::classify(double latDeg, double lonDeg) const {

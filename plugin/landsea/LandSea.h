@@ -16,6 +16,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace geocean::ocean {
@@ -56,6 +57,16 @@ class LandSea {
   // there is no elevation raster or no data there.
   virtual float elevationM(double latDeg, double lonDeg) const;
   virtual void elevationBatch(const double* latDeg, const double* lonDeg, std::size_t n, float* out) const;
+
+  // A relief's cells without data (NaN) take this water coverage of the
+  // layers below it, in [0, 1], at their centres (LayeredLandSea sets it),
+  // as the relief's pages are drawn; unset, they count as land. Set before
+  // any query (not thread-safe against them).
+  using CoverageBelow = std::function<float(double latDeg, double lonDeg)>;
+  void setCoverageBelow(CoverageBelow below) { below_ = std::move(below); }
+  // A relief's water coverage at a point (the coverage rule on its cells'
+  // water, below 0 m): 0 without data there or without a relief.
+  float reliefWaterCoverage(double latDeg, double lonDeg) const;
 
   // The single rasters (null for a layer stack).
   const raster::Raster* mask() const { return mask_.get(); }
@@ -111,6 +122,7 @@ class LandSea {
 
   std::shared_ptr<const raster::Raster> mask_, elevation_;
   MaskEncoding encoding_;
+  CoverageBelow below_;
   // In-memory mask as class bytes (| kCoast near a coast, where the
   // coverage decides): the fast path (no float conversion).
   std::vector<std::uint8_t> classes_;

@@ -6,9 +6,34 @@
 namespace geocean::ocean {
 
 LayeredLandSea::LayeredLandSea(std::vector<world::RasterLayer> layers) : stack_(std::move(layers)) {
-  for (const world::RasterLayer& l : stack_.layers())
-    perLayer_.push_back(l.kind == world::LayerKind::Mask ? std::make_unique<const LandSea>(l.raster, nullptr, l.encoding)
-                                                        : std::make_unique<const LandSea>(nullptr, l.raster));
+  const auto& all = stack_.layers();
+  for (std::size_t li = 0; li < all.size(); ++li) {
+    const world::RasterLayer& l = all[li];
+    if (l.kind == world::LayerKind::Mask) {
+      perLayer_.push_back(std::make_unique<const LandSea>(l.raster, nullptr, l.encoding));
+      continue;
+    }
+    auto relief = std::make_unique<LandSea>(nullptr, l.raster);
+    // A relief's nodata cells take the layers below it (issue 12).
+    relief->setCoverageBelow([this, li](double lat, double lon) { return coverageFrom(li + 1, lat, lon); });
+    perLayer_.push_back(std::move(relief));
+  }
+}
+
+float LayeredLandSea::coverageFrom(std::size_t first, double latDeg, double lonDeg) const {
+  // The first layer from `first` with data at the point (as the stack
+  // picks one: a mask's nearest cell, a relief's bilinear sample), its
+  // coverage rule; land where none has data.
+  const auto& all = stack_.layers();
+  for (std::size_t k = first; k < all.size(); ++k) {
+    const world::RasterLayer& l = all[k];
+    if (l.kind == world::LayerKind::Mask) {
+      if (!std::isnan(l.raster->sampleNearest(latDeg, lonDeg))) return perLayer_[k]->waterCoverage(latDeg, lonDeg);
+    } else if (l.kind == world::LayerKind::Elevation) {
+      if (!std::isnan(l.raster->sampleBilinear(latDeg, lonDeg))) return perLayer_[k]->reliefWaterCoverage(latDeg, lonDeg);
+    }
+  }
+  return 0.0f;
 }
 
 Surface LayeredLandSea::classify(double latDeg, double lonDeg) const {

@@ -13,6 +13,9 @@ namespace geocean::ocean {
 
 class LayeredLandSea final : public LandSea {
  public:
+  // Not copyable or movable: its reliefs' coverage below calls back into it.
+  LayeredLandSea(const LayeredLandSea&) = delete;
+  LayeredLandSea& operator=(const LayeredLandSea&) = delete;
   // Throws std::invalid_argument for an empty stack.
   explicit LayeredLandSea(std::vector<world::RasterLayer> layers);
 
@@ -34,6 +37,9 @@ class LayeredLandSea final : public LandSea {
   // layer's `test`.
   void byLayer(const double* lat, const double* lon, std::size_t n, Surface* out,
                void (LandSea::*test)(const double*, const double*, std::size_t, Surface*) const) const;
+  // The water coverage of the layers from `first` on at a point: what a
+  // relief's nodata cells take (LandSea::setCoverageBelow).
+  float coverageFrom(std::size_t first, double latDeg, double lonDeg) const;
   world::LayerStack stack_;
   // One single-raster LandSea per layer, in stack order: coverage and
   // near-water per layer with the existing fast paths.

@@ -42,13 +42,13 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
   using raster::Raster;
   world::WorldData d;
   const auto directly = directlyCopied;
-  std::vector<double> lat, lon;
   if (elevation && directly(elevation)) {
     d.elevation = world::layerOf(*elevation, 0);
   } else if (elevation) {
     d.elevation = world::globalGridFor(elevation.get());
-    world::cellCentres(d.elevation, lat, lon);
-    landSea->elevationBatch(lat.data(), lon.data(), lat.size(), d.elevation.values.data());
+    world::forCellChunks(d.elevation, [&](std::size_t first, const double* lat, const double* lon, std::size_t n) {
+      landSea->elevationBatch(lat, lon, n, d.elevation.values.data() + first);
+    });
   } else {
     d.elevation = world::globalGridFor(nullptr);
     // No relief: deep water everywhere, as the queries assume.
@@ -71,11 +71,12 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
     d.water = world::waterLayerOf(*mask, encoding);
   } else if (landSea) {
     d.water = world::globalGridFor((mask ? mask : elevation).get());
-    world::cellCentres(d.water, lat, lon);
-    std::vector<ocean::Surface> cls(lat.size());
-    landSea->classifyBatch(lat.data(), lon.data(), lat.size(), cls.data());
-    for (std::size_t i = 0; i < cls.size(); ++i)
-      d.water.values[i] = cls[i] == ocean::Surface::Land ? 0.0f : 1.0f;
+    std::vector<ocean::Surface> cls;
+    world::forCellChunks(d.water, [&](std::size_t first, const double* lat, const double* lon, std::size_t n) {
+      cls.resize(n);
+      landSea->classifyBatch(lat, lon, n, cls.data());
+      for (std::size_t i = 0; i < n; ++i) d.water.values[first + i] = cls[i] == ocean::Surface::Land ? 0.0f : 1.0f;
+    });
   } else {
     d.water = world::globalGridFor(nullptr);
     std::fill(d.water.values.begin(), d.water.values.end(), 1.0f);

@@ -3,6 +3,7 @@
 #include "globe/raster/GeoTiffWriter.h"
 #include "globe/raster/World.h"
 #include "plugin/landsea/LandSea.h"
+#include "plugin/landsea/LayeredLandSea.h"
 #include "tests/support/Subprocess.h"
 
 #include <gtest/gtest.h>
@@ -513,4 +514,61 @@ TEST(LandSea, ARegionalMaskAcrossTheAntimeridianAnswersOnBothSides) {
       EXPECT_TRUE(std::isnan(mask->sampleNearest(-16.25, -178.9)));
     }
   for (const auto& p : paths) std::filesystem::remove(p);
+}
+
+// A relief's cells without data (nodata) do not vote (issue 12): they take
+// the layers below at their centres, as the relief's pages are drawn (a NaN
+// texel takes the water grid below it, shaders/geo_uv.glsl), so near a
+// relief's nodata edge the query's class is the drawn one. A regional 0.01
+// degree relief: no data west of column 50, land (+20 m) north of row 50
+// and sea (-20 m) south of it east of there; below it a global mask of
+// ocean. Along the relief's coast within two cells of the nodata edge the
+// class must be the B-spline rule with the nodata cells as ocean (what is
+// drawn), where counting them as land (the query before) put ocean points
+// on land.
+TEST(LayeredLandSea, AReliefsNodataCellsTakeTheLayersBelowAsDrawn) {
+  constexpr int W = 100, H = 100;
+  constexpr float kNodata = -9999.0f;
+  std::vector<float> px(std::size_t(W) * H);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) px[std::size_t(y) * W + x] = x < 50 ? kNodata : y < 50 ? 20.0f : -20.0f;
+  const raster::GeoTransform t{10.0, 1.0, 0.01, -0.01, false};
+  const auto relief = raster::Raster::fromPixels(px, W, H, 1, t, double(kNodata));
+  const auto ocean = raster::Raster::fromPixels(std::vector<float>(36 * 18, 0.0f), 36, 18, 1,
+                                                {-180.0, 90.0, 10.0, -10.0, true});
+  const ocean::LayeredLandSea ls({{world::LayerKind::Elevation, relief, {}, 1}, {world::LayerKind::Mask, ocean, {}, 0}});
+  // The drawn rule, and the old one (nodata as land), at continuous pixel (x, y).
+  const auto rule = [&](double x, double y, bool nodataIsWater) {
+    return world::coverageClassAt(x, y, [&](int cx, int cy) {
+      const float v = px[std::size_t(std::clamp(cy, 0, H - 1)) * W + std::size_t(std::clamp(cx, 0, W - 1))];
+      return v == kNodata ? (nodataIsWater ? Surface::Ocean : Surface::Land) : v < 0.0f ? Surface::Ocean : Surface::Land;
+    }).surface;
+  };
+  std::vector<double> la, lo;
+  std::vector<Surface> want;
+  int differs = 0;
+  for (double x = 49.0; x <= 53.0; x += 0.05)
+    for (double y = 48.0; y <= 52.0; y += 0.02) {
+      la.push_back(t.latOf(y)), lo.push_back(t.lonOf(x));
+      // Where the relief's bilinear sample has no data the mask below answers: ocean.
+      const bool reliefAnswers = !std::isnan(relief->sampleBilinear(la.back(), lo.back()));
+      want.push_back(reliefAnswers ? rule(x, y, true) : Surface::Ocean);
+      differs += reliefAnswers && rule(x, y, false) != want.back();
+    }
+  std::vector<Surface> got(la.size());
+  ls.classifyBatch(la.data(), lo.data(), la.size(), got.data());
+  int wrong = 0, water = 0;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    water += got[i] != Surface::Land;
+    if (got[i] != want[i] && ++wrong <= 10)
+      ADD_FAILURE() << "at " << la[i] << ", " << lo[i] << ": " << ocean::toString(got[i]) << ", drawn "
+                    << ocean::toString(want[i]);
+  }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(differs, 50) << "the points should be where nodata as land gives another class";
+  EXPECT_GT(water, 1000);
+  EXPECT_LT(water, int(got.size()) - 1000);
+  // One point at a time (classify) answers the same.
+  for (std::size_t i = 0; i < got.size(); i += 97) EXPECT_EQ(ls.classify(la[i], lo[i]), got[i]) << i;
+  std::printf("%zu points, %d where nodata as land would differ from the picture\n", got.size(), differs);
 }

@@ -274,7 +274,9 @@ TEST(Raster, FewLookupsTilesEqualInMemoryAndImagesRoundTrip) {
       ASSERT_EQ(tiles->sampleNearest(lat, lon), mem->sampleNearest(lat, lon)) << lat << "," << lon;
       ASSERT_EQ(tiles->sampleBilinear(lat, lon), mem->sampleBilinear(lat, lon)) << lat << "," << lon;
     }
-  // PNG out and back through the OpenImageIO module; TIFF back through libtiff.
+  // PNG out (our zlib writer) and back through the OpenImageIO module
+  // (libpng: an independent decoder, which checks the chunks' CRCs); TIFF
+  // back through libtiff.
   std::vector<unsigned char> rgb(5 * 3 * 3);
   for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<unsigned char>(i * 5);
   writeImage8(d / "x.png", rgb.data(), 5, 3, 3);
@@ -283,6 +285,37 @@ TEST(Raster, FewLookupsTilesEqualInMemoryAndImagesRoundTrip) {
   EXPECT_EQ(back.height, 3);
   EXPECT_EQ(back.channels, 3);
   EXPECT_EQ(back.pixels, rgb);
+  // Every channel count, rows that pick each of the five filters (flat,
+  // ramps across and down, noise), a width that is not a multiple of 4.
+  for (int c = 1; c <= 4; ++c) {
+    const int w = 61, h = 23;
+    std::vector<unsigned char> px(std::size_t(w) * h * c);
+    std::uint32_t r = 12345;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int k = 0; k < c; ++k) {
+          r = r * 1664525u + 1013904223u;
+          const int band = y / 5;
+          const bool alpha = (c == 2 || c == 4) && k == c - 1;  // opaque: the zlib writer's case
+          px[(std::size_t(y) * w + x) * c + k] = static_cast<unsigned char>(
+              alpha ? 255 : band == 0 ? 200 : band == 1 ? x * 4 + k : band == 2 ? y * 11 + k * 3 : band == 3 ? (x + y) * 3 : r >> 24);
+        }
+    const std::string name = d / ("c" + std::to_string(c) + ".PNG");
+    writeImage8(name, px.data(), w, h, c);
+    const Image8 in = readImage8(name);
+    EXPECT_EQ(in.width, w);
+    EXPECT_EQ(in.height, h);
+    EXPECT_EQ(in.channels, c);
+    EXPECT_EQ(in.pixels, px) << c << " channels";
+  }
   EXPECT_THROW(readImage8(d / "none.png"), RasterError);
   EXPECT_THROW(writeImage8("/nonexistent-dir/x.png", rgb.data(), 5, 3, 3), RasterError);
+  EXPECT_THROW(writeImage8(d / "five.png", rgb.data(), 1, 3, 5), RasterError);
+  // A partial alpha goes through OpenImageIO as before (it stores colour
+  // divided by alpha, and multiplies it back when reading).
+  const unsigned char half[8] = {100, 50, 0, 128, 10, 20, 30, 255};
+  writeImage8(d / "alpha.png", half, 2, 1, 4);
+  const Image8 ha = readImage8(d / "alpha.png");
+  ASSERT_EQ(ha.pixels.size(), 8u);
+  for (int i = 0; i < 8; ++i) EXPECT_NEAR(ha.pixels[std::size_t(i)], half[i], 1) << i;
 }
