@@ -3,7 +3,7 @@
 #include "globe/raster/PixelSource.h"
 #include "globe/raster/Raster.h"
 
-#include <zlib.h>
+#include <png.h>
 
 #include <algorithm>
 #include <cctype>
@@ -15,6 +15,8 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace geocean::raster {
 
@@ -37,7 +39,7 @@ Image8 readImage8(const std::string& path) {
 
 namespace {
 
-// A PNG our writer makes as OpenImageIO would: no alpha, or an opaque one
+// A PNG libpng writes as OpenImageIO would: no alpha, or an opaque one
 // (OpenImageIO takes RGBA as premultiplied and divides the colour by a
 // partial alpha; such images still go through it).
 bool ownPng(const std::string& path, const unsigned char* pixels, int width, int height, int channels) {
@@ -51,78 +53,49 @@ bool ownPng(const std::string& path, const unsigned char* pixels, int width, int
   return true;
 }
 
-void put32(std::vector<unsigned char>& out, std::uint32_t v) {
-  for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<unsigned char>(v >> s));
+// libpng's part, with nothing but plain locals: its errors longjmp back
+// here (no C++ destructor may be skipped), and the caller throws.
+bool pngWrite(std::FILE* f, png_bytepp rows, int width, int height, int channels) {
+  static const int kColourType[5] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
+                                     PNG_COLOR_TYPE_RGB_ALPHA};
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  if (!png) return false;
+  png_infop info = png_create_info_struct(png);
+  if (!info) {
+    png_destroy_write_struct(&png, nullptr);
+    return false;
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return false;
+  }
+  png_init_io(png, f);
+  png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8, kColourType[channels], PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_ALL_FILTERS);  // per row the one libpng's heuristic picks
+  png_write_info(png, info);
+  png_write_image(png, rows);
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return true;
 }
 
-void chunk(std::vector<unsigned char>& out, const char* type, const unsigned char* data, std::size_t n) {
-  put32(out, std::uint32_t(n));
-  const std::size_t start = out.size();
-  out.insert(out.end(), type, type + 4);
-  out.insert(out.end(), data, data + n);
-  put32(out, std::uint32_t(crc32(0L, out.data() + start, uInt(out.size() - start))));
-}
-
-// The Paeth predictor (PNG spec, section 9.4).
-unsigned char paeth(int a, int b, int c) {
-  const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
-  return static_cast<unsigned char>(pa <= pb && pa <= pc ? a : pb <= pc ? b : c);
-}
-
-// 8-bit PNG (ISO/IEC 15948) with zlib alone (the renderer's frames): each row takes the filter
-// whose output has the least sum of absolute values (the spec's
-// recommended heuristic, as libpng's), deflate at zlib's default level.
-// OpenImageIO is not loaded for it: its Debian build maps ~260 libraries,
-// ~110 MB of a flight's resident memory (docs/PERFORMANCE.md).
+// 8-bit PNG through libpng (the renderer's frames). OpenImageIO is not
+// loaded for it: its Debian build maps ~260 libraries, ~110 MB of a
+// flight's resident memory (docs/PERFORMANCE.md).
 void writePng(const std::string& path, const unsigned char* pixels, int width, int height, int channels) {
-  static const unsigned char kColourType[5] = {0, 0, 4, 2, 6};  // grey, grey + alpha, RGB, RGBA
   if (width <= 0 || height <= 0 || channels < 1 || channels > 4)
     throw RasterError(path + ": cannot write image (PNG needs 1-4 channels and a positive size, got " +
                       std::to_string(width) + " x " + std::to_string(height) + " x " + std::to_string(channels) + ")");
-  const std::size_t row = std::size_t(width) * std::size_t(channels);
-  std::vector<unsigned char> filtered((row + 1) * std::size_t(height));
-  std::vector<unsigned char> trial[5];
-  for (auto& t : trial) t.resize(row);
-  const std::vector<unsigned char> zero(row, 0);
-  for (int y = 0; y < height; ++y) {
-    const unsigned char* cur = pixels + std::size_t(y) * row;
-    const unsigned char* up = y > 0 ? cur - row : zero.data();
-    for (std::size_t i = 0; i < row; ++i) {
-      const int a = i >= std::size_t(channels) ? cur[i - channels] : 0, b = up[i];
-      const int c = i >= std::size_t(channels) ? up[i - channels] : 0;
-      trial[0][i] = cur[i];
-      trial[1][i] = static_cast<unsigned char>(cur[i] - a);
-      trial[2][i] = static_cast<unsigned char>(cur[i] - b);
-      trial[3][i] = static_cast<unsigned char>(cur[i] - ((a + b) >> 1));
-      trial[4][i] = static_cast<unsigned char>(cur[i] - paeth(a, b, c));
-    }
-    int best = 0;
-    std::uint64_t bestSum = ~std::uint64_t(0);
-    for (int f = 0; f < 5; ++f) {
-      std::uint64_t sum = 0;
-      for (const unsigned char v : trial[f]) sum += std::uint64_t(std::abs(int(static_cast<signed char>(v))));
-      if (sum < bestSum) bestSum = sum, best = f;
-    }
-    unsigned char* out = filtered.data() + std::size_t(y) * (row + 1);
-    out[0] = static_cast<unsigned char>(best);
-    std::memcpy(out + 1, trial[best].data(), row);
-  }
-  uLongf zn = compressBound(uLong(filtered.size()));
-  std::vector<unsigned char> z(zn);
-  if (compress2(z.data(), &zn, filtered.data(), uLong(filtered.size()), Z_DEFAULT_COMPRESSION) != Z_OK)
-    throw RasterError(path + ": cannot write image (deflate failed)");
-  std::vector<unsigned char> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  std::vector<unsigned char> ihdr;
-  put32(ihdr, std::uint32_t(width));
-  put32(ihdr, std::uint32_t(height));
-  ihdr.insert(ihdr.end(), {8, kColourType[channels], 0, 0, 0});  // depth, colour type, deflate, adaptive filters, no interlace
-  chunk(png, "IHDR", ihdr.data(), ihdr.size());
-  chunk(png, "IDAT", z.data(), zn);
-  chunk(png, "IEND", nullptr, 0);
+  std::vector<png_bytep> rows(static_cast<std::size_t>(height));
+  for (int y = 0; y < height; ++y)
+    rows[std::size_t(y)] = const_cast<png_bytep>(pixels + std::size_t(y) * std::size_t(width) * std::size_t(channels));
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "wb"), &std::fclose);
   if (!f) throw RasterError(path + ": cannot write image (" + std::strerror(errno) + ")");
-  if (std::fwrite(png.data(), 1, png.size(), f.get()) != png.size() || std::fflush(f.get()) != 0)
-    throw RasterError(path + ": cannot write image (" + std::strerror(errno) + ")");
+  errno = 0;
+  if (!pngWrite(f.get(), rows.data(), width, height, channels) || std::fflush(f.get()) != 0)
+    throw RasterError(path + ": cannot write image (libpng or the disk failed" +
+                      (errno ? std::string(": ") + std::strerror(errno) : std::string()) + ")");
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // Plain 8-bit images (PNG output of the renderer, golden images, imagery
 // import) without georeferencing. TIFF is read with libtiff and PNG written
-// with zlib; other formats, and reading PNG, go through OpenImageIO, loaded
+// with libpng; other formats, and reading PNG, go through OpenImageIO, loaded
 // on demand.
 #pragma once
 
