@@ -102,6 +102,10 @@ class Raster {
   const GeoTransform& transform() const { return transform_; }
   std::optional<double> nodata() const { return nodata_; }
   bool inMemory() const { return !pixels_.empty(); }
+  // Global, north up and pole to pole: its rows are the whole globe's.
+  bool wholeGlobeNorthUp() const {
+    return transform_.global && transform_.latStepDeg < 0 && std::abs(transform_.latStepDeg * height_ + 180.0) < 1e-6;
+  }
   // In-memory pixels as float, row-major, channels interleaved (empty if cached).
   const std::vector<float>& pixels() const { return pixels_; }
 

@@ -24,11 +24,6 @@ void warnBeyondStreamLimit(const RasterLayer* beyond, const char* kind, double g
                beyond->raster->path().c_str(), kMaxStreamedLayers, kind, gridStepDeg * 60.0, kind);
 }
 
-bool globalInMemory(const raster::Raster& r) {
-  const auto& t = r.transform();
-  return r.inMemory() && t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * r.height() + 180.0) < 1e-6;
-}
-
 }  // namespace
 
 const char* toString(LayerKind k) {
@@ -275,8 +270,7 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
   d.imageryLayers = std::move(imagery);
   d.imagery = layerOf(*raster::Raster::open(raster::defaultWorld().imagery));
   const auto e = stack.drawingElevation();
-  const double elevationStep =
-      e && globalInMemory(*e) ? e->transform().lonStepDeg : globalGridFor(e.get()).lonStepDeg;
+  const double elevationStep = drawingGridStepDeg(e.get());
   const RasterLayer* beyondElevation = nullptr;
   const auto elevationChain = streamedElevationLayers(stack, elevationStep, &beyondElevation);
   warnBeyondStreamLimit(beyondElevation, "elevation", elevationStep);
@@ -335,8 +329,7 @@ WorldData loadLayeredWorld(const std::vector<LayerSource>& layers, bool defaultW
   // (plugin/render/OceanWorld): one level's tiles from the disk cache instead
   // of classifying every grid cell through the stack.
   const auto m = stack.drawingMask();
-  const double gridStep =
-      m && globalInMemory(*m) ? m->transform().lonStepDeg : globalGridFor((m ? m : stack.drawingElevation()).get()).lonStepDeg;
+  const double gridStep = m ? drawingGridStepDeg(m.get()) : globalGridFor(stack.drawingElevation().get()).lonStepDeg;
   const RasterLayer* beyond = nullptr;
   const auto chain = streamedWaterLayers(stack, gridStep, &beyond);
   warnBeyondStreamLimit(beyond, "water", gridStep);

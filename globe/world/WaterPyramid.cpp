@@ -55,7 +55,7 @@ namespace {
 // outside it and where it has no data (isStreamedRegional).
 bool streams(const RasterLayer& l, double gridLonStepDeg) {
   const raster::GeoTransform& t = l.raster->transform();
-  const bool global = t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * l.raster->height() + 180.0) < 1e-6;
+  const bool global = l.raster->wholeGlobeNorthUp();
   const bool regional = !t.global && t.latStepDeg < 0 && t.lonStepDeg > 0;
   return (global || regional) && t.lonStepDeg < 0.999 * gridLonStepDeg;
 }
@@ -220,8 +220,7 @@ class LevelRows {
 WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg) {
   const int level = levelFor(water, stepDeg);
   const raster::GeoTransform lt = water.levelTransform(level);
-  const raster::GeoTransform& t = water.source().transform();
-  const bool fullGlobe = t.global && t.latStepDeg < 0 && std::abs(t.latStepDeg * water.source().height() + 180.0) < 1e-6;
+  const bool fullGlobe = water.source().wholeGlobeNorthUp();
   const int W = int(std::lround(360.0 / stepDeg)), H = int(std::lround(180.0 / stepDeg));
   // The level is the grid (its texel is the step) or not global: the level itself.
   if (!fullGlobe || std::abs(lt.lonStepDeg) * (1.0 + 1e-9) >= 360.0 / W || W < 1 || H < 1) {

@@ -63,4 +63,10 @@ WorldLayer globalGridFor(const raster::Raster* r) {
   return l;
 }
 
+bool globalInMemory(const raster::Raster& r) { return r.inMemory() && r.wholeGlobeNorthUp(); }
+
+double drawingGridStepDeg(const raster::Raster* r) {
+  return r && globalInMemory(*r) ? r->transform().lonStepDeg : globalGridFor(r).lonStepDeg;
+}
+
 }  // namespace geocean::world

@@ -95,6 +95,11 @@ void nodataToSeaLevel(WorldLayer& elevation);
 // A global lon/lat grid for drawing a raster: the raster's step, but at most
 // 5' (the default mask's) and 1 degree without a raster; values zeroed.
 WorldLayer globalGridFor(const raster::Raster* r);
+// A raster drawn on its own cells (layerOf): in memory and the whole globe,
+// north up; any other is resampled onto globalGridFor's grid.
+bool globalInMemory(const raster::Raster& r);
+// The step of the grid a raster is drawn on: its own, or globalGridFor's.
+double drawingGridStepDeg(const raster::Raster* r);
 // The lat/lon of a layer's cell centres, row-major, in chunks of whole rows
 // of about 1 M cells: f(first cell, latDeg, lonDeg, n) per chunk. The batch
 // calls copy their points, so the whole grid's coordinates (and copies:

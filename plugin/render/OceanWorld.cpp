@@ -25,10 +25,7 @@ double waterGridStep(const ocean::LayeredLandSea* layered, const std::shared_ptr
 }
 
 // A global raster in memory, north up, pole to pole: copied pixel for pixel.
-bool directlyCopied(const std::shared_ptr<const raster::Raster>& r) {
-  return r && r->inMemory() && r->transform().global && r->transform().latStepDeg < 0 &&
-         std::abs(r->transform().latStepDeg * r->height() + 180.0) < 1e-6;
-}
+bool directlyCopied(const std::shared_ptr<const raster::Raster>& r) { return r && world::globalInMemory(*r); }
 }  // namespace
 
 // The ocean's global equirectangular layers from its rasters: a global raster in memory is copied pixel for pixel (the
@@ -41,8 +38,7 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
   using world::WorldLayer;
   using raster::Raster;
   world::WorldData d;
-  const auto directly = directlyCopied;
-  if (elevation && directly(elevation)) {
+  if (directlyCopied(elevation)) {
     d.elevation = world::layerOf(*elevation, 0);
   } else if (elevation) {
     d.elevation = world::globalGridFor(elevation.get());
@@ -67,7 +63,7 @@ std::shared_ptr<const world::WorldGrids> oceanWorld(const std::shared_ptr<const 
       d.water = world::waterLayerBelow(layered->stack(), waterTiles->source());
   } else if (waterTiles && !world::isStreamedRegional(waterTiles->source())) {
     d.water = world::waterLayerOf(*waterTiles, world::globalGridFor((mask ? mask : elevation).get()).lonStepDeg);
-  } else if (mask && directly(mask)) {
+  } else if (directlyCopied(mask)) {
     d.water = world::waterLayerOf(*mask, encoding);
   } else if (landSea) {
     d.water = world::globalGridFor((mask ? mask : elevation).get());
@@ -110,9 +106,7 @@ std::vector<std::shared_ptr<const raster::TilePyramid>> oceanElevationTileLayers
   const auto* layered = dynamic_cast<const ocean::LayeredLandSea*>(landSea);
   if (!layered || !elevation) return out;
   // oceanWorld's elevation grid step (and loadLayeredWorld's for the host).
-  const double step = directlyCopied(elevation) ? elevation->transform().lonStepDeg
-                                                : world::globalGridFor(elevation.get()).lonStepDeg;
-  for (const world::RasterLayer* l : world::streamedElevationLayers(layered->stack(), step))
+  for (const world::RasterLayer* l : world::streamedElevationLayers(layered->stack(), world::drawingGridStepDeg(elevation.get())))
     out.push_back(raster::TilePyramid::open(l->raster));
   return out;
 }
