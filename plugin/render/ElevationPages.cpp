@@ -85,11 +85,7 @@ std::size_t ElevationPages::request(PagedPool& layer, const grid::GridFrame& f, 
 }
 
 void ElevationPages::complete(const grid::GridFrame& f, double cellRadians) {
-  // Bounded: a view needing more tiles than the pool holds reads what fits.
-  for (int round = 0; round < 64 && request(f, cellRadians) > 0; ++round) {
-    for (PagedPool& l : layers_) l.pool->waitIdle();
-    endFrame();
-  }
+  PagedPool::completeAll(layers_, [&] { return request(f, cellRadians); });
 }
 
 void ElevationPages::bind(const gl::GlProgram& prog, float refLatDeg, float refLonDeg) {

@@ -162,11 +162,7 @@ std::size_t WaterPages::request(Layer& layer, const grid::GridFrame& f, double c
 }
 
 void WaterPages::complete(const grid::GridFrame& f, double cellPx) {
-  // Bounded: a view needing more tiles than the pool holds draws what fits.
-  for (int round = 0; round < 64 && request(f, cellPx) > 0; ++round) {
-    for (Layer& l : layers_) l.pool->waitIdle();
-    endFrame();
-  }
+  PagedPool::completeAll(layers_, [&] { return request(f, cellPx); });
 }
 
 void WaterPages::bind(const gl::GlProgram& prog) {

@@ -58,6 +58,16 @@ struct PagedPool {
   // A frame's tile, once per frame (`seen`): asks for it when it is not
   // resident; returns 1 then, else 0.
   std::size_t ask(const raster::TileId& id, std::unordered_set<std::uint64_t>& seen);
+  // Single pictures: while request() (a frame's asking over all layers)
+  // finds tiles missing, waits for the loads and puts them up. Bounded: a
+  // view needing more tiles than a pool holds uses what fits.
+  template <class Request>
+  static void completeAll(std::vector<PagedPool>& layers, Request&& request) {
+    for (int round = 0; round < 64 && request() > 0; ++round) {
+      for (PagedPool& l : layers) l.pool->waitIdle();
+      for (PagedPool& l : layers) l.pool->endFrame();
+    }
+  }
 };
 
 class WaterPages {
