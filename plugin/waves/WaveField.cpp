@@ -278,7 +278,10 @@ std::optional<WaveField> WaveField::create(Model model, const SeaState& sea, std
   // (fuzz_capi_sea_state finding 4: NaN FFT plane cells, UB).
   if (!(sea.anchorLonDeg >= -360.0 && sea.anchorLonDeg <= 360.0))
     return bad("anchorLonDeg", sea.anchorLonDeg, "expected -360 .. 360");
-  if (!(sea.referenceDepthM > 0.0)) return bad("referenceDepthM", sea.referenceDepthM, "expected > 0 m");
+  // 1 cm and up: at 1e-300 m the shallow-water wave number ran to 1e150 and
+  // every phase to NaN (fuzz_capi_sea_state finding 9).
+  if (!(sea.referenceDepthM >= kMinReferenceDepthM))
+    return bad("referenceDepthM", sea.referenceDepthM, "expected >= 0.01 m (1e30: deep water)");
   if (sea.gerstnerComponents < 1 || sea.gerstnerComponents > kMaxComponents)
     return bad("gerstnerComponents", sea.gerstnerComponents, "expected 1 .. 64");
   if (sea.noiseOctaves < 1 || sea.noiseOctaves > kMaxOctaves)

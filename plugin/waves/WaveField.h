@@ -59,6 +59,7 @@ const char* toString(Model m);
 std::optional<Model> parseModel(std::string_view name);  // the CLI names above
 
 inline constexpr double kDeepWaterM = 1e30;  // depth meaning "deep water"
+inline constexpr double kMinReferenceDepthM = 0.01;  // SeaState::referenceDepthM below this is refused
 
 // One sea-state description for all models.
 struct SeaState {

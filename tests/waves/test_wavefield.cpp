@@ -236,6 +236,16 @@ TEST(SeaState, BadInputNamesTheField) {
   s.anchorLonDeg = -1.7976931348623157e308;
   EXPECT_FALSE(WaveField::create(Model::Fft, s, err));
   EXPECT_NE(err.find("anchorLonDeg"), std::string::npos) << err;
+  // Finding 9: a Gerstner sea at a reference depth of 1e-300 m was accepted
+  // and answered NaN heights (its shallow-water wave numbers ran to 1e150).
+  s = {};
+  s.referenceDepthM = 1e-300;
+  EXPECT_FALSE(WaveField::create(Model::Gerstner, s, err));
+  EXPECT_NE(err.find("referenceDepthM = 1e-300"), std::string::npos) << err;
+  s.referenceDepthM = kMinReferenceDepthM;  // the smallest accepted depth gives a finite sea
+  const auto shallow = WaveField::create(Model::Gerstner, s, err);
+  ASSERT_TRUE(shallow) << err;
+  EXPECT_TRUE(std::isfinite(shallow->surfaceAt(36.0, -5.6, 100.0).heightM));
   EXPECT_FALSE(SeaState::fromBeaufort(13));
   EXPECT_NEAR(SeaState::fromBeaufort(5)->windSpeedMps, 9.35 * 1.026, 1e-9);
   EXPECT_FALSE(parseModel("tessendorf"));

@@ -128,7 +128,7 @@ typedef struct geocean_sea_state {
   int32_t noise_octaves;       /* 1 .. 12 */
   double anchor_lat_deg;       /* where wind_from_deg holds exactly (Gerstner waves follow great circles) */
   double anchor_lon_deg;
-  double reference_depth_m;    /* depth setting Gerstner wave numbers; 1e30 = deep water */
+  double reference_depth_m;    /* depth setting Gerstner wave numbers, >= 0.01 m; 1e30 = deep water */
 } geocean_sea_state;
 
 typedef struct geocean_ocean geocean_ocean; /* opaque */
