@@ -165,8 +165,8 @@ ImageInfo tiffInfo(const std::string& path) {
   info.width = int(std::min<uint32_t>(l.w, 0x7fffffff));
   info.height = int(std::min<uint32_t>(l.h, 0x7fffffff));
   info.channels = l.spp;
-  info.tileW = int(l.tw);
-  info.tileH = int(l.th);
+  info.tileW = int(std::min<uint32_t>(l.tw, 0x7fffffff));
+  info.tileH = int(std::min<uint32_t>(l.th, 0x7fffffff));
   info.kind = kindOf(l).value_or(SampleKind::F32);
   info.format = "tiff";
   return info;

@@ -61,6 +61,15 @@ std::shared_ptr<const Raster> Raster::open(const std::string& path, const OpenOp
   if (samples > options.maxPixels)
     throw RasterError(path + ": dimensions " + dims + " exceed the limit of " + std::to_string(options.maxPixels) +
                       " samples");
+  // A tile is read whole on every path: its declared size counts against
+  // the same limit, and never beyond 8192 x 8192 samples (a header may
+  // claim 65536 x 65536 tiles over a 32 x 32 image).
+  const std::int64_t tileSamples = std::int64_t(std::max(info.tileW, 0)) * std::max(info.tileH, 0) *
+                                   std::max(info.channels, 1);
+  if (tileSamples > std::min(options.maxPixels, kMaxTileSamples))
+    throw RasterError(path + ": tile size " + std::to_string(info.tileW) + " x " + std::to_string(info.tileH) +
+                      " x " + std::to_string(info.channels) + " exceeds the limit of " +
+                      std::to_string(std::min(options.maxPixels, kMaxTileSamples)) + " samples");
   if (info.depth > 1) throw RasterError(path + ": volume images (depth " + std::to_string(info.depth) + ") are not rasters");
 
   std::shared_ptr<Raster> r(new Raster);

@@ -71,6 +71,9 @@ enum class Georef {
   GlobalEquirect,     // the caller says: whole Earth, north up, column 0 at -180
 };
 
+// The largest tile (width x height x channels) a file may declare.
+inline constexpr std::int64_t kMaxTileSamples = std::int64_t(8192) * 8192;
+
 struct OpenOptions {
   Georef georef = Georef::FromFile;
   // Rasters whose decoded pixels need more than this are read through the

@@ -10,8 +10,10 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <initializer_list>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -213,6 +215,36 @@ TEST(Raster, RejectsWhatItCannotReadWithAClearMessage) {
   }
 }
 
+// Sets the first IFD's entries for `tags` (SHORT or LONG) to the LONG `v`.
+void patchTiffTags(const fs::path& path, std::initializer_list<int> tags, uint32_t v) {
+  std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+  unsigned char hdr[8];
+  f.read(reinterpret_cast<char*>(hdr), 8);
+  ASSERT_EQ(hdr[0], 'I');  // little-endian, as libtiff writes on x86
+  const uint32_t ifd = hdr[4] | hdr[5] << 8 | hdr[6] << 16 | uint32_t(hdr[7]) << 24;
+  f.seekg(ifd);
+  unsigned char cnt[2];
+  f.read(reinterpret_cast<char*>(cnt), 2);
+  const int n = cnt[0] | cnt[1] << 8;
+  int patched = 0;
+  for (int i = 0; i < n; ++i) {
+    unsigned char e[12];
+    const std::streamoff at = ifd + 2 + 12 * i;
+    f.seekg(at);
+    f.read(reinterpret_cast<char*>(e), 12);
+    const int tag = e[0] | e[1] << 8;
+    if (std::find(tags.begin(), tags.end(), tag) != tags.end()) {
+      e[2] = 4;  // type LONG
+      e[3] = 0;
+      std::memcpy(e + 8, &v, 4);
+      f.seekp(at);
+      f.write(reinterpret_cast<char*>(e), 12);
+      ++patched;
+    }
+  }
+  ASSERT_EQ(patched, int(tags.size()));
+}
+
 TEST(Raster, RejectsAbsurdDimensionsBeforeAllocating) {
   TempDir d;
   // A header that claims 200000 x 200000 pixels (40 G samples) with one tiny strip.
@@ -222,35 +254,37 @@ TEST(Raster, RejectsAbsurdDimensionsBeforeAllocating) {
   o.tileSize = 0;
   o.compression = Compression::None;
   writeGeoTiff(d / "small.tif", row.data(), 16, 1, 1, SampleType::U8, o);
-  // Patch ImageWidth/ImageLength (SHORT or LONG entries) in the IFD.
-  std::fstream f(d / "small.tif", std::ios::in | std::ios::out | std::ios::binary);
-  unsigned char hdr[8];
-  f.read(reinterpret_cast<char*>(hdr), 8);
-  ASSERT_EQ(hdr[0], 'I');  // little-endian, as libtiff writes on x86
-  const uint32_t ifd = hdr[4] | hdr[5] << 8 | hdr[6] << 16 | uint32_t(hdr[7]) << 24;
-  f.seekg(ifd);
-  unsigned char cnt[2];
-  f.read(reinterpret_cast<char*>(cnt), 2);
-  const int n = cnt[0] | cnt[1] << 8;
-  for (int i = 0; i < n; ++i) {
-    unsigned char e[12];
-    const std::streamoff at = ifd + 2 + 12 * i;
-    f.seekg(at);
-    f.read(reinterpret_cast<char*>(e), 12);
-    const int tag = e[0] | e[1] << 8;
-    if (tag == 256 || tag == 257) {
-      e[2] = 4;  // type LONG
-      e[3] = 0;
-      const uint32_t v = 200000;
-      std::memcpy(e + 8, &v, 4);
-      f.seekp(at);
-      f.write(reinterpret_cast<char*>(e), 12);
-    }
-  }
-  f.close();
+  patchTiffTags(d / "small.tif", {256, 257}, 200000);  // ImageWidth, ImageLength
   const std::string err = openError(d / "small.tif");
   EXPECT_NE(err.find("exceed"), std::string::npos) << err;
   EXPECT_NE(err.find("200000"), std::string::npos) << err;
+}
+
+TEST(Raster, RejectsAbsurdTilesBeforeAllocating) {
+  // A 32 x 32 image whose header claims tiles of 65536 x 65536 (4 G
+  // samples: every read path allocated a tile of that size; CI's
+  // fuzz_geotiff, stop 25). Refused naming the tile size, on every path.
+  TempDir d;
+  std::vector<unsigned char> px(32 * 32, 7);
+  GeoTiffWriteOptions o;
+  o.transform = global(32, 32);
+  o.tileSize = 16;
+  o.compression = Compression::None;
+  writeGeoTiff(d / "tiles.tif", px.data(), 32, 32, 1, SampleType::U8, o);
+  patchTiffTags(d / "tiles.tif", {322, 323}, 65536);  // TileWidth, TileLength
+  for (int path = 0; path < 3; ++path) {
+    OpenOptions opt;
+    opt.fewLookups = path == 1;
+    if (path == 2) opt.inMemoryLimitBytes = 0;
+    std::string err;
+    try {
+      Raster::open(d / "tiles.tif", opt);
+    } catch (const RasterError& e) {
+      err = e.what();
+    }
+    EXPECT_NE(err.find("tiles.tif"), std::string::npos) << path << ": " << err;
+    EXPECT_NE(err.find("tile size 65536 x 65536"), std::string::npos) << path << ": " << err;
+  }
 }
 
 TEST(Raster, FewLookupsTilesEqualInMemoryAndImagesRoundTrip) {
