@@ -3,6 +3,7 @@
 #include <cmath>
 #include <immintrin.h>
 #include <iterator>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -72,8 +73,10 @@ void LandSea::markCoast(bool global) {
 namespace {
 // The 4 x 4 cells whose B-spline covers a point of raster r, read in one
 // batch (the reader sorts them by tile). Cells beyond a regional raster's
-// edge repeat the edge (a texture's clamp to edge); longitude wraps for a
-// global one; latitude clamps.
+// edge repeat the edge (a texture's clamp to edge), or with
+// `outsideIsNodata` have no data (NaN) at their own centres (as a regional
+// layer's pages are drawn: past the edge the layers below answer); longitude
+// wraps for a global one; latitude clamps.
 struct Cells16 {
   double px, py;  // continuous pixel coordinates of the point
   world::BSplineTaps tx, ty;
@@ -81,7 +84,7 @@ struct Cells16 {
   double la[16], lo[16];  // the cells' centres
   float at(int cx, int cy) const { return v[(cy - ty.first) * 4 + (cx - tx.first)]; }
 };
-Cells16 gatherCells(const raster::Raster& r, double latDeg, double lonDeg) {
+Cells16 gatherCells(const raster::Raster& r, double latDeg, double lonDeg, bool outsideIsNodata = false) {
   const auto& t = r.transform();
   const int w = r.width(), h = r.height();
   double px = t.pixelX(lonDeg);
@@ -90,14 +93,23 @@ Cells16 gatherCells(const raster::Raster& r, double latDeg, double lonDeg) {
   Cells16 c{px, py, world::BSplineTaps(px), world::BSplineTaps(py), {}, {}, {}};
   double* la = c.la;
   double* lo = c.lo;
+  bool outside[16] = {};
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) {
-      int cx = c.tx.first + i;
+      const int k = j * 4 + i;
+      int cx = c.tx.first + i, cy = c.ty.first + j;
+      if (!t.global && outsideIsNodata && (cx < 0 || cx >= w || cy < 0 || cy >= h)) {
+        outside[k] = true;
+        la[k] = t.latOf(cy + 0.5), lo[k] = t.lonOf(cx + 0.5);
+        continue;
+      }
       cx = t.global ? ((cx % w) + w) % w : std::clamp(cx, 0, w - 1);
-      const int cy = std::clamp(c.ty.first + j, 0, h - 1);
-      la[j * 4 + i] = t.latOf(cy + 0.5), lo[j * 4 + i] = t.lonOf(cx + 0.5);
+      cy = std::clamp(cy, 0, h - 1);
+      la[k] = t.latOf(cy + 0.5), lo[k] = t.lonOf(cx + 0.5);
     }
   r.sampleNearestBatch(la, lo, 16, c.v);
+  for (int k = 0; k < 16; ++k)
+    if (outside[k]) c.v[k] = std::numeric_limits<float>::quiet_NaN();
   return c;
 }
 }  // namespace
@@ -151,7 +163,8 @@ world::CoverageClass LandSea::reliefCoverage(double latDeg, double lonDeg, float
     c.coverage = c.surface == Surface::Land ? 0.0f : 1.0f;
     return c;
   }
-  const Cells16 c = gatherCells(*elevation_, latDeg, lonDeg);
+  // With layers below, cells past a regional relief's edge are theirs too.
+  const Cells16 c = gatherCells(*elevation_, latDeg, lonDeg, /*outsideIsNodata=*/bool(below_));
   const bool nodata = below_ && std::any_of(std::begin(c.v), std::end(c.v), [](float x) { return std::isnan(x); });
   if (!nodata)
     return world::coverageClassAt(c.px, c.py, [&](int cx, int cy) {

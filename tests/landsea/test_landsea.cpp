@@ -572,3 +572,53 @@ TEST(LayeredLandSea, AReliefsNodataCellsTakeTheLayersBelowAsDrawn) {
   for (std::size_t i = 0; i < got.size(); i += 97) EXPECT_EQ(ls.classify(la[i], lo[i]), got[i]) << i;
   std::printf("%zu points, %d where nodata as land would differ from the picture\n", got.size(), differs);
 }
+
+TEST(LayeredLandSea, CellsPastARegionalReliefsEdgeTakeTheLayersBelowAsDrawn) {
+  // A regional relief (land north of row 50, sea south) over an ocean mask.
+  // The picture takes texels past a regional layer's edge from the layers
+  // below at their centres (geo_uv.glsl pageTexel, GEOCEAN_WATER_PAGES_
+  // REGIONAL); the query clamped them to the edge cells, so within the
+  // B-spline's 2 cells of the edge the coast moved. Points along the
+  // western edge, where the relief's bilinear sample still answers.
+  constexpr int W = 100, H = 100;
+  std::vector<float> px(std::size_t(W) * H);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) px[std::size_t(y) * W + x] = y < 50 ? 20.0f : -20.0f;
+  const raster::GeoTransform t{10.0, 1.0, 0.01, -0.01, false};
+  const auto relief = raster::Raster::fromPixels(px, W, H, 1, t);
+  const auto ocean = raster::Raster::fromPixels(std::vector<float>(36 * 18, 0.0f), 36, 18, 1,
+                                                {-180.0, 90.0, 10.0, -10.0, true});
+  const ocean::LayeredLandSea ls({{world::LayerKind::Elevation, relief, {}, 1}, {world::LayerKind::Mask, ocean, {}, 0}});
+  // The drawn rule (past the edge: the ocean below) and the old one (clamped), at continuous pixel (x, y).
+  const auto rule = [&](double x, double y, bool outsideIsBelow) {
+    return world::coverageClassAt(x, y, [&](int cx, int cy) {
+      if (outsideIsBelow && (cx < 0 || cx >= W || cy < 0 || cy >= H)) return Surface::Ocean;
+      return px[std::size_t(std::clamp(cy, 0, H - 1)) * W + std::size_t(std::clamp(cx, 0, W - 1))] < 0.0f
+                 ? Surface::Ocean
+                 : Surface::Land;
+    }).surface;
+  };
+  std::vector<double> la, lo;
+  std::vector<Surface> want;
+  int differs = 0, answered = 0;
+  for (double x = -1.0; x <= 3.0; x += 0.02)
+    for (double y = 47.0; y <= 51.0; y += 0.02) {
+      la.push_back(t.latOf(y)), lo.push_back(t.lonOf(x));
+      const bool reliefAnswers = !std::isnan(relief->sampleBilinear(la.back(), lo.back()));
+      answered += reliefAnswers;
+      want.push_back(reliefAnswers ? rule(x, y, true) : Surface::Ocean);
+      differs += reliefAnswers && rule(x, y, false) != want.back();
+    }
+  std::vector<Surface> got(la.size());
+  ls.classifyBatch(la.data(), lo.data(), la.size(), got.data());
+  int wrong = 0;
+  for (std::size_t i = 0; i < got.size(); ++i)
+    if (got[i] != want[i] && ++wrong <= 10)
+      ADD_FAILURE() << "at " << la[i] << ", " << lo[i] << ": " << ocean::toString(got[i]) << ", drawn "
+                    << ocean::toString(want[i]);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(answered, int(got.size()) / 2);
+  EXPECT_GT(differs, 50) << "the points should be where the clamped edge gives another class";
+  for (std::size_t i = 0; i < got.size(); i += 89) EXPECT_EQ(ls.classify(la[i], lo[i]), got[i]) << i;
+  std::printf("%zu points, %d where the clamped edge would differ from the picture\n", got.size(), differs);
+}
