@@ -309,10 +309,10 @@ TEST(Ocean, DeferredShadingDrawsTheForwardPicture) {
 // Reduced-rate shading (OceanOptions::reducedRate, off by default) against
 // the full-rate deferred picture: the even pixels (shaded exactly by the
 // coarse pass) are the same bytes; the others differ by at most the bound
-// measured over the default flight at the default tolerance (16/255; the
-// flight's frames: at most 0.30 % of the pixels off by more than 8/255, a
-// channel's mean at most 0.50, at 32 m; docs/PERFORMANCE.md, ninth pass),
-// the mean with a fifth more for these smaller views. With no colour test
+// measured over the default flight's deferred frames (11.9 km to 2 m,
+// 1280 x 720) at the default tolerance, 16/255: at most 0.63 % of the pixels
+// off by more than 8/255 (6 m), a channel's mean difference at most 0.65
+// (32 m; docs/PERFORMANCE.md, ninth pass). With no colour test
 // (tolerance infinite: every opaque pixel interpolated) the foam flecks and
 // glitter smear and the bound fails, so the test sees the resolve's check.
 TEST(Ocean, ReducedRateShadingKeepsTheEvenPixelsAndItsBound) {
@@ -359,8 +359,8 @@ TEST(Ocean, ReducedRateShadingKeepsTheEvenPixelsAndItsBound) {
     int evenMax = 0;
     const Stats st = stats(a, b, &evenMax);
     EXPECT_EQ(evenMax, 0) << "at " << v.altM << " m";
-    EXPECT_LE(st.over8, 0.003) << "at " << v.altM << " m: max " << st.max << " mean " << st.mean;
-    EXPECT_LE(st.mean, 0.6) << "at " << v.altM << " m: max " << st.max << " over 8/255 " << st.over8;
+    EXPECT_LE(st.over8, 0.0065) << "at " << v.altM << " m: max " << st.max << " mean " << st.mean;
+    EXPECT_LE(st.mean, 0.65) << "at " << v.altM << " m: max " << st.max << " over 8/255 " << st.over8;
     std::printf("reduced rate at %g m: share %.3f, max %d, mean %.3f, over 8/255 %.4f\n", v.altM,
                 withReduced->lastFullRateShare(), st.max, st.mean, st.over8);
     useOcean(withLoose);
@@ -369,7 +369,7 @@ TEST(Ocean, ReducedRateShadingKeepsTheEvenPixelsAndItsBound) {
                 sl.max, sl.mean, sl.over8);
     looseWorst = std::max(looseWorst, sl.over8);
   }
-  EXPECT_GT(looseWorst, 0.003) << "without the colour test the bound must fail";
+  EXPECT_GT(looseWorst, 0.0065) << "without the colour test the bound must fail";
 }
 
 // The noise sea's programs without the per-pixel octave loop, used where
