@@ -1122,7 +1122,10 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   // (docs/PERFORMANCE.md).
   const bool octavesPerPixel = !octaveWavelengthM_.empty() &&
                                g.heightM * cull.cellRadians / options_.cellPx < 0.5 * double(octaveWavelengthM_[0]);
-  const bool deferred = !bare && octavesPerPixel && pixel.shade.id() != 0 &&
+  // Reduced rate (OceanOptions::reducedRateDeferBelowM) also pays without
+  // octaves per pixel where the sea fills much of the view.
+  const bool reducedAbove = options_.reducedRate && g.heightM < options_.reducedRateDeferBelowM;
+  const bool deferred = !bare && (octavesPerPixel || reducedAbove) && pixel.shade.id() != 0 &&
                         groups.sharp + groups.smooth + groups.open > 0 && gBufferFor(hostFbo, viewport);
   lastDeferred_ = deferred;
   if (deferred) {
@@ -1331,7 +1334,7 @@ const OceanRenderer::PixelPrograms& OceanRenderer::pixelPrograms(bool wakes, boo
     v.sharp = make(sharpDefines_);
     v.smooth = make(smoothDefines_);
     v.open = make(openDefines_);
-    if (options_.deferred && options_.model == waves::Model::Noise && !noPixelOctaves) {  // deferred: octaves per pixel
+    if (options_.deferred && options_.model == waves::Model::Noise && (!noPixelOctaves || options_.reducedRate)) {  // deferred: octaves per pixel, or reduced rate
       const auto gMake = [&](std::vector<std::string> d) {
         d.push_back("GEOCEAN_GBUFFER 1");
         return gl::GlProgram::graphics("ocean.vert", "ocean.frag", d);

@@ -119,8 +119,8 @@ int main(int argc, char** argv) {
     else if (a == "--shadow-model") shadowModel = next() == "paper" ? render::ShadowModel::Paper : render::ShadowModel::Physical;
     else if (a == "--sun-model") sunModel = next() == "phong" ? render::SunModel::Phong : render::SunModel::Microfacet;
     else if (a == "--no-refraction") refraction = false;
-    else if (a == "--full-rate") fullRate = true;
-    else if (a == "--rate-tolerance") rateTol = std::atof(next().c_str()) / 255.0;  // of 255; implies --reduced-rate  // the deferred pass without reduced-rate shading
+    else if (a == "--reduced-rate") reducedRate = true;  // OceanOptions::reducedRate
+    else if (a == "--rate-tolerance") rateTol = std::atof(next().c_str()) / 255.0;  // of 255; implies --reduced-rate
     else if (a == "--png") pngPrefix = next();     // each timed frame written as PREFIX<frame>.png
     else {
       std::fprintf(stderr, "bench_render: unknown option '%s'\n", a.c_str());
