@@ -1219,8 +1219,8 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
       glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
       glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(hostFbo));
       glEnable(GL_BLEND);
-      // The resolve: the pixels between them interpolated, or their 4 x 4
-      // blocks marked for full rate (image unit 7, the host's put back).
+      // The resolve: the pixels between them interpolated, or their 4 x 2
+      // groups marked for full rate (image unit 7, the host's put back).
       glBindTextureUnit(18, gCoarse_);
       const std::uint8_t noBlock = 0;
       glClearTexImage(gFull_, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &noBlock);
@@ -1241,7 +1241,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
       glPixelStorei(GL_PACK_ALIGNMENT, 1);
       glGetTextureImage(gFull_, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, GLsizei(gFullMask_.size()), gFullMask_.data());
       glPixelStorei(GL_PACK_ALIGNMENT, packAlignment);
-      // The marked blocks as runs along each row, for the full-rate pass.
+      // The marked groups as runs along each row, for the full-rate pass.
       std::size_t marked = 0;
       std::vector<float>& full = gFullRects_;
       full.clear();
@@ -1334,7 +1334,8 @@ const OceanRenderer::PixelPrograms& OceanRenderer::pixelPrograms(bool wakes, boo
     v.sharp = make(sharpDefines_);
     v.smooth = make(smoothDefines_);
     v.open = make(openDefines_);
-    if (options_.deferred && options_.model == waves::Model::Noise && (!noPixelOctaves || options_.reducedRate)) {  // deferred: octaves per pixel, or reduced rate
+    // Deferred: octaves per pixel, or reduced rate (OceanOptions::reducedRateDeferBelowM).
+    if (options_.deferred && options_.model == waves::Model::Noise && (!noPixelOctaves || options_.reducedRate)) {
       const auto gMake = [&](std::vector<std::string> d) {
         d.push_back("GEOCEAN_GBUFFER 1");
         return gl::GlProgram::graphics("ocean.vert", "ocean.frag", d);

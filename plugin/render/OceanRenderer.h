@@ -347,7 +347,7 @@ class OceanRenderer {
   bool lastDrawDeferred() const { return lastDeferred_; }
   // The last draw's per-pixel programs had no octave loop (OceanOptions::noPixelOctaveMargin).
   bool lastDrawWithoutPixelOctaves() const { return lastNoPixelOctaves_; }
-  // The last deferred draw's share of its tiles' 4 x 4 blocks shaded again
+  // The last deferred draw's share of its tiles' 4 x 2 groups shaded again
   // at full rate (OceanOptions::reducedRate; 1 when full rate throughout).
   double lastFullRateShare() const { return lastFullRateShare_; }
 
@@ -394,7 +394,7 @@ class OceanRenderer {
   int gWidth_ = 0, gHeight_ = 0;
   // Reduced rate: the coarse pass's target (a texel per 2 x 2 pixels, one
   // more column and row: the resolve reads past the last even pixel) and
-  // the resolve's marks of the 4 x 4 blocks to shade at full rate.
+  // the resolve's marks of the 4 x 2 groups to shade at full rate.
   static constexpr int kFullRateW = 4, kFullRateH = 2;
   GLuint gCoarseFbo_ = 0, gCoarse_ = 0, gFull_ = 0;
   int gCoarseW_ = 0, gCoarseH_ = 0;
