@@ -150,7 +150,13 @@ uniform float uEyeAltM;
 
 void main() {
 #ifdef GEOCEAN_DEFERRED
+#ifdef GEOCEAN_COARSE
+  // Reduced rate (OceanRenderer, ocean_resolve.frag): a half-size target,
+  // each texel the exact shading of the framebuffer pixel 2 x its own.
+  ivec2 px = ivec2(gl_FragCoord.xy) * 2;
+#else
   ivec2 px = ivec2(gl_FragCoord.xy);
+#endif
   vec4 g0 = texelFetch(uG0, px, 0);
   float alpha = g0.w;
   if (alpha <= 0.0) discard;  // no sea drawn at this pixel (cleared to 0)

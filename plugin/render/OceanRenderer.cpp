@@ -445,10 +445,11 @@ OceanRenderer::~OceanRenderer() {
 
 void OceanRenderer::abandonGl() {
   glAbandoned_ = true;
-  for (gl::GlProgram* p : {&farShaded_, &bare_}) p->abandon();
+  for (gl::GlProgram* p : {&farShaded_, &bare_, &resolve_}) p->abandon();
   if (spray_) spray_->abandon();
   for (PixelPrograms& v : pixel_)
-    for (gl::GlProgram* p : {&v.sharp, &v.smooth, &v.open, &v.gSharp, &v.gSmooth, &v.gOpen, &v.shade}) p->abandon();
+    for (gl::GlProgram* p : {&v.sharp, &v.smooth, &v.open, &v.gSharp, &v.gSmooth, &v.gOpen, &v.shade, &v.coarse})
+      p->abandon();
   if (pages_) pages_->abandonGl();
   if (elevPages_) elevPages_->abandonGl();
 }
@@ -1121,7 +1122,10 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   // (docs/PERFORMANCE.md).
   const bool octavesPerPixel = !octaveWavelengthM_.empty() &&
                                g.heightM * cull.cellRadians / options_.cellPx < 0.5 * double(octaveWavelengthM_[0]);
-  const bool deferred = !bare && octavesPerPixel && pixel.shade.id() != 0 &&
+  // Reduced rate (OceanOptions::reducedRateDeferBelowM) also pays without
+  // octaves per pixel where the sea fills much of the view.
+  const bool reducedAbove = options_.reducedRate && g.heightM < options_.reducedRateDeferBelowM;
+  const bool deferred = !bare && (octavesPerPixel || reducedAbove) && pixel.shade.id() != 0 &&
                         groups.sharp + groups.smooth + groups.open > 0 && gBufferFor(hostFbo, viewport);
   lastDeferred_ = deferred;
   if (deferred) {
@@ -1174,12 +1178,12 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
       }
     glNamedFramebufferTexture(gFbo_, GL_DEPTH_ATTACHMENT, 0, 0);  // the host's depth is not kept (it may go)
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(hostFbo));
-    glEnable(GL_BLEND);
-    // Units 15-17: the host's textures there are put back after.
-    GLint hostTex[kGTargets] = {};
+    // Units 15-18: the host's textures there are put back after.
+    constexpr int kUnits = kGTargets + 1;
+    GLint hostTex[kUnits] = {};
     GLint active = 0;
     glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
-    for (int i = 0; i < kGTargets; ++i) {
+    for (int i = 0; i < kUnits; ++i) {
       glActiveTexture(GLenum(GL_TEXTURE15 + i));
       glGetIntegerv(GL_TEXTURE_BINDING_2D, &hostTex[i]);
     }
@@ -1187,23 +1191,94 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     for (int i = 0; i < kGTargets; ++i) glBindTextureUnit(GLuint(15 + i), gTex_[i]);
     const GLboolean depthTest = glIsEnabled(GL_DEPTH_TEST);
     glDisable(GL_DEPTH_TEST);  // the depth is in already
-    pixel.shade.use();
-    setUniforms(pixel.shade);
-    glUniform2i(pixel.shade.uniform("uGOrigin"), viewport[0], viewport[1]);
-    glUniform2f(pixel.shade.uniform("uGSize"), float(w), float(h));
-    const std::size_t rectBytes = gRects_.size() * sizeof(float);
-    if (rectBytes > gVboBytes_) {
-      gVboBytes_ = rectBytes;
-      glNamedBufferData(gVbo_, GLsizeiptr(gVboBytes_), nullptr, GL_STREAM_DRAW);
-    }
-    if (rectBytes > 0) {
-      glNamedBufferSubData(gVbo_, 0, GLsizeiptr(rectBytes), gRects_.data());
-      glBindVertexArray(gVao_);
-      glDrawArrays(GL_TRIANGLES, 0, GLsizei(gRects_.size() / 2));
-      glBindVertexArray(vao_);
+    const auto drawRects = [&](const std::vector<float>& rects) {
+      const std::size_t rectBytes = rects.size() * sizeof(float);
+      if (rectBytes > gVboBytes_) {
+        gVboBytes_ = rectBytes;
+        glNamedBufferData(gVbo_, GLsizeiptr(gVboBytes_), nullptr, GL_STREAM_DRAW);
+      }
+      if (rectBytes > 0) {
+        glNamedBufferSubData(gVbo_, 0, GLsizeiptr(rectBytes), rects.data());
+        glBindVertexArray(gVao_);
+        glDrawArrays(GL_TRIANGLES, 0, GLsizei(rects.size() / 2));
+        glBindVertexArray(vao_);
+      }
+    };
+    const bool reduced = options_.reducedRate && pixel.coarse.id() != 0 && resolve_.id() != 0 && gCoarseFbo_ != 0;
+    if (reduced) {
+      // The even pixels shaded exactly into the half-size target (no blend).
+      const float none[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+      glClearNamedFramebufferfv(gCoarseFbo_, GL_COLOR, 0, none);  // alpha 0: not shaded, never interpolated
+      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gCoarseFbo_);
+      glViewport(0, 0, gCoarseW_, gCoarseH_);
+      pixel.coarse.use();
+      setUniforms(pixel.coarse);
+      glUniform2i(pixel.coarse.uniform("uGOrigin"), 0, 0);
+      glUniform2f(pixel.coarse.uniform("uGSize"), float(2 * gCoarseW_), float(2 * gCoarseH_));
+      drawRects(gRects_);
+      glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(hostFbo));
+      glEnable(GL_BLEND);
+      // The resolve: the pixels between them interpolated, or their 4 x 2
+      // groups marked for full rate (image unit 7, the host's put back).
+      glBindTextureUnit(18, gCoarse_);
+      const std::uint8_t noBlock = 0;
+      glClearTexImage(gFull_, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &noBlock);
+      glBindImageTexture(7, gFull_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8UI);
+      resolve_.use();
+      setUniforms(resolve_);
+      glUniform2i(resolve_.uniform("uGOrigin"), viewport[0], viewport[1]);
+      glUniform2f(resolve_.uniform("uGSize"), float(w), float(h));
+      glUniform1f(resolve_.uniform("uRateTolerance"), float(options_.reducedRateTolerance));
+      glUniform2i(resolve_.uniform("uFullRateBlock"), kFullRateW, kFullRateH);
+      drawRects(gRects_);
+      glBindImageTexture(7, GLuint(hostImage[0]), hostImage[1], GLboolean(hostImage[2]), hostImage[3],
+                         GLenum(hostAccess), hostImage[4] ? GLenum(hostImage[4]) : GL_R8UI);
+      glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+      const int bw = (gWidth_ + kFullRateW - 1) / kFullRateW, bh = (gHeight_ + kFullRateH - 1) / kFullRateH;
+      gFullMask_.resize(std::size_t(bw) * std::size_t(bh));
+      glGetIntegerv(GL_PACK_ALIGNMENT, &packAlignment);
+      glPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glGetTextureImage(gFull_, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, GLsizei(gFullMask_.size()), gFullMask_.data());
+      glPixelStorei(GL_PACK_ALIGNMENT, packAlignment);
+      // The marked groups as runs along each row, for the full-rate pass.
+      std::size_t marked = 0;
+      std::vector<float>& full = gFullRects_;
+      full.clear();
+      for (int by = 0; by < bh; ++by)
+        for (int bx = 0; bx < bw;) {
+          if (!gFullMask_[std::size_t(by) * std::size_t(bw) + std::size_t(bx)]) {
+            ++bx;
+            continue;
+          }
+          const int x0 = bx;
+          while (bx < bw && gFullMask_[std::size_t(by) * std::size_t(bw) + std::size_t(bx)]) ++bx;
+          marked += std::size_t(bx - x0);
+          const float ax = float(std::max(x0 * kFullRateW, viewport[0])), bxp = float(std::min(bx * kFullRateW, right));
+          const float ay = float(std::max(by * kFullRateH, viewport[1])),
+                      byp = float(std::min((by + 1) * kFullRateH, top));
+          for (float v : {ax, ay, bxp, ay, bxp, byp, ax, ay, bxp, byp, ax, byp}) full.push_back(v);
+        }
+      std::size_t seaTiles = 0;
+      for (std::uint8_t t : gTileMask_) seaTiles += t ? 1 : 0;
+      const double blocksPerTile = double(kGTilePx / kFullRateW) * double(kGTilePx / kFullRateH);
+      lastFullRateShare_ = seaTiles > 0 ? double(marked) / (double(seaTiles) * blocksPerTile) : 0.0;
+      pixel.shade.use();
+      setUniforms(pixel.shade);
+      glUniform2i(pixel.shade.uniform("uGOrigin"), viewport[0], viewport[1]);
+      glUniform2f(pixel.shade.uniform("uGSize"), float(w), float(h));
+      drawRects(full);
+    } else {
+      glEnable(GL_BLEND);
+      pixel.shade.use();
+      setUniforms(pixel.shade);
+      glUniform2i(pixel.shade.uniform("uGOrigin"), viewport[0], viewport[1]);
+      glUniform2f(pixel.shade.uniform("uGSize"), float(w), float(h));
+      drawRects(gRects_);
+      lastFullRateShare_ = 1.0;
     }
     if (depthTest) glEnable(GL_DEPTH_TEST);
-    for (int i = 0; i < kGTargets; ++i) {
+    for (int i = 0; i < kUnits; ++i) {
       glActiveTexture(GLenum(GL_TEXTURE15 + i));
       glBindTexture(GL_TEXTURE_2D, GLuint(hostTex[i]));
     }
@@ -1259,7 +1334,8 @@ const OceanRenderer::PixelPrograms& OceanRenderer::pixelPrograms(bool wakes, boo
     v.sharp = make(sharpDefines_);
     v.smooth = make(smoothDefines_);
     v.open = make(openDefines_);
-    if (options_.deferred && options_.model == waves::Model::Noise && !noPixelOctaves) {  // deferred: octaves per pixel
+    // Deferred: octaves per pixel, or reduced rate (OceanOptions::reducedRateDeferBelowM).
+    if (options_.deferred && options_.model == waves::Model::Noise && (!noPixelOctaves || options_.reducedRate)) {
       const auto gMake = [&](std::vector<std::string> d) {
         d.push_back("GEOCEAN_GBUFFER 1");
         return gl::GlProgram::graphics("ocean.vert", "ocean.frag", d);
@@ -1271,6 +1347,11 @@ const OceanRenderer::PixelPrograms& OceanRenderer::pixelPrograms(bool wakes, boo
       d.push_back("GEOCEAN_DEFERRED 1");
       optics(d);
       v.shade = gl::GlProgram::graphics("ocean_deferred.vert", "ocean.frag", d);
+      if (options_.reducedRate) {
+        d.push_back("GEOCEAN_COARSE 1");
+        v.coarse = gl::GlProgram::graphics("ocean_deferred.vert", "ocean.frag", d);
+        if (resolve_.id() == 0) resolve_ = gl::GlProgram::graphics("ocean_deferred.vert", "ocean_resolve.frag", {});
+      }
     }
   }
   return v;
@@ -1280,6 +1361,10 @@ void OceanRenderer::releaseGBuffer() {
   if (gFbo_) glDeleteFramebuffers(1, &gFbo_);
   glDeleteTextures(kGTargets, gTex_);
   glDeleteTextures(1, &gTiles_);
+  if (gCoarseFbo_) glDeleteFramebuffers(1, &gCoarseFbo_);
+  glDeleteTextures(1, &gCoarse_);
+  glDeleteTextures(1, &gFull_);
+  gCoarseFbo_ = gCoarse_ = gFull_ = 0;
 }
 
 bool OceanRenderer::gBufferFor(GLint hostFbo, const GLint* vp) {
@@ -1340,6 +1425,16 @@ bool OceanRenderer::gBufferFor(GLint hostFbo, const GLint* vp) {
     bufs[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
   }
   glNamedFramebufferDrawBuffers(gFbo_, kGTargets, bufs);
+  if (options_.reducedRate) {
+    gCoarseW_ = (width + 1) / 2 + 1, gCoarseH_ = (height + 1) / 2 + 1;
+    glCreateTextures(GL_TEXTURE_2D, 1, &gCoarse_);
+    glTextureStorage2D(gCoarse_, 1, GL_RGBA32F, gCoarseW_, gCoarseH_);  // float: the even pixels exact
+    glCreateFramebuffers(1, &gCoarseFbo_);
+    glNamedFramebufferTexture(gCoarseFbo_, GL_COLOR_ATTACHMENT0, gCoarse_, 0);
+    glCreateTextures(GL_TEXTURE_2D, 1, &gFull_);
+    glTextureStorage2D(gFull_, 1, GL_R8UI, (width + kFullRateW - 1) / kFullRateW,
+                       (height + kFullRateH - 1) / kFullRateH);
+  }
   gWidth_ = width, gHeight_ = height;
   if (attachHostDepth()) return true;
   glDeleteFramebuffers(1, &gFbo_);

@@ -106,6 +106,22 @@ struct OceanOptions {
   // draw states the bound; 1.05 its margin): the same picture bit for bit.
   // Tests set another margin (infinity: always the loop).
   double noPixelOctaveMargin = 1.05;
+  // Reduced-rate shading of the deferred pass (ocean_resolve.frag): the
+  // even pixels (2i, 2j) shaded exactly, at a quarter of the pixels; a pixel
+  // between them their mean where the sea is opaque at all and their
+  // colours agree within reducedRateTolerance per channel (display units);
+  // the 4 x 2 pixel groups (llvmpipe's 8 lanes) where a pixel's do not are
+  // shaded again at full rate. Off by default: this sea has detail down to
+  // 2 pixels (its per-pixel octaves, foam flecks, glitter), which a half-rate
+  // lattice cannot hold, so the picture moves beyond the goldens' bounds:
+  // docs/PERFORMANCE.md, ninth pass, gives its cost and quality by tolerance.
+  bool reducedRate = false;
+  double reducedRateTolerance = 16.0 / 255.0;
+  // With reduced rate the deferred path is also taken where no octave is
+  // drawn per pixel, for an eye below this: the default flight's ocean CPU
+  // ms against forward (least of 2 draws), 42 km -30, 141 km -14, 444 km
+  // 0 to +5, 3,169 km +9 (the G-buffer's fixed cost).
+  double reducedRateDeferBelowM = 2.0e5;
 };
 
 // Reorders a grid frame's compacted cell indices (6 per cell) into three
@@ -331,6 +347,9 @@ class OceanRenderer {
   bool lastDrawDeferred() const { return lastDeferred_; }
   // The last draw's per-pixel programs had no octave loop (OceanOptions::noPixelOctaveMargin).
   bool lastDrawWithoutPixelOctaves() const { return lastNoPixelOctaves_; }
+  // The last deferred draw's share of its tiles' 4 x 2 groups shaded again
+  // at full rate (OceanOptions::reducedRate; 1 when full rate throughout).
+  double lastFullRateShare() const { return lastFullRateShare_; }
 
  private:
   std::shared_ptr<const world::WorldGrids> world_;
@@ -354,8 +373,9 @@ class OceanRenderer {
   // The noise sea's deferred programs beside them: the grid's G-buffer
   // writers (g*) and the shading over the tiles with sea (shade).
   struct PixelPrograms {
-    gl::GlProgram sharp, smooth, open, gSharp, gSmooth, gOpen, shade;
+    gl::GlProgram sharp, smooth, open, gSharp, gSmooth, gOpen, shade, coarse;
   };
+  gl::GlProgram resolve_;  // ocean_resolve.frag (OceanOptions::reducedRate)
   PixelPrograms pixel_[32];
   std::vector<std::string> sharpDefines_, smoothDefines_, openDefines_;
   const PixelPrograms& pixelPrograms(bool wakes, bool reflection, bool refraction, bool sunPhong,
@@ -372,6 +392,15 @@ class OceanRenderer {
   static constexpr int kGTilePx = 8;    // ocean.frag's uGTiles
   GLuint gFbo_ = 0, gTex_[kGTargets] = {}, gTiles_ = 0, gVao_ = 0, gVbo_ = 0;
   int gWidth_ = 0, gHeight_ = 0;
+  // Reduced rate: the coarse pass's target (a texel per 2 x 2 pixels, one
+  // more column and row: the resolve reads past the last even pixel) and
+  // the resolve's marks of the 4 x 2 groups to shade at full rate.
+  static constexpr int kFullRateW = 4, kFullRateH = 2;
+  GLuint gCoarseFbo_ = 0, gCoarse_ = 0, gFull_ = 0;
+  int gCoarseW_ = 0, gCoarseH_ = 0;
+  double lastFullRateShare_ = 1.0;
+  std::vector<std::uint8_t> gFullMask_;
+  std::vector<float> gFullRects_;
   bool lastDeferred_ = false;
   bool lastNoPixelOctaves_ = false;
   std::size_t gVboBytes_ = 0;

@@ -19,6 +19,7 @@
 //                (issue 13 item 6; `shadow` is the sun's depth pass alone,
 //                inside `ocean`, over the frames that drew it)
 // Set LP_NUM_THREADS to choose llvmpipe's thread count.
+#include "globe/gl/Framebuffer.h"
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
 #include "globe/render/Session.h"
@@ -75,7 +76,9 @@ int main(int argc, char** argv) {
   bool detail = true;
   double cellPx = 0.0;
   int reflectionSize = 0;
-  bool reflections = true, refraction = true, shadows = true;
+  bool reflections = true, refraction = true, shadows = true, reducedRate = false;
+  std::string pngPrefix;
+  double rateTol = -1.0;
   render::ShadowModel shadowModel = render::ShadowModel::Physical;
   render::SunModel sunModel = render::SunModel::Microfacet;
   render::TerrainOptions terrain;
@@ -116,6 +119,9 @@ int main(int argc, char** argv) {
     else if (a == "--shadow-model") shadowModel = next() == "paper" ? render::ShadowModel::Paper : render::ShadowModel::Physical;
     else if (a == "--sun-model") sunModel = next() == "phong" ? render::SunModel::Phong : render::SunModel::Microfacet;
     else if (a == "--no-refraction") refraction = false;
+    else if (a == "--reduced-rate") reducedRate = true;  // OceanOptions::reducedRate
+    else if (a == "--rate-tolerance") rateTol = std::atof(next().c_str()) / 255.0;  // of 255; implies --reduced-rate
+    else if (a == "--png") pngPrefix = next();     // each timed frame written as PREFIX<frame>.png
     else {
       std::fprintf(stderr, "bench_render: unknown option '%s'\n", a.c_str());
       return 2;
@@ -141,6 +147,8 @@ int main(int argc, char** argv) {
   if (ocean) {
     ocean_render::OceanOptions oo;
     oo.detailNormals = detail;
+    oo.reducedRate = reducedRate || rateTol >= 0.0;
+    if (rateTol >= 0.0) oo.reducedRateTolerance = rateTol;
     if (cellPx > 0.0) oo.cellPx = cellPx;
     const std::string err =
         render::test::addDirectOcean(*s.renderer, s.world->grids(), "noise", 10.0, 270.0, &oceanLayer, nullptr, oo);
@@ -174,6 +182,9 @@ int main(int argc, char** argv) {
     r.altM = pose.altM;
     for (int k = 1; k < repeat; ++k) s.render(pose, fs);
     r.t = s.render(pose, fs);
+    if (!pngPrefix.empty()) gl::writePng(pngPrefix + std::to_string(f) + ".png", s.image());
+    if (oceanLayer && oceanLayer->lastDrawDeferred())
+      std::fprintf(stderr, "frame %d alt %.0f m: full-rate share %.3f\n", f, pose.altM, oceanLayer->lastFullRateShare());
     for (int k = 1; k < minOf; ++k) {
       const render::FrameTimes t = s.render(pose, fs);
       for (auto m : {&render::FrameTimes::skyCpuMs, &render::FrameTimes::terrainCpuMs, &render::FrameTimes::layersCpuMs,

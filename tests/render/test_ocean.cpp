@@ -306,6 +306,72 @@ TEST(Ocean, DeferredShadingDrawsTheForwardPicture) {
   }
 }
 
+// Reduced-rate shading (OceanOptions::reducedRate, off by default) against
+// the full-rate deferred picture: the even pixels (shaded exactly by the
+// coarse pass) are the same bytes; the others differ by at most the bound
+// measured over the default flight's deferred frames (11.9 km to 2 m,
+// 1280 x 720) at the default tolerance, 16/255: at most 0.63 % of the pixels
+// off by more than 8/255 (6 m), a channel's mean difference at most 0.65
+// (32 m; docs/PERFORMANCE.md, ninth pass). With no colour test
+// (tolerance infinite: every opaque pixel interpolated) the foam flecks and
+// glitter smear and the bound fails, so the test sees the resolve's check.
+TEST(Ocean, ReducedRateShadingKeepsTheEvenPixelsAndItsBound) {
+  OceanGuard guard;
+  ocean_render::OceanOptions reduced, full, loose;
+  reduced.reducedRate = loose.reducedRate = true;
+  loose.reducedRateTolerance = std::numeric_limits<double>::infinity();
+  const auto withReduced = sessionOceanWith(reduced), withFull = sessionOceanWith(full),
+             withLoose = sessionOceanWith(loose);
+  const ViewPose views[] = {seaPose(30.0, -40.0, 1000.0, 0.0, -60.0, 240), seaPose(30.0, -40.0, 30.0, 135.0, -20.0, 240),
+                            seaPose(36.0, -5.9, 300.0, 90.0, -10.0, 240)};  // Strait of Gibraltar, the coast in view
+  struct Stats {
+    int max = 0;
+    double mean = 0.0, over8 = 0.0;
+  };
+  const auto stats = [](const Image& a, const Image& b, int* evenMax) {
+    Stats st;
+    std::size_t over = 0, sum = 0;
+    for (int row = 0; row < a.height; ++row)
+      for (int x = 0; x < a.width; ++x) {
+        const std::size_t i = (std::size_t(row) * a.width + x) * 4;
+        int m = 0;
+        for (int c = 0; c < 3; ++c) {
+          const int d = std::abs(int(a.rgba[i + c]) - int(b.rgba[i + c]));
+          m = std::max(m, d), sum += std::size_t(d);
+        }
+        const int y = a.height - 1 - row;  // the framebuffer's row (the image is top row first)
+        if (evenMax && x % 2 == 0 && y % 2 == 0) *evenMax = std::max(*evenMax, m);
+        st.max = std::max(st.max, m), over += m > 8 ? 1 : 0;
+      }
+    const double n = double(a.width) * double(a.height);
+    st.mean = double(sum) / (3.0 * n), st.over8 = double(over) / n;
+    return st;
+  };
+  double looseWorst = 0.0;
+  for (const ViewPose& v : views) {
+    useOcean(withFull);
+    const Image b = renderAt(v, 20.0, 135.0, 30.0);
+    ASSERT_TRUE(withFull->lastDrawDeferred()) << "at " << v.altM << " m";
+    useOcean(withReduced);
+    const Image a = renderAt(v, 20.0, 135.0, 30.0);
+    ASSERT_TRUE(withReduced->lastDrawDeferred());
+    EXPECT_LT(withReduced->lastFullRateShare(), 0.8) << "at " << v.altM << " m";  // it does reduce
+    int evenMax = 0;
+    const Stats st = stats(a, b, &evenMax);
+    EXPECT_EQ(evenMax, 0) << "at " << v.altM << " m";
+    EXPECT_LE(st.over8, 0.0065) << "at " << v.altM << " m: max " << st.max << " mean " << st.mean;
+    EXPECT_LE(st.mean, 0.65) << "at " << v.altM << " m: max " << st.max << " over 8/255 " << st.over8;
+    std::printf("reduced rate at %g m: share %.3f, max %d, mean %.3f, over 8/255 %.4f\n", v.altM,
+                withReduced->lastFullRateShare(), st.max, st.mean, st.over8);
+    useOcean(withLoose);
+    const Stats sl = stats(renderAt(v, 20.0, 135.0, 30.0), b, nullptr);
+    std::printf("  no colour test: share %.3f, max %d, mean %.3f, over 8/255 %.4f\n", withLoose->lastFullRateShare(),
+                sl.max, sl.mean, sl.over8);
+    looseWorst = std::max(looseWorst, sl.over8);
+  }
+  EXPECT_GT(looseWorst, 0.0065) << "without the colour test the bound must fail";
+}
+
 // The noise sea's programs without the per-pixel octave loop, used where
 // OceanRenderer's bound says no pixel is under half the longest octave,
 // draw the full programs' picture bit for bit: straight down from 4 heights
