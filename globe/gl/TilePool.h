@@ -87,6 +87,7 @@ class TilePool {
   std::vector<std::pair<raster::TileId, int>> residentTiles() const;
   std::uint64_t residencyVersion() const { return residency_; }
   const raster::TilePyramid& pyramid() const { return *pyramid_; }
+  const std::shared_ptr<const raster::TilePyramid>& sharedPyramid() const { return pyramid_; }
   // The texture array's layers: the options' slots, or the pyramid's tile
   // count where that is smaller. gpuBytes() is bounded by the options'
   // slots whatever the raster's size.

@@ -52,6 +52,8 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
     texelDeg = std::min(texelDeg, std::abs(world_.elevationTiles(e)->pyramid().source().transform().lonStepDeg));
   while (maxLevel_ > 0 && texelDeg > 0.0 && 90.0 / double(1 << (maxLevel_ - 1)) / (kGrid - 1) <= texelDeg / 16.0)
     --maxLevel_;
+  if (world_.waterTileLayers() == 1 && world_.waterTiles()->pyramid().source().transform().global)
+    fineWater_ = std::make_unique<world::TileWaterIndex>(world_.waterTiles()->sharedPyramid());
   // Streamed water (WorldTextures::waterTiles): the same programs reading the tile pool.
   const auto with = [&](std::vector<std::string> d) {
     d.push_back(imageryDefine());
@@ -154,6 +156,19 @@ TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
     }
   }
   b.allWater = !regionalLand && wi.allWaterAround(lat0, lat1, lon0, lon1, gridMargin);
+  if (!b.allWater && fineWater_) {
+    // A global streamed mask is drawn from its tiles alone: water at its
+    // own cells over the reach of the level the tile reads is enough (the
+    // grid's texel sees land within 28 km of every coast).
+    const raster::TilePyramid& pyr = world_.waterTiles()->pyramid();
+    const raster::GeoTransform& t = pyr.source().transform();
+    const double cellDeg = std::max(std::abs(t.lonStepDeg), std::abs(t.latStepDeg));
+    const double across = std::max((lon1 - lon0) / std::abs(t.lonStepDeg), (lat1 - lat0) / std::abs(t.latStepDeg));
+    const double reachDeg = 2.0 * double(1 << blockLevel(pyr, across)) * cellDeg;
+    b.allWater = fineWater_->cover(fineWater_->texelX(lon0 - reachDeg), fineWater_->texelX(lon1 + reachDeg),
+                                   fineWater_->texelY(lat0 - reachDeg), fineWater_->texelY(lat1 + reachDeg)) ==
+                 world::TileWaterIndex::Cover::Water;
+  }
   // Heights as the vertex shader makes them (land >= 0, water at -seaDrop),
   // from 9 x 9 samples; between samples the bilinear relief can rise further,
   // by at most the range seen plus a margin, and never above Everest.

@@ -12,12 +12,14 @@
 #include "globe/camera/Camera.h"
 #include "globe/render/Layer.h"
 #include "globe/render/WorldTextures.h"
+#include "globe/world/TileWaterIndex.h"
 
 #include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <string>
 #include <list>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -162,6 +164,8 @@ class TerrainRenderer {
   std::vector<std::string> depthDefines_;  // depth_'s (made on first use)
   const Layer* waterLayer_ = nullptr;  // this draw: leave out tiles it covers opaquely
   int maxLevel_ = 16;           // options_.maxLevel capped by the data's resolution
+  // One global streamed mask's own cells (bounds: water throughout at them).
+  mutable std::unique_ptr<world::TileWaterIndex> fineWater_;
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
   GLsizei indexCount_ = 0;
   std::unordered_map<Key, Slot, KeyHash> cache_;

@@ -94,6 +94,9 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   if (options_.waterTiles) {
     pages_ = std::make_unique<WaterPages>(options_.waterTiles, gl::TilePoolOptions{}, options_.waterTilesBelow);
     pagedTexels_ = world_->water().lonStepDeg / options_.waterTiles->source().transform().lonStepDeg;
+    // One global layer (its texels alone draw the coast): asked per cell.
+    if (pagesIndexed_ && pages_->layers() == 1 && options_.waterTiles->source().transform().global)
+      fineWater_ = std::make_unique<world::TileWaterIndex>(options_.waterTiles);
     auto paged = shaded;
     for (const std::string& d : pages_->defines()) paged.push_back(d);
     sharpDefines_ = paged;
@@ -613,7 +616,8 @@ std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenC
 }
 
 CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi, double cellPx, const ScreenCull& view,
-                          bool cull, bool group, std::vector<std::uint32_t>& idx, double pagedTexels) {
+                          bool cull, bool group, std::vector<std::uint32_t>& idx, double pagedTexels,
+                          world::TileWaterIndex* fine) {
   // Cells whose every vertex stays beyond one side of the screen cannot
   // reach it (the clamp rectangle adds such cells at low altitude: 2 m above
   // the sea it spans up to 4 screens a side).
@@ -643,7 +647,7 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
   std::size_t sharp = 0;
   for (std::size_t c = 0; c + 6 <= idx.size(); c += 6) {
     bool limb = wi.width() == 0;
-    double x0 = 0, x1 = 0, y0 = 0, y1 = 0, lon0 = 0;
+    double x0 = 0, x1 = 0, y0 = 0, y1 = 0, lon0 = 0, fx0 = 0, fx1 = 0, fy0 = 0, fy1 = 0;
     for (std::size_t k = 0; k < 6 && !limb; ++k) {
       const grid::GridVertex& v = f.vertices[idx[c + k]];
       if (v.flags & grid::kVertexHorizon) limb = true;
@@ -653,6 +657,11 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
       const double x = wi.texelX(lon), y = wi.texelY(v.latDeg);
       if (k == 0) x0 = x1 = x, y0 = y1 = y;
       x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      if (fine) {
+        const double fx = fine->texelX(lon), fy = fine->texelY(v.latDeg);
+        if (k == 0) fx0 = fx1 = fx, fy0 = fy1 = fy;
+        fx0 = std::min(fx0, fx), fx1 = std::max(fx1, fx), fy0 = std::min(fy0, fy), fy1 = std::max(fy1, fy);
+      }
     }
     std::vector<std::uint32_t>* to = nullptr;
     if (!limb) {
@@ -660,7 +669,17 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
       // The paged coverage's footprint, length(fwidth) of its texel
       // position, is up to twice the mipmap's (geo_uv.glsl waterPagesAuto).
       const double margin = 3.0 + 3.0 * (pagedTexels > 0.0 ? 4.0 : 2.0) * extent / cellPx;
-      if (wi.allWater(x0 - margin, x1 + margin, y0 - margin, y1 + margin)) {
+      bool water = wi.allWater(x0 - margin, x1 + margin, y0 - margin, y1 + margin);
+      if (!water && fine) {
+        // The same reach in the mask's own texels: near a coast most cells
+        // are water (or land) throughout it though the grid's texel is not.
+        const double fm = 3.0 + 12.0 * std::max(fx1 - fx0, fy1 - fy0) / cellPx;
+        const auto cov = fine->cover(fx0 - fm, fx1 + fm, fy0 - fm, fy1 + fm);
+        // All land: every fragment would read coverage 0 and discard.
+        if (cov == world::TileWaterIndex::Cover::Land) continue;
+        water = cov == world::TileWaterIndex::Cover::Water;
+      }
+      if (water) {
         // Far: ocean.vert's fade (footprint / longest wavelength >= 0.5)
         // is complete at every vertex, with 1 % for its float arithmetic.
         bool far = view.farFootprintM > 0.0;
@@ -697,6 +716,7 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
   std::copy(smooth.begin(), smooth.end(), idx.begin() + sharp);
   std::copy(open.begin(), open.end(), idx.begin() + sharp + smooth.size());
   std::copy(farOpen.begin(), farOpen.end(), idx.begin() + sharp + smooth.size() + open.size());
+  idx.resize(sharp + smooth.size() + open.size() + farOpen.size());  // all-land cells dropped
   return {sharp, smooth.size(), open.size(), farOpen.size()};
 }
 
@@ -827,7 +847,8 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   }
   const CellGroups groups =
       partitionCells(frame_, world_->waterIndex(), options_.cellPx, cull, options_.cullOffscreen,
-                     !bare && options_.cheapCoverage && (!pages_ || pagesIndexed_), idx, pagedTexels_);
+                     !bare && options_.cheapCoverage && (!pages_ || pagesIndexed_), idx, pagedTexels_,
+                     fineWater_.get());
   gridMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (idx.empty()) {
     if (pages_) pages_->endFrame();

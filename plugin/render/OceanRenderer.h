@@ -8,6 +8,7 @@
 
 #include "globe/camera/Camera.h"
 #include "globe/gl/GlProgram.h"
+#include "globe/world/TileWaterIndex.h"
 #include "globe/world/WorldGrids.h"
 #include "plugin/grid/ScreenGrid.h"
 #include "plugin/landsea/LandSea.h"
@@ -162,9 +163,13 @@ std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenC
 // rest. pagedTexels > 0: the coverage is a streamed mask's (WaterPages),
 // this many of its finest texels per water-index texel: the smooth run's
 // bound is in those texels and the open-water margin covers its footprint,
-// up to twice the mipmap's.
+// up to twice the mipmap's. fine (a global streamed mask's own texels):
+// cells the grid's index does not find all water are asked again at the
+// mask's resolution: all water goes to the open groups, all land is dropped
+// (its fragments would all discard), the rest keeps the coverage.
 CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi, double cellPx, const ScreenCull& view,
-                          bool cull, bool group, std::vector<std::uint32_t>& idx, double pagedTexels = 0.0);
+                          bool cull, bool group, std::vector<std::uint32_t>& idx, double pagedTexels = 0.0,
+                          world::TileWaterIndex* fine = nullptr);
 
 // What the host gives a draw beyond the camera (the host/layer contract's
 // inputs) and the optics switches.
@@ -446,6 +451,7 @@ class OceanRenderer {
   // The world's water index is the streamed pyramid's (waterIndexFollowsTiles):
   // open water and coversOpaquely as without pages.
   bool pagesIndexed_ = false;
+  std::unique_ptr<world::TileWaterIndex> fineWater_;  // a global streamed mask's (partitionCells)
   double pagedTexels_ = 0.0;  // the pyramid's level-0 texels per water-grid texel (partitionCells)
   bool completeTiles_ = false;
   double gridMs_ = 0.0;

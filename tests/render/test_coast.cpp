@@ -26,6 +26,7 @@
 #include "globe/raster/World.h"
 #include "globe/render/Session.h"
 #include "globe/world/LayerStack.h"
+#include "globe/world/TileWaterIndex.h"
 #include "globe/world/WaterPyramid.h"
 #include "plugin/landsea/LandSea.h"
 #include "plugin/landsea/LayeredLandSea.h"
@@ -602,6 +603,29 @@ TEST(Coast, AStreamedMasksShortcutsDoNotChangeTheImage) {
     EXPECT_LE(f.max, 24) << name;
   }
   s.ocean->setFarVertexShading(true);
+
+  // The host's terrain over the sea 5 km off the coast (west of Cabo da
+  // Roca), looking out to sea from 3 km: the grid's index sees the coast's
+  // land within its reach, so the sea's tiles refined to the mask's texel
+  // (level 12 here; flat at the sea's drop all the same). At the mask's own
+  // cells they are water throughout and stop at the first level that is
+  // (10 here, 19 tiles for 27), as the grid's open water stops at 7.
+  constexpr double kLat = 38.78, kLon = -9.56;
+  ASSERT_FALSE(s.world->waterIndex().allWaterAround(kLat - 0.02, kLat + 0.02, kLon - 0.02, kLon + 0.02, 1.0))
+      << "the grid's index should see the coast";
+  world::TileWaterIndex fine(s.world->waterTiles()->sharedPyramid());
+  ASSERT_EQ(fine.cover(fine.texelX(kLon - 0.03), fine.texelX(kLon + 0.03), fine.texelY(kLat - 0.03), fine.texelY(kLat + 0.03)),
+            world::TileWaterIndex::Cover::Water)
+      << "the mask's cells should be sea";
+  const ViewPose p = pose(kLat, kLon, 3000.0, 270.0, -20.0);
+  FrameSettings fs;
+  fs.sunEcef = sunForView(p, 135.0, 50.0);
+  gl::Framebuffer fb(p.width, p.height, true);
+  fb.bind();
+  const auto t = s.renderer->render(p, fs);
+  std::printf("terrain off the coast: %d tiles, max level %d\n", t.terrain.tilesDrawn, t.terrain.maxLevel);
+  EXPECT_GT(t.terrain.tilesDrawn, 0);
+  EXPECT_LE(t.terrain.maxLevel, 11);
 }
 
 // Pixels of a frame whose drawn class differs from the side of the 3"

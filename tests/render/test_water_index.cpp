@@ -2,6 +2,8 @@
 // a small global grid, random rectangles (wrapping the antimeridian, past
 // the poles, wider than the globe), and bad bounds.
 #include "globe/world/WaterIndex.h"
+#include "globe/world/TileWaterIndex.h"
+#include "plugin/render/OceanRenderer.h"
 #include "globe/render/WorldTextures.h"
 #include "globe/world/WaterPyramid.h"
 #include "globe/world/WorldGrids.h"
@@ -515,6 +517,125 @@ TEST(WaterIndex, AGlobalReliefDecidingTheCoastIsStreamedAsItsZeroMetreLine) {
   EXPECT_EQ(ls.classify(10.0, -149.9), Surface::Ocean);
   EXPECT_EQ(ls.classify(0.0, 45.0), Surface::Land);
   ::unsetenv("GEOCEAN_TILE_CACHE");
+}
+
+
+// A streamed global mask with a continent (a block), one-cell islands and
+// lakes; W x H cells of 360 / W degrees, 256^2 tiles (partial at the edge).
+struct BlockMask {
+  int W, H;
+  std::vector<float> cls;  // the mask's classes: 0 ocean, 1 land
+  raster::GeoTransform t;
+  test::TempDir dir{"geocean-tile-water"};
+  std::shared_ptr<const raster::TilePyramid> pyr;
+  BlockMask(int w, int h, int specks) : W(w), H(h), cls(std::size_t(w) * h, 0.0f) {
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x)
+        if (inLand(x, y, 0)) at(x, y) = 1.0f;
+    std::mt19937 rng(3);
+    std::uniform_int_distribution<int> ux(0, W - 1), uy(0, H - 1);
+    for (int i = 0; i < specks; ++i) {
+      const int x = ux(rng), y = uy(rng);
+      at(x, y) = inLand(x, y, 0) ? 0.0f : 1.0f;
+    }
+    t.lonStepDeg = 360.0 / W, t.latStepDeg = -180.0 / H, t.global = true;
+    raster::PyramidOptions po;
+    po.cacheDir = dir.path.string();
+    po.progress = raster::BuildProgress::Off;
+    pyr = waterPyramid(raster::Raster::fromPixels(cls, W, H, 1, t), {}, po);
+  }
+  bool inLand(int x, int y, int in) const { return x >= W / 5 + in && x < W / 2 - in && y >= H / 5 + in && y < 3 * H / 5 - in; }
+  float& at(int x, int y) { return cls[std::size_t(y) * W + x]; }
+};
+
+// TileWaterIndex against the mask's own cells, brute force: all water or
+// all land only where every cell the rectangle touches is (any size,
+// across the antimeridian), and exactly so for rectangles of up to 8 cells
+// (read at level 0). Few tiles kept, so they are dropped and read again.
+TEST(TileWaterIndex, AnswersAsTheMasksOwnCells) {
+  BlockMask m(4000, 2000, 3000);
+  TileWaterIndex ti(m.pyr, 6);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> ux(-50.0, m.W + 50.0), uy(0.0, m.H - 1.0), unit(0.0, 1.0);
+  int counts[3] = {0, 0, 0}, exact = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const double size = i % 3 == 0 ? 8.0 * unit(rng) : i % 3 == 1 ? 60.0 * unit(rng) : 400.0 * unit(rng);
+    const double x0 = ux(rng), y0 = uy(rng), x1 = x0 + size * unit(rng), y1 = std::min(y0 + size * unit(rng), m.H - 0.5);
+    bool water = false, land = false;
+    for (int y = int(std::floor(y0)); y <= int(std::floor(y1)); ++y)
+      for (int x = int(std::floor(x0)); x <= int(std::floor(x1)); ++x)
+        (m.at(((x % m.W) + m.W) % m.W, y) == 0.0f ? water : land) = true;
+    const TileWaterIndex::Cover c = ti.cover(x1, x0, y1, y0);  // corners in any order
+    ++counts[int(c)];
+    if (c == TileWaterIndex::Cover::Water) {
+      ASSERT_FALSE(land) << x0 << " " << x1 << " " << y0 << " " << y1;
+    }
+    if (c == TileWaterIndex::Cover::Land) {
+      ASSERT_FALSE(water) << x0 << " " << x1 << " " << y0 << " " << y1;
+    }
+    if (std::max(x1 - x0, y1 - y0) <= 8.0) {
+      ++exact;
+      ASSERT_EQ(c, water && land ? TileWaterIndex::Cover::Mixed
+                   : water       ? TileWaterIndex::Cover::Water
+                                 : TileWaterIndex::Cover::Land)
+          << x0 << " " << x1 << " " << y0 << " " << y1;
+    }
+  }
+  EXPECT_GT(counts[0], 300) << "all land";
+  EXPECT_GT(counts[1], 300) << "all water";
+  EXPECT_GT(counts[2], 300) << "both";
+  EXPECT_GT(exact, 1300);
+  EXPECT_LE(ti.tilesKept(), 6u);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(ti.cover(nan, 1.0, 0.0, 1.0), TileWaterIndex::Cover::Mixed);
+  EXPECT_EQ(ti.cover(0.0, 0.6 * m.W, 0.0, 1.0), TileWaterIndex::Cover::Mixed) << "over half the Earth";
+}
+
+// The ocean's cell groups over a streamed global mask (issue 12 item 6):
+// the drawn grid's texel is 8 mask cells, so a cell 6 cells off the coast
+// has land within the grid index's reach (3 grid texels) and took the
+// per-pixel coverage; asked at the mask's cells it is open water, a cell
+// deep in the continent is dropped (every fragment would discard), a cell
+// on the coast keeps the coverage, and open sea stays open.
+TEST(TileWaterIndex, CellsOffAStreamedCoastAreOpenAndInlandCellsDropped) {
+  BlockMask m(4000, 2000, 0);
+  constexpr int kStep = 8;
+  const WorldGrids grids(globalGridFor(nullptr), waterLayerOf(*m.pyr, kStep * m.t.lonStepDeg));
+  ASSERT_EQ(grids.water().width, m.W / kStep);
+  grid::GridFrame f;
+  std::vector<std::uint32_t> all;
+  // Cells of 0.1 mask cell at these mask-cell x (the coast at x = W / 5),
+  // mid-continent in y.
+  const double xs[] = {m.W / 5 - 6.2, m.W / 5 - 0.05, m.W / 5 + 20.0, m.W / 5 - 60.0};  // off, on, inland, open sea
+  for (const double x : xs) {
+    const auto v0 = std::uint32_t(f.vertices.size());
+    for (int k = 0; k < 4; ++k) {
+      grid::GridVertex v{};
+      v.lonDeg = m.t.originLonDeg + (x + 0.1 * (k & 1)) * m.t.lonStepDeg;
+      v.latDeg = m.t.originLatDeg + (m.H / 2 + 0.1 * (k >> 1)) * m.t.latStepDeg;
+      f.vertices.push_back(v);
+    }
+    for (const std::uint32_t k : {0u, 1u, 2u, 2u, 1u, 3u}) all.push_back(v0 + k);
+  }
+  f.cols = 2, f.rows = int(f.vertices.size()) / 2;
+  const ocean_render::ScreenCull cull;  // no far group, no culling
+  const auto cellsOf = [&](const std::vector<std::uint32_t>& idx, std::size_t from, std::size_t n) {
+    std::vector<int> cells;
+    for (std::size_t i = from; i < from + n; i += 6) cells.push_back(int(idx[i] / 4));
+    std::sort(cells.begin(), cells.end());
+    return cells;
+  };
+  std::vector<std::uint32_t> idx = all;
+  auto g = ocean_render::partitionCells(f, grids.waterIndex(), 8.0, cull, false, true, idx, kStep);
+  EXPECT_EQ(cellsOf(idx, 0, g.sharp), (std::vector<int>{0, 1, 2})) << "the grid's index alone";
+  EXPECT_EQ(cellsOf(idx, g.sharp + g.smooth, g.open), (std::vector<int>{3}));
+  TileWaterIndex ti(m.pyr);
+  idx = all;
+  g = ocean_render::partitionCells(f, grids.waterIndex(), 8.0, cull, false, true, idx, kStep, &ti);
+  EXPECT_EQ(cellsOf(idx, 0, g.sharp), (std::vector<int>{1})) << "the coast";
+  EXPECT_EQ(g.smooth, 0u);
+  EXPECT_EQ(cellsOf(idx, g.sharp, g.open), (std::vector<int>{0, 3})) << "open water";
+  EXPECT_EQ(idx.size(), g.sharp + g.open) << "the inland cell dropped";
 }
 
 }  // namespace
