@@ -458,6 +458,38 @@ void OceanRenderer::abandonGl() {
 }
 
 namespace {
+// Reads back a mask (R8UI, one texel per block of bw x bh framebuffer
+// pixels, cols x rows of them) written through an image unit, and makes
+// its marked blocks rectangles for a draw: runs along each row, clipped to
+// the viewport. Returns how many blocks were marked.
+std::size_t markedRects(GLuint mask, int cols, int rows, int bw, int bh, const GLint* viewport,
+                        std::vector<std::uint8_t>& bytes, std::vector<float>& rects) {
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+  bytes.resize(std::size_t(cols) * std::size_t(rows));
+  GLint packAlignment = 4;
+  glGetIntegerv(GL_PACK_ALIGNMENT, &packAlignment);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(mask, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, GLsizei(bytes.size()), bytes.data());
+  glPixelStorei(GL_PACK_ALIGNMENT, packAlignment);
+  const int right = viewport[0] + viewport[2], top = viewport[1] + viewport[3];
+  std::size_t marked = 0;
+  rects.clear();
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < cols;) {
+      if (!bytes[std::size_t(y) * std::size_t(cols) + std::size_t(x)]) {
+        ++x;
+        continue;
+      }
+      const int x0 = x;
+      while (x < cols && bytes[std::size_t(y) * std::size_t(cols) + std::size_t(x)]) ++x;
+      marked += std::size_t(x - x0);
+      const float ax = float(std::max(x0 * bw, viewport[0])), bx = float(std::min(x * bw, right));
+      const float ay = float(std::max(y * bh, viewport[1])), by = float(std::min((y + 1) * bh, top));
+      for (float v : {ax, ay, bx, ay, bx, by, ax, ay, bx, by, ax, by}) rects.push_back(v);
+    }
+  return marked;
+}
+
 template <class T>
 void upload(GLuint buf, const std::vector<T>& v) {
   // Never empty: a zero-size SSBO binding is an error.
@@ -1175,28 +1207,9 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glBindImageTexture(7, GLuint(hostImage[0]), hostImage[1], GLboolean(hostImage[2]), hostImage[3], GLenum(hostAccess),
                        hostImage[4] ? GLenum(hostImage[4]) : GL_R8UI);
     // The tiles with sea, as rectangles (runs along each row of tiles).
-    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
     const int right = viewport[0] + w, top = viewport[1] + h;
-    const int tw = (right + kGTilePx - 1) / kGTilePx, th = (top + kGTilePx - 1) / kGTilePx;
-    gTileMask_.resize(std::size_t(tw) * std::size_t(th));
-    GLint packAlignment = 4;
-    glGetIntegerv(GL_PACK_ALIGNMENT, &packAlignment);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(gTiles_, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, GLsizei(gTileMask_.size()), gTileMask_.data());
-    glPixelStorei(GL_PACK_ALIGNMENT, packAlignment);
-    gRects_.clear();
-    for (int ty = 0; ty < th; ++ty)
-      for (int tx = 0; tx < tw;) {
-        if (!gTileMask_[std::size_t(ty) * std::size_t(tw) + std::size_t(tx)]) {
-          ++tx;
-          continue;
-        }
-        const int x0 = tx;
-        while (tx < tw && gTileMask_[std::size_t(ty) * std::size_t(tw) + std::size_t(tx)]) ++tx;
-        const float ax = float(std::max(x0 * kGTilePx, viewport[0])), bx = float(std::min(tx * kGTilePx, right));
-        const float ay = float(std::max(ty * kGTilePx, viewport[1])), by = float(std::min((ty + 1) * kGTilePx, top));
-        for (float v : {ax, ay, bx, ay, bx, by, ax, ay, bx, by, ax, by}) gRects_.push_back(v);
-      }
+    const std::size_t seaTiles = markedRects(gTiles_, (right + kGTilePx - 1) / kGTilePx, (top + kGTilePx - 1) / kGTilePx,
+                                             kGTilePx, kGTilePx, viewport, gTileMask_, gRects_);
     glNamedFramebufferTexture(gFbo_, GL_DEPTH_ATTACHMENT, 0, 0);  // the host's depth is not kept (it may go)
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(hostFbo));
     // Units 15-18: the host's textures there are put back after.
@@ -1255,49 +1268,22 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
       drawRects(gRects_);
       glBindImageTexture(7, GLuint(hostImage[0]), hostImage[1], GLboolean(hostImage[2]), hostImage[3],
                          GLenum(hostAccess), hostImage[4] ? GLenum(hostImage[4]) : GL_R8UI);
-      glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-      const int bw = (gWidth_ + kFullRateW - 1) / kFullRateW, bh = (gHeight_ + kFullRateH - 1) / kFullRateH;
-      gFullMask_.resize(std::size_t(bw) * std::size_t(bh));
-      glGetIntegerv(GL_PACK_ALIGNMENT, &packAlignment);
-      glPixelStorei(GL_PACK_ALIGNMENT, 1);
-      glGetTextureImage(gFull_, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, GLsizei(gFullMask_.size()), gFullMask_.data());
-      glPixelStorei(GL_PACK_ALIGNMENT, packAlignment);
       // The marked groups as runs along each row, for the full-rate pass.
-      std::size_t marked = 0;
-      std::vector<float>& full = gFullRects_;
-      full.clear();
-      for (int by = 0; by < bh; ++by)
-        for (int bx = 0; bx < bw;) {
-          if (!gFullMask_[std::size_t(by) * std::size_t(bw) + std::size_t(bx)]) {
-            ++bx;
-            continue;
-          }
-          const int x0 = bx;
-          while (bx < bw && gFullMask_[std::size_t(by) * std::size_t(bw) + std::size_t(bx)]) ++bx;
-          marked += std::size_t(bx - x0);
-          const float ax = float(std::max(x0 * kFullRateW, viewport[0])), bxp = float(std::min(bx * kFullRateW, right));
-          const float ay = float(std::max(by * kFullRateH, viewport[1])),
-                      byp = float(std::min((by + 1) * kFullRateH, top));
-          for (float v : {ax, ay, bxp, ay, bxp, byp, ax, ay, bxp, byp, ax, byp}) full.push_back(v);
-        }
-      std::size_t seaTiles = 0;
-      for (std::uint8_t t : gTileMask_) seaTiles += t ? 1 : 0;
+      const std::size_t marked = markedRects(gFull_, (gWidth_ + kFullRateW - 1) / kFullRateW,
+                                             (gHeight_ + kFullRateH - 1) / kFullRateH, kFullRateW, kFullRateH,
+                                             viewport, gFullMask_, gFullRects_);
       const double blocksPerTile = double(kGTilePx / kFullRateW) * double(kGTilePx / kFullRateH);
       lastFullRateShare_ = seaTiles > 0 ? double(marked) / (double(seaTiles) * blocksPerTile) : 0.0;
-      pixel.shade.use();
-      setUniforms(pixel.shade);
-      glUniform2i(pixel.shade.uniform("uGOrigin"), viewport[0], viewport[1]);
-      glUniform2f(pixel.shade.uniform("uGSize"), float(w), float(h));
-      drawRects(full);
     } else {
       glEnable(GL_BLEND);
-      pixel.shade.use();
-      setUniforms(pixel.shade);
-      glUniform2i(pixel.shade.uniform("uGOrigin"), viewport[0], viewport[1]);
-      glUniform2f(pixel.shade.uniform("uGSize"), float(w), float(h));
-      drawRects(gRects_);
       lastFullRateShare_ = 1.0;
     }
+    // Every tile with sea, or with reduced rate the groups marked for full rate.
+    pixel.shade.use();
+    setUniforms(pixel.shade);
+    glUniform2i(pixel.shade.uniform("uGOrigin"), viewport[0], viewport[1]);
+    glUniform2f(pixel.shade.uniform("uGSize"), float(w), float(h));
+    drawRects(reduced ? gFullRects_ : gRects_);
     if (depthTest) glEnable(GL_DEPTH_TEST);
     for (int i = 0; i < kUnits; ++i) {
       glActiveTexture(GLenum(GL_TEXTURE15 + i));
