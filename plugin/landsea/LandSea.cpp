@@ -126,16 +126,112 @@ world::CoverageClass LandSea::coverageClass(double latDeg, double lonDeg) const 
     const double py = (latDeg - fast_.originLat) * fast_.invLatStep;
     const std::uint8_t* cls = classes_.data();
     const bool global = fast_.global;
-    return world::coverageClassAt(px, py, [cls, w, h, global](int cx, int cy) {
-      if (!global) cx = std::clamp(cx, 0, w - 1);
-      else if (unsigned(cx) >= unsigned(w)) cx = w >= 3 ? (cx < 0 ? cx + w : cx - w) : ((cx % w) + w) % w;
+    const auto wrap = [w, global](int cx) {
+      if (unsigned(cx) < unsigned(w)) return cx;
+      return w >= 3 ? (cx < 0 ? cx + w : cx - w) : ((cx % w) + w) % w;
+    };
+    const auto classAt = [cls, w, h, global, &wrap](int cx, int cy) {
+      cx = global ? wrap(cx) : std::clamp(cx, 0, w - 1);
       cy = std::clamp(cy, 0, h - 1);
       return static_cast<Surface>(cls[std::size_t(cy) * std::size_t(w) + std::size_t(cx)] & kClassBits);
-    });
+    };
+    if (below_) {
+      // Taps past a regional mask's edge or on cells without data take the
+      // layers below (a global mask's rows clamp at the poles).
+      const auto hasData = [&](int cx, int cy) {
+        if (!global && (cx < 0 || cx >= w || cy < 0 || cy >= h)) return false;
+        if (noData_.empty()) return true;
+        cx = global ? wrap(cx) : cx;
+        cy = std::clamp(cy, 0, h - 1);
+        return !noData_[std::size_t(cy) * std::size_t(w) + std::size_t(cx)];
+      };
+      const world::BSplineTaps tx(px), ty(py);
+      bool all = true;
+      for (int j = 0; j < 4 && all; ++j)
+        for (int i = 0; i < 4 && all; ++i) all = hasData(tx.first + i, ty.first + j);
+      if (!all) return blendBelow(mask_->transform(), px, py, classAt, hasData);
+    }
+    return world::coverageClassAt(px, py, classAt);
   }
-  // A cached mask: its 16 cells in one batch.
-  const Cells16 c = gatherCells(*mask_, latDeg, lonDeg);
-  return world::coverageClassAt(c.px, c.py, [&](int cx, int cy) { return classOfValue(c.at(cx, cy)); });
+  // A cached mask: its 16 cells in one batch (with layers below, NaN past a
+  // regional edge).
+  const Cells16 c = gatherCells(*mask_, latDeg, lonDeg, /*outsideIsNodata=*/bool(below_));
+  const auto classAt = [&](int cx, int cy) { return classOfValue(c.at(cx, cy)); };
+  if (below_ && std::any_of(std::begin(c.v), std::end(c.v), [](float x) { return std::isnan(x); }))
+    return blendBelow(mask_->transform(), c.px, c.py, classAt, [&](int cx, int cy) { return !std::isnan(c.at(cx, cy)); });
+  return world::coverageClassAt(c.px, c.py, classAt);
+}
+
+template <class CellClass, class HasData>
+world::CoverageClass LandSea::blendBelow(const raster::GeoTransform& t, double px, double py, CellClass&& cellClass,
+                                         HasData&& hasData) const {
+  // world::coverageClassAt's sums (row by row, ocean and lake apart), a
+  // cell without data adding the layers below's water at its centre to
+  // their class's sum.
+  const world::BSplineTaps tx(px), ty(py);
+  float ocean = 0.0f, lake = 0.0f;
+  bool allWet = true;
+  for (int j = 0; j < 4; ++j) {
+    float rowOcean = 0.0f, rowLake = 0.0f;
+    for (int i = 0; i < 4; ++i) {
+      const int cx = tx.first + i, cy = ty.first + j;
+      if (hasData(cx, cy)) {
+        const Surface s = cellClass(cx, cy);
+        rowOcean += s == Surface::Ocean ? tx.w[i] : 0.0f;
+        rowLake += s == Surface::Lake ? tx.w[i] : 0.0f;
+        allWet &= s != Surface::Land;
+        continue;
+      }
+      const world::CoverageClass b = below_(t.latOf(cy + 0.5), t.lonOf(cx + 0.5));
+      const float water = std::clamp(b.coverage, 0.0f, 1.0f);
+      (b.surface == Surface::Lake ? rowLake : rowOcean) += tx.w[i] * water;
+      allWet &= water >= 1.0f;
+    }
+    ocean += ty.w[j] * rowOcean;
+    lake += ty.w[j] * rowLake;
+  }
+  world::CoverageClass c;
+  c.coverage = allWet ? 1.0f : std::min(1.0f, ocean + lake);
+  if (world::coverageIsWater(c.coverage)) c.surface = lake > ocean ? Surface::Lake : Surface::Ocean;
+  return c;
+}
+
+void LandSea::setCoverageBelow(CoverageBelow below) {
+  below_ = std::move(below);
+  noData_.clear();
+  if (!below_ || classes_.empty()) return;
+  // An in-memory mask's cells next to one without data or on a regional
+  // mask's edge now take the coverage rule (kCoast): markCoast's argument,
+  // with the layers below in place of another class.
+  const int w = fast_.width, h = fast_.height;
+  const auto& px = mask_->pixels();
+  const int ch = mask_->channels();
+  const std::size_t cells = std::size_t(w) * h;
+  noData_.assign(cells, 0);
+  bool any = false;
+  for (std::size_t i = 0; i < cells; ++i) any |= (noData_[i] = std::isnan(px[i * ch]) ? 1 : 0) != 0;
+  if (!any) noData_.clear();
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = std::size_t(y) * w + x;
+      bool near = !fast_.global && (x == 0 || x == w - 1 || y == 0 || y == h - 1);
+      for (int dy = -1; dy <= 1 && !near && any; ++dy)
+        for (int dx = -1; dx <= 1 && !near; ++dx) {
+          int xx = x + dx;
+          const int yy = std::clamp(y + dy, 0, h - 1);
+          if (fast_.global) xx = (xx + w) % w;
+          else if (xx < 0 || xx >= w) continue;
+          near = noData_[std::size_t(yy) * w + xx] != 0;
+        }
+      if (near) classes_[i] |= kCoast;
+    }
+}
+
+world::CoverageClass LandSea::maskCoverageAt(double latDeg, double lonDeg) const {
+  if (!mask_ || !std::isfinite(latDeg) || !std::isfinite(lonDeg)) return {};
+  if (Surface p; poleClass(latDeg, p)) return {p == Surface::Land ? 0.0f : 1.0f, p};
+  if (std::isnan(mask_->sampleNearest(latDeg, lonDeg))) return {};
+  return coverageClass(latDeg, lonDeg);
 }
 
 bool LandSea::poleClass(double latDeg, Surface& out) const {
@@ -165,36 +261,20 @@ world::CoverageClass LandSea::reliefCoverage(double latDeg, double lonDeg, float
   }
   // With layers below, cells past a regional relief's edge are theirs too.
   const Cells16 c = gatherCells(*elevation_, latDeg, lonDeg, /*outsideIsNodata=*/bool(below_));
-  const bool nodata = below_ && std::any_of(std::begin(c.v), std::end(c.v), [](float x) { return std::isnan(x); });
-  if (!nodata)
-    return world::coverageClassAt(c.px, c.py, [&](int cx, int cy) {
-      const float x = c.at(cx, cy);
-      return !std::isnan(x) && x < 0.0f ? Surface::Ocean : Surface::Land;
-    });
-  // Cells without data take the layers below at their centre, as the
-  // relief's pages are drawn (a NaN texel takes the water grid below at
-  // its centre, geo_uv.glsl), instead of counting as land: near a
-  // relief's nodata edge the query's class is the drawn one. The same
-  // row-by-row sums as world::coverageClassAt.
-  float coverage = 0.0f;
-  for (int j = 0; j < 4; ++j) {
-    float row = 0.0f;
-    for (int i = 0; i < 4; ++i) {
-      const int k = j * 4 + i;
-      const float water = std::isnan(c.v[k]) ? std::clamp(below_(c.la[k], c.lo[k]), 0.0f, 1.0f) : c.v[k] < 0.0f ? 1.0f : 0.0f;
-      row += c.tx.w[i] * water;
-    }
-    coverage += c.ty.w[j] * row;
-  }
-  world::CoverageClass out;
-  out.coverage = coverage;
-  out.surface = world::coverageIsWater(coverage) ? Surface::Ocean : Surface::Land;
-  return out;
+  const auto classAt = [&](int cx, int cy) {
+    const float x = c.at(cx, cy);
+    return !std::isnan(x) && x < 0.0f ? Surface::Ocean : Surface::Land;
+  };
+  // Cells without data take the layers below at their centres, as the
+  // relief's pages are drawn, instead of counting as land.
+  if (below_ && std::any_of(std::begin(c.v), std::end(c.v), [](float x) { return std::isnan(x); }))
+    return blendBelow(elevation_->transform(), c.px, c.py, classAt, [&](int cx, int cy) { return !std::isnan(c.at(cx, cy)); });
+  return world::coverageClassAt(c.px, c.py, classAt);
 }
 
-float LandSea::reliefWaterCoverage(double latDeg, double lonDeg) const {
-  if (!elevation_ || !std::isfinite(latDeg) || !std::isfinite(lonDeg)) return 0.0f;
-  return reliefCoverage(latDeg, lonDeg, elevation_->sampleBilinear(latDeg, lonDeg)).coverage;
+world::CoverageClass LandSea::reliefCoverageAt(double latDeg, double lonDeg) const {
+  if (!elevation_ || !std::isfinite(latDeg) || !std::isfinite(lonDeg)) return {};
+  return reliefCoverage(latDeg, lonDeg, elevation_->sampleBilinear(latDeg, lonDeg));
 }
 
 Surface LandSea::classify(double latDeg, double lonDeg) const {

@@ -58,15 +58,19 @@ class LandSea {
   virtual float elevationM(double latDeg, double lonDeg) const;
   virtual void elevationBatch(const double* latDeg, const double* lonDeg, std::size_t n, float* out) const;
 
-  // A relief's cells without data (NaN) take this water coverage of the
-  // layers below it, in [0, 1], at their centres (LayeredLandSea sets it),
-  // as the relief's pages are drawn; unset, they count as land. Set before
-  // any query (not thread-safe against them).
-  using CoverageBelow = std::function<float(double latDeg, double lonDeg)>;
-  void setCoverageBelow(CoverageBelow below) { below_ = std::move(below); }
-  // A relief's water coverage at a point (the coverage rule on its cells'
-  // water, below 0 m): 0 without data there or without a relief.
-  float reliefWaterCoverage(double latDeg, double lonDeg) const;
+  // The layers below this one (LayeredLandSea sets it): cells without data
+  // (NaN) and a regional raster's cells past its edge take their coverage
+  // and class at the cells' centres, as the layer's pages are drawn (a NaN
+  // or outside texel takes the water grid below at its centre, geo_uv.glsl);
+  // unset, a relief's nodata counts as land and a mask's edge cells repeat
+  // past its edge. Set before any query (not thread-safe against them).
+  using CoverageBelow = std::function<world::CoverageClass(double latDeg, double lonDeg)>;
+  void setCoverageBelow(CoverageBelow below);
+  // This layer's coverage and class at a point where it answers: a mask's
+  // coverage rule, or a relief's on its cells' water (below 0 m); no data
+  // there is land (coverage 0).
+  world::CoverageClass maskCoverageAt(double latDeg, double lonDeg) const;
+  world::CoverageClass reliefCoverageAt(double latDeg, double lonDeg) const;
 
   // The single rasters (null for a layer stack).
   const raster::Raster* mask() const { return mask_.get(); }
@@ -123,6 +127,16 @@ class LandSea {
   std::shared_ptr<const raster::Raster> mask_, elevation_;
   MaskEncoding encoding_;
   CoverageBelow below_;
+  // A mask's cells without data (1 = NaN), kept only when it has some and
+  // layers below answer there.
+  std::vector<std::uint8_t> noData_;
+  // The coverage rule over the 4 x 4 cells about continuous pixel (px, py)
+  // where some have no data or lie past a regional mask's edge: those take
+  // below_ at their centres. cellClass(cx, cy) is the class of a cell with
+  // data, hasData(cx, cy) whether it has (cx, cy unclamped).
+  template <class CellClass, class HasData>
+  world::CoverageClass blendBelow(const raster::GeoTransform& t, double px, double py, CellClass&& cellClass,
+                                  HasData&& hasData) const;
   // In-memory mask as class bytes (| kCoast near a coast, where the
   // coverage decides): the fast path (no float conversion).
   std::vector<std::uint8_t> classes_;

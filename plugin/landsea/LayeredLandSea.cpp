@@ -9,18 +9,16 @@ LayeredLandSea::LayeredLandSea(std::vector<world::RasterLayer> layers) : stack_(
   const auto& all = stack_.layers();
   for (std::size_t li = 0; li < all.size(); ++li) {
     const world::RasterLayer& l = all[li];
-    if (l.kind == world::LayerKind::Mask) {
-      perLayer_.push_back(std::make_unique<const LandSea>(l.raster, nullptr, l.encoding));
-      continue;
-    }
-    auto relief = std::make_unique<LandSea>(nullptr, l.raster);
-    // A relief's nodata cells take the layers below it (issue 12).
-    relief->setCoverageBelow([this, li](double lat, double lon) { return coverageFrom(li + 1, lat, lon); });
-    perLayer_.push_back(std::move(relief));
+    auto layer = l.kind == world::LayerKind::Mask ? std::make_unique<LandSea>(l.raster, nullptr, l.encoding)
+                                                  : std::make_unique<LandSea>(nullptr, l.raster);
+    // A layer's nodata cells and cells past a regional edge take the layers
+    // below it, as drawn (issue 12).
+    layer->setCoverageBelow([this, li](double lat, double lon) { return coverageFrom(li + 1, lat, lon); });
+    perLayer_.push_back(std::move(layer));
   }
 }
 
-float LayeredLandSea::coverageFrom(std::size_t first, double latDeg, double lonDeg) const {
+world::CoverageClass LayeredLandSea::coverageFrom(std::size_t first, double latDeg, double lonDeg) const {
   // The first layer from `first` with data at the point (as the stack
   // picks one: a mask's nearest cell, a relief's bilinear sample), its
   // coverage rule; land where none has data.
@@ -28,12 +26,12 @@ float LayeredLandSea::coverageFrom(std::size_t first, double latDeg, double lonD
   for (std::size_t k = first; k < all.size(); ++k) {
     const world::RasterLayer& l = all[k];
     if (l.kind == world::LayerKind::Mask) {
-      if (!std::isnan(l.raster->sampleNearest(latDeg, lonDeg))) return perLayer_[k]->waterCoverage(latDeg, lonDeg);
+      if (!std::isnan(l.raster->sampleNearest(latDeg, lonDeg))) return perLayer_[k]->maskCoverageAt(latDeg, lonDeg);
     } else if (l.kind == world::LayerKind::Elevation) {
-      if (!std::isnan(l.raster->sampleBilinear(latDeg, lonDeg))) return perLayer_[k]->reliefWaterCoverage(latDeg, lonDeg);
+      if (!std::isnan(l.raster->sampleBilinear(latDeg, lonDeg))) return perLayer_[k]->reliefCoverageAt(latDeg, lonDeg);
     }
   }
-  return 0.0f;
+  return {};
 }
 
 Surface LayeredLandSea::classify(double latDeg, double lonDeg) const {

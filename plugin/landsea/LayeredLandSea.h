@@ -37,9 +37,10 @@ class LayeredLandSea final : public LandSea {
   // layer's `test`.
   void byLayer(const double* lat, const double* lon, std::size_t n, Surface* out,
                void (LandSea::*test)(const double*, const double*, std::size_t, Surface*) const) const;
-  // The water coverage of the layers from `first` on at a point: what a
-  // relief's nodata cells take (LandSea::setCoverageBelow).
-  float coverageFrom(std::size_t first, double latDeg, double lonDeg) const;
+  // The water coverage and class of the layers from `first` on at a point:
+  // what a layer's nodata cells and cells past its regional edge take
+  // (LandSea::setCoverageBelow). Land where no layer has data.
+  world::CoverageClass coverageFrom(std::size_t first, double latDeg, double lonDeg) const;
   world::LayerStack stack_;
   // One single-raster LandSea per layer, in stack order: coverage and
   // near-water per layer with the existing fast paths.

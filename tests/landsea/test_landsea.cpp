@@ -622,3 +622,75 @@ TEST(LayeredLandSea, CellsPastARegionalReliefsEdgeTakeTheLayersBelowAsDrawn) {
   for (std::size_t i = 0; i < got.size(); i += 89) EXPECT_EQ(ls.classify(la[i], lo[i]), got[i]) << i;
   std::printf("%zu points, %d where the clamped edge would differ from the picture\n", got.size(), differs);
 }
+
+TEST(LayeredLandSea, ARegionalMasksEdgeAndNodataCellsTakeTheLayersBelowAsDrawn) {
+  // A regional mask (land north of row 50, ocean south, a block of cells
+  // without data in the middle) over a global mask that is all lake. The
+  // picture takes a regional mask's texels past its edge and its NaN texels
+  // from the layers below at their centres (geo_uv.glsl pageTexel /
+  // waterTexel); the query clamped the edge cells and counted nodata as land.
+  // Points across the western edge and around the block, with the mask in
+  // memory (the class table's fast path) and read through the ImageCache.
+  constexpr int W = 100, H = 100;
+  constexpr float kNodata = 255.0f;
+  std::vector<float> px(std::size_t(W) * H);
+  const auto hole = [](int x, int y) { return x >= 40 && x < 60 && y >= 40 && y < 60; };
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) px[std::size_t(y) * W + x] = hole(x, y) ? kNodata : y < 50 ? 1.0f : 0.0f;
+  const raster::GeoTransform t{10.0, 1.0, 0.01, -0.01, false};
+  const auto lake = raster::Raster::fromPixels(std::vector<float>(36 * 18, 2.0f), 36, 18, 1,
+                                               {-180.0, 90.0, 10.0, -10.0, true});
+  const std::string tif = ::testing::TempDir() + "/regional_mask_edge.tif";
+  raster::GeoTiffWriteOptions wo;
+  wo.transform = t;
+  wo.tileSize = 16;
+  wo.nodata = kNodata;
+  std::vector<std::uint8_t> bytes(px.begin(), px.end());
+  raster::writeGeoTiff(tif, bytes.data(), W, H, 1, raster::SampleType::U8, wo);
+  raster::OpenOptions cachedOpt;
+  cachedOpt.inMemoryLimitBytes = 0;
+  const auto inMemory = raster::Raster::fromPixels(px, W, H, 1, t, double(kNodata));
+  const auto cached = raster::Raster::open(tif, cachedOpt);
+  ASSERT_FALSE(cached->inMemory());
+  // The drawn rule (past the edge and in the hole: the lake below) and the
+  // old one (clamped edge, nodata as land), at continuous pixel (x, y).
+  const auto rule = [&](double x, double y, bool drawn) {
+    return world::coverageClassAt(x, y, [&](int cx, int cy) {
+      if (drawn && (cx < 0 || cx >= W || cy < 0 || cy >= H)) return Surface::Lake;
+      const float v = px[std::size_t(std::clamp(cy, 0, H - 1)) * W + std::size_t(std::clamp(cx, 0, W - 1))];
+      return v == kNodata ? (drawn ? Surface::Lake : Surface::Land) : v == 0.0f ? Surface::Ocean : Surface::Land;
+    }).surface;
+  };
+  std::vector<double> la, lo;
+  std::vector<Surface> want;
+  int differs = 0, answered = 0;
+  const auto add = [&](double x, double y) {
+    la.push_back(t.latOf(y)), lo.push_back(t.lonOf(x));
+    // Where the mask's nearest cell has no data the lake below answers.
+    const bool maskAnswers = !std::isnan(inMemory->sampleNearest(la.back(), lo.back()));
+    answered += maskAnswers;
+    want.push_back(maskAnswers ? rule(x, y, true) : Surface::Lake);
+    differs += maskAnswers && rule(x, y, false) != want.back();
+  };
+  for (double x = -1.0; x <= 3.0; x += 0.02)
+    for (double y = 47.0; y <= 53.0; y += 0.05) add(x, y);  // the western edge across the coast
+  for (double x = 37.0; x <= 63.0; x += 0.1)
+    for (double y = 37.0; y <= 63.0; y += 0.1)
+      if (!(x > 42 && x < 58 && y > 42 && y < 58)) add(x, y);  // about the hole
+  for (const auto& mask : {inMemory, cached}) {
+    const ocean::LayeredLandSea ls({{world::LayerKind::Mask, mask, {}, 1}, {world::LayerKind::Mask, lake, {}, 0}});
+    std::vector<Surface> got(la.size());
+    ls.classifyBatch(la.data(), lo.data(), la.size(), got.data());
+    int wrong = 0;
+    for (std::size_t i = 0; i < got.size(); ++i)
+      if (got[i] != want[i] && ++wrong <= 10)
+        ADD_FAILURE() << (mask->inMemory() ? "in memory" : "cached") << " at " << la[i] << ", " << lo[i] << ": "
+                      << ocean::toString(got[i]) << ", drawn " << ocean::toString(want[i]);
+    EXPECT_EQ(wrong, 0);
+    for (std::size_t i = 0; i < got.size(); i += 89) EXPECT_EQ(ls.classify(la[i], lo[i]), got[i]) << i;
+  }
+  EXPECT_GT(answered, int(la.size()) / 2);
+  EXPECT_GT(differs, 200) << "the points should be where the old rule gives another class";
+  std::printf("%zu points, %d where the clamped edge or nodata as land would differ from the picture\n", la.size(),
+              differs);
+}
