@@ -135,7 +135,7 @@ world::CoverageClass LandSea::coverageClass(double latDeg, double lonDeg) const 
       cy = std::clamp(cy, 0, h - 1);
       return static_cast<Surface>(cls[std::size_t(cy) * std::size_t(w) + std::size_t(cx)] & kClassBits);
     };
-    if (below_) {
+    if (below_ && (!global || !noData_.empty())) {
       // Taps past a regional mask's edge or on cells without data take the
       // layers below (a global mask's rows clamp at the poles).
       const auto hasData = [&](int cx, int cy) {
