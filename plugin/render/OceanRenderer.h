@@ -103,10 +103,15 @@ struct OceanOptions {
   // (gBufferFor), else forward.
   bool deferred = true;
   // The noise sea's per-pixel programs without the octave loop for a view
-  // where no pixel is under this x half the longest octave (OceanRenderer::
+  // where no pixel is under this x 1 / pixelOctaveEndPx of the longest octave (OceanRenderer::
   // draw states the bound; 1.05 its margin): the same picture bit for bit.
   // Tests set another margin (infinity: always the loop).
   double noPixelOctaveMargin = 1.05;
+  // The noise sea's per-pixel octaves end at a footprint of this many
+  // pixels (noise_bands.glsl's noisePixelWeight: whole from twice it); the
+  // shorter ones are roughness, their slope variance in the BRDF's (the
+  // sea's energy and the glitter's spread kept). 2 is Nyquist.
+  double pixelOctaveEndPx = 2.0;
   // Reduced-rate shading of the deferred pass (ocean_resolve.frag): the
   // even pixels (2i, 2j) shaded exactly, at a quarter of the pixels; a pixel
   // between them their mean where the sea is opaque at all and their
