@@ -320,9 +320,8 @@ TEST(Ocean, DeferredShadingDrawsTheForwardPicture) {
 // to full rate in every view, the even pixels are still exact, and the
 // picture is within the flight's worst at 4 px and 16/255 (0.044 % of the
 // pixels over 8/255, 6 m; mean 0.29, 11.9 km) with 4x margin for the test's
-// 240 px views; the sea's mean colour (the all-sea view) stays within 3/255
-// of the 2 px end's (the octaves' slopes go into the roughness: the
-// flight's deferred frames moved by -0.3 to +2.4 in a channel).
+// 240 px views. That the octaves' slopes go into the roughness:
+// SeaOptics.GlitterIsCentredOnTheSpecularPointAndSpreadsWithTheWindAsCoxMunk.
 TEST(Ocean, ReducedRateShadingKeepsTheEvenPixelsAndItsBound) {
   OceanGuard guard;
   ocean_render::OceanOptions reduced, full, loose, reduced4, full4;
@@ -389,16 +388,8 @@ TEST(Ocean, ReducedRateShadingKeepsTheEvenPixelsAndItsBound) {
     EXPECT_LT(withReduced4->lastFullRateShare(), withReduced->lastFullRateShare()) << "at " << v.altM << " m";
     EXPECT_LE(s4.over8, 4 * 0.00044) << "at " << v.altM << " m: max " << s4.max << " mean " << s4.mean;
     EXPECT_LE(s4.mean, 4 * 0.29) << "at " << v.altM << " m: over 8/255 " << s4.over8;
-    double m2[3] = {}, m4[3] = {};
-    for (std::size_t i = 0; i < b.rgba.size(); i += 4)
-      for (int c = 0; c < 3; ++c) m2[c] += b.rgba[i + c], m4[c] += b4.rgba[i + c];
-    const double n = double(b.rgba.size() / 4);
-    if (&v == &views[0]) {  // all sea (60 degrees down from 1 km)
-      for (int c = 0; c < 3; ++c) EXPECT_NEAR(m4[c] / n, m2[c] / n, 3.0) << "at " << v.altM << " m, channel " << c;
-    }
-    std::printf("  4 px end: share %.3f, max %d, mean %.3f, over 8/255 %.4f; mean colour %.1f %.1f %.1f (2 px %.1f %.1f %.1f)\n",
-                withReduced4->lastFullRateShare(), s4.max, s4.mean, s4.over8, m4[0] / n, m4[1] / n, m4[2] / n,
-                m2[0] / n, m2[1] / n, m2[2] / n);
+    std::printf("  4 px end: share %.3f, max %d, mean %.3f, over 8/255 %.4f\n", withReduced4->lastFullRateShare(),
+                s4.max, s4.mean, s4.over8);
   }
   EXPECT_GT(looseWorst, 0.0065) << "without the colour test the bound must fail";
 }
