@@ -253,10 +253,11 @@ void main() {
   float mss = 0.0;
   vec4 band = texelFetch(uOctaveBands, i);
 #ifdef GEOCEAN_NO_PIXEL_OCTAVES
-  // No pixel of the view is under 1 / uPixelOctaveEndPx of the longest octave (OceanRenderer's
-  // bound): every f below is 0, so the loop and the slopes it adds are left
-  // out (llvmpipe would run the loop's body once, masked), and the
-  // trailing loop's sum is read whole (OceanRenderer: the same float sum).
+  // No pixel of the view is under 1 / uPixelOctaveEndPx of the longest
+  // octave (OceanRenderer's bound): every f below is 0, so the loop and
+  // the slopes it adds are left out (llvmpipe would run the loop's body
+  // once, masked), and the trailing loop's sum is read whole
+  // (OceanRenderer: the same float sum).
   mss += band.y;
   varU = band.w;
   vec3 nrm = normalize(upD - grad);

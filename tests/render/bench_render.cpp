@@ -124,7 +124,13 @@ int main(int argc, char** argv) {
     else if (a == "--no-refraction") refraction = false;
     else if (a == "--reduced-rate") reducedRate = true;  // OceanOptions::reducedRate
     else if (a == "--full-rate") fullRate = true;  // OceanOptions::reducedRate off
-    else if (a == "--pixel-octave-end") pixelEndPx = std::atof(next().c_str());  // OceanOptions::pixelOctaveEndPx
+    else if (a == "--pixel-octave-end") {  // OceanOptions::pixelOctaveEndPx
+      pixelEndPx = std::atof(next().c_str());
+      if (!(pixelEndPx >= 1.0)) {
+        std::fprintf(stderr, "bench_render: --pixel-octave-end %g must be at least 1 (pixels)\n", pixelEndPx);
+        return 2;
+      }
+    }
     else if (a == "--rate-tolerance") rateTol = std::atof(next().c_str()) / 255.0;  // of 255; implies --reduced-rate
     else if (a == "--png") pngPrefix = next();     // each timed frame written as PREFIX<frame>.png
     else {
