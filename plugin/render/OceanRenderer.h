@@ -125,7 +125,7 @@ struct OceanOptions {
   // 2 pixels (its per-pixel octaves, foam flecks, glitter), which a half-rate
   // lattice cannot hold, so the picture moves beyond the goldens' bounds:
   // docs/PERFORMANCE.md, ninth pass, gives its cost and quality by tolerance.
-  // With pixelOctaveEndPx 4 (tenth pass) the default flight is 1.64-1.75x
+  // With pixelOctaveEndPx 4 (tenth pass) the default flight is 1.60-1.75x
   // the frame before the optics (full rate, 2 px: 2.24-2.34x), short of
   // issue 13's 1.5x, so neither is the default.
   bool reducedRate = false;
