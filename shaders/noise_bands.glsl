@@ -6,8 +6,10 @@
 // - the vertex normal: octaves over 6 cells along the view, faded in from
 //   3 (noiseVertexWeight): those of the geometry, so the normal is the
 //   mesh's own;
-// - the fragment normal: the rest, over 4 pixels (the pixel's longer axis),
-//   faded out by 2 (Nyquist), as the detail layer (noisePixelWeight): one
+// - the fragment normal: the rest, over 2 e pixels (the pixel's longer
+//   axis), faded out by e (noisePixelWeight; e = OceanOptions::
+//   pixelOctaveEndPx: 2 is Nyquist, 4 leaves the lattice of even pixels
+//   what is drawn, for reduced-rate shading): one
 //   gradient noise per pixel and octave (the ocean's cost on llvmpipe:
 //   docs/PERFORMANCE.md; a periodic 3D table of it, one texture fetch an
 //   octave, tried, was slower);
@@ -21,8 +23,8 @@
 float noiseVertexWeight(float wavelengthM, float cellAlongM) {
   return smoothstep(3.0, 6.0, wavelengthM / max(cellAlongM, 1e-6));
 }
-float noisePixelWeight(float wavelengthM, float pixelM) {
-  return smoothstep(2.0, 4.0, wavelengthM / max(pixelM, 1e-6));
+float noisePixelWeight(float wavelengthM, float pixelM, float endPx) {
+  return smoothstep(endPx, 2.0 * endPx, wavelengthM / max(pixelM, 1e-6));
 }
 
 // Octave i at d: (height, its gradient in ECEF, m/m), the body of

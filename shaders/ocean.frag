@@ -81,6 +81,7 @@ uniform float uFoamHeightM[17];
 #define NOISE_OCTAVE_TEXELS 1
 #include "noise_bands.glsl"
 uniform int uFragOctaves;
+uniform float uPixelOctaveEndPx;  // OceanOptions::pixelOctaveEndPx
 uniform int uOctaveCount;
 uniform float uOctaveWavelengthM[16];
 uniform float uMssAbove[17];
@@ -231,7 +232,8 @@ void main() {
   float footprint = max(length(dFdx(vEyeRel)), length(dFdy(vEyeRel)));
 #endif
 #if WV_MODEL == 0
-  // The noise sea's octaves not in the vertex normal, down to 2 pixels,
+  // The noise sea's octaves not in the vertex normal, down to
+  // uPixelOctaveEndPx pixels,
   // at the fragment's rest point (the displacement is vertical), and the
   // roughness of what is shown neither way (noise_bands.glsl).
   WvFrame fr0 = wvFrames[0];
@@ -241,7 +243,7 @@ void main() {
   vec3 grad = upD - nv / dot(nv, upD), gAdd = vec3(0.0);
   float hRes = vHeightA, varU = 0.0;
   // Only the octaves between the vertex normal's (a < 1 from 6 cells) and
-  // the pixel's (f > 0 down to 2 pixels) are visited: the wavelengths
+  // the pixel's (f > 0 down to uPixelOctaveEndPx) are visited: the wavelengths
   // halve, so the first is found by a logarithm; before it every octave is
   // shown whole, after it none (the spectrum from there is roughness).
   int n = min(uFragOctaves, 16);
@@ -251,17 +253,18 @@ void main() {
   float mss = 0.0;
   vec4 band = texelFetch(uOctaveBands, i);
 #ifdef GEOCEAN_NO_PIXEL_OCTAVES
-  // No pixel of the view is under half the longest octave (OceanRenderer's
-  // bound): every f below is 0, so the loop and the slopes it adds are left
-  // out (llvmpipe would run the loop's body once, masked), and the
-  // trailing loop's sum is read whole (OceanRenderer: the same float sum).
+  // No pixel of the view is under 1 / uPixelOctaveEndPx of the longest
+  // octave (OceanRenderer's bound): every f below is 0, so the loop and
+  // the slopes it adds are left out (llvmpipe would run the loop's body
+  // once, masked), and the trailing loop's sum is read whole
+  // (OceanRenderer: the same float sum).
   mss += band.y;
   varU = band.w;
   vec3 nrm = normalize(upD - grad);
 #else
   // A do-while tested at the end: llvmpipe runs a loop's body once more,
   // masked, when every pixel leaves it at the top (an octave's noise).
-  float f = i < n ? noisePixelWeight(band.x, footprint) : 0.0;
+  float f = i < n ? noisePixelWeight(band.x, footprint, uPixelOctaveEndPx) : 0.0;
   if (f > 0.0) do {
     float a = noiseVertexWeight(band.x, vCellAlongM);
     float shown = max(a, f);
@@ -275,7 +278,7 @@ void main() {
     }
     band = next;
     ++i;
-    f = i < n ? noisePixelWeight(band.x, footprint) : 0.0;
+    f = i < n ? noisePixelWeight(band.x, footprint, uPixelOctaveEndPx) : 0.0;
   } while (f > 0.0);
   mss += band.y;
   for (int k = i; k < uOctaveCount && k < 16; ++k) varU += texelFetch(uOctaveBands, k).z;

@@ -832,10 +832,10 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   cull.cellRadians = 2.0 * cull.tanY / cam.heightPx() * options_.cellPx;
   cull.maxDisplacementM = maxDisplacementM_;
   cull.waves = waves_.get();
-  // Noise: no octave is left per pixel (the longest under 2 pixels, a
-  // pixel 1 / cellPx of a cell); the other models: their fade's end.
+  // Noise: no octave is left per pixel (the longest under pixelOctaveEndPx
+  // pixels, a pixel 1 / cellPx of a cell); the other models: their fade's end.
   if (options_.farVertexShading && !octaveWavelengthM_.empty()) {
-    cull.farFootprintM = 0.5 * double(octaveWavelengthM_[0]);
+    cull.farFootprintM = double(octaveWavelengthM_[0]) / options_.pixelOctaveEndPx;
     cull.farAlongView = options_.model == waves::Model::Noise;
   }
   // The planar reflection is sampled per pixel out to its reach
@@ -979,6 +979,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glUniform3fv(p.uniform("uEyeMinusOrigin"), 1, &eyeMinusO[0]);
     glUniform1i(p.uniform("uOctaveCount"), modelOctaves);
     glUniform1i(p.uniform("uFragOctaves"), int(patch_.octaves.size()));
+    glUniform1f(p.uniform("uPixelOctaveEndPx"), float(options_.pixelOctaveEndPx));
     if (!octaveHeightVar_.empty())
       glUniform1fv(p.uniform("uOctaveHeightVar"), GLsizei(std::min<std::size_t>(octaveHeightVar_.size(), 16)),
                    octaveHeightVar_.data());
@@ -1125,7 +1126,8 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   glActiveTexture(GLenum(hostActive));
   glBindTextureUnit(12, octaveTexelTex_);
   glBindTextureUnit(13, octaveBandTex_);
-  // Noise: no pixel of the view under half the longest octave, so no
+  // Noise: no pixel of the view under 1 / pixelOctaveEndPx of the longest
+  // octave, so no
   // fragment visits one (ocean.frag's f = 0 for all): its programs without
   // the octave loop (llvmpipe ran its body once, masked, for ~40 ms of a
   // frame at 42 km; docs/PERFORMANCE.md). The bound: a pixel's back-
@@ -1146,7 +1148,8 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     const double h = g.heightM - maxDisplacementM_;
     noPixelOctaves = k > 0.0 && h > 0.0 &&
                      h * (cull.cellRadians / options_.cellPx) / std::pow(k, 1.5) >=
-                                                options_.noPixelOctaveMargin * 0.5 * double(octaveWavelengthM_[0]);
+                                                options_.noPixelOctaveMargin * double(octaveWavelengthM_[0]) /
+                                                    options_.pixelOctaveEndPx;
   }
   lastNoPixelOctaves_ = noPixelOctaves;
   // No reflection variant made for a bare draw.
@@ -1170,11 +1173,13 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   // read-back; 10-15 ms at 1280 x 720 on llvmpipe with 7 targets and two
   // depth copies, less since) and saved 5-25 % of the
   // ocean where its per-pixel shading is dear: where some noise octave is
-  // drawn per pixel (the nadir's pixel under half the longest octave).
+  // drawn per pixel (the nadir's pixel under 1 / pixelOctaveEndPx of the
+  // longest octave).
   // Above that (~40 km here) the sea's pixels are roughness alone
   // (docs/PERFORMANCE.md).
   const bool octavesPerPixel = !octaveWavelengthM_.empty() &&
-                               g.heightM * cull.cellRadians / options_.cellPx < 0.5 * double(octaveWavelengthM_[0]);
+                               g.heightM * cull.cellRadians / options_.cellPx <
+                                   double(octaveWavelengthM_[0]) / options_.pixelOctaveEndPx;
   // Reduced rate (OceanOptions::reducedRateDeferBelowM) also pays without
   // octaves per pixel where the sea fills much of the view.
   const bool reducedAbove = options_.reducedRate && g.heightM < options_.reducedRateDeferBelowM;

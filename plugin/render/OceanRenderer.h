@@ -103,10 +103,19 @@ struct OceanOptions {
   // (gBufferFor), else forward.
   bool deferred = true;
   // The noise sea's per-pixel programs without the octave loop for a view
-  // where no pixel is under this x half the longest octave (OceanRenderer::
-  // draw states the bound; 1.05 its margin): the same picture bit for bit.
+  // where no pixel is under this x 1 / pixelOctaveEndPx of the longest
+  // octave (OceanRenderer::draw states the bound; 1.05 its margin): the
+  // same picture bit for bit.
   // Tests set another margin (infinity: always the loop).
   double noPixelOctaveMargin = 1.05;
+  // The noise sea's per-pixel octaves end at a footprint of this many
+  // pixels (noise_bands.glsl's noisePixelWeight: whole from twice it); the
+  // shorter ones are roughness, their slope variance in the BRDF's (the
+  // sea's energy and the glitter's spread kept). 2 is Nyquist; 4 leaves
+  // the even pixels what is drawn, for reducedRate (~15x closer to full
+  // rate at its tolerance, but a softer sea and fainter far foam than 2:
+  // docs/PERFORMANCE.md, tenth pass).
+  double pixelOctaveEndPx = 2.0;
   // Reduced-rate shading of the deferred pass (ocean_resolve.frag): the
   // even pixels (2i, 2j) shaded exactly, at a quarter of the pixels; a pixel
   // between them their mean where the sea is opaque at all and their
@@ -116,6 +125,9 @@ struct OceanOptions {
   // 2 pixels (its per-pixel octaves, foam flecks, glitter), which a half-rate
   // lattice cannot hold, so the picture moves beyond the goldens' bounds:
   // docs/PERFORMANCE.md, ninth pass, gives its cost and quality by tolerance.
+  // With pixelOctaveEndPx 4 (tenth pass) the default flight is 1.60-1.75x
+  // the frame before the optics (full rate, 2 px: 2.24-2.34x), short of
+  // issue 13's 1.5x, so neither is the default.
   bool reducedRate = false;
   double reducedRateTolerance = 16.0 / 255.0;
   // With reduced rate the deferred path is also taken where no octave is

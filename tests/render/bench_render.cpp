@@ -15,6 +15,8 @@
 //                (the optics' switches, issue 13 item 7; `refl` is the
 //                mirrored pass alone, inside `ocean`)
 //                [--cell-px PX]  (the ocean grid's vertex spacing, OceanOptions::cellPx)
+//                [--reduced-rate | --full-rate] [--rate-tolerance N (of 255)]
+//                [--pixel-octave-end PX]  (OceanOptions::reducedRate, pixelOctaveEndPx)
 //                [--no-shadows] [--shadow-model paper] [--sun-model phong]
 //                (issue 13 item 6; `shadow` is the sun's depth pass alone,
 //                inside `ocean`, over the frames that drew it)
@@ -78,7 +80,8 @@ int main(int argc, char** argv) {
   int reflectionSize = 0;
   bool reflections = true, refraction = true, shadows = true, reducedRate = false;
   std::string pngPrefix;
-  double rateTol = -1.0;
+  double rateTol = -1.0, pixelEndPx = -1.0;
+  bool fullRate = false;
   render::ShadowModel shadowModel = render::ShadowModel::Physical;
   render::SunModel sunModel = render::SunModel::Microfacet;
   render::TerrainOptions terrain;
@@ -120,6 +123,14 @@ int main(int argc, char** argv) {
     else if (a == "--sun-model") sunModel = next() == "phong" ? render::SunModel::Phong : render::SunModel::Microfacet;
     else if (a == "--no-refraction") refraction = false;
     else if (a == "--reduced-rate") reducedRate = true;  // OceanOptions::reducedRate
+    else if (a == "--full-rate") fullRate = true;  // OceanOptions::reducedRate off
+    else if (a == "--pixel-octave-end") {  // OceanOptions::pixelOctaveEndPx
+      pixelEndPx = std::atof(next().c_str());
+      if (!(pixelEndPx >= 1.0)) {
+        std::fprintf(stderr, "bench_render: --pixel-octave-end %g must be at least 1 (pixels)\n", pixelEndPx);
+        return 2;
+      }
+    }
     else if (a == "--rate-tolerance") rateTol = std::atof(next().c_str()) / 255.0;  // of 255; implies --reduced-rate
     else if (a == "--png") pngPrefix = next();     // each timed frame written as PREFIX<frame>.png
     else {
@@ -147,7 +158,9 @@ int main(int argc, char** argv) {
   if (ocean) {
     ocean_render::OceanOptions oo;
     oo.detailNormals = detail;
-    oo.reducedRate = reducedRate || rateTol >= 0.0;
+    if (reducedRate || rateTol >= 0.0) oo.reducedRate = true;
+    if (fullRate) oo.reducedRate = false;
+    if (pixelEndPx > 0.0) oo.pixelOctaveEndPx = pixelEndPx;
     if (rateTol >= 0.0) oo.reducedRateTolerance = rateTol;
     if (cellPx > 0.0) oo.cellPx = cellPx;
     const std::string err =
