@@ -673,8 +673,10 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
   // linear interpolation across h texels errs by <= h^2 / 4 in coverage;
   // where the shoreline is, the gradient is >= 0.3 per texel, so the 0.5
   // contour moves by <= h^2 / 1.2 texels = (h / 1.2) x cellPx pixels:
-  // 0.2 px at h = 0.03.
-  constexpr double kSmoothTexels = 0.03;
+  // 0.4 px at h = 0.06 with 8 px cells (0.03 before: 42 km over the default
+  // world's coasts then drew every cell per pixel, ~35 ms of the flight's
+  // median frame; docs/PERFORMANCE.md).
+  constexpr double kSmoothTexels = 0.06;
   std::vector<std::uint32_t> smooth, open, farOpen;
   std::size_t sharp = 0;
   for (std::size_t c = 0; c + 6 <= idx.size(); c += 6) {
