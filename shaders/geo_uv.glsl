@@ -599,16 +599,20 @@ vec2 pagePos(vec2 lonLatDeg, int level) {
 }
 
 // The finest level from `want` up whose tiles under the 4 x 4 texels at
-// lonLat are all resident.
-int pageLevel(vec2 lonLatDeg, int want) {
-  for (int l = want; l < uPageTop; ++l) {
+// lonLat are all resident; s: the slots of those corner texels' tiles
+// (x0 y0, x1 y0, x0 y1, x1 y1), which pageTexels4 reads again no more.
+int pageLevelSlots(vec2 lonLatDeg, int want, out ivec4 s) {
+  for (int l = want; l <= uPageTop; ++l) {
     ivec2 i = ivec2(floor(pagePos(lonLatDeg, l)));
     ivec2 a = pageWrap(l, i - 1), b = pageWrap(l, i + 2);
-    if (pageSlot(l, a) >= 0 && pageSlot(l, b) >= 0 && pageSlot(l, ivec2(a.x, b.y)) >= 0 &&
-        pageSlot(l, ivec2(b.x, a.y)) >= 0)
-      return l;
+    s = ivec4(pageSlot(l, a), pageSlot(l, ivec2(b.x, a.y)), pageSlot(l, ivec2(a.x, b.y)), pageSlot(l, b));
+    if (l == uPageTop || all(greaterThanEqual(s, ivec4(0)))) return l;  // the top tile is pinned
   }
   return uPageTop;
+}
+int pageLevel(vec2 lonLatDeg, int want) {
+  ivec4 s;
+  return pageLevelSlots(lonLatDeg, want, s);
 }
 
 #ifndef GEOCEAN_WATER_PAGES_REGIONAL
@@ -616,21 +620,19 @@ int pageLevel(vec2 lonLatDeg, int want) {
 // by one), without a branch: llvmpipe runs both sides of one, so a fast
 // path for a block inside one tile beside a texel-by-texel fallback cost
 // every pixel both (49 fetches; docs/PERFORMANCE.md). The texels lie in at
-// most 2 x 2 tiles (T >= 4), the corner texels' tiles, which pageLevel
-// found resident: 4 page-table fetches, then each texel from its tile.
-void pageTexels4(int level, ivec2 g, out vec4 r[4]) {
+// most 2 x 2 tiles (T >= 4), the corner texels' tiles, whose slots s
+// pageLevelSlots found resident: each texel from its tile, 16 fetches.
+void pageTexels4(int level, ivec2 g, ivec4 s, out vec4 r[4]) {
   ivec4 L = uPageLevel[level];
   int T = uPageTile.x;
   ivec4 xs = ivec4(g.x) + ivec4(0, 1, 2, 3), ys = clamp(ivec4(g.y) + ivec4(0, 1, 2, 3), ivec4(0), ivec4(L.y - 1));
   xs = uPageTile.y != 0 ? ((xs % L.x) + L.x) % L.x : clamp(xs, ivec4(0), ivec4(L.x - 1));  // pageWrap's
   ivec4 tx = xs / T, ty = ys / T;
-  int s00 = texelFetch(uPageTable, ivec2(tx.x, L.w + ty.x), 0).r, s10 = texelFetch(uPageTable, ivec2(tx.w, L.w + ty.x), 0).r;
-  int s01 = texelFetch(uPageTable, ivec2(tx.x, L.w + ty.w), 0).r, s11 = texelFetch(uPageTable, ivec2(tx.w, L.w + ty.w), 0).r;
   ivec4 lx = xs - tx * T + 1, ly = ys - ty * T + 1;  // + 1: the tile's border
   bvec4 first = equal(tx, ivec4(tx.x));
   for (int y = 0; y < 4; ++y) {
     bool top = ty[y] == ty.x;
-    int a = top ? s00 : s01, b = top ? s10 : s11;
+    int a = top ? s.x : s.z, b = top ? s.y : s.w;
     r[y] = vec4(texelFetch(uPagePool, ivec3(lx.x, ly[y], first.x ? a : b), 0).r,
                 texelFetch(uPagePool, ivec3(lx.y, ly[y], first.y ? a : b), 0).r,
                 texelFetch(uPagePool, ivec3(lx.z, ly[y], first.z ? a : b), 0).r,
@@ -647,15 +649,46 @@ float pageBSplineOf(vec4 r[4], vec2 f) {
   return s;
 }
 float pageBilinearOf(vec4 r[4], vec2 f) { return mix(mix(r[1].y, r[1].z, f.x), mix(r[2].y, r[2].z, f.x), f.y); }
+
+#ifdef GEOCEAN_WATER_PAGES_MINIFIED
+// Cells whose every fragment reads the pages minified (OceanRenderer's
+// partitionCells bounds the texels per pixel from the cell's corners): the
+// bilinear's middle 2 x 2 of pageTexels4's block alone, fetched the same
+// way (the same values, the same arithmetic: 4 pool fetches for 16).
+float pageBilinearMinified(int level, ivec2 g, ivec4 s, vec2 f) {
+  ivec4 L = uPageLevel[level];
+  int T = uPageTile.x;
+  ivec4 xs = ivec4(g.x) + ivec4(0, 1, 2, 3), ys = clamp(ivec4(g.y) + ivec4(0, 1, 2, 3), ivec4(0), ivec4(L.y - 1));
+  xs = uPageTile.y != 0 ? ((xs % L.x) + L.x) % L.x : clamp(xs, ivec4(0), ivec4(L.x - 1));
+  ivec4 tx = xs / T, ty = ys / T;
+  ivec4 lx = xs - tx * T + 1, ly = ys - ty * T + 1;
+  bvec4 first = equal(tx, ivec4(tx.x));
+  vec2 r[2];
+  for (int y = 1; y < 3; ++y) {
+    bool top = ty[y] == ty.x;
+    int a = top ? s.x : s.z, b = top ? s.y : s.w;
+    r[y - 1] = vec2(texelFetch(uPagePool, ivec3(lx.y, ly[y], first.y ? a : b), 0).r,
+                    texelFetch(uPagePool, ivec3(lx.z, ly[y], first.z ? a : b), 0).r);
+  }
+  return mix(mix(r[0].x, r[0].y, f.x), mix(r[1].x, r[1].y, f.x), f.y);
+}
+#endif
 #endif
 
-float pageBSpline(vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo) {
+// The B-spline at the finest resident level from `want` up (pageLevel's).
+float pageBSpline(vec2 lonLatDeg, int want, sampler2D grid, vec4 gridGeo) {
+#ifndef GEOCEAN_WATER_PAGES_REGIONAL
+  ivec4 slots;
+  int level = pageLevelSlots(lonLatDeg, want, slots);
+#else
+  int level = pageLevel(lonLatDeg, want);
+#endif
   vec2 p = pagePos(lonLatDeg, level);
   vec2 i = floor(p);
   vec2 f = p - i;
 #ifndef GEOCEAN_WATER_PAGES_REGIONAL
   vec4 r[4];
-  pageTexels4(level, ivec2(i) - 1, r);
+  pageTexels4(level, ivec2(i) - 1, slots, r);
   return pageBSplineOf(r, f);
 #else
   vec4 wx = bsplineWeights4(f.x), wy = bsplineWeights4(f.y);
@@ -924,16 +957,21 @@ float waterPagesAuto(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
     }
   }
 #endif
-  int l = pageLevel(lonLatDeg, want);
 #ifdef GEOCEAN_WATER_PAGES_REGIONAL
-  return tpp < 1.0 ? pageBSpline(lonLatDeg, l, grid, gridGeo) : pageBilinear(lonLatDeg, l, grid, gridGeo);
+  int l = pageLevel(lonLatDeg, want);
+  return tpp < 1.0 ? pageBSpline(lonLatDeg, want, grid, gridGeo) : pageBilinear(lonLatDeg, l, grid, gridGeo);
 #else
   // One set of texels for either filter (the bilinear's are the B-spline's
   // middle four at the same level).
+  ivec4 slots;
+  int l = pageLevelSlots(lonLatDeg, want, slots);
   vec2 p = pagePos(lonLatDeg, l);
   vec2 i = floor(p);
+#ifdef GEOCEAN_WATER_PAGES_MINIFIED
+  return pageBilinearMinified(l, ivec2(i) - 1, slots, p - i);
+#endif
   vec4 r[4];
-  pageTexels4(l, ivec2(i) - 1, r);
+  pageTexels4(l, ivec2(i) - 1, slots, r);
   return tpp < 1.0 ? pageBSplineOf(r, p - i) : pageBilinearOf(r, p - i);
 #endif
 }
