@@ -931,6 +931,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
       partitionCells(frame_, world_->waterIndex(), options_.cellPx, cull, options_.cullOffscreen,
                      !bare && options_.cheapCoverage && (!pages_ || pagesIndexed_), idx, pagedTexels_,
                      fineWater_.get());
+  lastGroups_ = groups;
   gridMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (idx.empty()) {
     if (pages_) pages_->endFrame();

@@ -363,6 +363,8 @@ class OceanRenderer {
   double lastGridMs() const { return gridMs_; }
   // Whether the last draw shaded through the G-buffer (OceanOptions::deferred).
   bool lastDrawDeferred() const { return lastDeferred_; }
+  // The last draw's cell groups (index counts; tests).
+  const CellGroups& lastGroups() const { return lastGroups_; }
   // The last draw's per-pixel programs had no octave loop (OceanOptions::noPixelOctaveMargin).
   bool lastDrawWithoutPixelOctaves() const { return lastNoPixelOctaves_; }
   // The last deferred draw's share of its tiles' 4 x 2 groups shaded again
@@ -421,6 +423,7 @@ class OceanRenderer {
   std::vector<std::uint8_t> gFullMask_;
   std::vector<float> gFullRects_;
   bool lastDeferred_ = false;
+  CellGroups lastGroups_;
   bool lastNoPixelOctaves_ = false;
   std::size_t gVboBytes_ = 0;
   std::vector<std::uint8_t> gTileMask_;
