@@ -751,8 +751,13 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
       if (!water && fine) {
         // The same reach in the mask's own texels: near a coast most cells
         // are water (or land) throughout it though the grid's texel is not.
-        const double fm = 3.0 + 12.0 * std::max(fx1 - fx0, fy1 - fy0) / cellPx;
-        const auto cov = fine->cover(fx0 - fm, fx1 + fm, fy0 - fm, fy1 + fm);
+        // Magnified, a fragment at texel position x (texel j spans [j, j + 1))
+        // reads the B-spline's texels floor(x - 0.5) - 1 .. floor(x - 0.5) + 2
+        // (geo_uv.glsl pagePos, pageTexels4), all within [x - 2.5, x + 1.5],
+        // widened by 0.05 for the shader's float position (ulp 0.004 texel
+        // at 43200 texels); minified, the footprint's term as the grid's.
+        const double fm = 12.0 * std::max(fx1 - fx0, fy1 - fy0) / cellPx;
+        const auto cov = fine->cover(fx0 - 2.55 - fm, fx1 + 1.55 + fm, fy0 - 2.55 - fm, fy1 + 1.55 + fm);
         // All land: every fragment would read coverage 0 and discard.
         if (cov == world::TileWaterIndex::Cover::Land) continue;
         water = cov == world::TileWaterIndex::Cover::Water;
