@@ -555,15 +555,24 @@ uniform ivec4 uPageLevel[24];    // per level: width, height (texels), tiles acr
 uniform vec4 uPageGeo;           // level 0: origin lon, origin lat, lon step, lat step (degrees)
 uniform ivec2 uPageTile;         // tile size, 1 if longitude wraps
 
+// No integer division per pixel: llvmpipe has no SIMD one on x86 (each
+// lane's is scalar). The wrap by a float floor, ((x % w) + w) % w exactly
+// for |x| < 2^22 ((x + 0.5) / w lies at least 0.5 / w from an integer, far
+// above float division's error); the tile size is a power of two
+// (raster::TilePyramid): shifts and masks.
+int pageMod(int x, int w) { return x - w * int(floor((float(x) + 0.5) / float(w))); }
+ivec4 pageMod(ivec4 x, int w) { return x - w * ivec4(floor((vec4(x) + 0.5) / float(w))); }
+int pageShift() { return findMSB(uPageTile.x); }
+
 ivec2 pageWrap(int level, ivec2 g) {
   ivec4 L = uPageLevel[level];
-  g.x = uPageTile.y != 0 ? ((g.x % L.x) + L.x) % L.x : clamp(g.x, 0, L.x - 1);
+  g.x = uPageTile.y != 0 ? pageMod(g.x, L.x) : clamp(g.x, 0, L.x - 1);
   g.y = clamp(g.y, 0, L.y - 1);
   return g;
 }
 
 int pageSlot(int level, ivec2 g) {  // g wrapped
-  ivec2 t = g / uPageTile.x;
+  ivec2 t = g >> pageShift();
   return texelFetch(uPageTable, ivec2(t.x, uPageLevel[level].w + t.y), 0).r;
 }
 
@@ -576,7 +585,7 @@ float pageTexel(int level, ivec2 g, sampler2D grid, vec4 gridGeo) {
   bool outside = any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g, uPageLevel[level].xy));
   ivec2 w = pageWrap(level, g);
   int T = uPageTile.x;
-  float v = outside ? 0.0 : texelFetch(uPagePool, ivec3(w - (w / T) * T + 1, pageSlot(level, w)), 0).r;  // + 1: the tile's border
+  float v = outside ? 0.0 : texelFetch(uPagePool, ivec3((w & (T - 1)) + 1, pageSlot(level, w)), 0).r;  // + 1: the tile's border
   if (outside || isnan(v)) {
     vec2 c = uPageGeo.xy + (vec2(g) + 0.5) * float(1 << level) * uPageGeo.zw;
     v = textureLod(grid, geoUv(c, gridGeo), 0.0).r;  // one fetch: see waterTexel
@@ -585,7 +594,7 @@ float pageTexel(int level, ivec2 g, sampler2D grid, vec4 gridGeo) {
 #else
   g = pageWrap(level, g);
   int T = uPageTile.x;
-  return texelFetch(uPagePool, ivec3(g - (g / T) * T + 1, pageSlot(level, g)), 0).r;  // + 1: the tile's border
+  return texelFetch(uPagePool, ivec3((g & (T - 1)) + 1, pageSlot(level, g)), 0).r;  // + 1: the tile's border
 #endif
 }
 
@@ -626,9 +635,9 @@ void pageTexels4(int level, ivec2 g, ivec4 s, out vec4 r[4]) {
   ivec4 L = uPageLevel[level];
   int T = uPageTile.x;
   ivec4 xs = ivec4(g.x) + ivec4(0, 1, 2, 3), ys = clamp(ivec4(g.y) + ivec4(0, 1, 2, 3), ivec4(0), ivec4(L.y - 1));
-  xs = uPageTile.y != 0 ? ((xs % L.x) + L.x) % L.x : clamp(xs, ivec4(0), ivec4(L.x - 1));  // pageWrap's
-  ivec4 tx = xs / T, ty = ys / T;
-  ivec4 lx = xs - tx * T + 1, ly = ys - ty * T + 1;  // + 1: the tile's border
+  xs = uPageTile.y != 0 ? pageMod(xs, L.x) : clamp(xs, ivec4(0), ivec4(L.x - 1));  // pageWrap's
+  ivec4 tx = xs >> pageShift(), ty = ys >> pageShift();
+  ivec4 lx = (xs & (T - 1)) + 1, ly = (ys & (T - 1)) + 1;  // + 1: the tile's border
   bvec4 first = equal(tx, ivec4(tx.x));
   for (int y = 0; y < 4; ++y) {
     bool top = ty[y] == ty.x;
@@ -659,9 +668,9 @@ float pageBilinearMinified(int level, ivec2 g, ivec4 s, vec2 f) {
   ivec4 L = uPageLevel[level];
   int T = uPageTile.x;
   ivec4 xs = ivec4(g.x) + ivec4(0, 1, 2, 3), ys = clamp(ivec4(g.y) + ivec4(0, 1, 2, 3), ivec4(0), ivec4(L.y - 1));
-  xs = uPageTile.y != 0 ? ((xs % L.x) + L.x) % L.x : clamp(xs, ivec4(0), ivec4(L.x - 1));
-  ivec4 tx = xs / T, ty = ys / T;
-  ivec4 lx = xs - tx * T + 1, ly = ys - ty * T + 1;
+  xs = uPageTile.y != 0 ? pageMod(xs, L.x) : clamp(xs, ivec4(0), ivec4(L.x - 1));
+  ivec4 tx = xs >> pageShift(), ty = ys >> pageShift();
+  ivec4 lx = (xs & (T - 1)) + 1, ly = (ys & (T - 1)) + 1;
   bvec4 first = equal(tx, ivec4(tx.x));
   vec2 r[2];
   for (int y = 1; y < 3; ++y) {
