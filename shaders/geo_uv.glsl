@@ -83,22 +83,30 @@ bool levelClear(vec2 p, ivec2 size) {
   return any(lessThan(i + 2, ivec2(0))) || any(greaterThanEqual(i - 1, size));
 }
 
+// Streamed levels' texel indices without integer division: llvmpipe has
+// no SIMD one on x86 (each lane's is a scalar instruction, dozens per
+// pixel or vertex). The wrap as ((x % w) + w) % w by a float floor, exact
+// for |x| < 2^22 ((x + 0.5) / w lies at least 0.5 / w from an integer, far
+// above float division's error).
+int texelWrap(int x, int w) { return x - w * int(floor((float(x) + 0.5) / float(w))); }
+ivec4 texelWrap(ivec4 x, int w) { return x - w * ivec4(floor((vec4(x) + 0.5) / float(w))); }
+
 #if defined(GEOCEAN_WATER_TILES) || defined(GEOCEAN_ELEVATION_TILES)
 // Texel g of a streamed level (host tiles: water or elevation) in its 2 x 2
 // block of pool layers: (x, y) in the tile with its border, and the layer.
 // g comes back wrapped or clamped into the level.
 ivec3 blockTexel(inout ivec2 g, ivec3 level, ivec4 block, ivec4 slots) {
   int w = level.x;
-  g.x = level.z != 0 ? ((g.x % w) + w) % w : clamp(g.x, 0, w - 1);
+  g.x = level.z != 0 ? texelWrap(g.x, w) : clamp(g.x, 0, w - 1);
   g.y = clamp(g.y, 0, level.y - 1);
   int T = block.w;
-  ivec2 t = g / T;
+  ivec2 t = g >> findMSB(T);  // T a power of two, g >= 0
   int dx = t.x - block.x;
   if (dx < 0) dx += block.z;  // wrapped past the antimeridian
   int dy = t.y - block.y;
   // Outside the block (not reached: the level is chosen so the tile and the
   // filter's reach fit in it): its nearest edge texel, from the border.
-  ivec2 local = clamp(g - t * T, ivec2(0), ivec2(T - 1));
+  ivec2 local = g & (T - 1);
   if (dx < 0 || dx > 1) {
     local.x = dx < 0 ? -1 : T;
     dx = clamp(dx, 0, 1);
@@ -555,18 +563,12 @@ uniform ivec4 uPageLevel[24];    // per level: width, height (texels), tiles acr
 uniform vec4 uPageGeo;           // level 0: origin lon, origin lat, lon step, lat step (degrees)
 uniform ivec2 uPageTile;         // tile size, 1 if longitude wraps
 
-// No integer division per pixel: llvmpipe has no SIMD one on x86 (each
-// lane's is scalar). The wrap by a float floor, ((x % w) + w) % w exactly
-// for |x| < 2^22 ((x + 0.5) / w lies at least 0.5 / w from an integer, far
-// above float division's error); the tile size is a power of two
-// (raster::TilePyramid): shifts and masks.
-int pageMod(int x, int w) { return x - w * int(floor((float(x) + 0.5) / float(w))); }
-ivec4 pageMod(ivec4 x, int w) { return x - w * ivec4(floor((vec4(x) + 0.5) / float(w))); }
+// The tile size is a power of two (raster::TilePyramid): shifts and masks.
 int pageShift() { return findMSB(uPageTile.x); }
 
 ivec2 pageWrap(int level, ivec2 g) {
   ivec4 L = uPageLevel[level];
-  g.x = uPageTile.y != 0 ? pageMod(g.x, L.x) : clamp(g.x, 0, L.x - 1);
+  g.x = uPageTile.y != 0 ? texelWrap(g.x, L.x) : clamp(g.x, 0, L.x - 1);
   g.y = clamp(g.y, 0, L.y - 1);
   return g;
 }
@@ -635,7 +637,7 @@ void pageTexels4(int level, ivec2 g, ivec4 s, out vec4 r[4]) {
   ivec4 L = uPageLevel[level];
   int T = uPageTile.x;
   ivec4 xs = ivec4(g.x) + ivec4(0, 1, 2, 3), ys = clamp(ivec4(g.y) + ivec4(0, 1, 2, 3), ivec4(0), ivec4(L.y - 1));
-  xs = uPageTile.y != 0 ? pageMod(xs, L.x) : clamp(xs, ivec4(0), ivec4(L.x - 1));  // pageWrap's
+  xs = uPageTile.y != 0 ? texelWrap(xs, L.x) : clamp(xs, ivec4(0), ivec4(L.x - 1));  // pageWrap's
   ivec4 tx = xs >> pageShift(), ty = ys >> pageShift();
   ivec4 lx = (xs & (T - 1)) + 1, ly = (ys & (T - 1)) + 1;  // + 1: the tile's border
   bvec4 first = equal(tx, ivec4(tx.x));
@@ -668,7 +670,7 @@ float pageBilinearMinified(int level, ivec2 g, ivec4 s, vec2 f) {
   ivec4 L = uPageLevel[level];
   int T = uPageTile.x;
   ivec4 xs = ivec4(g.x) + ivec4(0, 1, 2, 3), ys = clamp(ivec4(g.y) + ivec4(0, 1, 2, 3), ivec4(0), ivec4(L.y - 1));
-  xs = uPageTile.y != 0 ? pageMod(xs, L.x) : clamp(xs, ivec4(0), ivec4(L.x - 1));
+  xs = uPageTile.y != 0 ? texelWrap(xs, L.x) : clamp(xs, ivec4(0), ivec4(L.x - 1));
   ivec4 tx = xs >> pageShift(), ty = ys >> pageShift();
   ivec4 lx = (xs & (T - 1)) + 1, ly = (ys & (T - 1)) + 1;
   bvec4 first = equal(tx, ivec4(tx.x));
