@@ -265,39 +265,29 @@ WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg) {
   std::vector<Span> cols(W);
   for (int x = 0; x < W; ++x) cols[std::size_t(x)] = span(x * rx, (x + 1) * rx);
   LevelRows rows(water, level);
-  // Per grid texel its level texels, rows then columns. All 1 or all 0 (most
-  // of the Earth) answer without the weights (the weighted mean is then
-  // exactly that value: 0 / wsum, or `all`), the rest in the same order of
-  // sums as ever. The rows (at most 3 for ry < 2) lie in at most two tile
-  // bands, which LevelRows keeps.
+  std::vector<double> sum(W), wsum(W);
+  std::vector<std::uint8_t> all(W);
   for (int y = 0; y < H; ++y) {
     const Span r = span(y * ry, (y + 1) * ry);
-    const float* rowOf[4];
-    int nRows = 0;
-    for (int j = r.first; j <= r.last && nRows < 4; ++j) rowOf[nRows++] = rows.row(std::min(j, LH - 1));
-    float* out = &l.values[std::size_t(y) * W];
-    for (int x = 0; x < W; ++x) {
-      const Span& c = cols[std::size_t(x)];
-      bool one = true, zero = true;
-      for (int k = 0; k < nRows; ++k)
+    std::fill(sum.begin(), sum.end(), 0.0), std::fill(wsum.begin(), wsum.end(), 0.0);
+    std::fill(all.begin(), all.end(), std::uint8_t(1));
+    for (int j = r.first; j <= r.last; ++j) {
+      const float* row = rows.row(std::min(j, LH - 1));
+      const double wy = r.w[j - r.first];
+      for (int x = 0; x < W; ++x) {
+        const Span& c = cols[std::size_t(x)];
         for (int i = c.first; i <= c.last; ++i) {
-          const float v = rowOf[k][std::min(i, LW - 1)];
-          one = one && v == 1.0f, zero = zero && v == 0.0f;
-        }
-      if (one || zero) {
-        out[x] = one ? 1.0f : 0.0f;
-        continue;
-      }
-      double sum = 0.0, wsum = 0.0;
-      for (int k = 0; k < nRows; ++k) {
-        const double wy = r.w[k];
-        for (int i = c.first; i <= c.last; ++i) {
+          const float v = row[std::min(i, LW - 1)];
           const double w = wy * c.w[i - c.first];
-          sum += w * rowOf[k][std::min(i, LW - 1)], wsum += w;
+          sum[std::size_t(x)] += w * v, wsum[std::size_t(x)] += w;
+          all[std::size_t(x)] &= v == 1.0f;
         }
       }
-      out[x] = std::min(float(sum / wsum), std::nextafter(1.0f, 0.0f));
     }
+    float* out = &l.values[std::size_t(y) * W];
+    for (int x = 0; x < W; ++x)
+      out[x] = all[std::size_t(x)] ? 1.0f
+                                   : std::min(float(sum[std::size_t(x)] / wsum[std::size_t(x)]), std::nextafter(1.0f, 0.0f));
   }
   return l;
 }
