@@ -304,7 +304,12 @@ bool oiioModuleLoaded() {
 // the file's values (a truncated file through the cache:
 // RejectsWhatItCannotReadWithAClearMessage).
 TEST(Raster, ABigTiffOpensWithoutOpenImageIOAndReadsThroughItOnDemand) {
-  ASSERT_FALSE(oiioModuleLoaded()) << "run this test in a process of its own (ctest does)";
+  if (oiioModuleLoaded()) {  // an earlier test of this process loaded it (ctest runs one a process)
+    const auto r = geocean::test::run(fs::read_symlink("/proc/self/exe").string() +
+                                      " --gtest_filter=Raster.ABigTiffOpensWithoutOpenImageIOAndReadsThroughItOnDemand");
+    EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
+    return;
+  }
   TempDir d;
   std::vector<float> v = cellIds(512, 256);
   GeoTiffWriteOptions o;
