@@ -9,7 +9,7 @@ mode="${1:-run}"
 packages=(
   build-essential cmake pkg-config git
   libgeographiclib-dev geographiclib-tools libglm-dev libglfw3-dev
-  libopenimageio-dev openimageio-tools libtiff-dev libpng-dev libembree-dev libtbb-dev
+  libopenimageio-dev openimageio-tools libtiff-dev libdeflate-dev libpng-dev libembree-dev libtbb-dev
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   proj-bin gmt gmt-gshhg-low xvfb xauth

@@ -83,22 +83,30 @@ bool levelClear(vec2 p, ivec2 size) {
   return any(lessThan(i + 2, ivec2(0))) || any(greaterThanEqual(i - 1, size));
 }
 
+// Streamed levels' texel indices without integer division: llvmpipe has
+// no SIMD one on x86 (each lane's is a scalar instruction, dozens per
+// pixel or vertex). The wrap as ((x % w) + w) % w by a float floor, exact
+// for |x| < 2^22 ((x + 0.5) / w lies at least 0.5 / w from an integer, far
+// above float division's error).
+int texelWrap(int x, int w) { return x - w * int(floor((float(x) + 0.5) / float(w))); }
+ivec4 texelWrap(ivec4 x, int w) { return x - w * ivec4(floor((vec4(x) + 0.5) / float(w))); }
+
 #if defined(GEOCEAN_WATER_TILES) || defined(GEOCEAN_ELEVATION_TILES)
 // Texel g of a streamed level (host tiles: water or elevation) in its 2 x 2
 // block of pool layers: (x, y) in the tile with its border, and the layer.
 // g comes back wrapped or clamped into the level.
 ivec3 blockTexel(inout ivec2 g, ivec3 level, ivec4 block, ivec4 slots) {
   int w = level.x;
-  g.x = level.z != 0 ? ((g.x % w) + w) % w : clamp(g.x, 0, w - 1);
+  g.x = level.z != 0 ? texelWrap(g.x, w) : clamp(g.x, 0, w - 1);
   g.y = clamp(g.y, 0, level.y - 1);
   int T = block.w;
-  ivec2 t = g / T;
+  ivec2 t = g >> findMSB(T);  // T a power of two, g >= 0
   int dx = t.x - block.x;
   if (dx < 0) dx += block.z;  // wrapped past the antimeridian
   int dy = t.y - block.y;
   // Outside the block (not reached: the level is chosen so the tile and the
   // filter's reach fit in it): its nearest edge texel, from the border.
-  ivec2 local = clamp(g - t * T, ivec2(0), ivec2(T - 1));
+  ivec2 local = g & (T - 1);
   if (dx < 0 || dx > 1) {
     local.x = dx < 0 ? -1 : T;
     dx = clamp(dx, 0, 1);
@@ -555,15 +563,18 @@ uniform ivec4 uPageLevel[24];    // per level: width, height (texels), tiles acr
 uniform vec4 uPageGeo;           // level 0: origin lon, origin lat, lon step, lat step (degrees)
 uniform ivec2 uPageTile;         // tile size, 1 if longitude wraps
 
+// The tile size is a power of two (raster::TilePyramid): shifts and masks.
+int pageShift() { return findMSB(uPageTile.x); }
+
 ivec2 pageWrap(int level, ivec2 g) {
   ivec4 L = uPageLevel[level];
-  g.x = uPageTile.y != 0 ? ((g.x % L.x) + L.x) % L.x : clamp(g.x, 0, L.x - 1);
+  g.x = uPageTile.y != 0 ? texelWrap(g.x, L.x) : clamp(g.x, 0, L.x - 1);
   g.y = clamp(g.y, 0, L.y - 1);
   return g;
 }
 
 int pageSlot(int level, ivec2 g) {  // g wrapped
-  ivec2 t = g / uPageTile.x;
+  ivec2 t = g >> pageShift();
   return texelFetch(uPageTable, ivec2(t.x, uPageLevel[level].w + t.y), 0).r;
 }
 
@@ -576,7 +587,7 @@ float pageTexel(int level, ivec2 g, sampler2D grid, vec4 gridGeo) {
   bool outside = any(lessThan(g, ivec2(0))) || any(greaterThanEqual(g, uPageLevel[level].xy));
   ivec2 w = pageWrap(level, g);
   int T = uPageTile.x;
-  float v = outside ? 0.0 : texelFetch(uPagePool, ivec3(w - (w / T) * T + 1, pageSlot(level, w)), 0).r;  // + 1: the tile's border
+  float v = outside ? 0.0 : texelFetch(uPagePool, ivec3((w & (T - 1)) + 1, pageSlot(level, w)), 0).r;  // + 1: the tile's border
   if (outside || isnan(v)) {
     vec2 c = uPageGeo.xy + (vec2(g) + 0.5) * float(1 << level) * uPageGeo.zw;
     v = textureLod(grid, geoUv(c, gridGeo), 0.0).r;  // one fetch: see waterTexel
@@ -585,7 +596,7 @@ float pageTexel(int level, ivec2 g, sampler2D grid, vec4 gridGeo) {
 #else
   g = pageWrap(level, g);
   int T = uPageTile.x;
-  return texelFetch(uPagePool, ivec3(g - (g / T) * T + 1, pageSlot(level, g)), 0).r;  // + 1: the tile's border
+  return texelFetch(uPagePool, ivec3((g & (T - 1)) + 1, pageSlot(level, g)), 0).r;  // + 1: the tile's border
 #endif
 }
 
@@ -599,16 +610,20 @@ vec2 pagePos(vec2 lonLatDeg, int level) {
 }
 
 // The finest level from `want` up whose tiles under the 4 x 4 texels at
-// lonLat are all resident.
-int pageLevel(vec2 lonLatDeg, int want) {
-  for (int l = want; l < uPageTop; ++l) {
+// lonLat are all resident; s: the slots of those corner texels' tiles
+// (x0 y0, x1 y0, x0 y1, x1 y1), which pageTexels4 reads again no more.
+int pageLevelSlots(vec2 lonLatDeg, int want, out ivec4 s) {
+  for (int l = want; l <= uPageTop; ++l) {
     ivec2 i = ivec2(floor(pagePos(lonLatDeg, l)));
     ivec2 a = pageWrap(l, i - 1), b = pageWrap(l, i + 2);
-    if (pageSlot(l, a) >= 0 && pageSlot(l, b) >= 0 && pageSlot(l, ivec2(a.x, b.y)) >= 0 &&
-        pageSlot(l, ivec2(b.x, a.y)) >= 0)
-      return l;
+    s = ivec4(pageSlot(l, a), pageSlot(l, ivec2(b.x, a.y)), pageSlot(l, ivec2(a.x, b.y)), pageSlot(l, b));
+    if (l == uPageTop || all(greaterThanEqual(s, ivec4(0)))) return l;  // the top tile is pinned
   }
   return uPageTop;
+}
+int pageLevel(vec2 lonLatDeg, int want) {
+  ivec4 s;
+  return pageLevelSlots(lonLatDeg, want, s);
 }
 
 #ifndef GEOCEAN_WATER_PAGES_REGIONAL
@@ -616,21 +631,19 @@ int pageLevel(vec2 lonLatDeg, int want) {
 // by one), without a branch: llvmpipe runs both sides of one, so a fast
 // path for a block inside one tile beside a texel-by-texel fallback cost
 // every pixel both (49 fetches; docs/PERFORMANCE.md). The texels lie in at
-// most 2 x 2 tiles (T >= 4), the corner texels' tiles, which pageLevel
-// found resident: 4 page-table fetches, then each texel from its tile.
-void pageTexels4(int level, ivec2 g, out vec4 r[4]) {
+// most 2 x 2 tiles (T >= 4), the corner texels' tiles, whose slots s
+// pageLevelSlots found resident: each texel from its tile, 16 fetches.
+void pageTexels4(int level, ivec2 g, ivec4 s, out vec4 r[4]) {
   ivec4 L = uPageLevel[level];
   int T = uPageTile.x;
   ivec4 xs = ivec4(g.x) + ivec4(0, 1, 2, 3), ys = clamp(ivec4(g.y) + ivec4(0, 1, 2, 3), ivec4(0), ivec4(L.y - 1));
-  xs = uPageTile.y != 0 ? ((xs % L.x) + L.x) % L.x : clamp(xs, ivec4(0), ivec4(L.x - 1));  // pageWrap's
-  ivec4 tx = xs / T, ty = ys / T;
-  int s00 = texelFetch(uPageTable, ivec2(tx.x, L.w + ty.x), 0).r, s10 = texelFetch(uPageTable, ivec2(tx.w, L.w + ty.x), 0).r;
-  int s01 = texelFetch(uPageTable, ivec2(tx.x, L.w + ty.w), 0).r, s11 = texelFetch(uPageTable, ivec2(tx.w, L.w + ty.w), 0).r;
-  ivec4 lx = xs - tx * T + 1, ly = ys - ty * T + 1;  // + 1: the tile's border
+  xs = uPageTile.y != 0 ? texelWrap(xs, L.x) : clamp(xs, ivec4(0), ivec4(L.x - 1));  // pageWrap's
+  ivec4 tx = xs >> pageShift(), ty = ys >> pageShift();
+  ivec4 lx = (xs & (T - 1)) + 1, ly = (ys & (T - 1)) + 1;  // + 1: the tile's border
   bvec4 first = equal(tx, ivec4(tx.x));
   for (int y = 0; y < 4; ++y) {
     bool top = ty[y] == ty.x;
-    int a = top ? s00 : s01, b = top ? s10 : s11;
+    int a = top ? s.x : s.z, b = top ? s.y : s.w;
     r[y] = vec4(texelFetch(uPagePool, ivec3(lx.x, ly[y], first.x ? a : b), 0).r,
                 texelFetch(uPagePool, ivec3(lx.y, ly[y], first.y ? a : b), 0).r,
                 texelFetch(uPagePool, ivec3(lx.z, ly[y], first.z ? a : b), 0).r,
@@ -647,15 +660,46 @@ float pageBSplineOf(vec4 r[4], vec2 f) {
   return s;
 }
 float pageBilinearOf(vec4 r[4], vec2 f) { return mix(mix(r[1].y, r[1].z, f.x), mix(r[2].y, r[2].z, f.x), f.y); }
+
+#ifdef GEOCEAN_WATER_PAGES_MINIFIED
+// Cells whose every fragment reads the pages minified (OceanRenderer's
+// partitionCells bounds the texels per pixel from the cell's corners): the
+// bilinear's middle 2 x 2 of pageTexels4's block alone, fetched the same
+// way (the same values, the same arithmetic: 4 pool fetches for 16).
+float pageBilinearMinified(int level, ivec2 g, ivec4 s, vec2 f) {
+  ivec4 L = uPageLevel[level];
+  int T = uPageTile.x;
+  ivec4 xs = ivec4(g.x) + ivec4(0, 1, 2, 3), ys = clamp(ivec4(g.y) + ivec4(0, 1, 2, 3), ivec4(0), ivec4(L.y - 1));
+  xs = uPageTile.y != 0 ? texelWrap(xs, L.x) : clamp(xs, ivec4(0), ivec4(L.x - 1));
+  ivec4 tx = xs >> pageShift(), ty = ys >> pageShift();
+  ivec4 lx = (xs & (T - 1)) + 1, ly = (ys & (T - 1)) + 1;
+  bvec4 first = equal(tx, ivec4(tx.x));
+  vec2 r[2];
+  for (int y = 1; y < 3; ++y) {
+    bool top = ty[y] == ty.x;
+    int a = top ? s.x : s.z, b = top ? s.y : s.w;
+    r[y - 1] = vec2(texelFetch(uPagePool, ivec3(lx.y, ly[y], first.y ? a : b), 0).r,
+                    texelFetch(uPagePool, ivec3(lx.z, ly[y], first.z ? a : b), 0).r);
+  }
+  return mix(mix(r[0].x, r[0].y, f.x), mix(r[1].x, r[1].y, f.x), f.y);
+}
+#endif
 #endif
 
-float pageBSpline(vec2 lonLatDeg, int level, sampler2D grid, vec4 gridGeo) {
+// The B-spline at the finest resident level from `want` up (pageLevel's).
+float pageBSpline(vec2 lonLatDeg, int want, sampler2D grid, vec4 gridGeo) {
+#ifndef GEOCEAN_WATER_PAGES_REGIONAL
+  ivec4 slots;
+  int level = pageLevelSlots(lonLatDeg, want, slots);
+#else
+  int level = pageLevel(lonLatDeg, want);
+#endif
   vec2 p = pagePos(lonLatDeg, level);
   vec2 i = floor(p);
   vec2 f = p - i;
 #ifndef GEOCEAN_WATER_PAGES_REGIONAL
   vec4 r[4];
-  pageTexels4(level, ivec2(i) - 1, r);
+  pageTexels4(level, ivec2(i) - 1, slots, r);
   return pageBSplineOf(r, f);
 #else
   vec4 wx = bsplineWeights4(f.x), wy = bsplineWeights4(f.y);
@@ -924,16 +968,21 @@ float waterPagesAuto(vec2 lonLatDeg, sampler2D grid, vec4 gridGeo) {
     }
   }
 #endif
-  int l = pageLevel(lonLatDeg, want);
 #ifdef GEOCEAN_WATER_PAGES_REGIONAL
-  return tpp < 1.0 ? pageBSpline(lonLatDeg, l, grid, gridGeo) : pageBilinear(lonLatDeg, l, grid, gridGeo);
+  int l = pageLevel(lonLatDeg, want);
+  return tpp < 1.0 ? pageBSpline(lonLatDeg, want, grid, gridGeo) : pageBilinear(lonLatDeg, l, grid, gridGeo);
 #else
   // One set of texels for either filter (the bilinear's are the B-spline's
   // middle four at the same level).
+  ivec4 slots;
+  int l = pageLevelSlots(lonLatDeg, want, slots);
   vec2 p = pagePos(lonLatDeg, l);
   vec2 i = floor(p);
+#ifdef GEOCEAN_WATER_PAGES_MINIFIED
+  return pageBilinearMinified(l, ivec2(i) - 1, slots, p - i);
+#endif
   vec4 r[4];
-  pageTexels4(l, ivec2(i) - 1, r);
+  pageTexels4(l, ivec2(i) - 1, slots, r);
   return tpp < 1.0 ? pageBSplineOf(r, p - i) : pageBilinearOf(r, p - i);
 #endif
 }

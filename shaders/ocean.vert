@@ -267,7 +267,7 @@ void main() {
 #if defined(GEOCEAN_VERTEX_COVERAGE) && defined(GEOCEAN_WATER_PAGES)
   // A streamed mask: its finest resident level's B-spline, as the paged
   // fragments read it magnified (geo_uv.glsl waterPagesAuto).
-  vCoverage = pageBSpline(lonLat, pageLevel(lonLat, 0), uWater, uWaterGeo);
+  vCoverage = pageBSpline(lonLat, 0, uWater, uWaterGeo);
 #elif defined(GEOCEAN_VERTEX_COVERAGE)
   vCoverage = textureBSplineGather(uWater, geoUv(lonLat, uWaterGeo));
 #endif

@@ -376,6 +376,52 @@ std::unique_ptr<TileSource> oiioCache(const std::string& path, const ImageInfo& 
   return std::make_unique<OiioCache>(path, info, cacheBytes);
 }
 
+namespace {
+// OiioCache made on the first read: a big raster whose pixels all come
+// from a warm tile cache (raster::TilePyramid) never loads OpenImageIO.
+class LazyOiioCache final : public TileSource {
+ public:
+  LazyOiioCache(const std::string& path, const ImageInfo& info, std::size_t cacheBytes)
+      : path_(path), info_(info), cacheBytes_(cacheBytes) {
+    if (info.tileW > 0) tileW = info.tileW, tileH = info.tileH;
+  }
+  bool read(int x0, int x1, int y0, int y1, int channel, float* out) override {
+    TileSource* s = source();
+    return s && s->read(x0, x1, y0, y1, channel, out);
+  }
+  std::string error() override {
+    TileSource* s = source();
+    if (s) return s->error();
+    std::lock_guard lock(mutex_);
+    return openError_;
+  }
+
+ private:
+  TileSource* source() {
+    std::lock_guard lock(mutex_);
+    if (!src_ && openError_.empty()) {
+      try {
+        src_ = std::make_unique<OiioCache>(path_, info_, cacheBytes_);
+      } catch (const std::exception& e) {
+        openError_ = e.what();
+      }
+    }
+    return src_.get();
+  }
+  std::string path_;
+  ImageInfo info_;
+  std::size_t cacheBytes_;
+  std::mutex mutex_;
+  std::unique_ptr<TileSource> src_;
+  std::string openError_;
+};
+}  // namespace
+
+std::unique_ptr<TileSource> oiioCacheOnFirstRead(const std::string& path, const ImageInfo& info,
+                                                 std::size_t cacheBytes) {
+  return std::make_unique<LazyOiioCache>(path, info, cacheBytes);
+}
+
 void oiioWrite8(const std::string& path, const unsigned char* data, int width, int height, int channels) {
   char err[512] = {};
   if (!oiio().write8(path.c_str(), data, width, height, channels, err, sizeof err))

@@ -78,6 +78,10 @@ std::unique_ptr<TileSource> tiffTiles(const std::string& path, const ImageInfo& 
 ImageInfo oiioInfo(const std::string& path);  // throws RasterError
 std::vector<float> oiioReadAll(const std::string& path, const ImageInfo& info);
 std::unique_ptr<TileSource> oiioCache(const std::string& path, const ImageInfo& info, std::size_t cacheBytes);
+// The same, made (and OpenImageIO loaded) on the first read; an error then
+// is the read's (false, error()).
+std::unique_ptr<TileSource> oiioCacheOnFirstRead(const std::string& path, const ImageInfo& info,
+                                                 std::size_t cacheBytes);
 void oiioWrite8(const std::string& path, const unsigned char* data, int width, int height, int channels);
 
 }  // namespace geocean::raster::detail

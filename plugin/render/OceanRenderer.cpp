@@ -100,6 +100,10 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
     auto paged = shaded;
     for (const std::string& d : pages_->defines()) paged.push_back(d);
     sharpDefines_ = paged;
+    if (fineWater_) {
+      sharpMinDefines_ = paged;
+      sharpMinDefines_.push_back("GEOCEAN_WATER_PAGES_MINIFIED 1");
+    }
   } else {
     sharpDefines_ = shaded;
   }
@@ -647,6 +651,43 @@ std::vector<std::uint8_t> offscreenSides(const grid::GridFrame& f, const ScreenC
   return out;
 }
 
+namespace {
+
+// Whether every fragment of a cell (6 indices, two triangles) reads the
+// pages minified: geo_uv.glsl's texels per pixel, length(|dP/dx| + |dP/dy|)
+// of the level-0 texel position P, at least 1. Per triangle, P over the
+// screen is affine between its vertices (the derivatives llvmpipe's quads
+// take); perspective-correct interpolation scales the derivative within the
+// triangle by at most (nearest / farthest depth)^2 of its vertices. Bound:
+// that product at least 2 (a factor 2 for the quads' pixels beyond the
+// triangle's edge and the waves' displacement of the vertices, metres
+// against the >= 1 km pixels where the texels are minified).
+bool minifiedCell(const grid::GridFrame& f, const std::uint32_t* cell, const glm::dvec2* texel, const ScreenCull& view,
+                  double pxPerTan) {
+  for (int t = 0; t < 6; t += 3) {
+    glm::dvec2 sp[3];
+    double dMin = 0.0, dMax = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const float* e = f.vertices[cell[t + k]].eyeRelM;
+      const glm::dvec3 rel(e[0], e[1], e[2]);
+      const double d = glm::dot(rel, view.forward);
+      if (!(d > 0.0)) return false;
+      sp[k] = pxPerTan / d * glm::dvec2(glm::dot(rel, view.right), glm::dot(rel, view.up));
+      dMin = k == 0 ? d : std::min(dMin, d), dMax = std::max(dMax, d);
+    }
+    const glm::dvec2 s1 = sp[1] - sp[0], s2 = sp[2] - sp[0];
+    const glm::dvec2 p1 = texel[t + 1] - texel[t], p2 = texel[t + 2] - texel[t];
+    const double det = s1.x * s2.y - s2.x * s1.y;
+    if (!(std::abs(det) > 1e-6)) return false;
+    const glm::dvec2 dx = (p1 * s2.y - p2 * s1.y) / det, dy = (p2 * s1.x - p1 * s2.x) / det;
+    const double tpp = glm::length(glm::abs(dx) + glm::abs(dy)) * (dMin / dMax) * (dMin / dMax);
+    if (!(tpp >= 2.0)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi, double cellPx, const ScreenCull& view,
                           bool cull, bool group, std::vector<std::uint32_t>& idx, double pagedTexels,
                           world::TileWaterIndex* fine) {
@@ -677,11 +718,15 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
   // world's coasts then drew every cell per pixel, ~35 ms of the flight's
   // median frame; docs/PERFORMANCE.md).
   constexpr double kSmoothTexels = 0.06;
-  std::vector<std::uint32_t> smooth, open, farOpen;
+  std::vector<std::uint32_t> smooth, open, farOpen, minified;
   std::size_t sharp = 0;
+  // Pixels per unit of view-plane tangent (cellRadians is cellPx pixels).
+  const double pxPerTan = view.cellRadians > 0.0 ? cellPx / view.cellRadians : 0.0;
+  const bool mini = view.minified && fine && pxPerTan > 0.0;
   for (std::size_t c = 0; c + 6 <= idx.size(); c += 6) {
     bool limb = wi.width() == 0;
     double x0 = 0, x1 = 0, y0 = 0, y1 = 0, lon0 = 0, fx0 = 0, fx1 = 0, fy0 = 0, fy1 = 0;
+    glm::dvec2 texel[6];  // the vertices' fine level-0 texels
     for (std::size_t k = 0; k < 6 && !limb; ++k) {
       const grid::GridVertex& v = f.vertices[idx[c + k]];
       if (v.flags & grid::kVertexHorizon) limb = true;
@@ -693,6 +738,7 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
       x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
       if (fine) {
         const double fx = fine->texelX(lon), fy = fine->texelY(v.latDeg);
+        texel[k] = {fx, fy};
         if (k == 0) fx0 = fx1 = fx, fy0 = fy1 = fy;
         fx0 = std::min(fx0, fx), fx1 = std::max(fx1, fx), fy0 = std::min(fy0, fy), fy1 = std::max(fy1, fy);
       }
@@ -707,8 +753,13 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
       if (!water && fine) {
         // The same reach in the mask's own texels: near a coast most cells
         // are water (or land) throughout it though the grid's texel is not.
-        const double fm = 3.0 + 12.0 * std::max(fx1 - fx0, fy1 - fy0) / cellPx;
-        const auto cov = fine->cover(fx0 - fm, fx1 + fm, fy0 - fm, fy1 + fm);
+        // Magnified, a fragment at texel position x (texel j spans [j, j + 1))
+        // reads the B-spline's texels floor(x - 0.5) - 1 .. floor(x - 0.5) + 2
+        // (geo_uv.glsl pagePos, pageTexels4), all within [x - 2.5, x + 1.5],
+        // widened by 0.05 for the shader's float position (ulp 0.004 texel
+        // at 43200 texels); minified, the footprint's term as the grid's.
+        const double fm = 12.0 * std::max(fx1 - fx0, fy1 - fy0) / cellPx;
+        const auto cov = fine->cover(fx0 - 2.55 - fm, fx1 + 1.55 + fm, fy0 - 2.55 - fm, fy1 + 1.55 + fm);
         // All land: every fragment would read coverage 0 and discard.
         if (cov == world::TileWaterIndex::Cover::Land) continue;
         water = cov == world::TileWaterIndex::Cover::Water;
@@ -742,16 +793,19 @@ CellGroups partitionCells(const grid::GridFrame& f, const world::WaterIndex& wi,
       else if (extent * std::max(pagedTexels, 1.0) <= kSmoothTexels)  // in the texels drawn
         to = &smooth;
     }
+    if (!to && !limb && mini && minifiedCell(f, idx.data() + c, texel, view, pxPerTan)) to = &minified;
     if (to)
       to->insert(to->end(), idx.begin() + c, idx.begin() + c + 6);
     else
       std::copy(idx.begin() + c, idx.begin() + c + 6, idx.begin() + sharp), sharp += 6;
   }
+  std::copy(minified.begin(), minified.end(), idx.begin() + sharp);
+  sharp += minified.size();
   std::copy(smooth.begin(), smooth.end(), idx.begin() + sharp);
   std::copy(open.begin(), open.end(), idx.begin() + sharp + smooth.size());
   std::copy(farOpen.begin(), farOpen.end(), idx.begin() + sharp + smooth.size() + open.size());
   idx.resize(sharp + smooth.size() + open.size() + farOpen.size());  // all-land cells dropped
-  return {sharp, smooth.size(), open.size(), farOpen.size()};
+  return {sharp, smooth.size(), open.size(), farOpen.size(), minified.size()};
 }
 
 void OceanRenderer::setGridMode(grid::GridMode mode) { grid_->setMode(mode); }
@@ -849,6 +903,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   const bool shadow = !bare && inputs_.shadowDepth != 0 && inputs_.shadowSize > 0;
   if (shadow && cull.farFootprintM > 0.0) cull.farMinDistM = std::max(cull.farMinDistM, inputs_.shadowReachM);
   cull.timeS = light.timeS;
+  cull.minified = options_.minifiedCoverage && !sharpMinDefines_.empty();
   // The bodies' foam (wake.glsl): the kMaxWakes nearest the eye of those
   // fast enough to make any (the others would add exactly nothing).
   struct WakeUniform {
@@ -883,6 +938,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
       partitionCells(frame_, world_->waterIndex(), options_.cellPx, cull, options_.cullOffscreen,
                      !bare && options_.cheapCoverage && (!pages_ || pagesIndexed_), idx, pagedTexels_,
                      fineWater_.get());
+  lastGroups_ = groups;
   gridMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (idx.empty()) {
     if (pages_) pages_->endFrame();
@@ -1208,7 +1264,8 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     glBindImageTexture(7, gTiles_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8UI);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gFbo_);
     glDisable(GL_BLEND);
-    drawGroup(pixel.gSharp, groups.sharp, true);
+    drawGroup(pixel.gSharp, groups.sharp - groups.minified, true);
+    drawGroup(pixel.gSharpMin, groups.minified, true);
     drawGroup(pixel.gSmooth, groups.smooth, true);
     drawGroup(pixel.gOpen, groups.open, false);
     glBindImageTexture(7, GLuint(hostImage[0]), hostImage[1], GLboolean(hostImage[2]), hostImage[3], GLenum(hostAccess),
@@ -1298,7 +1355,8 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     }
     glActiveTexture(GLenum(active));
   } else {
-    drawGroup(bare ? bare_ : pixel.sharp, groups.sharp, !bare);
+    drawGroup(bare ? bare_ : pixel.sharp, groups.sharp - groups.minified, !bare);
+    drawGroup(bare ? bare_ : pixel.sharpMin, groups.minified, !bare);
     drawGroup(pixel.smooth, groups.smooth, true);
     drawGroup(pixel.open, groups.open, false);
   }
@@ -1346,6 +1404,7 @@ const OceanRenderer::PixelPrograms& OceanRenderer::pixelPrograms(bool wakes, boo
       return gl::GlProgram::graphics("ocean.vert", "ocean.frag", d);
     };
     v.sharp = make(sharpDefines_);
+    if (!sharpMinDefines_.empty()) v.sharpMin = make(sharpMinDefines_);
     v.smooth = make(smoothDefines_);
     v.open = make(openDefines_);
     // Deferred: octaves per pixel, or reduced rate (OceanOptions::reducedRateDeferBelowM).
@@ -1355,6 +1414,7 @@ const OceanRenderer::PixelPrograms& OceanRenderer::pixelPrograms(bool wakes, boo
         return gl::GlProgram::graphics("ocean.vert", "ocean.frag", d);
       };
       v.gSharp = gMake(sharpDefines_);
+      if (!sharpMinDefines_.empty()) v.gSharpMin = gMake(sharpMinDefines_);
       v.gSmooth = gMake(smoothDefines_);
       v.gOpen = gMake(openDefines_);
       auto d = openDefines_;

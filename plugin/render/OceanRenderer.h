@@ -42,6 +42,10 @@ struct OceanOptions {
   // Open water (WaterIndex) and cells far smaller than a water texel with
   // shader variants that skip the per-pixel coverage (partitionCells).
   bool cheapCoverage = true;
+  // With cheapCoverage over one global streamed mask: the coastal cells whose
+  // every fragment reads its pages minified take a variant that fetches
+  // only the bilinear's 2 x 2 texels (partitionCells, ScreenCull::minified).
+  bool minifiedCoverage = true;
   // Leave out grid cells that no wave can bring on screen (offscreenSides):
   // the clamp rectangle spans up to 4 screens a side near the sea.
   bool cullOffscreen = true;
@@ -144,6 +148,9 @@ struct OceanOptions {
 // the waves have faded (ScreenCull::farFootprintM) so it is shaded per vertex.
 struct CellGroups {
   std::size_t sharp = 0, smooth = 0, open = 0, farOpen = 0;  // index counts, in this order
+  // The last `minified` indices of the sharp run: cells whose every
+  // fragment reads the streamed mask's pages minified (ScreenCull::minified).
+  std::size_t minified = 0;
 };
 // The view, for leaving out cells that stay off screen.
 struct ScreenCull {
@@ -167,6 +174,11 @@ struct ScreenCull {
   // Bodies' foam (wake.glsl, per fragment): eye-relative centre and reach
   // (m); cells within reach stay out of the per-vertex far group.
   std::vector<glm::dvec4> wakeReach;
+  // Sharp cells whose every fragment's texels per pixel of the `fine`
+  // mask (geo_uv.glsl waterPagesAuto's length(fwidth)) is at least 1 go to
+  // the sharp run's end (CellGroups::minified): from the vertices' screen
+  // positions (forward/right/up, tanY, cellRadians) and level-0 texels.
+  bool minified = false;
 };
 // Per grid vertex, the screen sides it stays beyond (bits 1 left, 2 right,
 // 4 bottom, 8 top) under any wave displacement.
@@ -271,6 +283,7 @@ class OceanRenderer {
   // where the sea drew (ocean.frag), instead of positions.
   void setWriteDepthData(bool on) { writeDepthData_ = on; }
   void setCheapCoverage(bool on) { options_.cheapCoverage = on; }
+  void setMinifiedCoverage(bool on) { options_.minifiedCoverage = on; }
   void setCullOffscreen(bool on) { options_.cullOffscreen = on; }
   void setFarVertexShading(bool on) { options_.farVertexShading = on; }
   // Issue 15 item 4: the breaking foam's distance bands (shaders/coast_bands.glsl),
@@ -362,6 +375,8 @@ class OceanRenderer {
   double lastGridMs() const { return gridMs_; }
   // Whether the last draw shaded through the G-buffer (OceanOptions::deferred).
   bool lastDrawDeferred() const { return lastDeferred_; }
+  // The last draw's cell groups (index counts; tests).
+  const CellGroups& lastGroups() const { return lastGroups_; }
   // The last draw's per-pixel programs had no octave loop (OceanOptions::noPixelOctaveMargin).
   bool lastDrawWithoutPixelOctaves() const { return lastNoPixelOctaves_; }
   // The last deferred draw's share of its tiles' 4 x 2 groups shaded again
@@ -391,10 +406,11 @@ class OceanRenderer {
   // writers (g*) and the shading over the tiles with sea (shade).
   struct PixelPrograms {
     gl::GlProgram sharp, smooth, open, gSharp, gSmooth, gOpen, shade, coarse;
+    gl::GlProgram sharpMin, gSharpMin;  // GEOCEAN_WATER_PAGES_MINIFIED (CellGroups::minified)
   };
   gl::GlProgram resolve_;  // ocean_resolve.frag (OceanOptions::reducedRate)
   PixelPrograms pixel_[32];
-  std::vector<std::string> sharpDefines_, smoothDefines_, openDefines_;
+  std::vector<std::string> sharpDefines_, smoothDefines_, openDefines_, sharpMinDefines_;
   const PixelPrograms& pixelPrograms(bool wakes, bool reflection, bool refraction, bool sunPhong,
                                      bool noPixelOctaves);
   // The G-buffer for a host target and viewport, made or resized, with the
@@ -419,6 +435,7 @@ class OceanRenderer {
   std::vector<std::uint8_t> gFullMask_;
   std::vector<float> gFullRects_;
   bool lastDeferred_ = false;
+  CellGroups lastGroups_;
   bool lastNoPixelOctaves_ = false;
   std::size_t gVboBytes_ = 0;
   std::vector<std::uint8_t> gTileMask_;

@@ -579,9 +579,23 @@ TEST(Coast, AStreamedMasksShortcutsDoNotChangeTheImage) {
       {"coast_300m", pose(35.95, -5.5, 300.0, 330.0, -8.0)},
       {"strait_2m", pose(36.0, -5.6, 2.0, 250.0, -3.0)},
   };
+  std::size_t minified = 0;
   for (const auto& [name, p] : views) {
     s.ocean->setFarVertexShading(false);
     const Frame exact = render(p, *s.renderer, s.ocean.get(), std::string("shortcuts_") + name);
+    // The coastal cells read minified (CellGroups::minified) fetch the
+    // bilinear's texels alone: the same bits as the full paged variant.
+    if (const std::size_t m = s.ocean->lastGroups().minified; m > 0) {
+      s.ocean->setMinifiedCoverage(false);
+      const Frame full = render(p, *s.renderer, s.ocean.get(), std::string("no_minified_") + name);
+      s.ocean->setMinifiedCoverage(true);
+      EXPECT_EQ(s.ocean->lastGroups().minified, 0u);
+      const ImageDiff md = compare(full.image, exact.image);
+      std::printf("1.25' %s: %zu of %zu sharp cells minified; without them: max %d\n", name, m / 6,
+                  s.ocean->lastGroups().sharp / 6, md.max);
+      EXPECT_EQ(md.max, 0) << name;
+      minified += m;
+    }
     s.refOcean->setCheapCoverage(false);
     s.refOcean->setCullOffscreen(false);
     s.refOcean->setFarVertexShading(false);
@@ -603,6 +617,7 @@ TEST(Coast, AStreamedMasksShortcutsDoNotChangeTheImage) {
     EXPECT_LE(f.max, 24) << name;
   }
   s.ocean->setFarVertexShading(true);
+  EXPECT_GT(minified, 0u) << "no view drew minified cells";
 
   // The host's terrain over the sea 5 km off the coast (west of Cabo da
   // Roca), looking out to sea from 3 km: the grid's index sees the coast's
