@@ -627,28 +627,41 @@ int pageLevel(vec2 lonLatDeg, int want) {
 }
 
 #ifndef GEOCEAN_WATER_PAGES_REGIONAL
-// A global pyramid's 4 x 4 texels from g (r[y][x], pageTexel's values one
-// by one), without a branch: llvmpipe runs both sides of one, so a fast
-// path for a block inside one tile beside a texel-by-texel fallback cost
-// every pixel both (49 fetches; docs/PERFORMANCE.md). The texels lie in at
-// most 2 x 2 tiles (T >= 4), the corner texels' tiles, whose slots s
-// pageLevelSlots found resident: each texel from its tile, 16 fetches.
-void pageTexels4(int level, ivec2 g, ivec4 s, out vec4 r[4]) {
+// Where a global pyramid's 4 x 4 texels from g lie: each one's place in
+// its tile (lx, ly; + 1: the tile's border) and which of the corner
+// texels' tiles holds it (first column's, first row's). The texels lie in
+// at most 2 x 2 tiles (T >= 4), those corner tiles, whose slots s
+// pageLevelSlots found resident (x0 y0, x1 y0, x0 y1, x1 y1).
+struct PageBlock {
+  ivec4 lx, ly;
+  bvec4 firstX, firstY;
+};
+PageBlock pageBlock(int level, ivec2 g) {
   ivec4 L = uPageLevel[level];
   int T = uPageTile.x;
   ivec4 xs = ivec4(g.x) + ivec4(0, 1, 2, 3), ys = clamp(ivec4(g.y) + ivec4(0, 1, 2, 3), ivec4(0), ivec4(L.y - 1));
   xs = uPageTile.y != 0 ? texelWrap(xs, L.x) : clamp(xs, ivec4(0), ivec4(L.x - 1));  // pageWrap's
   ivec4 tx = xs >> pageShift(), ty = ys >> pageShift();
-  ivec4 lx = (xs & (T - 1)) + 1, ly = (ys & (T - 1)) + 1;  // + 1: the tile's border
-  bvec4 first = equal(tx, ivec4(tx.x));
-  for (int y = 0; y < 4; ++y) {
-    bool top = ty[y] == ty.x;
-    int a = top ? s.x : s.z, b = top ? s.y : s.w;
-    r[y] = vec4(texelFetch(uPagePool, ivec3(lx.x, ly[y], first.x ? a : b), 0).r,
-                texelFetch(uPagePool, ivec3(lx.y, ly[y], first.y ? a : b), 0).r,
-                texelFetch(uPagePool, ivec3(lx.z, ly[y], first.z ? a : b), 0).r,
-                texelFetch(uPagePool, ivec3(lx.w, ly[y], first.w ? a : b), 0).r);
-  }
+  PageBlock b;
+  b.lx = (xs & (T - 1)) + 1, b.ly = (ys & (T - 1)) + 1;
+  b.firstX = equal(tx, ivec4(tx.x)), b.firstY = equal(ty, ivec4(ty.x));
+  return b;
+}
+// Texel (x, y) of the block.
+float pageBlockTexel(PageBlock b, ivec4 s, int x, int y) {
+  int a = b.firstY[y] ? s.x : s.z, c = b.firstY[y] ? s.y : s.w;
+  return texelFetch(uPagePool, ivec3(b.lx[x], b.ly[y], b.firstX[x] ? a : c), 0).r;
+}
+
+// The block's 16 texels (r[y][x], pageTexel's values one by one), without
+// a branch: llvmpipe runs both sides of one, so a fast path for a block
+// inside one tile beside a texel-by-texel fallback cost every pixel both
+// (49 fetches; docs/PERFORMANCE.md).
+void pageTexels4(int level, ivec2 g, ivec4 s, out vec4 r[4]) {
+  PageBlock b = pageBlock(level, g);
+  for (int y = 0; y < 4; ++y)
+    r[y] = vec4(pageBlockTexel(b, s, 0, y), pageBlockTexel(b, s, 1, y), pageBlockTexel(b, s, 2, y),
+                pageBlockTexel(b, s, 3, y));
 }
 
 // The B-spline of the 4 x 4 texels about p's cell, and the bilinear of its
@@ -667,21 +680,10 @@ float pageBilinearOf(vec4 r[4], vec2 f) { return mix(mix(r[1].y, r[1].z, f.x), m
 // bilinear's middle 2 x 2 of pageTexels4's block alone, fetched the same
 // way (the same values, the same arithmetic: 4 pool fetches for 16).
 float pageBilinearMinified(int level, ivec2 g, ivec4 s, vec2 f) {
-  ivec4 L = uPageLevel[level];
-  int T = uPageTile.x;
-  ivec4 xs = ivec4(g.x) + ivec4(0, 1, 2, 3), ys = clamp(ivec4(g.y) + ivec4(0, 1, 2, 3), ivec4(0), ivec4(L.y - 1));
-  xs = uPageTile.y != 0 ? texelWrap(xs, L.x) : clamp(xs, ivec4(0), ivec4(L.x - 1));
-  ivec4 tx = xs >> pageShift(), ty = ys >> pageShift();
-  ivec4 lx = (xs & (T - 1)) + 1, ly = (ys & (T - 1)) + 1;
-  bvec4 first = equal(tx, ivec4(tx.x));
-  vec2 r[2];
-  for (int y = 1; y < 3; ++y) {
-    bool top = ty[y] == ty.x;
-    int a = top ? s.x : s.z, b = top ? s.y : s.w;
-    r[y - 1] = vec2(texelFetch(uPagePool, ivec3(lx.y, ly[y], first.y ? a : b), 0).r,
-                    texelFetch(uPagePool, ivec3(lx.z, ly[y], first.z ? a : b), 0).r);
-  }
-  return mix(mix(r[0].x, r[0].y, f.x), mix(r[1].x, r[1].y, f.x), f.y);
+  PageBlock b = pageBlock(level, g);
+  vec2 r0 = vec2(pageBlockTexel(b, s, 1, 1), pageBlockTexel(b, s, 2, 1));
+  vec2 r1 = vec2(pageBlockTexel(b, s, 1, 2), pageBlockTexel(b, s, 2, 2));
+  return mix(mix(r0.x, r0.y, f.x), mix(r1.x, r1.y, f.x), f.y);
 }
 #endif
 #endif

@@ -888,10 +888,15 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   cull.cellRadians = 2.0 * cull.tanY / cam.heightPx() * options_.cellPx;
   cull.maxDisplacementM = maxDisplacementM_;
   cull.waves = waves_.get();
-  // Noise: no octave is left per pixel (the longest under pixelOctaveEndPx
-  // pixels, a pixel 1 / cellPx of a cell); the other models: their fade's end.
+  // The pixel footprint from which no noise octave is drawn per pixel: the
+  // longest octave over pixelOctaveEndPx pixels (the far cells, the
+  // programs without the octave loop and the deferral below all ask it).
+  const double pixelOctaveEndM =
+      octaveWavelengthM_.empty() ? 0.0 : double(octaveWavelengthM_[0]) / options_.pixelOctaveEndPx;
+  // Noise: no octave is left per pixel (a pixel 1 / cellPx of a cell); the
+  // other models: their fade's end.
   if (options_.farVertexShading && !octaveWavelengthM_.empty()) {
-    cull.farFootprintM = double(octaveWavelengthM_[0]) / options_.pixelOctaveEndPx;
+    cull.farFootprintM = pixelOctaveEndM;
     cull.farAlongView = options_.model == waves::Model::Noise;
   }
   // The planar reflection is sampled per pixel out to its reach
@@ -1206,8 +1211,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
     const double h = g.heightM - maxDisplacementM_;
     noPixelOctaves = k > 0.0 && h > 0.0 &&
                      h * (cull.cellRadians / options_.cellPx) / std::pow(k, 1.5) >=
-                                                options_.noPixelOctaveMargin * double(octaveWavelengthM_[0]) /
-                                                    options_.pixelOctaveEndPx;
+                                                options_.noPixelOctaveMargin * pixelOctaveEndM;
   }
   lastNoPixelOctaves_ = noPixelOctaves;
   // No reflection variant made for a bare draw.
@@ -1235,9 +1239,8 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   // longest octave).
   // Above that (~40 km here) the sea's pixels are roughness alone
   // (docs/PERFORMANCE.md).
-  const bool octavesPerPixel = !octaveWavelengthM_.empty() &&
-                               g.heightM * cull.cellRadians / options_.cellPx <
-                                   double(octaveWavelengthM_[0]) / options_.pixelOctaveEndPx;
+  const bool octavesPerPixel =
+      !octaveWavelengthM_.empty() && g.heightM * cull.cellRadians / options_.cellPx < pixelOctaveEndM;
   // Reduced rate (OceanOptions::reducedRateDeferBelowM) also pays without
   // octaves per pixel where the sea fills much of the view.
   const bool reducedAbove = options_.reducedRate && g.heightM < options_.reducedRateDeferBelowM;
