@@ -236,6 +236,15 @@ Regional& regional() {
   return s;
 }
 
+// The coast tests' light: time 0, the sun at azimuth 135 degrees, 50
+// degrees above the horizon at the camera's nadir.
+FrameSettings coastLight(const ViewPose& p) {
+  FrameSettings fs;
+  fs.timeS = 0.0;
+  fs.sunEcef = sunForView(p, 135.0, 50.0);
+  return fs;
+}
+
 struct Frame {
   ViewPose pose;
   camera::Camera cam = camera::Camera::fromView(ViewPose{});
@@ -257,10 +266,7 @@ Frame render(const ViewPose& p, GlobeRenderer& renderer, ocean_render::OceanRend
   ocean->setWriteData(true);
   gl::Framebuffer fb(p.width, p.height, true);
   fb.bind();
-  FrameSettings fs;
-  fs.timeS = 0.0;
-  fs.sunEcef = sunForView(p, 135.0, 50.0);
-  renderer.render(p, fs);
+  renderer.render(p, coastLight(p));
   Frame f;
   f.pose = p;
   f.cam = renderer.camera(p);
@@ -633,11 +639,9 @@ TEST(Coast, AStreamedMasksShortcutsDoNotChangeTheImage) {
             world::TileWaterIndex::Cover::Water)
       << "the mask's cells should be sea";
   const ViewPose p = pose(kLat, kLon, 3000.0, 270.0, -20.0);
-  FrameSettings fs;
-  fs.sunEcef = sunForView(p, 135.0, 50.0);
   gl::Framebuffer fb(p.width, p.height, true);
   fb.bind();
-  const auto t = s.renderer->render(p, fs);
+  const auto t = s.renderer->render(p, coastLight(p));
   std::printf("terrain off the coast: %d tiles, max level %d\n", t.terrain.tilesDrawn, t.terrain.maxLevel);
   EXPECT_GT(t.terrain.tilesDrawn, 0);
   EXPECT_LE(t.terrain.maxLevel, 11);
@@ -812,11 +816,9 @@ TEST(Coast, TheTerrainRefinesAnIslandOnlyTheRegionalMaskHas) {
   EXPECT_TRUE(r.world->waterIndex().allWaterAround(kIslandLat - 0.5, kIslandLat + 0.5, kIslandLon - 0.5,
                                                     kIslandLon + 0.5, 1.0));
   const ViewPose p = pose(kIslandLat, kIslandLon, 3000.0, 0.0, -90.0);
-  FrameSettings fs;
-  fs.sunEcef = sunForView(p, 135.0, 50.0);
   gl::Framebuffer fb(p.width, p.height, true);
   fb.bind();
-  const auto t = r.renderer->render(p, fs);
+  const auto t = r.renderer->render(p, coastLight(p));
   gl::writePng(::testing::TempDir() + "/coast_regional_island.png", fb.readColor());
   std::printf("terrain: %d tiles, max level %d\n", t.terrain.tilesDrawn, t.terrain.maxLevel);
   // 3 km up the island's tile cells are over a thousand pixels: land
@@ -1054,10 +1056,7 @@ ShelfDepth shelfDepth(Regional& r, double lat0, double stepLon, const std::strin
   {
     gl::Framebuffer fb(p.width, p.height, true);
     fb.bind();
-    FrameSettings fs;
-    fs.timeS = 0.0;
-    fs.sunEcef = sunForView(p, 135.0, 50.0);
-    r.renderer->render(p, fs);
+    r.renderer->render(p, coastLight(p));
     data = fb.readData();
   }
   r.ocean->setWriteDepthData(false);
