@@ -26,6 +26,7 @@ VARYING vec3 vSun;
 VARYING vec3 vHazeTr;
 VARYING vec3 vHazeIn;
 VARYING float vDepthM;
+VARYING float vReliefFloor;  // ocean.vert; 0 in the resolve (the G-buffer's depth has it)
 VARYING float vFar;
 VARYING float vMss;
 VARYING float vFoamM;
@@ -163,6 +164,7 @@ void main() {
   if (alpha <= 0.0) discard;  // no sea drawn at this pixel (cleared to 0)
   vec4 g1 = texelFetch(uG1, px, 0), g2 = texelFetch(uG2, px, 0);
   vEyeRel = g0.xyz, vNormal = octDecode(g1.xy), vHeightM = g1.z, vCellAlongM = g1.w, vDepthM = g2.x, vHeightA = g2.y;
+  vReliefFloor = 0.0;
   float w = g2.w;
   // What ocean.vert makes per vertex and the grid interpolates, at the
   // pixel (the same formulas: they vary little over a cell, so the
@@ -194,7 +196,7 @@ void main() {
 #endif
 #ifdef GEOCEAN_GBUFFER
   outG0 = vec4(vEyeRel, alpha), outG1 = vec4(octEncode(vNormal), vHeightM, vCellAlongM);
-  outG2 = vec4(vDepthM, vHeightA, max(length(dFdx(vEyeRel)), length(dFdy(vEyeRel))), w);
+  outG2 = vec4(seaOpticsDepthM(vDepthM, vReliefFloor, w), vHeightA, max(length(dFdx(vEyeRel)), length(dFdy(vEyeRel))), w);
   imageStore(uGTiles, ivec2(gl_FragCoord.xy) / 8, uvec4(1u));
 #elif defined(GEOCEAN_FAR_SHADED)
   outColor = vec4(vColor, alpha);
@@ -335,11 +337,14 @@ void main() {
   // darkening of the pixel by 0.5.
   float sunVis = sunVisibility(vEyeRel);
   gSunVisible = uShadow == 2 ? 1.0 : sunVis;
-  vec3 col = oceanColorCrest(vEyeRel, nrm, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, mss, max(crest, wake), w, vHeightM);
+  vec3 col = oceanColorCrest(vEyeRel, nrm, vUp, vSun, vHazeTr, vHazeIn, seaOpticsDepthM(vDepthM, vReliefFloor, w), vFar,
+                             mss, max(crest, wake), w, vHeightM);
   outColor = vec4(uShadow == 2 ? col * mix(0.5, 1.0, sunVis) : col, alpha);
 #endif
 #ifndef GEOCEAN_GBUFFER
-  // 2 (tests): the water depth drawn (vDepthM), w 2 where the sea drew.
-  outData = uWriteData == 2 ? vec4(vDepthM, 0.0, 0.0, 2.0) : uWriteData != 0 ? vec4(vEyeRel, 1.0) : vec4(0.0);
+  // 2 (tests): the water depth drawn (vDepthM) and the depth seen through
+  // it (seaSeenDepthM), w 2 where the sea drew.
+  outData = uWriteData == 2 ? vec4(vDepthM, seaSeenDepthM(seaOpticsDepthM(vDepthM, vReliefFloor, w), w), 0.0, 2.0)
+          : uWriteData != 0 ? vec4(vEyeRel, 1.0) : vec4(0.0);
 #endif
 }

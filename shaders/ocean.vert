@@ -71,6 +71,10 @@ out vec3 vSun;
 out vec3 vHazeTr;
 out vec3 vHazeIn;
 out float vDepthM;
+// Where the relief is too coarse for the mask's coast (ocean_shading.glsl's
+// seaOpticsDepthM), on the elevation grid's texels.
+layout(binding = 8) uniform sampler2D uReliefFloor;
+out float vReliefFloor;
 out float vFar;
 out float vMss;
 out float vFoamM;
@@ -240,6 +244,7 @@ void main() {
   vUp = up;
 #ifdef GEOCEAN_BARE
   vSun = vec3(1.0), vHazeTr = vec3(1.0), vHazeIn = vec3(0.0), vDepthM = 0.0, vFar = 0.0, vMss = 0.0, vFoamM = 0.0;
+  vReliefFloor = 0.0;
 #else
   vSun = sunLight(dot(uSunDir, up));
   float t = hazeAmount(length(p), uEyeAltM, 0.0);
@@ -250,6 +255,7 @@ void main() {
 #else
   vDepthM = -textureLod(uElevation, geoUv(lonLat, uElevationGeo), gridElevLod(footprint)).r;
 #endif
+  vReliefFloor = textureLod(uReliefFloor, geoUv(lonLat, uElevationGeo), 0.0).r;
   // Distant sea: geometry fades to the mean normal, slopes to roughness.
   vFar = smoothstep(0.02, 0.5, footprint / max(uOctaveWavelengthM[0], 1e-3));
   // ocean_shading.glsl turns the drawn normal towards the mean by 0.7 far
@@ -259,10 +265,11 @@ void main() {
 #endif
   vLonLat = lonLat;
 #if defined(GEOCEAN_FAR_SHADED) && WV_MODEL == 0
-  vColor = oceanColorCrest(vEyeRel, vNormal, vUp, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss,
+  vColor = oceanColorCrest(vEyeRel, vNormal, vUp, vSun, vHazeTr, vHazeIn, seaOpticsDepthM(vDepthM, vReliefFloor, 1.0), vFar, vMss,
                            noiseCrestFoam(vHeightA, noiseVarUnresolved, uFoamSoftM, uWhitecapCover), 1.0, vHeightM);
 #elif defined(GEOCEAN_FAR_SHADED)
-  vColor = oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, vDepthM, vFar, vMss, vFoamM, 1.0);
+  vColor = oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, seaOpticsDepthM(vDepthM, vReliefFloor, 1.0), vFar, vMss,
+                      vFoamM, 1.0);
 #endif
 #if defined(GEOCEAN_VERTEX_COVERAGE) && defined(GEOCEAN_WATER_PAGES)
   // A streamed mask: its finest resident level's B-spline, as the paged

@@ -126,6 +126,25 @@ vec3 crestSubsurface(vec3 n, vec3 v, vec3 sunDir, vec3 sun, float heightM, float
   return sun * kSubsurface * exp(-kWaterAttenuation) * (h * back2 * back2 * away * away * away * gSunVisible);
 }
 
+// The relief's depth as the optics use it. reliefFloor (OceanWorld's
+// reliefUnderMaskWater, bilinear, per vertex): 1 where the relief is too
+// coarse for the mask's coast (it puts the mask's water on land nearby);
+// there the water is at least the coverage's floor deep, so the relief's
+// 0 m line (straight across a 37 km ETOPO cell) draws no step from its
+// shallows to the floor. Elsewhere (0) the relief's depth as it is.
+float seaOpticsDepthM(float reliefDepthM, float reliefFloor, float w) {
+  return reliefDepthM > 0.0 ? max(reliefDepthM, (w - 0.5) * 120.0 * reliefFloor) : reliefDepthM;
+}
+
+// The depth seen through the water: the relief's where it has one (the
+// coverage's 60 m floor would hide every shelf); the coverage's floor
+// where the relief puts the water on land (or without refraction).
+float seaSeenDepthM(float reliefDepthM, float w) {
+  float depth = max(reliefDepthM, (w - 0.5) * 120.0);
+  return kRefractionOn && reliefDepthM > 0.0 ? reliefDepthM : depth;
+}
+
+// reliefDepthM: seaOpticsDepthM's.
 // w: water coverage (0.5 = coast); far: how far the waves have faded into
 // roughness (0 near, 1 far); mss: the mean square slope not in `normal`
 // (ocean.vert: the spectrum's waves not drawn, and the slope the fade
@@ -151,10 +170,7 @@ vec3 oceanColorCrest(vec3 eyeRel, vec3 normal, vec3 upIn, vec3 sun, vec3 hazeTr,
   float shore = depthCurve(depth, 4.0, 0.3) * 0.55 * surf + depthCurve(depth, 1.2, 0.0) * 0.4;
   float foam = clamp(crest + shore, 0.0, 1.0);
   vec4 refl = planarReflection(eyeRel, n, up, uSunDir);
-  // Seen through the water: the relief's depth where it has one (the
-  // coverage's 60 m floor above would hide every shelf); the coverage's only
-  // where the relief puts the water on land.
-  float seen = kRefractionOn && reliefDepthM > 0.0 ? reliefDepthM : depth;
+  float seen = seaSeenDepthM(reliefDepthM, w);
   vec3 east = cross(vec3(0.0, 0.0, 1.0), up);
   east = dot(east, east) > 1e-12 ? normalize(east) : vec3(0.0, 1.0, 0.0);  // at a pole any axis
   vec3 north = cross(up, east);

@@ -34,6 +34,8 @@ OceanRenderer::OceanRenderer(std::shared_ptr<const world::WorldGrids> world,
   // The ocean's own textures (the host may draw another world, or none).
   const auto& e = world_->elevation();
   elevationTex_ = gl::redGeoTexture(e.values.data(), e.channels, e.width, e.height, GL_R32F, false);
+  const std::vector<float> reliefFloor = reliefUnderMaskWater(*world_);
+  reliefFloorTex_ = gl::redGeoTexture(reliefFloor.data(), 1, e.width, e.height, GL_R8, false);
   const auto& w = world_->water();
   waterTex_ = gl::redGeoTexture(w.values.data(), w.channels, w.width, w.height, GL_R8, true);
   if (options_.waves) {
@@ -437,8 +439,8 @@ double OceanRenderer::whitecapCover(double windSpeedMps) {
 
 OceanRenderer::~OceanRenderer() {
   if (glAbandoned_) return;
-  const GLuint tex[] = {elevationTex_, waterTex_, octaveBandTex_, octaveTexelTex_};
-  glDeleteTextures(4, tex);
+  const GLuint tex[] = {elevationTex_, waterTex_, octaveBandTex_, octaveTexelTex_, reliefFloorTex_};
+  glDeleteTextures(5, tex);
   glDeleteBuffers(1, &octaveBandBuf_);
   glDeleteVertexArrays(1, &vao_);
   glDeleteBuffers(1, &vbo_);
@@ -1156,6 +1158,7 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   glBindVertexArray(vao_);
   glBindTextureUnit(1, elevationTex_);
   glBindTextureUnit(2, waterTex_);
+  glBindTextureUnit(8, reliefFloorTex_);
   if (reflect) glBindTextureUnit(3, inputs_.reflectionColor);
   // Unit 14: the sun's depth map through the ocean's own sampler (reversed
   // depth: lit where the point is at least as near the sun as the map).

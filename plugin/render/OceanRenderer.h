@@ -386,6 +386,7 @@ class OceanRenderer {
  private:
   std::shared_ptr<const world::WorldGrids> world_;
   GLuint elevationTex_ = 0, waterTex_ = 0;
+  GLuint reliefFloorTex_ = 0;  // OceanWorld's reliefUnderMaskWater on the elevation grid (ocean.vert)
   OceanOptions options_;
   double maxDisplacementM_ = 0.0;  // the grid's and the cull's bound on wave displacement
   std::shared_ptr<const waves::WaveField> waves_;

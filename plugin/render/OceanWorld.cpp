@@ -111,6 +111,67 @@ std::vector<std::shared_ptr<const raster::TilePyramid>> oceanElevationTileLayers
   return out;
 }
 
+std::vector<float> reliefUnderMaskWater(const world::WorldGrids& world) {
+  const world::WorldLayer& e = world.elevation();
+  const world::WorldLayer& wl = world.water();
+  const int w = e.width, h = e.height;
+  const auto elev = [&](int x, int y) {
+    return e.values[(std::size_t(std::clamp(y, 0, h - 1)) * w + std::size_t((x % w + w) % w)) * std::size_t(e.channels)];
+  };
+  // Cell (x, y) spans the texel centres x .. x + 1, y .. y + 1 (the
+  // bilinear's pieces); sampled at the water grid's step (at least 2 x 2).
+  const int n = std::clamp(int(std::ceil(std::abs(e.lonStepDeg / wl.lonStepDeg))) + 1, 2, 16);
+  // Whether the water can be above 0.5 in cell (x, y): one of the water
+  // texels its bilinear reads there is (four at or below 0.5 keep it so).
+  const auto wetIn = [&](int x, int y) {
+    const auto range = [](double a, double b, double origin, double step) {
+      const double u = (a - origin) / step - 0.5, v = (b - origin) / step - 0.5;
+      return std::pair<long, long>(long(std::floor(std::min(u, v))), long(std::floor(std::max(u, v))) + 1);
+    };
+    const auto [xa, xb] = range(e.originLonDeg + (x + 0.5) * e.lonStepDeg, e.originLonDeg + (x + 1.5) * e.lonStepDeg,
+                                wl.originLonDeg, wl.lonStepDeg);
+    const auto [ya, yb] = range(e.originLatDeg + (y + 0.5) * e.latStepDeg, e.originLatDeg + (y + 1.5) * e.latStepDeg,
+                                wl.originLatDeg, wl.latStepDeg);
+    const long W = wl.width, H = wl.height, x0 = (xa % W + W) % W, nx = std::min(xb - xa + 1, W);
+    const std::size_t c = std::size_t(wl.channels);
+    for (long yy = std::max(ya, 0L); yy <= std::min(yb, H - 1); ++yy) {
+      const float* row = wl.values.data() + std::size_t(yy) * W * c;
+      for (long k = 0, xx = x0; k < nx; ++k, xx = xx + 1 == W ? 0 : xx + 1)
+        if (row[std::size_t(xx) * c] > 0.5f) return true;
+    }
+    return false;
+  };
+  std::vector<std::uint8_t> cell(std::size_t(w) * (h + 1), 0);
+  for (int y = -1; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float c00 = elev(x, y), c10 = elev(x + 1, y), c01 = elev(x, y + 1), c11 = elev(x + 1, y + 1);
+      if (std::max({c00, c10, c01, c11}) < 0.0f) continue;  // the bilinear is below 0 m throughout
+      if (!wetIn(x, y)) continue;
+      // On land throughout (no corner below 0 m): a water texel above 0.5
+      // within reach is the mask's water on the relief's land.
+      bool hit = std::min({c00, c10, c01, c11}) >= 0.0f;
+      for (int j = 0; j < n && !hit; ++j)
+        for (int i = 0; i < n && !hit; ++i) {
+          const double fx = (i + 0.5) / n, fy = (j + 0.5) / n;
+          const double v = (c00 * (1 - fx) + c10 * fx) * (1 - fy) + (c01 * (1 - fx) + c11 * fx) * fy;
+          if (v < 0.0) continue;
+          const double lat = std::clamp(e.originLatDeg + (y + 0.5 + fy) * e.latStepDeg, -90.0, 90.0);
+          hit = world.waterAt(lat, e.originLonDeg + (x + 0.5 + fx) * e.lonStepDeg) > 0.5f;
+        }
+      cell[std::size_t(y + 1) * w + x] = hit;
+    }
+  // A texel is 1 when one of the four cells its bilinear reaches is: at any
+  // point such a cell holds all four of its texels are 1.
+  std::vector<float> out(std::size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int xl = (x + w - 1) % w;
+      const std::size_t r0 = std::size_t(y) * w, r1 = std::size_t(y + 1) * w;  // cells y - 1 and y
+      out[r0 + x] = float(cell[r0 + xl] | cell[r0 + x] | cell[r1 + xl] | cell[r1 + x]);
+    }
+  return out;
+}
+
 bool waterIndexFollowsTiles(const world::WorldGrids& world, const raster::TilePyramid& water) {
   // A level-k texel is the mean of 2 x 2 texels of level k - 1 (NaN past
   // the raster's edge left out: 4, 2 or 1 of them), so of 4^k mask cells

@@ -52,6 +52,17 @@ std::vector<std::shared_ptr<const raster::TilePyramid>> oceanWaterTileLayers(
 std::vector<std::shared_ptr<const raster::TilePyramid>> oceanElevationTileLayers(
     const ocean::LandSea* landSea, const std::shared_ptr<const raster::Raster>& elevation);
 
+// Where the relief is too coarse for the coast the mask draws: 1 at each
+// elevation texel whose bilinear reach (the four cells between texel
+// centres around it) holds a point the relief puts on land (>= 0 m; nodata
+// is 0 m) while the water grid says water there (the mask, not the relief,
+// decides: a relief that decides makes its land the grid's land), 0
+// elsewhere; so the relief's 0 m line in the mask's sea lies where all its
+// cell's texels are 1. ocean_shading.glsl keeps the depth seen through the
+// water at the coverage's floor there: the line (straight across a 37 km
+// ETOPO cell in the Strait of Gibraltar) draws no seam in the sea.
+std::vector<float> reliefUnderMaskWater(const world::WorldGrids& world);
+
 bool waterIndexFollowsTiles(const world::WorldGrids& world, const raster::TilePyramid& water);
 
 // The screen grid's classifier for a streamed global mask whose water

@@ -1144,6 +1144,65 @@ TEST(Coast, TheSeasDepthFollowsAStreamedShelfStepAtZeroAndOnTheAntimeridian) {
     EXPECT_GT(s->shallowRgb.g - s->deepRgb.g, 5.0) << "the 4 m side's bottom should show";
 }
 
+// The seabed seen through the sea has no step where the default world's
+// 20' relief crosses 0 m inside the mask's sea (the quick-start flight's
+// straight seam south of Tarifa: the relief's shallows, 9-23 m, met the
+// coverage's 60 m floor along its 0 m line, straight across a 37 km cell).
+// Straight down from 10 km over that line (36.025 N, 5.70 W; 33 m a pixel):
+// between any two neighbouring sea pixels away from the shoreline the depth
+// seen (the data target's depth mode) changes by at most 0.1 x the metres
+// between their ground points: ten times the steeper of what it is drawn
+// from (the floor's 60 m over the 5' coverage's ramp of at least a 9 km
+// texel, 0.007; the relief here, < 0.002). The step was 40-60 m a pixel
+// (slope > 1). Set-up check: the relief's 0 m line crosses the view (the
+// drawn relief depth changes sign between neighbours at > 100 pairs).
+TEST(Coast, TheSeabedSeenHasNoStepWhereTheCoarseReliefCrossesSeaLevelInTheSea) {
+  auto& renderer = *session().renderer;
+  auto& ocean = sessionOcean();
+  const ViewPose p = pose(36.025, -5.70, 10000.0, 0.0, -90.0);
+  const Frame f = render(p, renderer, &ocean, "relief_line");
+  ocean.setWriteDepthData(true);
+  std::vector<float> data;
+  {
+    gl::Framebuffer fb(p.width, p.height, true);
+    fb.bind();
+    renderer.render(p, coastLight(p));
+    data = fb.readData();
+  }
+  ocean.setWriteDepthData(false);
+  const auto sea = [&](int x, int y) {
+    return f.drawn(x, y) && data[4 * (std::size_t(y) * p.width + x) + 3] == 2.0f && awayFromShore(f, x, y);
+  };
+  int pairs = 0, crossings = 0, steep = 0;
+  double worst = 0.0;
+  for (int y = 0; y + 1 < p.height; ++y)
+    for (int x = 0; x + 1 < p.width; ++x) {
+      if (!sea(x, y)) continue;
+      geo::Geodetic g;
+      ASSERT_TRUE(groundPoint(f, x, y, g));
+      const std::size_t i = std::size_t(y) * p.width + x;
+      for (const auto& [nx, ny] : {std::pair{x + 1, y}, std::pair{x, y + 1}}) {
+        if (!sea(nx, ny)) continue;
+        geo::Geodetic h;
+        ASSERT_TRUE(groundPoint(f, nx, ny, h));
+        const std::size_t j = std::size_t(ny) * p.width + nx;
+        const double metres = glm::length(geo::toEcef(g) - geo::toEcef(h));
+        const double slope = std::abs(double(data[4 * i + 1]) - double(data[4 * j + 1])) / std::max(metres, 1e-3);
+        ++pairs;
+        crossings += (data[4 * i] > 0.0f) != (data[4 * j] > 0.0f);
+        worst = std::max(worst, slope);
+        if (slope > 0.1 && ++steep <= 5)
+          ADD_FAILURE() << "pixels " << x << "," << y << " and " << nx << "," << ny << ": depth seen "
+                        << data[4 * i + 1] << " and " << data[4 * j + 1] << " m, " << metres << " m apart";
+      }
+    }
+  std::printf("%d neighbouring sea pairs, %d across the relief's 0 m line, steepest seen depth change %.4f\n", pairs,
+              crossings, worst);
+  EXPECT_GT(pairs, 50000);
+  EXPECT_GT(crossings, 100) << "the relief's 0 m line should cross the view";
+  EXPECT_EQ(steep, 0);
+}
+
 // Several streamed masks of a kind (issue 12 item 2): two overlapping
 // regional masks over the default world, both streamed (the ocean's pages
 // fall through them in answer order, world::streamedWaterLayers). In the
