@@ -128,12 +128,17 @@ vec3 crestSubsurface(vec3 n, vec3 v, vec3 sunDir, vec3 sun, float heightM, float
 
 // The relief's depth as the optics use it. reliefFloor (OceanWorld's
 // reliefUnderMaskWater, bilinear, per vertex): 1 where the relief is too
-// coarse for the mask's coast (it puts the mask's water on land nearby);
-// there the water is at least the coverage's floor deep, so the relief's
-// 0 m line (straight across a 37 km ETOPO cell) draws no step from its
-// shallows to the floor. Elsewhere (0) the relief's depth as it is.
+// coarse for the mask's coast (it puts the mask's water on land nearby).
+// There the depth goes from the coverage's floor (what the water on the
+// relief's land takes) at the relief's 0 m line to the relief's own by 20 m
+// of it, so the line (straight across a 37 km ETOPO cell) draws no step in
+// the sea; 20 m: where the bottom's green has faded to a tenth (Beer-Lambert
+// down and up, 0.0584 /m), so the shelves that show keep their depth.
+// Elsewhere (0) the relief's depth as it is.
 float seaOpticsDepthM(float reliefDepthM, float reliefFloor, float w) {
-  return reliefDepthM > 0.0 ? max(reliefDepthM, (w - 0.5) * 120.0 * reliefFloor) : reliefDepthM;
+  if (reliefDepthM <= 0.0) return reliefDepthM;
+  float keep = mix(1.0, smoothstep(0.0, 20.0, reliefDepthM), reliefFloor);
+  return mix(max(reliefDepthM, (w - 0.5) * 120.0), reliefDepthM, keep);
 }
 
 // The depth seen through the water: the relief's where it has one (the

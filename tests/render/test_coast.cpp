@@ -1151,11 +1151,13 @@ TEST(Coast, TheSeasDepthFollowsAStreamedShelfStepAtZeroAndOnTheAntimeridian) {
 // Straight down from 10 km over that line (36.025 N, 5.70 W; 33 m a pixel):
 // between any two neighbouring sea pixels away from the shoreline the depth
 // seen (the data target's depth mode) changes by at most 0.1 x the metres
-// between their ground points: ten times the steeper of what it is drawn
-// from (the floor's 60 m over the 5' coverage's ramp of at least a 9 km
-// texel, 0.007; the relief here, < 0.002). The step was 40-60 m a pixel
-// (slope > 1). Set-up check: the relief's 0 m line crosses the view (the
-// drawn relief depth changes sign between neighbours at > 100 pairs).
+// between their ground points: three times the steepest of what it is
+// drawn from (the floor's 60 m over the 5' coverage's ramp of at least a
+// 9 km texel, 0.007; the blend's 60 m over the relief's first 20 m, which
+// take over 2 km here, 0.03; the relief itself, < 0.01). Without the blend
+// the step was up to 60 m between neighbours (4 m over 35 m at this view's
+// worst). Set-up check: the relief's 0 m line crosses the view (the drawn
+// relief depth changes sign between neighbours at > 100 pairs).
 TEST(Coast, TheSeabedSeenHasNoStepWhereTheCoarseReliefCrossesSeaLevelInTheSea) {
   auto& renderer = *session().renderer;
   auto& ocean = sessionOcean();
