@@ -1,16 +1,19 @@
 // A tile pyramid over any raster (issue 12 item 2): a quadtree of
-// tileSize^2-texel tiles. Level 0 is the raster itself, read on demand from
-// the source through its tiles or strips; level l+1 averages 2 x 2 texels of
-// level l (nodata, NaN, ignored; NaN where all four are). Levels 1 and up are
-// computed once, row by row from the source (never the whole raster in
-// memory), and kept in an on-disk cache reused across runs:
+// tileSize^2-texel tiles. Level 0 is the raster itself (value map applied);
+// level l+1 averages 2 x 2 texels of level l (nodata, NaN, ignored; NaN
+// where all four are). Levels 1 and up are computed once, row by row from
+// the source (never the whole raster in memory), and kept with level 0's
+// tiles (stored as the build reads them) in an on-disk cache reused across
+// runs, so a warm open never reads the source:
 //   $GEOCEAN_TILE_CACHE, else $XDG_CACHE_HOME/geocean/tiles, else
 //   ~/.cache/geocean/tiles; one folder per (source path, value map, tile
 //   size) holding `index` (TileIndex.h) and `tiles`. The index names the
 //   source's size, mtime and a hash of its first and last 64 KiB: a touched
 //   or rewritten source is rebuilt in place.
 // A cache folder that cannot be written (read-only, full, not a folder) is
-// reported on stderr and the coarse tiles are kept in memory (compressed).
+// reported on stderr and the coarse tiles are kept in memory (compressed);
+// level 0 is then read on demand from the source through its tiles or
+// strips (as for a raster of one tile, or with no file).
 // The value map is not applied to source tiles that are all nodata.
 // Tiles that are all nodata are Empty, tiles of one value Constant: a
 // sparse raster costs little to build, store or draw.
@@ -63,7 +66,8 @@ struct PyramidStats {
   bool builtNow = false;      // this open built the coarse levels (false: reused the cache)
   bool inMemory = false;      // the memory fallback (or a source with no file)
   std::string cachePath;      // the pyramid's folder ("" in memory)
-  std::uint64_t storedBytes = 0;  // compressed coarse tiles
+  std::uint64_t storedBytes = 0;  // compressed tiles (level 0's too when level0Stored)
+  bool level0Stored = false;      // level 0 is read from the cache, never from the source
   std::uint64_t tilesEmpty = 0, tilesConstant = 0, tilesData = 0;  // levels >= 1
 };
 
@@ -106,6 +110,7 @@ class TilePyramid {
   struct Impl;
 
  private:
+  TileKind kindStored(TileId id) const;
   TilePyramid() = default;
   std::shared_ptr<const Raster> source_;
   int tileSize_ = 256, channels_ = 1, levels_ = 1;
