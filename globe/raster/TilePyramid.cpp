@@ -7,7 +7,6 @@
 #include <sys/stat.h>
 #include <tiffio.h>
 #include <unistd.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -19,6 +18,7 @@
 #include <limits>
 #include <list>
 #include <mutex>
+#include <thread>
 #include <unordered_map>
 
 namespace geocean::raster {
@@ -586,6 +586,82 @@ void TilePyramid::readTile(TileId id, float* out) const {
   }
 }
 
+namespace {
+constexpr char kDerivedMagic[8] = {'G', 'E', 'O', 'D', 'E', 'R', 'I', 'V'};
+constexpr std::uint32_t kDerivedVersion = 1;
+constexpr std::size_t kDerivedHeader = 8 + 4 + 8 + 8 + 8;  // magic, version, cache, raw bytes, checksum
+
+bool derivedNameOk(const std::string& n) {
+  return !n.empty() && n.size() <= 100 && std::all_of(n.begin(), n.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_' || c == '-';
+  });
+}
+
+// What names a cache's source and build (its index's key and data size).
+std::uint64_t cacheIdentity(const TileIndex& index) {
+  TileIndex k;
+  k.key = index.key;
+  k.dataBytes = index.dataBytes;
+  const std::string bytes = serializeTileIndex(k);
+  return fnv1a(bytes.data(), bytes.size());
+}
+}  // namespace
+
+std::optional<std::vector<unsigned char>> TilePyramid::derived(const std::string& name) const {
+  if (stats_.cachePath.empty() || !derivedNameOk(name)) return std::nullopt;
+  std::FILE* f = std::fopen((stats_.cachePath + "/derived-" + name).c_str(), "rb");
+  if (!f) return std::nullopt;
+  std::vector<unsigned char> file;
+  unsigned char buf[65536];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) file.insert(file.end(), buf, buf + n);
+  std::fclose(f);
+  if (file.size() < kDerivedHeader || std::memcmp(file.data(), kDerivedMagic, 8) != 0) return std::nullopt;
+  std::uint32_t version;
+  std::uint64_t identity, raw, sum;
+  std::memcpy(&version, file.data() + 8, 4);
+  std::memcpy(&identity, file.data() + 12, 8);
+  std::memcpy(&raw, file.data() + 20, 8);
+  std::memcpy(&sum, file.data() + file.size() - 8, 8);
+  if (version != kDerivedVersion || identity != cacheIdentity(impl_->index) || raw > (std::uint64_t(1) << 34) ||
+      sum != fnv1a(file.data(), file.size() - 8))
+    return std::nullopt;
+  std::vector<unsigned char> out(raw);
+  libdeflate_decompressor* d = libdeflate_alloc_decompressor();
+  std::size_t n = 0;
+  const bool ok = d && libdeflate_zlib_decompress(d, file.data() + 28, file.size() - kDerivedHeader, out.data(), raw,
+                                                  &n) == LIBDEFLATE_SUCCESS && n == raw;
+  libdeflate_free_decompressor(d);
+  if (!ok) return std::nullopt;
+  return out;
+}
+
+void TilePyramid::storeDerived(const std::string& name, const void* data, std::size_t bytes) const {
+  if (stats_.cachePath.empty() || !derivedNameOk(name)) return;
+  libdeflate_compressor* c = libdeflate_alloc_compressor(1);
+  if (!c) return;
+  std::vector<unsigned char> file(28 + libdeflate_zlib_compress_bound(c, bytes) + 8);
+  const std::size_t z = libdeflate_zlib_compress(c, data, bytes, file.data() + 28, file.size() - kDerivedHeader);
+  libdeflate_free_compressor(c);
+  if (z == 0) return;
+  file.resize(28 + z + 8);
+  const std::uint64_t identity = cacheIdentity(impl_->index), raw = bytes;
+  std::memcpy(file.data(), kDerivedMagic, 8);
+  std::memcpy(file.data() + 8, &kDerivedVersion, 4);
+  std::memcpy(file.data() + 12, &identity, 8);
+  std::memcpy(file.data() + 20, &raw, 8);
+  const std::uint64_t sum = fnv1a(file.data(), file.size() - 8);
+  std::memcpy(file.data() + file.size() - 8, &sum, 8);
+  const std::string path = stats_.cachePath + "/derived-" + name;
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." +
+                          std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  bool ok = f && std::fwrite(file.data(), 1, file.size(), f) == file.size();
+  if (f && std::fclose(f) != 0) ok = false;
+  std::error_code ec;
+  if (ok) fs::rename(tmp, path, ec);
+  if (!ok || ec) fs::remove(tmp, ec);
+}
+
 std::size_t TilePyramid::residentBoundBytes() const {
   return (impl_->reader ? impl_->reader->boundBytes() : 0) + std::size_t(std::max(impl_->options.decodedTiles, 1) + 1) * impl_->tileFloats() * 4 +
          impl_->index.records.capacity() * sizeof(TileRecord) + impl_->store.memoryBytes();
@@ -682,6 +758,10 @@ std::shared_ptr<const TilePyramid> TilePyramid::open(std::shared_ptr<const Raste
   if (!dir.empty() && total > 0) {
     std::error_code ec;
     fs::create_directories(dir, ec);
+    // What was derived from the old tiles (never read again: it names the old cache).
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+      if (it->path().filename().string().rfind("derived-", 0) == 0) fs::remove(it->path(), ec);
+    ec.clear();
     tmpData = dir + "/tiles.tmp." + std::to_string(::getpid());
     const int fd = ec ? -1 : ::open(tmpData.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) {

@@ -34,7 +34,9 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace geocean::raster {
 
@@ -103,6 +105,19 @@ class TilePyramid {
   void readTile(TileId id, float* out) const;
   // The tile's texels without border (tileSize^2 x channels), NaN past the edge.
   std::shared_ptr<const std::vector<float>> interior(TileId id) const;
+
+  // Data derived from the tiles (e.g. a grid resampled from a level),
+  // kept in the cache folder beside them as `derived-<name>`, named by
+  // the cache's source and build so a rebuilt cache never answers with
+  // another source's: the bytes storeDerived stored under `name` for this
+  // very cache, else nullopt (none, stale, corrupt: the caller computes
+  // and stores again, or no cache folder: always nullopt). `name`:
+  // [A-Za-z0-9._-], at most 100 characters.
+  std::optional<std::vector<unsigned char>> derived(const std::string& name) const;
+  // Best effort (deflated, written to a temporary file then renamed): a
+  // cache that cannot be written is not an error, the next run computes
+  // again. Nothing without a cache folder.
+  void storeDerived(const std::string& name, const void* data, std::size_t bytes) const;
 
   const PyramidStats& stats() const { return stats_; }
   std::size_t residentBoundBytes() const;
