@@ -759,9 +759,10 @@ std::shared_ptr<const TilePyramid> TilePyramid::open(std::shared_ptr<const Raste
     std::error_code ec;
     fs::create_directories(dir, ec);
     // What was derived from the old tiles (never read again: it names the old cache).
-    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-      if (it->path().filename().string().rfind("derived-", 0) == 0) fs::remove(it->path(), ec);
-    ec.clear();
+    std::error_code ignored;
+    for (fs::directory_iterator it(ec ? fs::path() : fs::path(dir), ignored), end; !ignored && it != end;
+         it.increment(ignored))
+      if (it->path().filename().string().rfind("derived-", 0) == 0) fs::remove(it->path(), ignored);
     tmpData = dir + "/tiles.tmp." + std::to_string(::getpid());
     const int fd = ec ? -1 : ::open(tmpData.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) {

@@ -1,6 +1,7 @@
 #include "globe/world/WaterPyramid.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -21,10 +22,17 @@ std::shared_ptr<const raster::TilePyramid> waterPyramid(std::shared_ptr<const ra
   // and the drawing falls through to the water grid (geo_uv.glsl).
   const bool keepNodata = !mask->transform().global;
   options.valueMapId = (keepNodata ? "water-coverage-regional:" : "water-coverage:") + classes;
-  options.valueMap = [encoding, keepNodata](float* v, std::size_t n, int channels) {
+  // MaskEncoding::isWater as a table (the build maps every texel of the
+  // mask: a call and lround each were a third of a 30" mask's build):
+  // x in [0, 255] rounds half away from zero as lround, exactly in double.
+  std::array<float, 256> water{};
+  for (std::size_t k = 0; k < water.size(); ++k) water[k] = encoding.classOf[k] != Surface::Land ? 1.0f : 0.0f;
+  options.valueMap = [water, keepNodata](float* v, std::size_t n, int channels) {
     for (std::size_t i = 0; i < n; ++i) {
       const float x = v[i * channels];
-      const float w = keepNodata && std::isnan(x) ? NAN : encoding.isWater(x) ? 1.0f : 0.0f;
+      const float w = x >= 0.0f && x <= 255.0f ? water[std::size_t(double(x) + 0.5)]
+                      : keepNodata && std::isnan(x) ? NAN
+                                                    : 0.0f;  // NaN, negative, > 255: land (MaskEncoding::classify)
       for (int c = 0; c < channels; ++c) v[i * channels + c] = w;
     }
   };
