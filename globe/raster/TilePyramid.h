@@ -18,9 +18,10 @@
 // Tiles that are all nodata are Empty, tiles of one value Constant: a
 // sparse raster costs little to build, store or draw.
 //
-// Resident memory (residentBoundBytes) is the source's block cache, the
-// decoded-tile cache and the index (40 bytes per coarse tile), plus, in the
-// memory fallback, the compressed coarse tiles. It does not grow with the
+// Resident memory (residentBoundBytes) is the source's block cache (none
+// when level 0 comes from the cache), the decoded-tile cache and the index
+// (40 bytes per tile), plus, in the memory fallback, the compressed coarse
+// tiles. It does not grow with the
 // raster except through the index, and for strip (untiled) sources through
 // the block cache, which must then hold 2 x tileSize full rows.
 //
