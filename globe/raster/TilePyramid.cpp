@@ -593,7 +593,8 @@ constexpr std::size_t kDerivedHeader = 8 + 4 + 8 + 8 + 8;  // magic, version, ca
 
 bool derivedNameOk(const std::string& n) {
   return !n.empty() && n.size() <= 100 && std::all_of(n.begin(), n.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_' || c == '-';
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_' ||
+           c == '-';
   });
 }
 
@@ -663,7 +664,8 @@ void TilePyramid::storeDerived(const std::string& name, const void* data, std::s
 }
 
 std::size_t TilePyramid::residentBoundBytes() const {
-  return (impl_->reader ? impl_->reader->boundBytes() : 0) + std::size_t(std::max(impl_->options.decodedTiles, 1) + 1) * impl_->tileFloats() * 4 +
+  return (impl_->reader ? impl_->reader->boundBytes() : 0) +
+         std::size_t(std::max(impl_->options.decodedTiles, 1) + 1) * impl_->tileFloats() * 4 +
          impl_->index.records.capacity() * sizeof(TileRecord) + impl_->store.memoryBytes();
 }
 

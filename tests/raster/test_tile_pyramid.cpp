@@ -253,7 +253,8 @@ TEST(TilePyramid, WarmCacheHoldsLevel0AndNeverReadsTheSource) {
       writeGeoTiff(path, v.data(), kSW, kSH, 1, SampleType::U8, w);
       o.valueMapId = "water-of-classes";
       o.valueMap = [](float* tex, std::size_t n, int) {  // classes 1 and 3 water, as a mask's encoding
-        for (std::size_t i = 0; i < n; ++i) tex[i] = std::isnan(tex[i]) ? tex[i] : (tex[i] == 1.0f || tex[i] == 3.0f) ? 1.0f : 0.0f;
+        for (std::size_t i = 0; i < n; ++i)
+          tex[i] = std::isnan(tex[i]) ? tex[i] : (tex[i] == 1.0f || tex[i] == 3.0f) ? 1.0f : 0.0f;
       };
     } else {
       writeSmall(path, 0.0f, false);
