@@ -338,7 +338,8 @@ struct TilePyramid::Impl {
     if (r.kind == TileKind::Constant) {
       float v[4];
       if (!store.read(r.offset, r.bytes, v)) throw RasterError(self->source_->path() + ": tile cache unreadable");
-      for (std::size_t i = 0; i < t->size(); ++i) (*t)[i] = v[i % c];
+      for (std::size_t i = 0; i < t->size(); i += std::size_t(c))  // no division per texel
+        std::copy_n(v, c, t->data() + i);
       return t;
     }
     std::vector<unsigned char> z(r.bytes);
