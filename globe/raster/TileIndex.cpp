@@ -8,7 +8,8 @@ namespace geocean::raster {
 
 namespace {
 constexpr char kMagic[8] = {'G', 'E', 'O', 'T', 'I', 'L', 'E', 'S'};
-constexpr std::uint32_t kVersion = 1;
+// 2: level 0's tiles are stored too (valueMap applied), version 1 had levels 1 and up.
+constexpr std::uint32_t kVersion = 2;
 constexpr std::uint32_t kMaxString = 4096;
 
 struct Writer {
@@ -110,7 +111,8 @@ TileIndex parseTileIndex(const void* data, std::size_t size, const std::string& 
   }
   r.at = sizeof kMagic;
   if (const auto v = r.get<std::uint32_t>("version"); v != kVersion)
-    r.fail("version " + std::to_string(v) + ", expected " + std::to_string(kVersion));
+    throw RasterError(name + ": tile cache index has format version " + std::to_string(v) + ", this build reads " +
+                      std::to_string(kVersion));
   TileIndex idx;
   TileCacheKey& k = idx.key;
   k.sourcePath = r.str("sourcePath");
@@ -136,7 +138,7 @@ TileIndex parseTileIndex(const void* data, std::size_t size, const std::string& 
            std::to_string(k.height));
   idx.dataBytes = r.get<std::uint64_t>("dataBytes");
   std::uint64_t expected = 0;
-  for (std::uint32_t l = 1; l < k.levels; ++l)
+  for (std::uint32_t l = 0; l < k.levels; ++l)
     expected += std::uint64_t(levelTiles(k.width, int(l), k.tileSize)) * levelTiles(k.height, int(l), k.tileSize);
   const auto count = r.get<std::uint64_t>("recordCount");
   if (count != expected)
@@ -146,7 +148,7 @@ TileIndex parseTileIndex(const void* data, std::size_t size, const std::string& 
   idx.records.resize(count);
   std::size_t i = 0;
   const std::uint64_t tileBytes = std::uint64_t(k.tileSize) * k.tileSize * k.channels * 4;
-  for (std::uint32_t l = 1; l < k.levels; ++l) {
+  for (std::uint32_t l = 0; l < k.levels; ++l) {
     const std::uint32_t tx = levelTiles(k.width, int(l), k.tileSize), ty = levelTiles(k.height, int(l), k.tileSize);
     for (std::uint32_t y = 0; y < ty; ++y)
       for (std::uint32_t x = 0; x < tx; ++x, ++i) {
@@ -162,12 +164,13 @@ TileIndex parseTileIndex(const void* data, std::size_t size, const std::string& 
           r.fail(at + "is tile " + std::to_string(rec.level) + "/" + std::to_string(rec.x) + "/" +
                  std::to_string(rec.y) + ", expected " + std::to_string(l) + "/" + std::to_string(x) + "/" +
                  std::to_string(y));
-        if (kind > 2) r.fail(at + "kind " + std::to_string(kind));
+        if (kind > 3) r.fail(at + "kind " + std::to_string(kind));
         rec.kind = TileKind(kind);
         if (rec.kind == TileKind::Empty && rec.bytes != 0) r.fail(at + "empty with bytes " + std::to_string(rec.bytes));
         if (rec.kind == TileKind::Constant && rec.bytes != 4 * k.channels)
           r.fail(at + "constant with bytes " + std::to_string(rec.bytes));
-        if (rec.kind == TileKind::Data && (rec.bytes == 0 || rec.bytes > tileBytes + tileBytes / 8 + 1024))
+        if ((rec.kind == TileKind::Data || rec.kind == TileKind::DataBytes) &&
+            (rec.bytes == 0 || rec.bytes > tileBytes + tileBytes / 8 + 1024))
           r.fail(at + "data with bytes " + std::to_string(rec.bytes));
         if (rec.offset > idx.dataBytes || idx.dataBytes - rec.offset < rec.bytes)
           r.fail(at + "offset " + std::to_string(rec.offset) + " + " + std::to_string(rec.bytes) +

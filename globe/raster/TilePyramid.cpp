@@ -7,7 +7,6 @@
 #include <sys/stat.h>
 #include <tiffio.h>
 #include <unistd.h>
-#include <zlib.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -19,6 +18,7 @@
 #include <limits>
 #include <list>
 #include <mutex>
+#include <thread>
 #include <unordered_map>
 
 namespace geocean::raster {
@@ -65,7 +65,7 @@ class TiffReader final : public SourceReader {
   TiffReader(const Raster& r, std::size_t budget) : r_(r) {
     TIFFSetWarningHandler(nullptr);
     TIFFSetErrorHandler(nullptr);
-    t_ = TIFFOpen(r.path().c_str(), "r");
+    t_ = TIFFOpen(r.path().c_str(), "rm");  // not memory-mapped: a file truncated under us is an error, not SIGBUS
     if (!t_) throw RasterError(r.path() + ": not a readable TIFF file (libtiff could not parse the header)");
     info_ = detail::tiffInfo(r.path());
     uint16_t spp = 1;
@@ -276,9 +276,11 @@ std::string defaultTileCacheDir() {
 struct TilePyramid::Impl {
   const TilePyramid* self = nullptr;
   PyramidOptions options;
-  std::unique_ptr<SourceReader> reader;
+  std::unique_ptr<SourceReader> reader;  // null when level 0 comes from the cache (level0Stored)
   TileIndex index;
-  std::vector<std::size_t> levelStart;  // first record of each level (index 0 unused)
+  std::vector<std::size_t> levelStart;  // first record of each level
+  // Level 0's tiles are in the store (a cache on disk): the source is never read.
+  bool level0Stored = false;
   Store store;
   std::mutex cacheMutex;
   std::unordered_map<std::uint64_t, std::pair<std::shared_ptr<const std::vector<float>>, std::list<std::uint64_t>::iterator>>
@@ -336,12 +338,17 @@ struct TilePyramid::Impl {
     if (r.kind == TileKind::Constant) {
       float v[4];
       if (!store.read(r.offset, r.bytes, v)) throw RasterError(self->source_->path() + ": tile cache unreadable");
-      for (std::size_t i = 0; i < t->size(); ++i) (*t)[i] = v[i % c];
+      for (std::size_t i = 0; i < t->size(); i += std::size_t(c))  // no division per texel
+        std::copy_n(v, c, t->data() + i);
       return t;
     }
     std::vector<unsigned char> z(r.bytes);
     if (!store.read(r.offset, r.bytes, z.data()))
       throw RasterError(self->source_->path() + ": tile cache unreadable at offset " + std::to_string(r.offset));
+    const bool bytes = r.kind == TileKind::DataBytes;
+    const std::size_t rawBytes = bytes ? 2 + t->size() : t->size() * sizeof(float);
+    thread_local std::vector<unsigned char> b;
+    if (bytes) b.resize(rawBytes);
     // libdeflate: the same zlib stream (checksum verified) 2.7x faster
     // than zlib's uncompress on these tiles; one decompressor per thread.
     struct Inflater {
@@ -351,20 +358,104 @@ struct TilePyramid::Impl {
     thread_local Inflater inflater;
     std::size_t n = 0;
     if (!inflater.d ||
-        libdeflate_zlib_decompress(inflater.d, z.data(), z.size(), t->data(), t->size() * sizeof(float), &n) !=
-            LIBDEFLATE_SUCCESS ||
-        n != t->size() * sizeof(float))
+        libdeflate_zlib_decompress(inflater.d, z.data(), z.size(), bytes ? static_cast<void*>(b.data()) : t->data(),
+                                   rawBytes, &n) != LIBDEFLATE_SUCCESS ||
+        n != rawBytes)
       throw RasterError(self->source_->path() + ": tile cache corrupt at level " + std::to_string(id.level) +
                         " tile " + std::to_string(id.x) + "," + std::to_string(id.y));
+    if (bytes) {
+      float lut[256];
+      for (int i = 0; i < 256; ++i) lut[i] = float(i);
+      if (b[0]) lut[b[1]] = kNaN;
+      const unsigned char* in = b.data() + 2;
+      float* o = t->data();
+      for (std::size_t i = 0; i < t->size(); ++i) o[i] = lut[in[i]];
+    }
     return t;
   }
 
   std::shared_ptr<const std::vector<float>> interior(TileId id) {
     const std::uint64_t key = keyOf(id);
     if (auto t = cached(key)) return t;
-    auto t = id.level == 0 ? level0(id) : stored(id);
+    auto t = id.level == 0 && !level0Stored ? level0(id) : stored(id);
     remember(key, t);
     return t;
+  }
+
+  // Stores a tile's texels as `rec` (level, x, y set): Empty when all NaN,
+  // Constant when one value per channel, else zlib-deflated.
+  std::string storeTile(const std::vector<float>& out, TileRecord& rec) {
+    const int c = self->channels_;
+    rec.kind = TileKind::Empty;
+    rec.bytes = 0;
+    rec.offset = 0;
+    // Scans that stop at the first texel deciding them (no division per texel).
+    if (std::all_of(out.begin(), out.end(), [](float v) { return std::isnan(v); })) return {};
+    bool constant = true;
+    for (std::size_t i = 0; i < out.size() && constant; i += std::size_t(c))
+      for (int k = 0; k < c; ++k) constant &= out[i + k] == out[std::size_t(k)];  // NaN is never constant
+    if (constant) {
+      rec.kind = TileKind::Constant;
+      rec.bytes = std::uint32_t(4 * c);
+      return store.append(out.data(), rec.bytes, rec.offset);
+    }
+    // Integers 0..255 and NaN (a mask's classes, an 8-bit source): a byte a
+    // texel with a byte value no texel uses for NaN.
+    thread_local std::vector<unsigned char> small, z;  // reused: no allocation per tile
+    small.resize(2 + out.size());
+    {
+      // A texel fits when its bits are those of float(byte) (so not -0),
+      // or of kNaN (read back as kNaN: the same bits); NaN is marked 255
+      // until a free code is known.
+      std::uint32_t nanBits;
+      std::memcpy(&nanBits, &kNaN, 4);
+      bool fits = true, nan = false;
+      for (std::size_t i = 0; i < out.size() && fits; ++i) {
+        const float v = out[i];
+        if (v != v) {
+          std::uint32_t bits;
+          std::memcpy(&bits, &v, 4);
+          fits = bits == nanBits;
+          nan = true;
+          small[2 + i] = 255;
+          continue;
+        }
+        const int b = v >= 0.0f && v <= 255.0f ? int(v) : -1;
+        fits = b >= 0 && float(b) == v && !(b == 0 && std::signbit(v));
+        small[2 + i] = static_cast<unsigned char>(b);
+      }
+      int code = 256;
+      if (fits && nan) {
+        bool used[256] = {};
+        for (std::size_t i = 0; i < out.size(); ++i) used[small[2 + i]] |= !std::isnan(out[i]);
+        code = 0;
+        while (code < 256 && used[code]) ++code;
+        if (code < 256 && code != 255)
+          for (std::size_t i = 0; i < out.size(); ++i)
+            if (std::isnan(out[i])) small[2 + i] = static_cast<unsigned char>(code);
+      }
+      if (!fits || (nan && code == 256)) {
+        small.clear();
+      } else {
+        small[0] = nan, small[1] = static_cast<unsigned char>(nan ? code : 0);
+      }
+    }
+    rec.kind = small.empty() ? TileKind::Data : TileKind::DataBytes;
+    // libdeflate at level 1: the same zlib format, faster than zlib's
+    // compress2 at level 1 (level 0 adds ~4x level 1's tiles to the build).
+    struct Deflater {
+      libdeflate_compressor* d = libdeflate_alloc_compressor(1);
+      ~Deflater() { libdeflate_free_compressor(d); }
+    };
+    thread_local Deflater deflater;
+    if (!deflater.d) throw RasterError(self->source_->path() + ": out of memory compressing a tile");
+    const std::size_t raw = small.empty() ? out.size() * sizeof(float) : small.size();
+    const void* in = small.empty() ? static_cast<const void*>(out.data()) : small.data();
+    z.resize(libdeflate_zlib_compress_bound(deflater.d, raw));
+    const std::size_t n = libdeflate_zlib_compress(deflater.d, in, raw, z.data(), z.size());
+    if (n == 0) throw RasterError(self->source_->path() + ": a tile did not compress");
+    rec.bytes = std::uint32_t(n);
+    return store.append(z.data(), n, rec.offset);
   }
 
   // Level l from level l-1: the mean of the valid texels of each 2 x 2.
@@ -375,18 +466,29 @@ struct TilePyramid::Impl {
     rec.y = std::uint32_t(id.y);
     std::shared_ptr<const std::vector<float>> kids[4];
     bool anyData = false;
+    std::string err;
     for (int k = 0; k < 4; ++k) {
       const TileId ch{id.level - 1, 2 * id.x + (k & 1), 2 * id.y + (k >> 1)};
       if (ch.x >= self->tilesX(ch.level) || ch.y >= self->tilesY(ch.level)) continue;
       if (ch.level > 0 && record(ch).kind == TileKind::Empty) continue;
-      kids[k] = interior(ch);
+      if (ch.level == 0) {
+        // Each level-0 tile is read here once: stored as it is read (not
+        // in the memory fallback, whose memory would grow with the raster).
+        kids[k] = level0(ch);
+        TileRecord& r0 = index.records[levelStart[0] + std::size_t(ch.y) * self->tilesX(0) + ch.x];
+        r0.level = 0, r0.x = std::uint32_t(ch.x), r0.y = std::uint32_t(ch.y);
+        if (!store.inMemory() && kids[k] != nanTile)
+          if (std::string e = storeTile(*kids[k], r0); err.empty()) err = e;
+      } else {
+        kids[k] = interior(ch);
+      }
       if (kids[k] == nanTile) kids[k].reset();
       else anyData = true;
     }
     rec.kind = TileKind::Empty;
     rec.bytes = 0;
     rec.offset = 0;
-    if (!anyData) return {};
+    if (!anyData) return err;
     std::vector<float> out(tileFloats(), kNaN);
     const int h = T / 2;
     for (int k = 0; k < 4; ++k) {
@@ -408,28 +510,15 @@ struct TilePyramid::Impl {
             if (n) out[(std::size_t(oy + j) * T + ox + i) * c + ch] = sum / float(n);
           }
     }
-    bool allNaN = true, constant = true;
-    for (std::size_t i = 0; i < out.size(); ++i) {
-      if (!std::isnan(out[i])) allNaN = false;
-      if (!(out[i] == out[i % c])) constant = false;  // NaN is never constant
-    }
-    if (allNaN) return {};
-    std::string err;
-    if (constant) {
-      rec.kind = TileKind::Constant;
-      rec.bytes = std::uint32_t(4 * c);
-      err = store.append(out.data(), rec.bytes, rec.offset);
-    } else {
-      rec.kind = TileKind::Data;
-      uLongf n = compressBound(uLong(out.size() * sizeof(float)));
-      std::vector<unsigned char> z(n);
-      compress2(z.data(), &n, reinterpret_cast<const Bytef*>(out.data()), uLong(out.size() * sizeof(float)), 1);
-      rec.bytes = std::uint32_t(n);
-      err = store.append(z.data(), n, rec.offset);
-    }
+    if (std::string e = storeTile(out, rec); err.empty()) err = e;
     return err;
   }
 };
+
+TileKind TilePyramid::kind(TileId id) const {
+  const TileKind k = kindStored(id);
+  return k == TileKind::DataBytes ? TileKind::Data : k;
+}
 
 int TilePyramid::levelWidth(int level) const { return int(levelTexels(std::uint32_t(source_->width()), level)); }
 int TilePyramid::levelHeight(int level) const { return int(levelTexels(std::uint32_t(source_->height()), level)); }
@@ -449,7 +538,7 @@ GeoTransform TilePyramid::levelTransform(int level) const {
 
 TilePyramid::~TilePyramid() = default;
 
-TileKind TilePyramid::kind(TileId id) const {
+TileKind TilePyramid::kindStored(TileId id) const {
   if (id.level == 0) {
     if (levels_ == 1) return TileKind::Data;
     return impl_->record({1, id.x / 2, id.y / 2}).kind == TileKind::Empty ? TileKind::Empty : TileKind::Data;
@@ -498,8 +587,86 @@ void TilePyramid::readTile(TileId id, float* out) const {
   }
 }
 
+namespace {
+constexpr char kDerivedMagic[8] = {'G', 'E', 'O', 'D', 'E', 'R', 'I', 'V'};
+constexpr std::uint32_t kDerivedVersion = 1;
+constexpr std::size_t kDerivedHeader = 8 + 4 + 8 + 8 + 8;  // magic, version, cache, raw bytes, checksum
+
+bool derivedNameOk(const std::string& n) {
+  return !n.empty() && n.size() <= 100 && std::all_of(n.begin(), n.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_' ||
+           c == '-';
+  });
+}
+
+// What names a cache's source and build (its index's key and data size).
+std::uint64_t cacheIdentity(const TileIndex& index) {
+  TileIndex k;
+  k.key = index.key;
+  k.dataBytes = index.dataBytes;
+  const std::string bytes = serializeTileIndex(k);
+  return fnv1a(bytes.data(), bytes.size());
+}
+}  // namespace
+
+std::optional<std::vector<unsigned char>> TilePyramid::derived(const std::string& name) const {
+  if (stats_.cachePath.empty() || !derivedNameOk(name)) return std::nullopt;
+  std::FILE* f = std::fopen((stats_.cachePath + "/derived-" + name).c_str(), "rb");
+  if (!f) return std::nullopt;
+  std::vector<unsigned char> file;
+  unsigned char buf[65536];
+  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) file.insert(file.end(), buf, buf + n);
+  std::fclose(f);
+  if (file.size() < kDerivedHeader || std::memcmp(file.data(), kDerivedMagic, 8) != 0) return std::nullopt;
+  std::uint32_t version;
+  std::uint64_t identity, raw, sum;
+  std::memcpy(&version, file.data() + 8, 4);
+  std::memcpy(&identity, file.data() + 12, 8);
+  std::memcpy(&raw, file.data() + 20, 8);
+  std::memcpy(&sum, file.data() + file.size() - 8, 8);
+  if (version != kDerivedVersion || identity != cacheIdentity(impl_->index) || raw > (std::uint64_t(1) << 34) ||
+      sum != fnv1a(file.data(), file.size() - 8))
+    return std::nullopt;
+  std::vector<unsigned char> out(raw);
+  libdeflate_decompressor* d = libdeflate_alloc_decompressor();
+  std::size_t n = 0;
+  const bool ok = d && libdeflate_zlib_decompress(d, file.data() + 28, file.size() - kDerivedHeader, out.data(), raw,
+                                                  &n) == LIBDEFLATE_SUCCESS && n == raw;
+  libdeflate_free_decompressor(d);
+  if (!ok) return std::nullopt;
+  return out;
+}
+
+void TilePyramid::storeDerived(const std::string& name, const void* data, std::size_t bytes) const {
+  if (stats_.cachePath.empty() || !derivedNameOk(name)) return;
+  libdeflate_compressor* c = libdeflate_alloc_compressor(1);
+  if (!c) return;
+  std::vector<unsigned char> file(28 + libdeflate_zlib_compress_bound(c, bytes) + 8);
+  const std::size_t z = libdeflate_zlib_compress(c, data, bytes, file.data() + 28, file.size() - kDerivedHeader);
+  libdeflate_free_compressor(c);
+  if (z == 0) return;
+  file.resize(28 + z + 8);
+  const std::uint64_t identity = cacheIdentity(impl_->index), raw = bytes;
+  std::memcpy(file.data(), kDerivedMagic, 8);
+  std::memcpy(file.data() + 8, &kDerivedVersion, 4);
+  std::memcpy(file.data() + 12, &identity, 8);
+  std::memcpy(file.data() + 20, &raw, 8);
+  const std::uint64_t sum = fnv1a(file.data(), file.size() - 8);
+  std::memcpy(file.data() + file.size() - 8, &sum, 8);
+  const std::string path = stats_.cachePath + "/derived-" + name;
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." +
+                          std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  bool ok = f && std::fwrite(file.data(), 1, file.size(), f) == file.size();
+  if (f && std::fclose(f) != 0) ok = false;
+  std::error_code ec;
+  if (ok) fs::rename(tmp, path, ec);
+  if (!ok || ec) fs::remove(tmp, ec);
+}
+
 std::size_t TilePyramid::residentBoundBytes() const {
-  return impl_->reader->boundBytes() + std::size_t(std::max(impl_->options.decodedTiles, 1) + 1) * impl_->tileFloats() * 4 +
+  return (impl_->reader ? impl_->reader->boundBytes() : 0) +
+         std::size_t(std::max(impl_->options.decodedTiles, 1) + 1) * impl_->tileFloats() * 4 +
          impl_->index.records.capacity() * sizeof(TileRecord) + impl_->store.memoryBytes();
 }
 
@@ -520,12 +687,20 @@ std::shared_ptr<const TilePyramid> TilePyramid::open(std::shared_ptr<const Raste
   Impl& m = *p->impl_;
   m.self = p.get();
   m.options = options;
-  m.reader = readerFor(*source, options.sourceCacheBytes);
   m.nanTile = std::make_shared<const std::vector<float>>(m.tileFloats(), kNaN);
   m.levelStart.assign(std::size_t(p->levels_) + 1, 0);
-  for (int l = 1; l < p->levels_; ++l)
+  for (int l = 0; l < p->levels_; ++l)
     m.levelStart[l + 1] = m.levelStart[l] + std::size_t(p->tilesX(l)) * p->tilesY(l);
-  const std::size_t total = m.levelStart[p->levels_];
+  // One tile: nothing to build or cache, level 0 is read from the source.
+  const std::size_t total = p->levels_ > 1 ? m.levelStart[p->levels_] : 0;
+  // The stats count levels 1 and up (level 0 is the source's own tiling).
+  const auto countKinds = [&] {
+    for (std::size_t i = m.levelStart[1]; i < m.index.records.size(); ++i) {
+      const TileRecord& r = m.index.records[i];
+      ++(r.kind == TileKind::Empty ? p->stats_.tilesEmpty
+                                   : r.kind == TileKind::Constant ? p->stats_.tilesConstant : p->stats_.tilesData);
+    }
+  };
 
   TileCacheKey key;
   key.valueMap = options.valueMapId;
@@ -565,10 +740,10 @@ std::shared_ptr<const TilePyramid> TilePyramid::open(std::shared_ptr<const Raste
         if (idx.key == key && fd >= 0 && ::fstat(fd, &st) == 0 && std::uint64_t(st.st_size) == idx.dataBytes) {
           m.index = std::move(idx);
           m.store.openFile(fd, m.index.dataBytes);
+          m.level0Stored = true;  // every index on disk has level 0 (format 2)
+          p->stats_.level0Stored = true;
           p->stats_.cachePath = dir;
-          for (const TileRecord& r : m.index.records)
-            ++(r.kind == TileKind::Empty ? p->stats_.tilesEmpty
-                                         : r.kind == TileKind::Constant ? p->stats_.tilesConstant : p->stats_.tilesData);
+          countKinds();
           p->stats_.storedBytes = m.index.dataBytes;
           return p;
         }
@@ -579,12 +754,18 @@ std::shared_ptr<const TilePyramid> TilePyramid::open(std::shared_ptr<const Raste
     }
   }
 
-  // Build.
+  // Build (or a source too small for coarse levels, or with no file).
+  m.reader = readerFor(*source, options.sourceCacheBytes);
   p->stats_.builtNow = total > 0;
   std::string tmpData;
   if (!dir.empty() && total > 0) {
     std::error_code ec;
     fs::create_directories(dir, ec);
+    // What was derived from the old tiles (never read again: it names the old cache).
+    std::error_code ignored;
+    for (fs::directory_iterator it(ec ? fs::path() : fs::path(dir), ignored), end; !ignored && it != end;
+         it.increment(ignored))
+      if (it->path().filename().string().rfind("derived-", 0) == 0) fs::remove(it->path(), ignored);
     tmpData = dir + "/tiles.tmp." + std::to_string(::getpid());
     const int fd = ec ? -1 : ::open(tmpData.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) {
@@ -597,12 +778,13 @@ std::shared_ptr<const TilePyramid> TilePyramid::open(std::shared_ptr<const Raste
   }
   m.index.key = key;
   m.index.records.resize(total);
-  const bool show = options.progress == BuildProgress::Auto && total > 1024;
+  const std::size_t coarse = total > 0 ? total - m.levelStart[1] : 0;  // built tiles (level 0 is stored as read)
+  const bool show = options.progress == BuildProgress::Auto && coarse > 1024;
   const bool tty = ::isatty(2);
   int shown = -1;
   std::size_t done = 0;
   std::string writeError;
-  for (int l = 1; l < p->levels_; ++l)
+  for (int l = 1; l < p->levels_ && total > 0; ++l)
     for (int y = 0; y < p->tilesY(l); ++y)
       for (int x = 0; x < p->tilesX(l); ++x) {
         TileRecord& rec = m.index.records[m.levelStart[l] + std::size_t(y) * p->tilesX(l) + x];
@@ -614,7 +796,7 @@ std::shared_ptr<const TilePyramid> TilePyramid::open(std::shared_ptr<const Raste
         }
         ++done;
         if (show) {
-          const int pct = int(100 * done / total);
+          const int pct = int(100 * done / coarse);
           if (tty ? pct != shown : pct / 10 != shown / 10) {
             std::fprintf(stderr, "%sgeocean: building the tile cache of %s: %3d%% (level %d of %d)%s",
                          tty ? "\r" : "", source->path().c_str(), pct, l, p->levels_ - 1, tty ? "" : "\n");
@@ -624,9 +806,7 @@ std::shared_ptr<const TilePyramid> TilePyramid::open(std::shared_ptr<const Raste
         }
       }
   if (show && tty) std::fprintf(stderr, "\n");
-  for (const TileRecord& r : m.index.records)
-    ++(r.kind == TileKind::Empty ? p->stats_.tilesEmpty
-                                 : r.kind == TileKind::Constant ? p->stats_.tilesConstant : p->stats_.tilesData);
+  if (total > 0) countKinds();
   m.index.dataBytes = m.store.size();
   p->stats_.storedBytes = m.index.dataBytes;
   p->stats_.inMemory = m.store.inMemory();
@@ -649,6 +829,8 @@ std::shared_ptr<const TilePyramid> TilePyramid::open(std::shared_ptr<const Raste
       fs::remove(dir + "/tiles", ec);
     } else {
       p->stats_.cachePath = dir;
+      // From now on level 0 is read back from the cache, as a warm open would.
+      m.level0Stored = p->stats_.level0Stored = true;
     }
   } else if (!tmpData.empty()) {
     std::error_code ec;

@@ -1,11 +1,15 @@
 #include "globe/world/WaterPyramid.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <vector>
+#include <cstdio>
+#include <cstring>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace geocean::world {
 
@@ -18,10 +22,17 @@ std::shared_ptr<const raster::TilePyramid> waterPyramid(std::shared_ptr<const ra
   // and the drawing falls through to the water grid (geo_uv.glsl).
   const bool keepNodata = !mask->transform().global;
   options.valueMapId = (keepNodata ? "water-coverage-regional:" : "water-coverage:") + classes;
-  options.valueMap = [encoding, keepNodata](float* v, std::size_t n, int channels) {
+  // MaskEncoding::isWater as a table (the build maps every texel of the
+  // mask: a call and lround each were a third of a 30" mask's build):
+  // x in [0, 255] rounds half away from zero as lround, exactly in double.
+  std::array<float, 256> water{};
+  for (std::size_t k = 0; k < water.size(); ++k) water[k] = encoding.classOf[k] != Surface::Land ? 1.0f : 0.0f;
+  options.valueMap = [water, keepNodata](float* v, std::size_t n, int channels) {
     for (std::size_t i = 0; i < n; ++i) {
       const float x = v[i * channels];
-      const float w = keepNodata && std::isnan(x) ? NAN : encoding.isWater(x) ? 1.0f : 0.0f;
+      const float w = x >= 0.0f && x <= 255.0f ? water[std::size_t(double(x) + 0.5)]
+                      : keepNodata && std::isnan(x) ? NAN
+                                                    : 0.0f;  // NaN, negative, > 255: land (MaskEncoding::classify)
       for (int c = 0; c < channels; ++c) v[i * channels + c] = w;
     }
   };
@@ -217,7 +228,94 @@ class LevelRows {
 };
 }  // namespace
 
+namespace {
+WorldLayer computeWaterLayerOf(const raster::TilePyramid& water, double stepDeg);
+
+// The grid kept in the pyramid's cache (TilePyramid::derived): the app's
+// world and the ocean plugin's each built it from the level's tiles at
+// start (~0.1 s of loop and the tiles' decoding each, a 30" mask's 5'
+// grid). Stored as a header, a byte a texel (0: 0.0f, 1: 1.0f, 2: the next
+// of the other values, kept as their bits) and those values: the grid's
+// bits exactly, 9.3 M texels in ~1 MB deflated.
+constexpr std::uint32_t kGridFormat = 1;
+struct GridHeader {
+  std::uint32_t format, width, height, channels;
+  double originLonDeg, originLatDeg, lonStepDeg, latStepDeg;
+  std::uint64_t others;
+};
+
+std::string gridName(double stepDeg) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &stepDeg, 8);
+  char b[64];
+  std::snprintf(b, sizeof b, "water-grid-%016llx", static_cast<unsigned long long>(bits));
+  return b;
+}
+
+std::optional<WorldLayer> storedGrid(const raster::TilePyramid& water, double stepDeg) {
+  const auto bytes = water.derived(gridName(stepDeg));
+  if (!bytes || bytes->size() < sizeof(GridHeader)) return std::nullopt;
+  GridHeader h;
+  std::memcpy(&h, bytes->data(), sizeof h);
+  const std::uint64_t n = std::uint64_t(h.width) * h.height * h.channels;
+  if (h.format != kGridFormat || h.channels != 1 || n == 0 || n > (std::uint64_t(1) << 32) || h.others > n ||
+      bytes->size() != sizeof h + n + h.others * 4)
+    return std::nullopt;
+  WorldLayer l;
+  l.width = int(h.width), l.height = int(h.height), l.channels = int(h.channels);
+  l.originLonDeg = h.originLonDeg, l.originLatDeg = h.originLatDeg;
+  l.lonStepDeg = h.lonStepDeg, l.latStepDeg = h.latStepDeg;
+  l.values.resize(n);
+  const unsigned char* cls = bytes->data() + sizeof h;
+  const unsigned char* other = cls + n;
+  std::uint64_t used = 0;
+  for (std::uint64_t i = 0; i < n; ++i) {
+    if (cls[i] < 2) {
+      l.values[i] = float(cls[i]);
+    } else {
+      if (cls[i] != 2 || used == h.others) return std::nullopt;
+      std::memcpy(&l.values[i], other + 4 * used++, 4);
+    }
+  }
+  if (used != h.others) return std::nullopt;
+  return l;
+}
+
+void storeGrid(const raster::TilePyramid& water, double stepDeg, const WorldLayer& l) {
+  if (water.stats().cachePath.empty() || l.channels != 1) return;
+  const std::size_t n = l.values.size();
+  std::vector<unsigned char> bytes(sizeof(GridHeader) + n);
+  const float zero = 0.0f, one = 1.0f;
+  std::uint32_t zeroBits, oneBits;
+  std::memcpy(&zeroBits, &zero, 4), std::memcpy(&oneBits, &one, 4);
+  std::uint64_t others = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t b;
+    std::memcpy(&b, &l.values[i], 4);
+    unsigned char c = b == zeroBits ? 0 : b == oneBits ? 1 : 2;
+    bytes[sizeof(GridHeader) + i] = c;
+    if (c == 2) {
+      bytes.resize(bytes.size() + 4);
+      std::memcpy(bytes.data() + bytes.size() - 4, &b, 4);
+      ++others;
+    }
+  }
+  const GridHeader h{kGridFormat, std::uint32_t(l.width), std::uint32_t(l.height), std::uint32_t(l.channels),
+                     l.originLonDeg, l.originLatDeg, l.lonStepDeg, l.latStepDeg, others};
+  std::memcpy(bytes.data(), &h, sizeof h);
+  water.storeDerived(gridName(stepDeg), bytes.data(), bytes.size());
+}
+}  // namespace
+
 WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg) {
+  if (auto l = storedGrid(water, stepDeg)) return std::move(*l);
+  WorldLayer l = computeWaterLayerOf(water, stepDeg);
+  storeGrid(water, stepDeg, l);
+  return l;
+}
+
+namespace {
+WorldLayer computeWaterLayerOf(const raster::TilePyramid& water, double stepDeg) {
   const int level = levelFor(water, stepDeg);
   const raster::GeoTransform lt = water.levelTransform(level);
   const bool fullGlobe = water.source().wholeGlobeNorthUp();
@@ -291,6 +389,7 @@ WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg) {
   }
   return l;
 }
+}  // namespace
 
 WorldLayer regionalWaterCover(const raster::TilePyramid& water, std::size_t maxTexels) {
   int level = 0;

@@ -23,6 +23,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 using namespace geocean::raster;
@@ -225,6 +226,101 @@ TEST(TilePyramid, CorruptIndexIsRebuiltWithAWarning) {
   EXPECT_NE(err.find(index), std::string::npos) << err;
 }
 
+// Level 0 is in the cache (format 2): a warm open reads every level-0 tile
+// from it, bit for bit the source's texels (through Raster::pixel, the
+// other reader) with the value map applied, and never reads the source: a
+// source truncated after the warm open still gives every tile (the old
+// cache read level 0 from the source: NaN or an error here). Two sources:
+// floats with a nodata hole (float tiles) and 8-bit classes with nodata
+// mapped by a value map as a mask's (byte tiles, NaN given a free code).
+// An index of the old format (version 1, no level 0) is rebuilt with a
+// warning naming the version, never read as this one.
+TEST(TilePyramid, WarmCacheHoldsLevel0AndNeverReadsTheSource) {
+  TempDir t;
+  for (const bool classes : {false, true}) {
+    const std::string path = (t.path / (classes ? "classes.tif" : "floats.tif")).string();
+    PyramidOptions o = quiet(t.path / "cache");
+    if (classes) {
+      std::vector<std::uint8_t> v(std::size_t(kSW) * kSH);
+      for (int y = 0; y < kSH; ++y)
+        for (int x = 0; x < kSW; ++x)
+          v[std::size_t(y) * kSW + x] = smallValue(x, y, 0.0f) == kNodata ? 255 : std::uint8_t((x / 7 + y / 5) % 5);
+      GeoTiffWriteOptions w;
+      w.transform.lonStepDeg = 0.01, w.transform.latStepDeg = -0.01;
+      w.transform.originLonDeg = 10.0, w.transform.originLatDeg = 50.0;
+      w.tileSize = 48;
+      w.nodata = 255;
+      writeGeoTiff(path, v.data(), kSW, kSH, 1, SampleType::U8, w);
+      o.valueMapId = "water-of-classes";
+      o.valueMap = [](float* tex, std::size_t n, int) {  // classes 1 and 3 water, as a mask's encoding
+        for (std::size_t i = 0; i < n; ++i)
+          tex[i] = std::isnan(tex[i]) ? tex[i] : (tex[i] == 1.0f || tex[i] == 3.0f) ? 1.0f : 0.0f;
+      };
+    } else {
+      writeSmall(path, 0.0f, false);
+    }
+    OpenOptions ro;
+    ro.inMemoryLimitBytes = 0;  // read from the file (a raster in memory would answer after truncation)
+    auto src = Raster::open(path, ro);
+    ASSERT_FALSE(src->inMemory());
+    std::vector<float> want(std::size_t(kSW) * kSH);
+    for (int y = 0; y < kSH; ++y)
+      for (int x = 0; x < kSW; ++x) want[std::size_t(y) * kSW + x] = src->pixel(x, y);
+    if (o.valueMap) o.valueMap(want.data(), want.size(), 1);
+    std::string index;
+    {
+      auto cold = TilePyramid::open(src, o);
+      ASSERT_TRUE(cold->stats().builtNow);
+      index = cold->stats().cachePath + "/index";
+    }
+    auto warm = TilePyramid::open(src, o);
+    ASSERT_FALSE(warm->stats().builtNow);
+    EXPECT_TRUE(warm->stats().level0Stored);
+    fs::resize_file(path, 0);  // nothing is read from the source from now on
+    long bad = 0;
+    for (int ty = 0; ty < warm->tilesY(0); ++ty)
+      for (int tx = 0; tx < warm->tilesX(0); ++tx) {
+        const auto tile = warm->interior({0, tx, ty});
+        for (int y = 0; y < 64; ++y)
+          for (int x = 0; x < 64; ++x) {
+            const int gx = tx * 64 + x, gy = ty * 64 + y;
+            const float got = (*tile)[std::size_t(y) * 64 + x];
+            const float w = gx < kSW && gy < kSH ? want[std::size_t(gy) * kSW + gx] : NAN;
+            std::uint32_t a, b;
+            std::memcpy(&a, &got, 4), std::memcpy(&b, &w, 4);
+            bad += std::isnan(w) ? !std::isnan(got) : a != b;
+          }
+      }
+    EXPECT_EQ(bad, 0) << path;
+
+    // The old format: the same index written as version 1 (checksum right).
+    std::string bytes;
+    {
+      std::ifstream f(index, std::ios::binary);
+      bytes.assign(std::istreambuf_iterator<char>(f), {});
+    }
+    ASSERT_GT(bytes.size(), 20u);
+    const std::uint32_t v1 = 1;
+    std::memcpy(bytes.data() + 8, &v1, 4);
+    const std::uint64_t sum = fnv1a(bytes.data(), bytes.size() - 8);
+    std::memcpy(bytes.data() + bytes.size() - 8, &sum, 8);
+    { std::ofstream(index, std::ios::binary | std::ios::trunc) << bytes; }
+    if (classes) {
+      // A source to rebuild from (the truncated one cannot be read).
+      fs::remove(path);
+      continue;
+    }
+    writeSmall(path, 0.0f, false);
+    testing::internal::CaptureStderr();
+    auto rebuilt = TilePyramid::open(Raster::open(path), o);
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_TRUE(rebuilt->stats().builtNow);
+    EXPECT_NE(err.find(index + ": tile cache index has format version 1, this build reads 2: rebuilding it"),
+              std::string::npos)
+        << err;
+  }
+}
+
 TEST(TilePyramid, UnwritableOrFullCacheFolderFallsBackToMemoryWithAWarning) {
   TempDir t;
   const std::string path = (t.path / "src.tif").string();
@@ -275,7 +371,7 @@ TEST(TilePyramid, UnwritableOrFullCacheFolderFallsBackToMemoryWithAWarning) {
 TEST(TileIndex, RoundTripsAndRejectsEveryTruncationAndBadField) {
   TileIndex idx;
   idx.key = {"/data/a.tif", 1234, 5678, 42, "water:default", 64, 1, 1000, 600, 5};
-  for (int l = 1; l < 5; ++l)
+  for (int l = 0; l < 5; ++l)
     for (std::uint32_t y = 0; y < levelTiles(600, l, 64); ++y)
       for (std::uint32_t x = 0; x < levelTiles(1000, l, 64); ++x)
         idx.records.push_back({std::uint8_t(l), TileKind::Constant, x, y, idx.dataBytes += 4, 4});
@@ -442,7 +538,7 @@ TEST(TilePyramidBig, Global30ArcSecondRasterBuildsWithBoundedMemory) {
         for (int y = 0; y < s; ++y)
           for (int x = 0; x < s; ++x) sum += src->pixel(gx * s + x, gy * s + y);
         const double want = sum / (double(s) * s), got = tile[std::size_t(j + 1) * 258 + i + 1];
-        if (std::abs(got - want) > 1e-4 * std::max(1.0, want)) {
+        if (!(std::abs(got - want) <= 1e-4 * std::max(1.0, want))) {  // NaN is wrong too
           ++bad;
           ADD_FAILURE() << "level " << l << " texel " << gx << "," << gy << ": " << got << " vs " << want;
         }
@@ -452,7 +548,20 @@ TEST(TilePyramidBig, Global30ArcSecondRasterBuildsWithBoundedMemory) {
   EXPECT_EQ(bad, 0);
   const auto again = TilePyramid::open(src, po);
   EXPECT_FALSE(again->stats().builtNow);
+  EXPECT_TRUE(again->stats().level0Stored);
   EXPECT_EQ(again->stats().storedBytes, p->stats().storedBytes);
+  // Level 0 read back from the warm cache: the source's bytes.
+  for (const auto& [tx, ty] : {std::pair{0, 0}, {100, 40}, {168, 84}}) {
+    const auto t0 = again->interior({0, tx, ty});
+    long wrong = 0;
+    for (int y = 0; y < 256; ++y)
+      for (int x = 0; x < 256; ++x) {
+        const int gx = tx * 256 + x, gy = ty * 256 + y;
+        const float got = (*t0)[std::size_t(y) * 256 + x];
+        wrong += gx < kW && gy < kH ? got != float(value(gx, gy)) : !std::isnan(got);
+      }
+    EXPECT_EQ(wrong, 0) << tx << "," << ty;
+  }
 }
 
 // 86400 x 43200 (15"), nodata except a 1000 x 700 patch and a corner: the

@@ -16,8 +16,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <random>
 #include <tuple>
@@ -25,6 +30,7 @@
 
 namespace geocean::world {
 namespace {
+namespace fs = std::filesystem;
 
 WorldLayer layer(int w, int h, double landShare, unsigned seed) {
   WorldLayer l;
@@ -458,6 +464,50 @@ TEST(WaterIndex, AStreamedMasksGridHasTheStepsSizeAndKeepsEveryIslandAndLake) {
         ASSERT_EQ(s, world::Surface::Ocean) << W << ": " << la << " " << lo;
       }
     }
+    if (W != 2000) continue;
+    // The grid kept in the pyramid's cache (TilePyramid::derived): a mask
+    // file's first run stores it, the next reads it back, bit for bit the
+    // grid computed above from the same cells (an in-memory raster has no
+    // cache: computed there); a corrupt one is computed again; a rebuilt
+    // cache (the source touched) drops it.
+    const std::string file = (dir.path / "mask.tif").string();
+    std::vector<std::uint8_t> bytes(cls.begin(), cls.end());
+    raster::GeoTiffWriteOptions wo;
+    wo.transform = t;
+    wo.deflateLevel = 1;
+    raster::writeGeoTiff(file, bytes.data(), W, H, 1, raster::SampleType::U8, wo);
+    const auto sameBits = [&](const WorldLayer& l) {
+      return l.width == water.width && l.height == water.height && l.originLonDeg == water.originLonDeg &&
+             l.originLatDeg == water.originLatDeg && l.lonStepDeg == water.lonStepDeg &&
+             l.latStepDeg == water.latStepDeg && l.values.size() == water.values.size() &&
+             std::memcmp(l.values.data(), water.values.data(), 4 * l.values.size()) == 0;
+    };
+    const auto filePyr = [&] { return waterPyramid(raster::Raster::open(file), {}, po); };
+    const auto cold = filePyr();
+    const fs::path stored = fs::path(cold->stats().cachePath) / ("derived-water-grid-" + [&] {
+      std::uint64_t b;
+      std::memcpy(&b, &kStepDeg, 8);
+      char h[17];
+      std::snprintf(h, sizeof h, "%016llx", static_cast<unsigned long long>(b));
+      return std::string(h);
+    }());
+    EXPECT_TRUE(sameBits(waterLayerOf(*cold, kStepDeg)));
+    ASSERT_TRUE(fs::exists(stored)) << stored;
+    EXPECT_TRUE(sameBits(waterLayerOf(*filePyr(), kStepDeg))) << "read back";
+    {
+      std::fstream f(stored, std::ios::in | std::ios::out | std::ios::binary);
+      f.seekg(100);
+      const char was = char(f.get());
+      f.seekp(100);
+      f.put(char(~was));
+    }
+    ASSERT_FALSE(cold->derived(stored.filename().string().substr(8)).has_value()) << "corrupt, not read";
+    EXPECT_TRUE(sameBits(waterLayerOf(*filePyr(), kStepDeg))) << "computed again";
+    EXPECT_TRUE(cold->derived(stored.filename().string().substr(8)).has_value()) << "and stored again";
+    fs::last_write_time(file, fs::last_write_time(file) + std::chrono::seconds(5));
+    const auto rebuilt = filePyr();
+    EXPECT_TRUE(rebuilt->stats().builtNow);
+    EXPECT_FALSE(fs::exists(stored)) << "a rebuilt cache drops what was derived from the old tiles";
   }
 }
 
