@@ -157,17 +157,31 @@ TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
   }
   b.allWater = !regionalLand && wi.allWaterAround(lat0, lat1, lon0, lon1, gridMargin);
   if (!b.allWater && fineWater_) {
-    // A global streamed mask is drawn from its tiles alone: water at its
-    // own cells over the reach of the level the tile reads is enough (the
-    // grid's texel sees land within 28 km of every coast).
+    // A global streamed mask is drawn from its tiles alone. The vertex
+    // shader's ground is flat at -seaDrop wherever its bilinear reads four
+    // water texels (water = max(bilinear, B-spline) = 1, and the B-spline's
+    // then >= 25/36 shades as full sea), whatever the B-spline's other 12:
+    // the bilinear's reach is enough. At continuous level position X it
+    // reads texels floor(X - 0.5) and floor(X + 0.5) (0.05 more for the
+    // shader's float position), whose mask cells are checked.
     const raster::TilePyramid& pyr = world_.waterTiles()->pyramid();
     const raster::GeoTransform& t = pyr.source().transform();
-    const double cellDeg = std::max(std::abs(t.lonStepDeg), std::abs(t.latStepDeg));
     const double across = std::max((lon1 - lon0) / std::abs(t.lonStepDeg), (lat1 - lat0) / std::abs(t.latStepDeg));
-    const double reachDeg = 2.0 * double(1 << blockLevel(pyr, across)) * cellDeg;
-    b.allWater = fineWater_->cover(fineWater_->texelX(lon0 - reachDeg), fineWater_->texelX(lon1 + reachDeg),
-                                   fineWater_->texelY(lat0 - reachDeg), fineWater_->texelY(lat1 + reachDeg)) ==
-                 world::TileWaterIndex::Cover::Water;
+    const double s = double(1 << blockLevel(pyr, across));
+    double x0, x1, y0, y1;
+    if (flatWaterFromBilinear_) {
+      const auto cells = [&](double a, double c, double& lo, double& hi) {  // level-0 texel coordinates
+        lo = s * std::floor(std::min(a, c) / s - 0.55);
+        hi = std::nextafter(s * (std::floor(std::max(a, c) / s + 0.55) + 1.0), -1e300);  // the last cell's inside
+      };
+      cells(fineWater_->texelX(lon0), fineWater_->texelX(lon1), x0, x1);
+      cells(fineWater_->texelY(lat0), fineWater_->texelY(lat1), y0, y1);
+    } else {  // before: two texels of the level around the tile
+      const double reachDeg = 2.0 * s * std::max(std::abs(t.lonStepDeg), std::abs(t.latStepDeg));
+      x0 = fineWater_->texelX(lon0 - reachDeg), x1 = fineWater_->texelX(lon1 + reachDeg);
+      y0 = fineWater_->texelY(lat0 - reachDeg), y1 = fineWater_->texelY(lat1 + reachDeg);
+    }
+    b.allWater = fineWater_->cover(x0, x1, y0, y1) == world::TileWaterIndex::Cover::Water;
   }
   // Heights as the vertex shader makes them (land >= 0, water at -seaDrop),
   // from 9 x 9 samples; between samples the bilinear relief can rise further,

@@ -101,6 +101,10 @@ class TerrainRenderer {
 
   const TerrainOptions& options() const { return options_; }
   void setSkipOpenWater(bool on) { options_.skipOpenWater = on; }
+  // A global streamed mask's tiles flat at the sea's drop when the vertex
+  // bilinear's texels are water throughout (on, the default); off: the
+  // B-spline's 2-texel reach as before (for tests: the same picture).
+  void setFlatWaterFromBilinear(bool on) { flatWaterFromBilinear_ = on; }
 
  private:
   struct Key {
@@ -166,6 +170,7 @@ class TerrainRenderer {
   int maxLevel_ = 16;           // options_.maxLevel capped by the data's resolution
   // One global streamed mask's own cells (bounds: water throughout at them).
   mutable std::unique_ptr<world::TileWaterIndex> fineWater_;
+  bool flatWaterFromBilinear_ = true;
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
   GLsizei indexCount_ = 0;
   std::unordered_map<Key, Slot, KeyHash> cache_;
