@@ -13,6 +13,11 @@ constexpr double kDeg = kPi / 180.0;
 constexpr int kEdge = TerrainRenderer::kGrid + 2;  // with the skirt ring
 constexpr int kVertsPerTile = kEdge * kEdge;
 constexpr int kFloatsPerVertex = 9;  // local xyz, normal xyz, lon, lat, skirt
+// Flat tiles (Key::flat): from this level on, every kFlatStep-th grid line
+// (8 x 8 cells: level 9's are level 7's 32 x 32).
+constexpr int kFlatLevel = 9;
+constexpr int kFlatStep = 4;
+static_assert((TerrainRenderer::kGrid - 1) % kFlatStep == 0 && (TerrainRenderer::kGrid - 1) / kFlatStep << (kFlatLevel - 7) == TerrainRenderer::kGrid - 1);
 // Highest and lowest terrain on Earth (Everest 8849 m, Challenger Deep 10935 m), with margin.
 constexpr double kMaxTerrainM = 9000.0;
 constexpr double kMinTerrainM = -11000.0;
@@ -87,6 +92,20 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
       idx.insert(idx.end(), {a, c, b, b, c, d});
     }
   indexCount_ = GLsizei(idx.size());
+  // Flat tiles (water throughout: -seaDrop on the ellipsoid) at level >=
+  // kFlatLevel: every kFlatStep-th grid line and the skirt ring. Their
+  // cells are no larger than level 7's (2.4 km), where open water already
+  // stops (refines), and the chord sag over them is <= 0.12 m.
+  std::vector<int> lines = {0};
+  for (int g = 0; g < kGrid; g += kFlatStep) lines.push_back(g + 1);
+  lines.push_back(kEdge - 1);
+  for (std::size_t j = 0; j + 1 < lines.size(); ++j)
+    for (std::size_t i = 0; i + 1 < lines.size(); ++i) {
+      const std::uint32_t a = lines[j] * kEdge + lines[i], b = lines[j] * kEdge + lines[i + 1],
+                          c = lines[j + 1] * kEdge + lines[i], d = lines[j + 1] * kEdge + lines[i + 1];
+      idx.insert(idx.end(), {a, c, b, b, c, d});
+    }
+  flatIndexCount_ = GLsizei(idx.size()) - indexCount_;
   glCreateBuffers(1, &ibo_);
   glNamedBufferStorage(ibo_, GLsizeiptr(idx.size() * sizeof(std::uint32_t)), idx.data(), 0);
   glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, kFloatsPerVertex * sizeof(float));
@@ -269,7 +288,7 @@ void TerrainRenderer::select(const Key& k, const camera::Camera& cam, std::vecto
       for (int cx = 0; cx < 2; ++cx) select({k.level + 1, 2 * k.x + cx, 2 * k.y + cy}, cam, out, depth + 1);
     return;
   }
-  out.push_back(k);
+  out.push_back({k.level, k.x, k.y, coarseFlat_ && b.allWater && k.level >= kFlatLevel});
 }
 
 bool TerrainRenderer::refines(const Key& k, const Bounds& b, const camera::Camera& cam, double dist) const {
@@ -376,6 +395,7 @@ void TerrainRenderer::selectTiles(const camera::Camera& cam, std::vector<Key>& t
   for (const Key& k : tiles) {
     slots.push_back(&acquire(k, stats));
     stats.maxLevel = std::max(stats.maxLevel, k.level);
+    stats.tilesFlat += k.flat;
   }
 }
 
@@ -430,7 +450,12 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
     // (a third of a cell: slopes up to 1:3) and the curvature sag of a cell.
     const double cellM = 90.0 / double(1 << k.level) / (kGrid - 1) * kDeg * geo::kWgs84A;
     glUniform1f(locSkirt, float(std::max(5.0, 0.35 * cellM * std::max(1.0, options_.exaggeration))));
-    glDrawElementsBaseVertex(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr, slots[i]->index * kVertsPerTile);
+    if (k.flat)
+      glDrawElementsBaseVertex(GL_TRIANGLES, flatIndexCount_, GL_UNSIGNED_INT,
+                               reinterpret_cast<const void*>(std::uintptr_t(indexCount_) * sizeof(std::uint32_t)),
+                               slots[i]->index * kVertsPerTile);
+    else
+      glDrawElementsBaseVertex(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr, slots[i]->index * kVertsPerTile);
   }
 }
 

@@ -65,6 +65,7 @@ enum class SeaShading {
 struct TerrainStats {
   int tilesDrawn = 0;
   int tilesBuilt = 0;
+  int tilesFlat = 0;  // of tilesDrawn, drawn with the coarse grid (water throughout)
   int maxLevel = 0;
 };
 
@@ -105,10 +106,16 @@ class TerrainRenderer {
   // bilinear's texels are water throughout (on, the default); off: the
   // B-spline's 2-texel reach as before (for tests: the same picture).
   void setFlatWaterFromBilinear(bool on) { flatWaterFromBilinear_ = on; }
+  // Tiles of water throughout at level >= 9 drawn with 8 x 8 cells (on, the
+  // default) or the full grid (off; for tests).
+  void setCoarseFlatTiles(bool on) { coarseFlat_ = on; }
 
  private:
   struct Key {
     int level, x, y;
+    // Drawn with the coarse grid (kFlatCells): water throughout at level
+    // >= kFlatLevel (select). Not part of the tile's identity.
+    bool flat = false;
     bool operator==(const Key& o) const { return level == o.level && x == o.x && y == o.y; }
   };
   struct KeyHash {
@@ -171,8 +178,9 @@ class TerrainRenderer {
   // One global streamed mask's own cells (bounds: water throughout at them).
   mutable std::unique_ptr<world::TileWaterIndex> fineWater_;
   bool flatWaterFromBilinear_ = true;
+  bool coarseFlat_ = true;
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
-  GLsizei indexCount_ = 0;
+  GLsizei indexCount_ = 0, flatIndexCount_ = 0;  // the flat tiles' indices follow the full grid's
   std::unordered_map<Key, Slot, KeyHash> cache_;
   std::list<Key> lru_;
   std::vector<int> freeSlots_;
