@@ -17,7 +17,8 @@ constexpr int kFloatsPerVertex = 9;  // local xyz, normal xyz, lon, lat, skirt
 // (8 x 8 cells: level 9's are level 7's 32 x 32).
 constexpr int kFlatLevel = 9;
 constexpr int kFlatStep = 4;
-static_assert((TerrainRenderer::kGrid - 1) % kFlatStep == 0 && (TerrainRenderer::kGrid - 1) / kFlatStep << (kFlatLevel - 7) == TerrainRenderer::kGrid - 1);
+static_assert((TerrainRenderer::kGrid - 1) % kFlatStep == 0 &&
+              (TerrainRenderer::kGrid - 1) / kFlatStep << (kFlatLevel - 7) == TerrainRenderer::kGrid - 1);
 // Highest and lowest terrain on Earth (Everest 8849 m, Challenger Deep 10935 m), with margin.
 constexpr double kMaxTerrainM = 9000.0;
 constexpr double kMinTerrainM = -11000.0;

@@ -113,8 +113,8 @@ class TerrainRenderer {
  private:
   struct Key {
     int level, x, y;
-    // Drawn with the coarse grid (kFlatCells): water throughout at level
-    // >= kFlatLevel (select). Not part of the tile's identity.
+    // Drawn with the coarse grid (Terrain.cpp's kFlatStep): water
+    // throughout at level >= kFlatLevel (select). Not the tile's identity.
     bool flat = false;
     bool operator==(const Key& o) const { return level == o.level && x == o.x && y == o.y; }
   };
@@ -133,7 +133,9 @@ class TerrainRenderer {
     double radius;
     glm::dvec3 samples[9];  // 3 x 3 points at the highest height
     double bulgeM = 0.0;    // how far the surface rises between them
-    bool allWater = false;  // water throughout (WaterIndex): no relief to refine
+    // Water throughout (WaterIndex; a global streamed mask's own cells under
+    // the vertex bilinear): flat at -seaDrop, no relief to refine.
+    bool allWater = false;
   };
 
   void select(const Key& k, const camera::Camera& cam, std::vector<Key>& out, int depth);
