@@ -13,6 +13,12 @@ constexpr double kDeg = kPi / 180.0;
 constexpr int kEdge = TerrainRenderer::kGrid + 2;  // with the skirt ring
 constexpr int kVertsPerTile = kEdge * kEdge;
 constexpr int kFloatsPerVertex = 9;  // local xyz, normal xyz, lon, lat, skirt
+// Flat tiles (Key::flat): from this level on, every kFlatStep-th grid line
+// (8 x 8 cells: level 9's are level 7's 32 x 32).
+constexpr int kFlatLevel = 9;
+constexpr int kFlatStep = 4;
+static_assert((TerrainRenderer::kGrid - 1) % kFlatStep == 0 &&
+              (TerrainRenderer::kGrid - 1) / kFlatStep << (kFlatLevel - 7) == TerrainRenderer::kGrid - 1);
 // Highest and lowest terrain on Earth (Everest 8849 m, Challenger Deep 10935 m), with margin.
 constexpr double kMaxTerrainM = 9000.0;
 constexpr double kMinTerrainM = -11000.0;
@@ -87,6 +93,20 @@ TerrainRenderer::TerrainRenderer(const WorldTextures& world, TerrainOptions opti
       idx.insert(idx.end(), {a, c, b, b, c, d});
     }
   indexCount_ = GLsizei(idx.size());
+  // Flat tiles (water throughout: -seaDrop on the ellipsoid) at level >=
+  // kFlatLevel: every kFlatStep-th grid line and the skirt ring. Their
+  // cells are no larger than level 7's (2.4 km), where open water already
+  // stops (refines), and the chord sag over them is <= 0.12 m.
+  std::vector<int> lines = {0};
+  for (int g = 0; g < kGrid; g += kFlatStep) lines.push_back(g + 1);
+  lines.push_back(kEdge - 1);
+  for (std::size_t j = 0; j + 1 < lines.size(); ++j)
+    for (std::size_t i = 0; i + 1 < lines.size(); ++i) {
+      const std::uint32_t a = lines[j] * kEdge + lines[i], b = lines[j] * kEdge + lines[i + 1],
+                          c = lines[j + 1] * kEdge + lines[i], d = lines[j + 1] * kEdge + lines[i + 1];
+      idx.insert(idx.end(), {a, c, b, b, c, d});
+    }
+  flatIndexCount_ = GLsizei(idx.size()) - indexCount_;
   glCreateBuffers(1, &ibo_);
   glNamedBufferStorage(ibo_, GLsizeiptr(idx.size() * sizeof(std::uint32_t)), idx.data(), 0);
   glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, kFloatsPerVertex * sizeof(float));
@@ -157,17 +177,31 @@ TerrainRenderer::Bounds TerrainRenderer::bounds(const Key& k) const {
   }
   b.allWater = !regionalLand && wi.allWaterAround(lat0, lat1, lon0, lon1, gridMargin);
   if (!b.allWater && fineWater_) {
-    // A global streamed mask is drawn from its tiles alone: water at its
-    // own cells over the reach of the level the tile reads is enough (the
-    // grid's texel sees land within 28 km of every coast).
+    // A global streamed mask is drawn from its tiles alone. The vertex
+    // shader's ground is flat at -seaDrop wherever its bilinear reads four
+    // water texels (water = max(bilinear, B-spline) = 1, and the B-spline's
+    // then >= 25/36 shades as full sea), whatever the B-spline's other 12:
+    // the bilinear's reach is enough. At continuous level position X it
+    // reads texels floor(X - 0.5) and floor(X + 0.5) (0.05 more for the
+    // shader's float position), whose mask cells are checked.
     const raster::TilePyramid& pyr = world_.waterTiles()->pyramid();
     const raster::GeoTransform& t = pyr.source().transform();
-    const double cellDeg = std::max(std::abs(t.lonStepDeg), std::abs(t.latStepDeg));
     const double across = std::max((lon1 - lon0) / std::abs(t.lonStepDeg), (lat1 - lat0) / std::abs(t.latStepDeg));
-    const double reachDeg = 2.0 * double(1 << blockLevel(pyr, across)) * cellDeg;
-    b.allWater = fineWater_->cover(fineWater_->texelX(lon0 - reachDeg), fineWater_->texelX(lon1 + reachDeg),
-                                   fineWater_->texelY(lat0 - reachDeg), fineWater_->texelY(lat1 + reachDeg)) ==
-                 world::TileWaterIndex::Cover::Water;
+    const double s = double(1 << blockLevel(pyr, across));
+    double x0, x1, y0, y1;
+    if (flatWaterFromBilinear_) {
+      const auto cells = [&](double a, double c, double& lo, double& hi) {  // level-0 texel coordinates
+        lo = s * std::floor(std::min(a, c) / s - 0.55);
+        hi = std::nextafter(s * (std::floor(std::max(a, c) / s + 0.55) + 1.0), -1e300);  // the last cell's inside
+      };
+      cells(fineWater_->texelX(lon0), fineWater_->texelX(lon1), x0, x1);
+      cells(fineWater_->texelY(lat0), fineWater_->texelY(lat1), y0, y1);
+    } else {  // before: two texels of the level around the tile
+      const double reachDeg = 2.0 * s * std::max(std::abs(t.lonStepDeg), std::abs(t.latStepDeg));
+      x0 = fineWater_->texelX(lon0 - reachDeg), x1 = fineWater_->texelX(lon1 + reachDeg);
+      y0 = fineWater_->texelY(lat0 - reachDeg), y1 = fineWater_->texelY(lat1 + reachDeg);
+    }
+    b.allWater = fineWater_->cover(x0, x1, y0, y1) == world::TileWaterIndex::Cover::Water;
   }
   // Heights as the vertex shader makes them (land >= 0, water at -seaDrop),
   // from 9 x 9 samples; between samples the bilinear relief can rise further,
@@ -255,7 +289,7 @@ void TerrainRenderer::select(const Key& k, const camera::Camera& cam, std::vecto
       for (int cx = 0; cx < 2; ++cx) select({k.level + 1, 2 * k.x + cx, 2 * k.y + cy}, cam, out, depth + 1);
     return;
   }
-  out.push_back(k);
+  out.push_back({k.level, k.x, k.y, coarseFlat_ && b.allWater && k.level >= kFlatLevel});
 }
 
 bool TerrainRenderer::refines(const Key& k, const Bounds& b, const camera::Camera& cam, double dist) const {
@@ -362,6 +396,7 @@ void TerrainRenderer::selectTiles(const camera::Camera& cam, std::vector<Key>& t
   for (const Key& k : tiles) {
     slots.push_back(&acquire(k, stats));
     stats.maxLevel = std::max(stats.maxLevel, k.level);
+    stats.tilesFlat += k.flat;
   }
 }
 
@@ -416,7 +451,12 @@ void TerrainRenderer::drawTiles(const gl::GlProgram& prog, const camera::Camera&
     // (a third of a cell: slopes up to 1:3) and the curvature sag of a cell.
     const double cellM = 90.0 / double(1 << k.level) / (kGrid - 1) * kDeg * geo::kWgs84A;
     glUniform1f(locSkirt, float(std::max(5.0, 0.35 * cellM * std::max(1.0, options_.exaggeration))));
-    glDrawElementsBaseVertex(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr, slots[i]->index * kVertsPerTile);
+    if (k.flat)
+      glDrawElementsBaseVertex(GL_TRIANGLES, flatIndexCount_, GL_UNSIGNED_INT,
+                               reinterpret_cast<const void*>(std::uintptr_t(indexCount_) * sizeof(std::uint32_t)),
+                               slots[i]->index * kVertsPerTile);
+    else
+      glDrawElementsBaseVertex(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr, slots[i]->index * kVertsPerTile);
   }
 }
 

@@ -65,6 +65,7 @@ enum class SeaShading {
 struct TerrainStats {
   int tilesDrawn = 0;
   int tilesBuilt = 0;
+  int tilesFlat = 0;  // of tilesDrawn, drawn with the coarse grid (water throughout)
   int maxLevel = 0;
 };
 
@@ -101,10 +102,20 @@ class TerrainRenderer {
 
   const TerrainOptions& options() const { return options_; }
   void setSkipOpenWater(bool on) { options_.skipOpenWater = on; }
+  // A global streamed mask's tiles flat at the sea's drop when the vertex
+  // bilinear's texels are water throughout (on, the default); off: the
+  // B-spline's 2-texel reach as before (for tests: the same picture).
+  void setFlatWaterFromBilinear(bool on) { flatWaterFromBilinear_ = on; }
+  // Tiles of water throughout at level >= 9 drawn with 8 x 8 cells (on, the
+  // default) or the full grid (off; for tests).
+  void setCoarseFlatTiles(bool on) { coarseFlat_ = on; }
 
  private:
   struct Key {
     int level, x, y;
+    // Drawn with the coarse grid (Terrain.cpp's kFlatStep): water
+    // throughout at level >= kFlatLevel (select). Not the tile's identity.
+    bool flat = false;
     bool operator==(const Key& o) const { return level == o.level && x == o.x && y == o.y; }
   };
   struct KeyHash {
@@ -122,7 +133,9 @@ class TerrainRenderer {
     double radius;
     glm::dvec3 samples[9];  // 3 x 3 points at the highest height
     double bulgeM = 0.0;    // how far the surface rises between them
-    bool allWater = false;  // water throughout (WaterIndex): no relief to refine
+    // Water throughout (WaterIndex; a global streamed mask's own cells under
+    // the vertex bilinear): flat at -seaDrop, no relief to refine.
+    bool allWater = false;
   };
 
   void select(const Key& k, const camera::Camera& cam, std::vector<Key>& out, int depth);
@@ -166,8 +179,10 @@ class TerrainRenderer {
   int maxLevel_ = 16;           // options_.maxLevel capped by the data's resolution
   // One global streamed mask's own cells (bounds: water throughout at them).
   mutable std::unique_ptr<world::TileWaterIndex> fineWater_;
+  bool flatWaterFromBilinear_ = true;
+  bool coarseFlat_ = true;
   GLuint vao_ = 0, vbo_ = 0, ibo_ = 0;
-  GLsizei indexCount_ = 0;
+  GLsizei indexCount_ = 0, flatIndexCount_ = 0;  // the flat tiles' indices follow the full grid's
   std::unordered_map<Key, Slot, KeyHash> cache_;
   std::list<Key> lru_;
   std::vector<int> freeSlots_;

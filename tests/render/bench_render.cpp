@@ -17,6 +17,9 @@
 //                [--cell-px PX]  (the ocean grid's vertex spacing, OceanOptions::cellPx)
 //                [--reduced-rate | --full-rate] [--rate-tolerance N (of 255)]
 //                [--pixel-octave-end PX]  (OceanOptions::reducedRate, pixelOctaveEndPx)
+//                [--mask FILE]  (a mask layer over the default world: the host's
+//                terrain streams it, world::loadLayeredWorld; the ocean draws the
+//                stack's grids, not the façade's streamed tiles)
 //                [--no-shadows] [--shadow-model paper] [--sun-model phong]
 //                (issue 13 item 6; `shadow` is the sun's depth pass alone,
 //                inside `ocean`, over the frames that drew it)
@@ -25,6 +28,7 @@
 #include "globe/render/CliParse.h"
 #include "globe/render/Flight.h"
 #include "globe/render/Session.h"
+#include "globe/world/LayerStack.h"
 #include "tests/render/DirectOcean.h"
 #include "tests/support/Median.h"
 
@@ -70,7 +74,7 @@ void report(const char* label, const std::vector<Row>& rows, double lo, double h
 
 int main(int argc, char** argv) {
   int frames = 40;
-  std::string size = "1280x720", to = "36.0,-5.6", csvPath;
+  std::string size = "1280x720", to = "36.0,-5.6", csvPath, maskPath;
   bool ocean = true;
   int repeat = 1;  // draws per frame before the timed one
   int minOf = 1;   // timed draws per frame, the least of each figure kept
@@ -99,6 +103,7 @@ int main(int argc, char** argv) {
     else if (a == "--to") to = next();
     else if (a == "--csv") csvPath = next();
     else if (a == "--no-ocean") ocean = false;
+    else if (a == "--mask") maskPath = next();
     else if (a == "--pixel-error") terrain.pixelErrorPx = std::atof(next().c_str());
     else if (a == "--repeat") repeat = std::atoi(next().c_str());
     else if (a == "--min-of") minOf = std::max(1, std::atoi(next().c_str()));
@@ -153,7 +158,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   plan.headingDeg = 90.0;  // as geocean fly
-  render::Session s = render::Session::headless(world::loadDefaultWorld(), base.width, base.height, terrain);
+  render::Session s = render::Session::headless(
+      maskPath.empty() ? world::loadDefaultWorld() : world::loadLayeredWorld({{world::LayerKind::Mask, maskPath, "", 0}}, true),
+      base.width, base.height, terrain);
   std::shared_ptr<ocean_render::OceanRenderer> oceanLayer;
   if (ocean) {
     ocean_render::OceanOptions oo;

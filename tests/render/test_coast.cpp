@@ -252,6 +252,7 @@ struct Frame {
   gl::Image image;
   std::vector<std::uint8_t> ocean;  // 1 where the ocean drew (see render)
   std::vector<float> depth;         // reversed Z (near / distance), top row first; 0: nothing drawn
+  TerrainStats terrain;             // the host terrain's tiles
   bool drawn(int x, int y) const { return ocean[std::size_t(y) * pose.width + x] != 0; }
 };
 
@@ -266,9 +267,10 @@ Frame render(const ViewPose& p, GlobeRenderer& renderer, ocean_render::OceanRend
   ocean->setWriteData(true);
   gl::Framebuffer fb(p.width, p.height, true);
   fb.bind();
-  renderer.render(p, coastLight(p));
+  const FrameTimes t = renderer.render(p, coastLight(p));
   Frame f;
   f.pose = p;
+  f.terrain = t.terrain;
   f.cam = renderer.camera(p);
   f.data = fb.readData();
   f.image = fb.readColor();
@@ -645,6 +647,43 @@ TEST(Coast, AStreamedMasksShortcutsDoNotChangeTheImage) {
   std::printf("terrain off the coast: %d tiles, max level %d\n", t.terrain.tilesDrawn, t.terrain.maxLevel);
   EXPECT_GT(t.terrain.tilesDrawn, 0);
   EXPECT_LE(t.terrain.maxLevel, 11);
+
+  // Near the shore from 2 - 300 m: terrain tiles whose vertex bilinear
+  // reads only water texels are flat at the sea's drop (as the B-spline's
+  // whole reach was asked before), so they stop at the open water's level:
+  // fewer tiles, the same bits. And such tiles at level >= 9 are drawn
+  // with 8 x 8 cells (no larger than level 7's, where open water stops):
+  // the ocean covers them but at its anti-aliased coast and the horizon,
+  // where the per-vertex haze and sea colour are interpolated over coarser
+  // cells; bound: that of the shortcuts above (the same bits where the
+  // ocean is opaque, a unit or so beside).
+  const std::pair<const char*, ViewPose> shore[] = {
+      {"coast_300m", pose(35.95, -5.5, 300.0, 330.0, -8.0)},
+      {"tarifa_30m", pose(35.985, -5.6, 30.0, 0.0, -4.0)},  // the shore 2 - 4 km north
+      {"strait_2m", pose(36.0, -5.6, 2.0, 250.0, -3.0)},
+  };
+  int before = 0, after = 0, flat = 0;
+  for (const auto& [name, view] : shore) {
+    s.renderer->terrain().setFlatWaterFromBilinear(false);
+    s.renderer->terrain().setCoarseFlatTiles(false);
+    const Frame old = render(view, *s.renderer, s.ocean.get(), std::string("bspline_reach_") + name);
+    s.renderer->terrain().setFlatWaterFromBilinear(true);
+    const Frame reach = render(view, *s.renderer, s.ocean.get(), std::string("bilinear_reach_") + name);
+    s.renderer->terrain().setCoarseFlatTiles(true);
+    const Frame now = render(view, *s.renderer, s.ocean.get(), std::string("coarse_flat_") + name);
+    const ImageDiff d = compare(old.image, reach.image), c = compare(reach.image, now.image);
+    std::printf("1.25' %s: terrain tiles %d (B-spline's reach) -> %d (bilinear's): max %d; %d of them coarse: "
+                "mean %.5f, max %d\n",
+                name, old.terrain.tilesDrawn, reach.terrain.tilesDrawn, d.max, now.terrain.tilesFlat, c.mean, c.max);
+    EXPECT_EQ(d.max, 0) << name;
+    EXPECT_EQ(old.terrain.tilesFlat, 0);
+    EXPECT_EQ(now.terrain.tilesDrawn, reach.terrain.tilesDrawn);
+    EXPECT_LE(c.mean, 0.01) << name;
+    EXPECT_EQ(c.fractionOver16, 0.0) << name;
+    before += old.terrain.tilesDrawn, after += reach.terrain.tilesDrawn, flat += now.terrain.tilesFlat;
+  }
+  EXPECT_GT(flat, 0) << "no tile drawn coarse";
+  EXPECT_LT(after, before) << "no tile stopped earlier";
 }
 
 // Pixels of a frame whose drawn class differs from the side of the 3"
