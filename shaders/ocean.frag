@@ -196,7 +196,8 @@ void main() {
 #endif
 #ifdef GEOCEAN_GBUFFER
   outG0 = vec4(vEyeRel, alpha), outG1 = vec4(octEncode(vNormal), vHeightM, vCellAlongM);
-  outG2 = vec4(seaOpticsDepthM(vDepthM, vReliefFloor, w), vHeightA, max(length(dFdx(vEyeRel)), length(dFdy(vEyeRel))), w);
+  outG2 = vec4(seaOpticsDepthM(vDepthM, vReliefFloor, w), vHeightA, max(length(dFdx(vEyeRel)), length(dFdy(vEyeRel))),
+               w);
   imageStore(uGTiles, ivec2(gl_FragCoord.xy) / 8, uvec4(1u));
 #elif defined(GEOCEAN_FAR_SHADED)
   outColor = vec4(vColor, alpha);

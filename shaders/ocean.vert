@@ -264,12 +264,14 @@ void main() {
   vMss = mssRest + (1.0 - kept) * mssDrawn;
 #endif
   vLonLat = lonLat;
+#if defined(GEOCEAN_FAR_SHADED)
+  float opticsDepthM = seaOpticsDepthM(vDepthM, vReliefFloor, 1.0);  // open water: w 1
+#endif
 #if defined(GEOCEAN_FAR_SHADED) && WV_MODEL == 0
-  vColor = oceanColorCrest(vEyeRel, vNormal, vUp, vSun, vHazeTr, vHazeIn, seaOpticsDepthM(vDepthM, vReliefFloor, 1.0), vFar, vMss,
+  vColor = oceanColorCrest(vEyeRel, vNormal, vUp, vSun, vHazeTr, vHazeIn, opticsDepthM, vFar, vMss,
                            noiseCrestFoam(vHeightA, noiseVarUnresolved, uFoamSoftM, uWhitecapCover), 1.0, vHeightM);
 #elif defined(GEOCEAN_FAR_SHADED)
-  vColor = oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, seaOpticsDepthM(vDepthM, vReliefFloor, 1.0), vFar, vMss,
-                      vFoamM, 1.0);
+  vColor = oceanColor(vEyeRel, vNormal, vUp, vHeightM, vSun, vHazeTr, vHazeIn, opticsDepthM, vFar, vMss, vFoamM, 1.0);
 #endif
 #if defined(GEOCEAN_VERTEX_COVERAGE) && defined(GEOCEAN_WATER_PAGES)
   // A streamed mask: its finest resident level's B-spline, as the paged
