@@ -36,48 +36,6 @@ out float vHeightM; // height of this surface above the ellipsoid
 out vec3 vSeaColor; // the distant sea's colour here (smooth: up, view, sun, depth)
 out float vWater;   // water coverage at the vertex (B-spline, 0.5 = shore)
 
-#if defined(GEOCEAN_WATER_TILES) && !defined(GEOCEAN_WATER_TILES_LAYERS) && !defined(GEOCEAN_WATER_REGIONAL)
-// One global streamed mask: waterTilesBSpline and waterTilesBilinear
-// (geo_uv.glsl) to the bit from one read of 16 texels, the bilinear's 4
-// being the B-spline's middle ones; blockTexel's arithmetic done per
-// column and per row (4 + 4, not 16). A vertex did 20 fetches, each with
-// its own wrap, tile and layer choice.
-float waterTilesBoth(vec2 lonLatDeg, out float bilinear) {
-  vec2 p = waterTexelPos(lonLatDeg);
-  vec2 i = floor(p);
-  vec2 f = p - i;
-  vec4 wx = bsplineWeights4(f.x), wy = bsplineWeights4(f.y);
-  ivec2 g = ivec2(i) - 1;
-  int T = uWaterBlock.w, shift = findMSB(T);
-  ivec4 gx = g.x + ivec4(0, 1, 2, 3), gy = clamp(g.y + ivec4(0, 1, 2, 3), 0, uWaterLevel.y - 1);
-  gx = uWaterLevel.z != 0 ? texelWrap(gx, uWaterLevel.x) : clamp(gx, 0, uWaterLevel.x - 1);
-  ivec4 dx = (gx >> shift) - uWaterBlock.x, dy = (gy >> shift) - uWaterBlock.y;
-  dx += ivec4(lessThan(dx, ivec4(0))) * uWaterBlock.z;  // wrapped past the antimeridian
-  ivec4 lx = gx & (T - 1), ly = gy & (T - 1);
-  // Outside the block: the nearest edge texel, from the border (as blockTexel).
-  bvec4 outX = bvec4(ivec4(lessThan(dx, ivec4(0))) | ivec4(greaterThan(dx, ivec4(1))));
-  bvec4 outY = bvec4(ivec4(lessThan(dy, ivec4(0))) | ivec4(greaterThan(dy, ivec4(1))));
-  lx = mix(lx, mix(ivec4(T), ivec4(-1), lessThan(dx, ivec4(0))), outX) + 1;  // + 1: the tile's border
-  ly = mix(ly, mix(ivec4(T), ivec4(-1), lessThan(dy, ivec4(0))), outY) + 1;
-  dx = clamp(dx, 0, 1), dy = clamp(dy, 0, 1);
-  float s = 0.0;
-  vec4 mid[2];
-  for (int y = 0; y < 4; ++y) {
-    ivec2 rowSlots = dy[y] == 0 ? uWaterSlots.xy : uWaterSlots.zw;
-    ivec4 layer = mix(ivec4(rowSlots.y), ivec4(rowSlots.x), equal(dx, ivec4(0)));
-    vec4 row = vec4(texelFetch(uWaterPool, ivec3(lx.x, ly[y], layer.x), 0).r,
-                    texelFetch(uWaterPool, ivec3(lx.y, ly[y], layer.y), 0).r,
-                    texelFetch(uWaterPool, ivec3(lx.z, ly[y], layer.z), 0).r,
-                    texelFetch(uWaterPool, ivec3(lx.w, ly[y], layer.w), 0).r);
-    s += wy[y] * dot(row, wx);
-    if (y == 1) mid[0] = row;
-    if (y == 2) mid[1] = row;
-  }
-  bilinear = mix(mix(mid[0].y, mid[0].z, f.x), mix(mid[1].y, mid[1].z, f.x), f.y);
-  return s;
-}
-#endif
-
 void main() {
 #ifdef GEOCEAN_BARE
   float h = -uSkirtM * aSkirt;
@@ -95,14 +53,8 @@ void main() {
   float waterBSpline, water;
 #ifdef GEOCEAN_WATER_TILES
   if (waterTilesDrawn()) {
-#if !defined(GEOCEAN_WATER_TILES_LAYERS) && !defined(GEOCEAN_WATER_REGIONAL)
-    float bilinear;
-    waterBSpline = waterTilesBoth(aLonLat, bilinear);
-    water = max(bilinear, waterBSpline);
-#else
     waterBSpline = waterTilesBSpline(aLonLat, uWater, uWaterGeo);
     water = max(waterTilesBilinear(aLonLat, uWater, uWaterGeo), waterBSpline);
-#endif
   } else
 #endif
   {  // the grid alone (no tiles, or a terrain tile clear of a regional layer)
