@@ -236,9 +236,9 @@ void main() {
 #endif
 #if WV_MODEL == 0
   // The noise sea's octaves not in the vertex normal, down to
-  // uPixelOctaveEndPx pixels,
-  // at the fragment's rest point (the displacement is vertical), and the
-  // roughness of what is shown neither way (noise_bands.glsl).
+  // uPixelOctaveEndPx pixels, at the fragment's rest point (the
+  // displacement is vertical), and the roughness of what is shown neither
+  // way (noise_bands.glsl).
   WvFrame fr0 = wvFrames[0];
   vec3 d = vEyeRel - up * vHeightM + uEyeMinusOrigin;
   vec3 upD = wv_upAt(fr0, d);

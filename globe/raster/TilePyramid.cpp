@@ -590,7 +590,10 @@ void TilePyramid::readTile(TileId id, float* out) const {
 namespace {
 constexpr char kDerivedMagic[8] = {'G', 'E', 'O', 'D', 'E', 'R', 'I', 'V'};
 constexpr std::uint32_t kDerivedVersion = 1;
-constexpr std::size_t kDerivedHeader = 8 + 4 + 8 + 8 + 8;  // magic, version, cache, raw bytes, checksum
+// A derived file: magic, version, cache identity, raw bytes (kDerivedPrefix),
+// the deflated data, a checksum of all before it (8).
+constexpr std::size_t kDerivedPrefix = 8 + 4 + 8 + 8;
+constexpr std::size_t kDerivedHeader = kDerivedPrefix + 8;  // with the checksum
 
 bool derivedNameOk(const std::string& n) {
   return !n.empty() && n.size() <= 100 && std::all_of(n.begin(), n.end(), [](char c) {
@@ -630,8 +633,10 @@ std::optional<std::vector<unsigned char>> TilePyramid::derived(const std::string
   std::vector<unsigned char> out(raw);
   libdeflate_decompressor* d = libdeflate_alloc_decompressor();
   std::size_t n = 0;
-  const bool ok = d && libdeflate_zlib_decompress(d, file.data() + 28, file.size() - kDerivedHeader, out.data(), raw,
-                                                  &n) == LIBDEFLATE_SUCCESS && n == raw;
+  const bool ok = d &&
+                  libdeflate_zlib_decompress(d, file.data() + kDerivedPrefix, file.size() - kDerivedHeader, out.data(),
+                                             raw, &n) == LIBDEFLATE_SUCCESS &&
+                  n == raw;
   libdeflate_free_decompressor(d);
   if (!ok) return std::nullopt;
   return out;
@@ -641,11 +646,12 @@ void TilePyramid::storeDerived(const std::string& name, const void* data, std::s
   if (stats_.cachePath.empty() || !derivedNameOk(name)) return;
   libdeflate_compressor* c = libdeflate_alloc_compressor(1);
   if (!c) return;
-  std::vector<unsigned char> file(28 + libdeflate_zlib_compress_bound(c, bytes) + 8);
-  const std::size_t z = libdeflate_zlib_compress(c, data, bytes, file.data() + 28, file.size() - kDerivedHeader);
+  std::vector<unsigned char> file(kDerivedHeader + libdeflate_zlib_compress_bound(c, bytes));
+  const std::size_t z =
+      libdeflate_zlib_compress(c, data, bytes, file.data() + kDerivedPrefix, file.size() - kDerivedHeader);
   libdeflate_free_compressor(c);
   if (z == 0) return;
-  file.resize(28 + z + 8);
+  file.resize(kDerivedHeader + z);
   const std::uint64_t identity = cacheIdentity(impl_->index), raw = bytes;
   std::memcpy(file.data(), kDerivedMagic, 8);
   std::memcpy(file.data() + 8, &kDerivedVersion, 4);

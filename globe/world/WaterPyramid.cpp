@@ -229,8 +229,6 @@ class LevelRows {
 }  // namespace
 
 namespace {
-WorldLayer computeWaterLayerOf(const raster::TilePyramid& water, double stepDeg);
-
 // The grid kept in the pyramid's cache (TilePyramid::derived): the app's
 // world and the ocean plugin's each built it from the level's tiles at
 // start (~0.1 s of loop and the tiles' decoding each, a 30" mask's 5'
@@ -305,16 +303,8 @@ void storeGrid(const raster::TilePyramid& water, double stepDeg, const WorldLaye
   std::memcpy(bytes.data(), &h, sizeof h);
   water.storeDerived(gridName(stepDeg), bytes.data(), bytes.size());
 }
-}  // namespace
 
-WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg) {
-  if (auto l = storedGrid(water, stepDeg)) return std::move(*l);
-  WorldLayer l = computeWaterLayerOf(water, stepDeg);
-  storeGrid(water, stepDeg, l);
-  return l;
-}
-
-namespace {
+// The grid resampled from the level's tiles (what storeGrid keeps).
 WorldLayer computeWaterLayerOf(const raster::TilePyramid& water, double stepDeg) {
   const int level = levelFor(water, stepDeg);
   const raster::GeoTransform lt = water.levelTransform(level);
@@ -390,6 +380,13 @@ WorldLayer computeWaterLayerOf(const raster::TilePyramid& water, double stepDeg)
   return l;
 }
 }  // namespace
+
+WorldLayer waterLayerOf(const raster::TilePyramid& water, double stepDeg) {
+  if (auto l = storedGrid(water, stepDeg)) return std::move(*l);
+  WorldLayer l = computeWaterLayerOf(water, stepDeg);
+  storeGrid(water, stepDeg, l);
+  return l;
+}
 
 WorldLayer regionalWaterCover(const raster::TilePyramid& water, std::size_t maxTexels) {
   int level = 0;

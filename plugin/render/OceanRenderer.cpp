@@ -1193,10 +1193,9 @@ void OceanRenderer::draw(const camera::Camera& cam, const camera::Lighting& ligh
   glBindTextureUnit(12, octaveTexelTex_);
   glBindTextureUnit(13, octaveBandTex_);
   // Noise: no pixel of the view under 1 / pixelOctaveEndPx of the longest
-  // octave, so no
-  // fragment visits one (ocean.frag's f = 0 for all): its programs without
-  // the octave loop (llvmpipe ran its body once, masked, for ~40 ms of a
-  // frame at 42 km; docs/PERFORMANCE.md). The bound: a pixel's back-
+  // octave, so no fragment visits one (ocean.frag's f = 0 for all): its
+  // programs without the octave loop (llvmpipe ran its body once, masked,
+  // for ~40 ms of a frame at 42 km; docs/PERFORMANCE.md). The bound: a pixel's back-
   // projection onto a plane at distance h, of normal n (camera axes, away
   // from the eye), has area h^2 / (f^2 (n.u)^3) for the pixel's ray u =
   // (x / f, y / f, 1), f the focal length in pixels; n.u is at most K =
