@@ -123,7 +123,8 @@ int runFly(const FlyArgs& a) {
 #endif
   csv << "frame,time_s,lat,lon,alt_m,pitch_deg,tiles,sky_ms,terrain_ms,ocean_ms,total_ms";
   if (a.reference) csv << ",bare_terrain_ms,bare_ocean_ms,bare_total_ms";
-  csv << "\n";
+  // The sea's mirrored pass and the sun's shadow map, inside ocean_ms (0 on frames that reuse or skip them).
+  csv << ",reflection_ms,shadow_ms\n";
   // The sun stays where it is over the target: the flight descends into daylight.
   const glm::dvec3 sun = render::sunFromLocal(plan.toLatDeg, plan.toLonDeg, sunAzEl[0], sunAzEl[1]);
   for (int f = 0; f < a.frames; ++f) {
@@ -169,7 +170,8 @@ int runFly(const FlyArgs& a) {
       std::snprintf(row, sizeof row, ",%.3f,%.3f,%.3f", b.terrainMs, b.layersMs, b.totalMs);
       csv << row;
     }
-    csv << "\n";
+    std::snprintf(row, sizeof row, ",%.3f,%.3f\n", t.reflectionMs, t.shadowMs);
+    csv << row;
   }
   std::fprintf(stderr, "geocean fly: wrote %d frames and %s\n", a.frames, csvPath.c_str());
   return csv ? kExitOk : kExitDataError;
