@@ -59,7 +59,7 @@ std::size_t ElevationPages::request(PagedPool& layer, const grid::GridFrame& f, 
       if (!f.cellSkip[std::size_t(j) * (f.cols - 1) + i])
         for (const int v : {j * f.cols + i, j * f.cols + i + 1, (j + 1) * f.cols + i, (j + 1) * f.cols + i + 1})
           drawn[std::size_t(v)] = 1;
-  std::unordered_set<std::uint64_t> seen;
+  PagedPool::Asked asked;
   std::size_t missing = 0;
   for (std::size_t k = 0; k < f.vertices.size(); ++k) {
     if (!drawn[k]) continue;
@@ -78,7 +78,7 @@ std::size_t ElevationPages::request(PagedPool& layer, const grid::GridFrame& f, 
         long gx = x0 + dx;
         gx = t.global ? ((gx % W) + W) % W : std::clamp(gx, 0L, long(W - 1));
         const long gy = std::clamp(y0 + dy, 0L, long(H - 1));
-        missing += layer.ask({level, int(gx / T), int(gy / T)}, seen);
+        missing += layer.ask({level, int(gx / T), int(gy / T)}, asked);
       }
   }
   return missing;

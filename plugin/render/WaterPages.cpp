@@ -3,6 +3,7 @@
 #include "globe/world/WaterPyramid.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 #include <unordered_set>
@@ -65,9 +66,11 @@ void PagedPool::abandonGl() {
   table = 0;
 }
 
-std::size_t PagedPool::ask(const raster::TileId& id, std::unordered_set<std::uint64_t>& seen) {
+std::size_t PagedPool::ask(const raster::TileId& id, Asked& asked) {
   const std::uint64_t key = (std::uint64_t(id.level) << 56) | (std::uint64_t(id.y) << 28) | std::uint64_t(id.x);
-  if (!seen.insert(key).second || pool->residentSlot(id) >= 0) return 0;
+  if (key == asked.last) return 0;
+  asked.last = key;
+  if (!asked.seen.insert(key).second || pool->residentSlot(id) >= 0) return 0;
   pool->request(id);
   return 1;
 }
@@ -128,34 +131,43 @@ std::size_t WaterPages::request(const grid::GridFrame& f, double cellPx) {
 std::size_t WaterPages::request(Layer& layer, const grid::GridFrame& f, double cellPx) {
   const raster::TilePyramid& p = layer.pool->pyramid();
   const raster::GeoTransform& t = p.source().transform();
-  const int T = p.tileSize(), top = p.levels() - 1;
-  const double sx = 1.0 / std::abs(t.lonStepDeg), sy = 1.0 / std::abs(t.latStepDeg);
-  std::unordered_set<std::uint64_t> seen;
+  const int tileShift = std::countr_zero(unsigned(p.tileSize())), top = p.levels() - 1;  // a power of two
+  // Level-0 texel coordinates of every vertex, once (a vertex is the corner
+  // of four cells; the libm calls per cell were half of a low view's 13 ms).
+  const double around = 360.0 / std::abs(t.lonStepDeg);
+  texelX_.resize(f.vertices.size()), texelY_.resize(f.vertices.size());
+  for (std::size_t k = 0; k < f.vertices.size(); ++k) {
+    const grid::GridVertex& v = f.vertices[k];
+    texelX_[k] = (t.nearLon(v.lonDeg) - t.originLonDeg) / t.lonStepDeg;  // across 180: the layer's longitude
+    texelY_[k] = (v.latDeg - t.originLatDeg) / t.latStepDeg;
+  }
+  PagedPool::Asked asked;
   std::size_t missing = 0;
-  const auto vertex = [&](int i, int j) -> const grid::GridVertex& { return f.vertices[std::size_t(j) * f.cols + i]; };
   for (int j = 0; j + 1 < f.rows; ++j)
     for (int i = 0; i + 1 < f.cols; ++i) {
       if (f.cellSkip[std::size_t(j) * (f.cols - 1) + i]) continue;
+      const std::size_t a = std::size_t(j) * f.cols + i, b = a + 1, c = a + f.cols, d = c + 1;
       // Level-0 texels along the cell's two edges, per pixel: the
-      // fragment shader's length(fwidth(texel position)).
-      const grid::GridVertex &a = vertex(i, j), &b = vertex(i + 1, j), &c = vertex(i, j + 1);
-      const auto texels = [&](const grid::GridVertex& u, const grid::GridVertex& v) {
-        const double dl = std::remainder(v.lonDeg - u.lonDeg, 360.0);
-        return std::hypot(dl * sx, (v.latDeg - u.latDeg) * sy);
+      // fragment shader's length(fwidth(texel position)); longitude
+      // differences the short way round.
+      const auto texels2 = [&](std::size_t u, std::size_t v) {
+        double dx = texelX_[v] - texelX_[u];
+        if (std::abs(dx) > 0.5 * around) dx -= around * std::nearbyint(dx / around);
+        const double dy = texelY_[v] - texelY_[u];
+        return dx * dx + dy * dy;
       };
-      const double tpp = std::max(texels(a, b), texels(a, c)) / cellPx;
-      const int want = tpp < 1.0 ? 0 : std::min(int(std::floor(std::log2(tpp))), top);
-      for (const grid::GridVertex* v : {&a, &b, &c, &vertex(i + 1, j + 1)}) {
-        const double s = double(1 << want);
-        double x = (t.nearLon(v->lonDeg) - t.originLonDeg) / t.lonStepDeg / s;  // across 180: the layer's longitude
-        double y = (v->latDeg - t.originLatDeg) / t.latStepDeg / s;
-        const int W = p.levelWidth(want), H = p.levelHeight(want);
+      const double tpp = std::sqrt(std::max(texels2(a, b), texels2(a, c))) / cellPx;
+      const int want = tpp < 1.0 ? 0 : std::min(std::ilogb(tpp), top);  // floor(log2)
+      const double toLevel = 1.0 / double(1 << want);  // a power of two: exact
+      const int W = p.levelWidth(want), H = p.levelHeight(want);
+      for (const std::size_t v : {a, b, c, d}) {
+        double x = texelX_[v] * toLevel, y = texelY_[v] * toLevel;
         // A regional pyramid: past the filter's reach (2 texels) of its
         // edge the grid answers (geo_uv.glsl levelClear), nothing to load.
         if (!t.global && (x < -2.0 || y < -2.0 || x > W + 2.0 || y > H + 2.0)) continue;
-        if (t.global) x = x - W * std::floor(x / W);
+        if (t.global && (x < 0.0 || x >= W)) x = x - W * std::floor(x / W);
         x = std::clamp(x, 0.0, W - 1.0), y = std::clamp(y, 0.0, H - 1.0);
-        missing += layer.ask({want, int(x) / T, int(y) / T}, seen);
+        missing += layer.ask({want, int(x) >> tileShift, int(y) >> tileShift}, asked);  // x, y >= 0
       }
     }
   return missing;

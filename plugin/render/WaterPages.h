@@ -55,9 +55,16 @@ struct PagedPool {
   std::vector<GLint> levelsUniform() const;
   // The GL names are left to their context (OceanRenderer::abandonGl).
   void abandonGl();
-  // A frame's tile, once per frame (`seen`): asks for it when it is not
-  // resident; returns 1 then, else 0.
-  std::size_t ask(const raster::TileId& id, std::unordered_set<std::uint64_t>& seen);
+  // The tiles a frame's request has asked about. Neighbouring vertices
+  // mostly fall in the tile just asked: `last` skips the set (and the
+  // pool's lookup) for them, which were most of a low view's request.
+  struct Asked {
+    std::unordered_set<std::uint64_t> seen;
+    std::uint64_t last = ~std::uint64_t(0);
+  };
+  // A frame's tile, once per frame: asks for it when it is not resident;
+  // returns 1 then, else 0.
+  std::size_t ask(const raster::TileId& id, Asked& asked);
   // Single pictures: while request() (a frame's asking over all layers)
   // finds tiles missing, waits for the loads and puts them up. Bounded: a
   // view needing more tiles than a pool holds uses what fits.
@@ -107,6 +114,7 @@ class WaterPages {
   using Layer = PagedPool;
   std::size_t request(Layer& l, const grid::GridFrame& frame, double cellPx);
   std::vector<Layer> layers_;
+  std::vector<double> texelX_, texelY_;  // request's per-vertex scratch
 };
 
 }  // namespace geocean::ocean_render
