@@ -77,7 +77,9 @@ void main() {
   // spares every terrain pixel the B-spline (on llvmpipe a third of the
   // terrain's cost).
   c = mix(c, vSeaColor, smoothstep(0.4, 0.6, vWater));
-#else
+#elif !defined(GEOCEAN_NO_SEA_SHADING)
+  // Not in the mirrored pass (GEOCEAN_NO_SEA_SHADING: uSeaShading is 0
+  // there, and llvmpipe ran the streamed coverage's B-spline per pixel anyway).
   if (uSeaShading != 0) {
     // Water coverage: 0.5 is the shoreline; smooth over a pixel (B-spline
     // magnified, the mipmapped average minified).

@@ -112,8 +112,12 @@ void main() {
   // depth from the coverage instead (about 60 m at full coverage). Per
   // vertex: on llvmpipe this shading per terrain pixel cost more than the
   // imagery, and its inputs vary over a cell no faster than the haze.
+#ifdef GEOCEAN_NO_SEA_SHADING
+  vSeaColor = vec3(0.0);  // not read (terrain.frag)
+#else
   float depth = max(vDepthM, (water - 0.5) * 120.0);
   vSeaColor = seaColorLit(up, normalize(-p), up, uSunDir, vSun, depth, 0.18, 0.0);
+#endif
 #endif
 #ifdef GEOCEAN_CLIP_SEA
   // The mirrored pass of a reflection: only what stands above the sea is

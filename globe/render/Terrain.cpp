@@ -538,7 +538,7 @@ TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const
   if (mirrored_.id() == 0) {  // compiled on the first reflection a layer asks for
     // Clipped by the streamed water too: a regional layer's grid below knows
     // none of its islands (the whole island was clipped, none reflected).
-    std::vector<std::string> d = {"GEOCEAN_CLIP_SEA 1", imageryDefine()};
+    std::vector<std::string> d = {"GEOCEAN_CLIP_SEA 1", "GEOCEAN_NO_SEA_SHADING 1", imageryDefine()};
     if (const gl::TilePool* w = world_.waterTiles()) {
       d.push_back("GEOCEAN_WATER_TILES 1");
       if (!w->pyramid().source().transform().global) d.push_back("GEOCEAN_WATER_REGIONAL 1");
@@ -559,6 +559,13 @@ TerrainStats TerrainRenderer::drawMirrored(const camera::Camera& mirrored, const
   // The real eye chooses the tiles: the mirrored one is under the sea, where
   // the horizon test would hide everything.
   selectTiles(selectFrom, tiles, slots, stats);
+  // Flat water tiles lie seaDropM under the sea throughout: clipped whole.
+  if (options_.seaDropM > 0.5) {
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < tiles.size(); ++i)
+      if (!tiles[i].flat) tiles[kept] = tiles[i], slots[kept++] = slots[i];
+    tiles.resize(kept), slots.resize(kept);
+  }
   glEnable(GL_CLIP_DISTANCE0);
   drawTiles(mirrored_, mirrored, light, SeaShading::None, 0.0, tiles, slots);
   glDisable(GL_CLIP_DISTANCE0);
