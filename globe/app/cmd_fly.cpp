@@ -32,6 +32,7 @@ struct FlyArgs {
   std::string out = "out/flight";
   std::string sun;
   int frames = 120;
+  int repeat = 0;  // untimed draws of each frame before its timed one
   double fps = 30.0;
   double heading = 90.0;
   bool noImages = false;
@@ -139,6 +140,9 @@ int runFly(const FlyArgs& a) {
     fs.sunEcef = sun;
     fs.timed = true;
     applyDrawnScene(a.scene, fs);
+    // The same frame again first: llvmpipe compiles a program variant on its
+    // first draw, so only the last draw is the frame's steady cost.
+    for (int r = 0; r < a.repeat; ++r) s.render(pose, fs);
     const auto t = s.render(pose, fs);
 #if GEOCEAN_WITH_HUD
     if (hud) {  // drawn after the timed passes, so timings.csv is the same with or without it
@@ -189,6 +193,10 @@ const Register reg{{"fly", "Render a scripted flight from orbit to 2 m above the
                       sub.add_option("--heading", a->heading, "view heading at the end, degrees");
                       sub.add_option("--sun", a->sun, "AZ,EL of the sun at the target, degrees");
                       sub.add_flag("--no-images", a->noImages, "time the frames without writing PNGs");
+                      sub.add_option("--repeat", a->repeat,
+                                     "draw each frame N more times before the timed draw (steady-state timings: "
+                                     "no first-draw shader compiles)")
+                          ->check(CLI::Range(0, 100));
                       sub.add_flag("--reference", a->reference,
                                    "also draw each frame with trivial shaders (the ratio reference)");
                       sub.add_flag("--hud", a->hud,

@@ -102,9 +102,21 @@ TEST(RenderCli, FlyWritesFramesAndATimingsCsv) {
   // Header + one row per frame; the last frame is 2 m above the sea.
   EXPECT_EQ(std::count(csv.out.begin(), csv.out.end(), '\n'), 4);
   EXPECT_NE(csv.out.find(",2.000,"), std::string::npos) << csv.out;
+  // The mirrored pass's and the shadow map's own times close each row
+  // (the last frame, 2 m up, draws the reflection: not 0).
+  EXPECT_NE(csv.out.find(",total_ms,reflection_ms,shadow_ms\n"), std::string::npos) << csv.out;
+  const std::string last = csv.out.substr(csv.out.rfind('\n', csv.out.size() - 2) + 1);
+  const std::string reflection = last.substr(0, last.rfind(',')).substr(last.substr(0, last.rfind(',')).rfind(',') + 1);
+  EXPECT_GT(std::stod(reflection), 0.0) << last;
   const auto bad = geocean::test::run(kExe + " fly --to 95,0 --out " + dir);
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("latitude"), std::string::npos) << bad.err;
+  // --repeat: untimed draws before each timed one; a count out of range names the option.
+  const auto again = geocean::test::run(kExe + " fly --to 36.0,-5.6 --frames 2 --size 48x32 --no-images --repeat 1 --out " + dir);
+  EXPECT_EQ(again.exitCode, 0) << again.err;
+  const auto badRepeat = geocean::test::run(kExe + " fly --repeat -1 --out " + dir);
+  EXPECT_EQ(badRepeat.exitCode, 2);
+  EXPECT_NE(badRepeat.err.find("--repeat"), std::string::npos) << badRepeat.err;
 }
 
 // Issue 15 item 1: `fly --coast-follow` sets GEOCEAN_DRAW_FOLLOW_COAST on
