@@ -57,7 +57,7 @@ struct PagedPool {
   void abandonGl();
   // The tiles a frame's request has asked about. Neighbouring vertices
   // mostly fall in the tile just asked: `last` skips the set (and the
-  // pool's lookup) for them, which were most of a low view's request.
+  // pool's lookup) for them.
   struct Asked {
     std::unordered_set<std::uint64_t> seen;
     std::uint64_t last = ~std::uint64_t(0);
