@@ -80,7 +80,7 @@ struct OpenOptions {
   // Rasters whose decoded pixels need more than this are streamed instead of
   // being loaded; their memory is bounded by cacheBytes.
   std::size_t inMemoryLimitBytes = std::size_t(256) << 20;
-  std::size_t cacheBytes = std::size_t(64) << 20;
+  std::size_t cacheBytes = std::size_t(16) << 20;
   std::optional<double> nodata;  // overrides GDAL_NODATA from the file
   // A handful of lookups (one-point queries): read only the tiles they
   // touch with libtiff, no ImageCache. Tiled TIFFs only; ignored otherwise.
