@@ -32,8 +32,11 @@ namespace {
 struct TiffFile {
   TIFF* t = nullptr;
   explicit TiffFile(const std::string& path) {
-    TIFFSetWarningHandler(nullptr);
-    TIFFSetErrorHandler(nullptr);
+    static std::once_flag silence;  // process-wide handlers; handles open from many threads
+    std::call_once(silence, [] {
+      TIFFSetWarningHandler(nullptr);
+      TIFFSetErrorHandler(nullptr);
+    });
     registerGeoTiffTags();  // so GDAL_NODATA reads as text (sparse blocks are filled with it)
     // "m": no memory mapping. A file truncated while open (replaced in
     // place, a full disk) made reads of a mapped tile past the new end
