@@ -32,8 +32,11 @@ namespace {
 struct TiffFile {
   TIFF* t = nullptr;
   explicit TiffFile(const std::string& path) {
-    TIFFSetWarningHandler(nullptr);
-    TIFFSetErrorHandler(nullptr);
+    static std::once_flag silence;  // process-wide handlers; handles open from many threads
+    std::call_once(silence, [] {
+      TIFFSetWarningHandler(nullptr);
+      TIFFSetErrorHandler(nullptr);
+    });
     registerGeoTiffTags();  // so GDAL_NODATA reads as text (sparse blocks are filled with it)
     // "m": no memory mapping. A file truncated while open (replaced in
     // place, a full disk) made reads of a mapped tile past the new end
@@ -167,6 +170,7 @@ ImageInfo tiffInfo(const std::string& path) {
   info.channels = l.spp;
   info.tileW = int(std::min<uint32_t>(l.tw, 0x7fffffff));
   info.tileH = int(std::min<uint32_t>(l.th, 0x7fffffff));
+  info.stripRows = l.tiled ? 0 : int(std::min<uint32_t>(l.rowsPerStrip, 0x7fffffff));
   info.kind = kindOf(l).value_or(SampleKind::F32);
   info.format = "tiff";
   return info;
@@ -201,66 +205,118 @@ std::vector<float> tiffReadAll(const std::string& path, const ImageInfo& info) {
 }
 
 namespace {
-// A handful of decoded tiles kept per raster: enough for single lookups
-// (a query of one point touches one or four tiles).
+template <class T>
+void widenStrided(const unsigned char* src, std::size_t n, std::size_t stride, float* dst) {
+  for (std::size_t i = 0; i < n; ++i) {
+    T v;
+    std::memcpy(&v, src + i * stride * sizeof(T), sizeof(T));
+    dst[i] = static_cast<float>(v);
+  }
+}
+// n samples of one channel, `stride` samples apart, widened to float.
+void toFloatStrided(SampleKind k, const unsigned char* src, std::size_t n, std::size_t stride, float* dst) {
+  if (stride == 1) return toFloat(k, src, n, dst);
+  switch (k) {
+    case SampleKind::U8: widenStrided<std::uint8_t>(src, n, stride, dst); break;
+    case SampleKind::I8: widenStrided<std::int8_t>(src, n, stride, dst); break;
+    case SampleKind::U16: widenStrided<std::uint16_t>(src, n, stride, dst); break;
+    case SampleKind::I16: widenStrided<std::int16_t>(src, n, stride, dst); break;
+    case SampleKind::U32: widenStrided<std::uint32_t>(src, n, stride, dst); break;
+    case SampleKind::I32: widenStrided<std::int32_t>(src, n, stride, dst); break;
+    case SampleKind::F32: widenStrided<float>(src, n, stride, dst); break;
+    case SampleKind::F64: widenStrided<double>(src, n, stride, dst); break;
+  }
+}
+
+// Decoded blocks (tiles, or strips) of a TIFF kept in an LRU bounded by
+// cacheBytes, in the file's own sample type (an int16 relief's tile is half
+// its floats). Thread-safe: the lock covers only the LRU; blocks decode
+// outside it, each thread on a libtiff handle of its own from a pool (a
+// TIFF* is not thread-safe), and readers hold a block by shared_ptr, so an
+// eviction never frees one being copied. Two threads missing the same
+// block both decode it (the second insert finds the first's).
 class TiffTiles final : public TileSource {
  public:
-  TiffTiles(const std::string& path, std::size_t cacheBytes) : file_(path), path_(path) {
-    if (!file_.t) throw RasterError(path + ": not a readable TIFF file");
-    layout_ = layoutOf(file_.t);
+  TiffTiles(const std::string& path, std::size_t cacheBytes) : path_(path) {
+    auto f = std::make_unique<TiffFile>(path);
+    if (!f->t) throw RasterError(path + ": not a readable TIFF file");
+    layout_ = layoutOf(f->t);
     kind_ = *kindOf(layout_);
+    free_.push_back(std::move(f));
     tileW = int(layout_.tiled ? layout_.tw : layout_.w);
     tileH = int(layout_.tiled ? layout_.th : layout_.rowsPerStrip);
-    const std::size_t tileBytes = std::size_t(tileW) * tileH * layout_.spp * sizeof(float);
-    capacity_ = std::max<std::size_t>(2, cacheBytes / std::max<std::size_t>(tileBytes, 1));
+    tilesX_ = (std::int64_t(layout_.w) + tileW - 1) / tileW;
+    const std::size_t blockBytes = std::size_t(tileW) * tileH * layout_.spp * sampleBytes(kind_);
+    capacity_ = std::max<std::size_t>(2, cacheBytes / std::max<std::size_t>(blockBytes, 1));
   }
   bool read(int x0, int x1, int y0, int y1, int channel, float* out) override {
-    std::lock_guard lock(mutex_);
-    const int spp = layout_.spp;
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1;) {
-        const std::vector<float>* t = tile(x, y);
-        if (!t) return false;
-        const int tx0 = (x / tileW) * tileW, ty0 = (y / tileH) * tileH;
-        const int xe = std::min(x1, tx0 + tileW);
-        for (; x < xe; ++x)
-          *out++ = (*t)[(std::size_t(y - ty0) * tileW + (x - tx0)) * spp + channel];
+    const std::size_t spp = layout_.spp, sb = sampleBytes(kind_), outW = std::size_t(x1 - x0);
+    for (int ty0 = (y0 / tileH) * tileH; ty0 < y1; ty0 += tileH)
+      for (int tx0 = (x0 / tileW) * tileW; tx0 < x1; tx0 += tileW) {
+        const std::shared_ptr<const Block> b = block(tx0, ty0);
+        if (!b) return false;
+        const int cx0 = std::max(x0, tx0), cx1 = std::min(x1, tx0 + tileW);
+        const int cy0 = std::max(y0, ty0), cy1 = std::min(y1, ty0 + tileH);
+        for (int y = cy0; y < cy1; ++y)
+          toFloatStrided(kind_, b->data() + ((std::size_t(y - ty0) * tileW + (cx0 - tx0)) * spp + channel) * sb,
+                         std::size_t(cx1 - cx0), spp, out + std::size_t(y - y0) * outW + (cx0 - x0));
       }
     return true;
   }
-  std::string error() override { return error_; }
+  std::string error() override {
+    std::lock_guard lock(mutex_);
+    return error_;
+  }
 
  private:
-  const std::vector<float>* tile(int x, int y) {
-    const long key = long(y / tileH) * 1000003L + x / tileW;
-    if (auto it = index_.find(key); it != index_.end()) {
-      lru_.splice(lru_.begin(), lru_, it->second);
-      return &it->second->second;
+  using Block = std::vector<unsigned char>;
+  using Entry = std::pair<std::int64_t, std::shared_ptr<const Block>>;
+
+  std::shared_ptr<const Block> block(int tx0, int ty0) {
+    const std::int64_t key = std::int64_t(ty0 / tileH) * tilesX_ + tx0 / tileW;
+    std::unique_ptr<TiffFile> f;
+    {
+      std::lock_guard lock(mutex_);
+      if (auto it = index_.find(key); it != index_.end()) {
+        lru_.splice(lru_.begin(), lru_, it->second);
+        return it->second->second;
+      }
+      if (!free_.empty()) {
+        f = std::move(free_.back());
+        free_.pop_back();
+      }
     }
+    if (!f) {  // another thread decodes on the first handle
+      f = std::make_unique<TiffFile>(path_);
+      if (f->t) layoutOf(f->t);  // its per-handle settings (JPEG as RGB)
+    }
+    auto b = std::make_shared<Block>();
     uint32_t bx0, by0, bw, bh;
-    if (!readBlock(file_.t, layout_, uint32_t(x), uint32_t(y), buf_, bx0, by0, bw, bh)) {
-      error_ = path_ + ": pixel data is unreadable near row " + std::to_string(y) + " (truncated or corrupt)";
+    const bool ok = f->t && readBlock(f->t, layout_, uint32_t(tx0), uint32_t(ty0), *b, bx0, by0, bw, bh);
+    std::lock_guard lock(mutex_);
+    if (f->t) free_.push_back(std::move(f));
+    if (!ok) {
+      error_ = path_ + ": pixel data is unreadable near row " + std::to_string(ty0) + " (truncated or corrupt)";
       return nullptr;
     }
+    if (auto it = index_.find(key); it != index_.end()) return it->second->second;
     if (lru_.size() >= capacity_) {
       index_.erase(lru_.back().first);
       lru_.pop_back();
     }
-    std::vector<float> f(std::size_t(bw) * bh * layout_.spp);
-    toFloat(kind_, buf_.data(), f.size(), f.data());
-    lru_.emplace_front(key, std::move(f));
+    lru_.emplace_front(key, std::move(b));
     index_[key] = lru_.begin();
-    return &lru_.front().second;
+    return lru_.front().second;
   }
 
-  TiffFile file_;
   std::string path_, error_;
   TiffLayout layout_;
   SampleKind kind_ = SampleKind::U8;
+  std::int64_t tilesX_ = 1;
   std::size_t capacity_ = 2;
-  std::vector<unsigned char> buf_;
-  std::list<std::pair<long, std::vector<float>>> lru_;
-  std::unordered_map<long, std::list<std::pair<long, std::vector<float>>>::iterator> index_;
+  std::vector<std::unique_ptr<TiffFile>> free_;
+  std::list<Entry> lru_;
+  std::unordered_map<std::int64_t, std::list<Entry>::iterator> index_;
   std::mutex mutex_;
 };
 }  // namespace

@@ -3,7 +3,8 @@
 // decoded with libtiff (already needed for the GeoTIFF tags); OpenImageIO,
 // whose Debian build pulls in ~260 libraries and costs ~0.25 s at process
 // start, is loaded on demand (dlopen of the geocean_oiio module) for other
-// formats and for ImageCache-backed big rasters.
+// other formats (and big TIFFs whose layout or blocks libtiff's path does
+// not take).
 #pragma once
 
 #include <cstddef>
@@ -49,6 +50,7 @@ inline void toFloat(SampleKind k, const void* src, std::size_t n, float* dst) {
 struct ImageInfo {
   int width = 0, height = 0, channels = 0, depth = 1;
   int tileW = 0, tileH = 0;  // 0: not tiled
+  int stripRows = 0;         // rows per strip of a TIFF that is not tiled
   SampleKind kind = SampleKind::F32;
   std::string format;        // "tiff", "png", ...
 };
@@ -71,7 +73,9 @@ ImageInfo tiffInfo(const std::string& path);
 bool tiffSupported(const std::string& path);
 // Whole image, all channels interleaved, as float. Throws RasterError.
 std::vector<float> tiffReadAll(const std::string& path, const ImageInfo& info);
-// Direct tile reads with a small in-process tile cache (for a few lookups).
+// Direct block (tile or strip) reads through an LRU of decoded blocks in the
+// file's sample type, bounded by cacheBytes (at least two blocks);
+// thread-safe. Serves big TIFFs without OpenImageIO.
 std::unique_ptr<TileSource> tiffTiles(const std::string& path, const ImageInfo& info, std::size_t cacheBytes);
 
 // ---- OpenImageIO (loaded on demand) ----

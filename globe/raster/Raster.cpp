@@ -33,7 +33,7 @@ double GeoTransform::pixelX(double lonDeg) const {
 
 double GeoTransform::pixelY(double latDeg) const { return (latDeg - originLatDeg) / latStepDeg; }
 
-// Pixels read on demand: OpenImageIO's ImageCache, or libtiff tile reads.
+// Pixels read on demand: libtiff block reads, or OpenImageIO's ImageCache.
 struct Raster::CacheImpl {
   std::unique_ptr<detail::TileSource> src;
   int tileW = 256, tileH = 256;
@@ -118,16 +118,25 @@ std::shared_ptr<const Raster> Raster::open(const std::string& path, const OpenOp
     return r;
   } else {
     auto c = std::make_unique<CacheImpl>();
-    // A TIFF libtiff reads: OpenImageIO (~0.3 s of CPU to load) only when
-    // a pixel is read, which a warm tile cache never does; the probe below
-    // reads through libtiff.
-    c->src = libtiffOk ? detail::oiioCacheOnFirstRead(path, info, options.cacheBytes)
-                       : detail::oiioCache(path, info, options.cacheBytes);
+    // A TIFF libtiff reads, in blocks (tiles, or strips) of at most a
+    // quarter of the cache: its own LRU of decoded blocks, no OpenImageIO
+    // (whose Debian build maps ~110 MB of libraries and holds ~29 MB of its
+    // own beside the cache; issue 12 item 6). Anything else streams through
+    // OpenImageIO's ImageCache; for a TIFF of a few huge strips, loaded on
+    // the first pixel read (a warm tile cache never reads one).
+    const bool tiled = info.tileW > 0;
+    const std::size_t blockBytes = std::size_t(tiled ? info.tileW : info.width) *
+                                   std::size_t(tiled ? info.tileH : info.stripRows) *
+                                   std::size_t(info.channels) * detail::sampleBytes(info.kind);
+    const bool ownBlocks = libtiffOk && blockBytes <= options.cacheBytes / 4;
+    c->src = ownBlocks   ? detail::tiffTiles(path, info, options.cacheBytes)
+             : libtiffOk ? detail::oiioCacheOnFirstRead(path, info, options.cacheBytes)
+                         : detail::oiioCache(path, info, options.cacheBytes);
     c->tileW = c->src->tileW;
     c->tileH = c->src->tileH;
     r->cache_ = std::move(c);
     r->cacheBytes_ = options.cacheBytes;
-    if (libtiffOk) {
+    if (libtiffOk && !ownBlocks) {  // the probe below through libtiff, not OpenImageIO
       float probe = 0;
       const auto tiles = detail::tiffTiles(path, info, 0);
       if (!tiles->read(0, 1, 0, 1, 0, &probe)) throw RasterError(tiles->error());

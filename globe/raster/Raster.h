@@ -3,7 +3,8 @@
 // (loaded on demand, see PixelSource.h; its types never appear here);
 // georeferencing comes from GeoTIFF tags (libtiff), an ESRI world file, or
 // the caller's "global equirectangular". Small rasters are held in memory;
-// big ones stream through OpenImageIO's ImageCache with a bounded cache.
+// big ones stream through a bounded cache of decoded blocks (libtiff's for
+// TIFFs, OpenImageIO's ImageCache otherwise).
 //
 // Thread safety: a Raster is immutable after open(); all const methods may
 // be called from any number of threads.
@@ -76,10 +77,10 @@ inline constexpr std::int64_t kMaxTileSamples = std::int64_t(8192) * 8192;
 
 struct OpenOptions {
   Georef georef = Georef::FromFile;
-  // Rasters whose decoded pixels need more than this are read through the
-  // ImageCache instead of being loaded; their memory is bounded by cacheBytes.
+  // Rasters whose decoded pixels need more than this are streamed instead of
+  // being loaded; their memory is bounded by cacheBytes.
   std::size_t inMemoryLimitBytes = std::size_t(256) << 20;
-  std::size_t cacheBytes = std::size_t(64) << 20;
+  std::size_t cacheBytes = std::size_t(16) << 20;
   std::optional<double> nodata;  // overrides GDAL_NODATA from the file
   // A handful of lookups (one-point queries): read only the tiles they
   // touch with libtiff, no ImageCache. Tiled TIFFs only; ignored otherwise.

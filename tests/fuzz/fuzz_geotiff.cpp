@@ -53,7 +53,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   switch (size % 4) {
     case 0: break;                                   // decoded into memory
     case 1: o.fewLookups = true; break;              // libtiff tile reads
-    case 2: o.inMemoryLimitBytes = 0; o.cacheBytes = 1 << 20; break;  // OpenImageIO ImageCache
+    case 2: o.inMemoryLimitBytes = 0; o.cacheBytes = 1 << 20; break;  // streamed: libtiff blocks, ImageCache over 256 KB
     case 3: o.georef = Georef::GlobalEquirect; break;
   }
   try {

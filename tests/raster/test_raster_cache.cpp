@@ -1,5 +1,5 @@
 // A global 30-arc-second raster (43200 x 21600, 933 M pixels) read through
-// the ImageCache with bounded memory, sampled correctly in tile batches.
+// libtiff's block cache with bounded memory, sampled correctly in tile batches.
 #include "globe/raster/GeoTiffWriter.h"
 #include "globe/raster/Raster.h"
 #include "tests/support/ProcStatus.h"
@@ -71,8 +71,8 @@ TEST(RasterCache, Global30ArcSecondRasterStaysWithinTheCacheBound) {
   fs::remove_all(dir);
   EXPECT_EQ(bad, 0);
   // The bound: the 64 MB cache plus 32 MB for per-batch work arrays (sort
-  // order and footprints of 100 k points, ~3.6 MB) and OpenImageIO's tile
-  // buffers and file handles. Loading the pixels would need 933 MB+.
+  // order and footprints of 100 k points, ~3.6 MB) and the decoders' buffers
+  // and file handles. Loading the pixels would need 933 MB+.
   const long deltaMb = (peakKb - baseKb) / 1024;
   std::printf("peak RSS growth while sampling: %ld MB (cache 64 MB)\n", deltaMb);
   EXPECT_LT(deltaMb, 64 + 32);
