@@ -2,7 +2,7 @@
 // OpenImageIO out of every process that only reads GeoTIFFs: TIFF files are
 // decoded with libtiff (already needed for the GeoTIFF tags); OpenImageIO,
 // whose Debian build pulls in ~260 libraries and costs ~0.25 s at process
-// start, is loaded on demand (dlopen of the geocean_oiio module) for other
+// start, is loaded on demand (dlopen of the geocean_oiio module) for
 // other formats (and big TIFFs whose layout or blocks libtiff's path does
 // not take).
 #pragma once

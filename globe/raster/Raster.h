@@ -80,6 +80,8 @@ struct OpenOptions {
   // Rasters whose decoded pixels need more than this are streamed instead of
   // being loaded; their memory is bounded by cacheBytes.
   std::size_t inMemoryLimitBytes = std::size_t(256) << 20;
+  // 16 MB: 128 int16 tiles of 256^2. A drawn layer is read mostly in single
+  // passes by tile (the 5' grids' resampling), which more does not speed up.
   std::size_t cacheBytes = std::size_t(16) << 20;
   std::optional<double> nodata;  // overrides GDAL_NODATA from the file
   // A handful of lookups (one-point queries): read only the tiles they
