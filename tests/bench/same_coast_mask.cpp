@@ -1,11 +1,12 @@
 // same_coast_mask: a land/sea/lake mask resampled to a finer grid along its
 // own drawn coast, for issue 12 item 6's frame-time ratio with equal content
 // (docs/PERFORMANCE.md): the bundled 5' mask at 30" is a 43200 x 21600
-// streamed mask whose coastline is the default world's (the cubic B-spline
+// streamed mask whose coastline is the default world's (world::coverageClassAt, the B-spline
 // coverage's 0.5 line the renderer draws), so the ratio against the default
 // world measures the streaming, not a coast that puts more sea in view.
 //   same_coast_mask IN.tif OUT.tif FACTOR   (global rasters; values 0 ocean, 1 land, 2 lake)
 #include "globe/raster/GeoTiffWriter.h"
+#include "globe/world/Surface.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,19 +16,6 @@
 #include <string>
 
 using namespace geocean;
-
-namespace {
-
-// Cubic B-spline weights at fraction t (geo_uv.glsl bsplineWeights4).
-void bspline(double t, double w[4]) {
-  const double s = 1.0 - t;
-  w[0] = s * s * s / 6.0;
-  w[1] = (4.0 - 6.0 * t * t + 3.0 * t * t * t) / 6.0;
-  w[2] = (1.0 + 3.0 * t + 3.0 * t * t - 3.0 * t * t * t) / 6.0;
-  w[3] = t * t * t / 6.0;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   if (argc != 4) {
@@ -49,24 +37,19 @@ int main(int argc, char** argv) {
     o.transform.lonStepDeg /= factor, o.transform.latStepDeg /= factor;
     std::printf("%s: %d x %d -> %s: %d x %d\n", argv[1], W, H, argv[2], W * factor, H * factor);
     const int T = o.tileSize;
+    const world::MaskEncoding encoding;  // the default: 0 ocean, 1 land, 2 lake
     raster::writeGeoTiffTiles(argv[2], W * factor, H * factor, 1, raster::SampleType::U8, o,
                               [&](int x0, int y0, void* tile) {
       auto* out = static_cast<std::uint8_t*>(tile);
       for (int y = 0; y < T; ++y)
         for (int x = 0; x < T; ++x) {
-          // The source's continuous texel position (centres at integers).
-          const double px = (x0 + x + 0.5) / factor - 0.5, py = (y0 + y + 0.5) / factor - 0.5;
-          const double ix = std::floor(px), iy = std::floor(py);
-          double wx[4], wy[4];
-          bspline(px - ix, wx), bspline(py - iy, wy);
-          double weight[3] = {0.0, 0.0, 0.0};  // ocean, land, lake
-          for (int j = 0; j < 4; ++j)
-            for (int i = 0; i < 4; ++i) {
-              const int sx = ((int(ix) - 1 + i) % W + W) % W, sy = std::clamp(int(iy) - 1 + j, 0, H - 1);
-              weight[std::clamp(int(v[std::size_t(sy) * W + sx]), 0, 2)] += wx[i] * wy[j];
-            }
-          // Water where the coverage is over 0.5 (the drawn shoreline); a lake where it outweighs the ocean.
-          out[y * T + x] = weight[0] + weight[2] > 0.5 ? (weight[2] > weight[0] ? 2 : 0) : 1;
+          // The coverage rule the renderer and the query share, at the source's continuous pixel position.
+          const world::CoverageClass c = world::coverageClassAt(
+              (x0 + x + 0.5) / factor, (y0 + y + 0.5) / factor, [&](int cx, int cy) {
+                cx = ((cx % W) + W) % W, cy = std::clamp(cy, 0, H - 1);
+                return encoding.classify(v[std::size_t(cy) * W + cx]);
+              });
+          out[y * T + x] = std::uint8_t(c.surface);  // 0 ocean, 1 land, 2 lake
         }
     });
     std::printf("wrote %s\n", argv[2]);
