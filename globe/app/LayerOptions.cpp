@@ -89,7 +89,14 @@ int loadDrawnWorld(const char* command, const LayerOptions& o, std::vector<world
     sources = layerSources(o);
     std::vector<world::LayerSource> drawn = sources;
     for (const std::string& i : o.imagery) drawn.push_back({world::LayerKind::Imagery, i, "", 0});
-    data = world::loadLayeredWorld(drawn, !o.noDefaultWorld);
+    // The host reads its regional masks and reliefs only to draw them
+    // (resampled once onto the grids, then by tile into the pyramids), which
+    // streaming serves as well; the ocean plugin holds its own copy for
+    // queries. Over 64 MB as floats they stream here: a 10 x 8 degree 6"
+    // relief is not held twice (issue 12 item 6).
+    raster::OpenOptions ro;
+    ro.regionalInMemoryLimitBytes = std::size_t(64) << 20;
+    data = world::loadLayeredWorld(drawn, !o.noDefaultWorld, ro);
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "geocean %s: %s\n", command, e.what());
     return kExitBadInput;

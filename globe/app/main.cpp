@@ -1,9 +1,14 @@
 #include "globe/app/Command.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <memory>
 #include <string>
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 namespace geocean::app {
 std::vector<Command>& registry() {
@@ -14,6 +19,12 @@ std::vector<Command>& registry() {
 
 int main(int argc, char** argv) {
   using namespace geocean::app;
+#if defined(__GLIBC__)
+  // glibc gives each thread that allocates (tile workers, llvmpipe's) an
+  // arena of its own that keeps what it frees: 2 cap the flights' peak
+  // RSS (issue 12 item 6) at the same CPU. The user's setting wins.
+  if (!std::getenv("MALLOC_ARENA_MAX") && !std::getenv("GLIBC_TUNABLES")) mallopt(M_ARENA_MAX, 2);
+#endif
   CLI::App app{"Geocean: a living ocean on the WGS84 ellipsoid"};
   app.require_subcommand(1);
   std::function<int()> action;

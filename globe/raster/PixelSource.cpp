@@ -181,6 +181,28 @@ bool tiffSupported(const std::string& path) {
   return f.t && supported(layoutOf(f.t));
 }
 
+std::vector<std::uint8_t> tiffReadAllNative(const std::string& path, const ImageInfo& info) {
+  TiffFile f(path);
+  if (!f.t) throw RasterError(path + ": not a readable TIFF file");
+  const TiffLayout l = layoutOf(f.t);
+  const std::size_t spp = l.spp, sb = sampleBytes(*kindOf(l));
+  std::vector<std::uint8_t> out(std::size_t(info.width) * info.height * spp * sb);
+  std::vector<unsigned char> buf;
+  const uint32_t stepX = l.tiled ? l.tw : l.w, stepY = l.tiled ? l.th : l.rowsPerStrip;
+  for (uint32_t y = 0; y < l.h; y += stepY)
+    for (uint32_t x = 0; x < l.w; x += stepX) {
+      uint32_t bx0, by0, bw, bh;
+      if (!readBlock(f.t, l, x, y, buf, bx0, by0, bw, bh))
+        throw RasterError(path + ": pixel data is unreadable at row " + std::to_string(y) + ", column " +
+                          std::to_string(x) + " (truncated or corrupt)");
+      const uint32_t cw = std::min(bw, l.w - bx0), ch = std::min(bh, l.h - by0);
+      for (uint32_t r = 0; r < ch; ++r)
+        std::memcpy(out.data() + (std::size_t(by0 + r) * l.w + bx0) * spp * sb,
+                    buf.data() + std::size_t(r) * bw * spp * sb, std::size_t(cw) * spp * sb);
+    }
+  return out;
+}
+
 std::vector<float> tiffReadAll(const std::string& path, const ImageInfo& info) {
   TiffFile f(path);
   if (!f.t) throw RasterError(path + ": not a readable TIFF file");

@@ -73,6 +73,9 @@ ImageInfo tiffInfo(const std::string& path);
 bool tiffSupported(const std::string& path);
 // Whole image, all channels interleaved, as float. Throws RasterError.
 std::vector<float> tiffReadAll(const std::string& path, const ImageInfo& info);
+// Whole image as the file's own samples (info.kind), all channels
+// interleaved, row-major. Throws RasterError.
+std::vector<std::uint8_t> tiffReadAllNative(const std::string& path, const ImageInfo& info);
 // Direct block (tile or strip) reads through an LRU of decoded blocks in the
 // file's sample type, bounded by cacheBytes (at least two blocks);
 // thread-safe. Serves big TIFFs without OpenImageIO.

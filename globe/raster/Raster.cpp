@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <numeric>
@@ -108,7 +109,13 @@ std::shared_ptr<const Raster> Raster::open(const std::string& path, const OpenOp
     c->tileH = c->src->tileH;
     r->cache_ = std::move(c);
     r->cacheBytes_ = std::size_t(4) << 20;
-  } else if (bytes <= options.inMemoryLimitBytes) {
+  } else if (bytes <= options.inMemoryLimitBytes &&
+             (t->global || !options.regionalInMemoryLimitBytes || bytes <= options.regionalInMemoryLimitBytes)) {
+    if (libtiffOk && detail::sampleBytes(info.kind) <= 2) {
+      r->narrow_ = detail::tiffReadAllNative(path, info);
+      r->narrowKind_ = int(info.kind);
+      return r;
+    }
     r->pixels_ = libtiffOk ? detail::tiffReadAll(path, info) : detail::oiioReadAll(path, info);
     if (r->nodata_) {
       const float nd = static_cast<float>(*r->nodata_);
@@ -174,13 +181,44 @@ std::shared_ptr<const Raster> Raster::fromPixels(std::vector<float> pixels, int 
   return r;
 }
 
-std::size_t Raster::memoryBytes() const { return inMemory() ? pixels_.size() * sizeof(float) : cacheBytes_; }
+std::size_t Raster::memoryBytes() const {
+  return !narrow_.empty() ? narrow_.size() : inMemory() ? pixels_.size() * sizeof(float) : cacheBytes_;
+}
+
+float Raster::narrowAt(std::size_t i) const {
+  float v;
+  switch (detail::SampleKind(narrowKind_)) {
+    case detail::SampleKind::U8: v = float(narrow_[i]); break;
+    case detail::SampleKind::I8: v = float(std::int8_t(narrow_[i])); break;
+    case detail::SampleKind::U16: {
+      std::uint16_t u;
+      std::memcpy(&u, narrow_.data() + 2 * i, 2);
+      v = float(u);
+      break;
+    }
+    default: {
+      std::int16_t u;
+      std::memcpy(&u, narrow_.data() + 2 * i, 2);
+      v = float(u);
+    }
+  }
+  return nodata_ && v == static_cast<float>(*nodata_) ? kNaN : v;
+}
+
+std::vector<float> Raster::pixels() const {
+  if (narrow_.empty()) return pixels_;
+  std::vector<float> out(narrow_.size() / detail::sampleBytes(detail::SampleKind(narrowKind_)));
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = narrowAt(i);
+  return out;
+}
 
 float Raster::pixel(int x, int y, int channel) const {
   x = std::clamp(x, 0, width_ - 1);
   y = std::clamp(y, 0, height_ - 1);
   channel = std::clamp(channel, 0, channels_ - 1);
-  if (inMemory()) return pixels_[(std::size_t(y) * width_ + x) * channels_ + channel];
+  const std::size_t i = (std::size_t(y) * width_ + x) * channels_ + channel;
+  if (!narrow_.empty()) return narrowAt(i);
+  if (inMemory()) return pixels_[i];
   float v = kNaN;
   if (!cache_->read(x, x + 1, y, y + 1, channel, &v)) return kNaN;
   if (nodata_ && v == static_cast<float>(*nodata_)) return kNaN;

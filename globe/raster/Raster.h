@@ -80,6 +80,12 @@ struct OpenOptions {
   // Rasters whose decoded pixels need more than this are streamed instead of
   // being loaded; their memory is bounded by cacheBytes.
   std::size_t inMemoryLimitBytes = std::size_t(256) << 20;
+  // A regional raster (less than 360 degrees wide) over this many bytes as
+  // floats streams even under inMemoryLimitBytes (0: no such rule). A
+  // drawing host sets it for the masks and reliefs the ocean plugin holds
+  // too; a whole-globe raster keeps one rule on both sides, where it may be
+  // drawn on its own cells (world::globalInMemory).
+  std::size_t regionalInMemoryLimitBytes = 0;
   // 16 MB: 128 int16 tiles of 256^2. A drawn layer is read mostly in single
   // passes by tile (the 5' grids' resampling), which more does not speed up.
   std::size_t cacheBytes = std::size_t(16) << 20;
@@ -107,13 +113,14 @@ class Raster {
   int channels() const { return channels_; }
   const GeoTransform& transform() const { return transform_; }
   std::optional<double> nodata() const { return nodata_; }
-  bool inMemory() const { return !pixels_.empty(); }
+  bool inMemory() const { return !pixels_.empty() || !narrow_.empty(); }
   // Global, north up and pole to pole: its rows are the whole globe's.
   bool wholeGlobeNorthUp() const {
     return transform_.global && transform_.latStepDeg < 0 && std::abs(transform_.latStepDeg * height_ + 180.0) < 1e-6;
   }
-  // In-memory pixels as float, row-major, channels interleaved (empty if cached).
-  const std::vector<float>& pixels() const { return pixels_; }
+  // In-memory pixels as float (a copy; NaN where nodata), row-major,
+  // channels interleaved (empty if cached).
+  std::vector<float> pixels() const;
 
   // Value of pixel (x, y) clamped to the raster; NaN for nodata.
   float pixel(int x, int y, int channel = 0) const;
@@ -144,7 +151,13 @@ class Raster {
   int width_ = 0, height_ = 0, channels_ = 1;
   GeoTransform transform_;
   std::optional<double> nodata_;
+  // In memory: floats (nodata already NaN), or a TIFF's own 8- or 16-bit
+  // integer samples (exact as floats; a 16-bit relief is half its floats, an
+  // 8-bit mask a quarter: issue 12 item 6), nodata compared on reading.
   std::vector<float> pixels_;
+  std::vector<std::uint8_t> narrow_;
+  int narrowKind_ = 0;  // detail::SampleKind of narrow_
+  float narrowAt(std::size_t i) const;
   std::unique_ptr<CacheImpl> cache_;
   std::size_t cacheBytes_ = 0;
 };

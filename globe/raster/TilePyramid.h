@@ -61,7 +61,9 @@ struct PyramidOptions {
   std::function<void(float* texels, std::size_t count, int channels)> valueMap;
   std::string valueMapId;
   std::size_t sourceCacheBytes = std::size_t(32) << 20;  // decoded source blocks (native samples)
-  int decodedTiles = 64;                                  // decoded pyramid tiles kept (float)
+  // Decoded pyramid tiles kept (float, 256 KB each at 256^2): a bordered
+  // tile reads its 3 x 3 neighbours, which 16 hold; the pools keep the rest.
+  int decodedTiles = 16;
   BuildProgress progress = BuildProgress::Auto;
 };
 

@@ -174,8 +174,11 @@ WorldLayer waterLayerOf(const LayerStack& stack) {
 
 LayerStack openLayerStack(const std::vector<LayerSource>& layers, bool defaultWorld, const raster::OpenOptions& options) {
   std::vector<RasterLayer> all;
+  // Imagery is read once, into a texture: no regional streaming rule.
+  raster::OpenOptions imageryOptions = options;
+  imageryOptions.regionalInMemoryLimitBytes = 0;
   for (const LayerSource& l : layers) {
-    all.push_back({l.kind, raster::Raster::open(l.path, options),
+    all.push_back({l.kind, raster::Raster::open(l.path, l.kind == LayerKind::Imagery ? imageryOptions : options),
                    l.encoding.empty() ? MaskEncoding{} : MaskEncoding::parse(l.encoding), l.priority});
     const int c = all.back().raster->channels();
     if (l.kind == LayerKind::Imagery && c != 3 && c != 4)

@@ -370,6 +370,76 @@ TEST(Raster, ABigTiffStreamsThroughLibtiffWithoutOpenImageIO) {
     for (int x = 0; x < kW; x += 41) ASSERT_EQ(s->pixel(x, y), f[std::size_t(y) * kW + x]) << x << "," << y;
 }
 
+// 8- and 16-bit TIFFs loaded into memory keep their own samples (a 16-bit
+// relief is half its floats, an 8-bit mask a quarter: issue 12 item 6) and
+// read exactly as written, nodata as NaN, the same as through libtiff's
+// blocks; a drawing host's regional limit streams a regional raster only.
+TEST(Raster, EightAndSixteenBitRastersKeepTheirSamplesInMemory) {
+  TempDir d;
+  const int w = 200, h = 100;
+  for (const SampleType type : {SampleType::U8, SampleType::I16})
+    for (const int c : {1, 2}) {
+      const bool u8 = type == SampleType::U8;
+      const double nd = u8 ? 255.0 : -32768.0;
+      std::vector<std::uint8_t> b(std::size_t(w) * h * c);
+      std::vector<std::int16_t> s(b.size());
+      std::vector<float> want(b.size());
+      for (std::size_t i = 0; i < b.size(); ++i) {
+        const bool hole = i % 97 == 5;
+        b[i] = std::uint8_t(hole ? 255 : (i * 7) % 255);
+        s[i] = std::int16_t(hole ? -32768 : int((i * 131) % 20001) - 10000);
+        want[i] = hole ? NAN : u8 ? float(b[i]) : float(s[i]);
+      }
+      GeoTiffWriteOptions o;
+      o.transform = global(w, h);
+      o.tileSize = 32;
+      o.nodata = nd;
+      const std::string path = d / ("n" + std::to_string(int(u8)) + std::to_string(c) + ".tif");
+      if (u8)
+        writeGeoTiff(path, b.data(), w, h, c, type, o);
+      else
+        writeGeoTiff(path, s.data(), w, h, c, type, o);
+      const std::string what = path + (u8 ? " (uint8 x " : " (int16 x ") + std::to_string(c) + ")";
+      const auto mem = Raster::open(path);
+      OpenOptions streamed;
+      streamed.inMemoryLimitBytes = 0;
+      const auto blocks = Raster::open(path, streamed);
+      ASSERT_TRUE(mem->inMemory()) << what;
+      ASSERT_FALSE(blocks->inMemory()) << what;
+      EXPECT_EQ(mem->memoryBytes(), b.size() * (u8 ? 1u : 2u)) << what;
+      const std::vector<float> px = mem->pixels();
+      ASSERT_EQ(px.size(), want.size()) << what;
+      for (std::size_t i = 0; i < want.size(); ++i) {
+        const int x = int(i / c) % w, y = int(i / c) / w, k = int(i % c);
+        ASSERT_TRUE(px[i] == want[i] || (std::isnan(px[i]) && std::isnan(want[i]))) << what << " sample " << i;
+        const float v = mem->pixel(x, y, k);
+        ASSERT_TRUE(v == want[i] || (std::isnan(v) && std::isnan(want[i]))) << what << " pixel " << x << "," << y;
+      }
+      for (double lat = -89.95; lat < 90; lat += 3.7)
+        for (double lon = -179.9; lon < 180; lon += 5.3)
+          for (int k = 0; k < c; ++k) {
+            const float n0 = mem->sampleNearest(lat, lon, k), n1 = blocks->sampleNearest(lat, lon, k);
+            const float b0 = mem->sampleBilinear(lat, lon, k), b1 = blocks->sampleBilinear(lat, lon, k);
+            ASSERT_TRUE(n0 == n1 || (std::isnan(n0) && std::isnan(n1))) << what << " " << lat << "," << lon;
+            ASSERT_TRUE(b0 == b1 || (std::isnan(b0) && std::isnan(b1))) << what << " " << lat << "," << lon;
+          }
+    }
+  // The regional rule: a regional raster over the limit streams, a global one does not.
+  std::vector<float> f(std::size_t(w) * h, 1.0f);
+  GeoTiffWriteOptions g;
+  g.transform = global(w, h);
+  GeoTiffWriteOptions r = g;
+  r.transform.lonStepDeg = 0.01;
+  r.transform.latStepDeg = -0.01;
+  writeGeoTiff(d / "g.tif", f.data(), w, h, 1, SampleType::F32, g);
+  writeGeoTiff(d / "r.tif", f.data(), w, h, 1, SampleType::F32, r);
+  OpenOptions drawing;
+  drawing.regionalInMemoryLimitBytes = 1024;
+  EXPECT_TRUE(Raster::open(d / "g.tif", drawing)->inMemory());
+  EXPECT_FALSE(Raster::open(d / "r.tif", drawing)->inMemory());
+  EXPECT_TRUE(Raster::open(d / "r.tif")->inMemory());
+}
+
 TEST(Raster, FewLookupsTilesEqualInMemoryAndImagesRoundTrip) {
   TempDir d;
   // int16 with negative values through libtiff tiles (no normalisation, sign kept).
