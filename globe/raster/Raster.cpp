@@ -71,6 +71,17 @@ std::shared_ptr<const Raster> Raster::open(const std::string& path, const OpenOp
     throw RasterError(path + ": tile size " + std::to_string(info.tileW) + " x " + std::to_string(info.tileH) +
                       " x " + std::to_string(info.channels) + " exceeds the limit of " +
                       std::to_string(std::min(options.maxPixels, kMaxTileSamples)) + " samples");
+  // Every block is decoded whole, so the tiles covering the image count
+  // against the limit too (a 19789 x 8 image of 16 x 55824 tiles would
+  // decode 3.3 G samples: fuzz_geotiff's timeout).
+  if (tileSamples > 0) {
+    const std::int64_t blocks = (std::int64_t(info.width) + info.tileW - 1) / info.tileW *
+                                ((std::int64_t(info.height) + info.tileH - 1) / info.tileH);
+    if (blocks > options.maxPixels / tileSamples)
+      throw RasterError(path + ": " + std::to_string(blocks) + " tiles of " + std::to_string(info.tileW) + " x " +
+                        std::to_string(info.tileH) + " over a " + dims + " image exceed the limit of " +
+                        std::to_string(options.maxPixels) + " samples");
+  }
   if (info.depth > 1) throw RasterError(path + ": volume images (depth " + std::to_string(info.depth) + ") are not rasters");
 
   std::shared_ptr<Raster> r(new Raster);

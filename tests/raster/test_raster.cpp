@@ -283,6 +283,18 @@ TEST(Raster, RejectsAbsurdTilesBeforeAllocating) {
     EXPECT_NE(err.find("tiles.tif"), std::string::npos) << path << ": " << err;
     EXPECT_NE(err.find("tile size 65536 x 65536"), std::string::npos) << path << ": " << err;
   }
+  // Tiles each within the limit whose blocks over the image are not: a
+  // 4096 x 8 image of 16 x 4096 tiles decodes 256 tiles of 64 k samples
+  // (16 M) for 32 k pixels (fuzz_geotiff's timeout had 1237 of 2.7 M).
+  writePatchable(d / "tall.tif", 4096, 8, 16, 7);
+  patchTiffTags(d / "tall.tif", {323}, 4096);  // TileLength
+  OpenOptions small;
+  small.maxPixels = std::int64_t(1) << 22;
+  const std::string err = openError(d / "tall.tif", small);
+  EXPECT_NE(err.find("256 tiles of 16 x 4096"), std::string::npos) << err;
+  small.maxPixels = std::int64_t(1) << 24;  // exactly the blocks' samples: not refused for them
+  const std::string at = openError(d / "tall.tif", small);  // (the patched tiles' data is short)
+  EXPECT_EQ(at.find("tiles of"), std::string::npos) << at;
 }
 
 // The OpenImageIO module mapped into this process (ctest runs each test
