@@ -181,12 +181,12 @@ bool tiffSupported(const std::string& path) {
   return f.t && supported(layoutOf(f.t));
 }
 
-std::vector<std::uint8_t> tiffReadAllNative(const std::string& path, const ImageInfo& info) {
-  TiffFile f(path);
-  if (!f.t) throw RasterError(path + ": not a readable TIFF file");
-  const TiffLayout l = layoutOf(f.t);
+namespace {
+// Every block of the image in turn, each of its rows inside the image as
+// rowOf(samples, sample count, the row's first sample index in the image).
+template <class RowFn>
+void forEachBlockRow(const std::string& path, TiffFile& f, const TiffLayout& l, RowFn&& rowOf) {
   const std::size_t spp = l.spp, sb = sampleBytes(*kindOf(l));
-  std::vector<std::uint8_t> out(std::size_t(info.width) * info.height * spp * sb);
   std::vector<unsigned char> buf;
   const uint32_t stepX = l.tiled ? l.tw : l.w, stepY = l.tiled ? l.th : l.rowsPerStrip;
   for (uint32_t y = 0; y < l.h; y += stepY)
@@ -197,9 +197,21 @@ std::vector<std::uint8_t> tiffReadAllNative(const std::string& path, const Image
                           std::to_string(x) + " (truncated or corrupt)");
       const uint32_t cw = std::min(bw, l.w - bx0), ch = std::min(bh, l.h - by0);
       for (uint32_t r = 0; r < ch; ++r)
-        std::memcpy(out.data() + (std::size_t(by0 + r) * l.w + bx0) * spp * sb,
-                    buf.data() + std::size_t(r) * bw * spp * sb, std::size_t(cw) * spp * sb);
+        rowOf(buf.data() + std::size_t(r) * bw * spp * sb, std::size_t(cw) * spp,
+              (std::size_t(by0 + r) * l.w + bx0) * spp);
     }
+}
+}  // namespace
+
+std::vector<std::uint8_t> tiffReadAllNative(const std::string& path, const ImageInfo& info) {
+  TiffFile f(path);
+  if (!f.t) throw RasterError(path + ": not a readable TIFF file");
+  const TiffLayout l = layoutOf(f.t);
+  const std::size_t sb = sampleBytes(*kindOf(l));
+  std::vector<std::uint8_t> out(std::size_t(info.width) * info.height * l.spp * sb);
+  forEachBlockRow(path, f, l, [&](const unsigned char* src, std::size_t n, std::size_t at) {
+    std::memcpy(out.data() + at * sb, src, n * sb);
+  });
   return out;
 }
 
@@ -208,21 +220,10 @@ std::vector<float> tiffReadAll(const std::string& path, const ImageInfo& info) {
   if (!f.t) throw RasterError(path + ": not a readable TIFF file");
   const TiffLayout l = layoutOf(f.t);
   const SampleKind kind = *kindOf(l);
-  const std::size_t spp = l.spp, sb = sampleBytes(kind);
-  std::vector<float> out(std::size_t(info.width) * info.height * spp);
-  std::vector<unsigned char> buf;
-  const uint32_t stepX = l.tiled ? l.tw : l.w, stepY = l.tiled ? l.th : l.rowsPerStrip;
-  for (uint32_t y = 0; y < l.h; y += stepY)
-    for (uint32_t x = 0; x < l.w; x += stepX) {
-      uint32_t bx0, by0, bw, bh;
-      if (!readBlock(f.t, l, x, y, buf, bx0, by0, bw, bh))
-        throw RasterError(path + ": pixel data is unreadable at row " + std::to_string(y) + ", column " +
-                          std::to_string(x) + " (truncated or corrupt)");
-      const uint32_t cw = std::min(bw, l.w - bx0), ch = std::min(bh, l.h - by0);
-      for (uint32_t r = 0; r < ch; ++r)
-        toFloat(kind, buf.data() + std::size_t(r) * bw * spp * sb, std::size_t(cw) * spp,
-                out.data() + (std::size_t(by0 + r) * l.w + bx0) * spp);
-    }
+  std::vector<float> out(std::size_t(info.width) * info.height * l.spp);
+  forEachBlockRow(path, f, l, [&](const unsigned char* src, std::size_t n, std::size_t at) {
+    toFloat(kind, src, n, out.data() + at);
+  });
   return out;
 }
 
