@@ -113,13 +113,17 @@ std::shared_ptr<const Raster> Raster::open(const std::string& path, const OpenOp
 
   const bool libtiffOk = tiff && detail::tiffSupported(path);
   const std::size_t bytes = std::size_t(samples) * sizeof(float);
-  if (options.fewLookups && libtiffOk && info.tileW > 0) {
+  // Pixels read on demand from `src`, within cacheBytes.
+  const auto streamFrom = [&r](std::unique_ptr<detail::TileSource> src, std::size_t cacheBytes) {
     auto c = std::make_unique<CacheImpl>();
-    c->src = detail::tiffTiles(path, info, std::size_t(4) << 20);
-    c->tileW = c->src->tileW;
-    c->tileH = c->src->tileH;
+    c->tileW = src->tileW;
+    c->tileH = src->tileH;
+    c->src = std::move(src);
     r->cache_ = std::move(c);
-    r->cacheBytes_ = std::size_t(4) << 20;
+    r->cacheBytes_ = cacheBytes;
+  };
+  if (options.fewLookups && libtiffOk && info.tileW > 0) {
+    streamFrom(detail::tiffTiles(path, info, std::size_t(4) << 20), std::size_t(4) << 20);
   } else if (bytes <= options.inMemoryLimitBytes &&
              (t->global || !options.regionalInMemoryLimitBytes || bytes <= options.regionalInMemoryLimitBytes)) {
     if (libtiffOk && detail::sampleBytes(info.kind) <= 2) {
@@ -135,7 +139,6 @@ std::shared_ptr<const Raster> Raster::open(const std::string& path, const OpenOp
     }
     return r;
   } else {
-    auto c = std::make_unique<CacheImpl>();
     // A TIFF libtiff reads, in blocks (tiles, or strips) of at most a
     // quarter of the cache: its own LRU of decoded blocks, no OpenImageIO
     // (whose Debian build maps ~110 MB of libraries and holds ~29 MB of its
@@ -147,13 +150,10 @@ std::shared_ptr<const Raster> Raster::open(const std::string& path, const OpenOp
                                    std::size_t(tiled ? info.tileH : info.stripRows) *
                                    std::size_t(info.channels) * detail::sampleBytes(info.kind);
     const bool ownBlocks = libtiffOk && blockBytes <= options.cacheBytes / 4;
-    c->src = ownBlocks   ? detail::tiffTiles(path, info, options.cacheBytes)
-             : libtiffOk ? detail::oiioCacheOnFirstRead(path, info, options.cacheBytes)
-                         : detail::oiioCache(path, info, options.cacheBytes);
-    c->tileW = c->src->tileW;
-    c->tileH = c->src->tileH;
-    r->cache_ = std::move(c);
-    r->cacheBytes_ = options.cacheBytes;
+    streamFrom(ownBlocks   ? detail::tiffTiles(path, info, options.cacheBytes)
+               : libtiffOk ? detail::oiioCacheOnFirstRead(path, info, options.cacheBytes)
+                           : detail::oiioCache(path, info, options.cacheBytes),
+               options.cacheBytes);
     if (libtiffOk && !ownBlocks) {  // the probe below through libtiff, not OpenImageIO
       float probe = 0;
       const auto tiles = detail::tiffTiles(path, info, 0);
