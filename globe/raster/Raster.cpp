@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <numeric>
@@ -15,6 +14,12 @@ namespace geocean::raster {
 namespace {
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
+void nanWhereNodata(std::vector<float>& v, std::optional<double> nodata) {
+  if (!nodata) return;
+  const float nd = static_cast<float>(*nodata);
+  for (float& x : v)
+    if (x == nd) x = kNaN;
+}
 }  // namespace
 
 double GeoTransform::nearLon(double lonDeg) const {
@@ -132,11 +137,7 @@ std::shared_ptr<const Raster> Raster::open(const std::string& path, const OpenOp
       return r;
     }
     r->pixels_ = libtiffOk ? detail::tiffReadAll(path, info) : detail::oiioReadAll(path, info);
-    if (r->nodata_) {
-      const float nd = static_cast<float>(*r->nodata_);
-      for (auto& v : r->pixels_)
-        if (v == nd) v = kNaN;
-    }
+    nanWhereNodata(r->pixels_, r->nodata_);
     return r;
   } else {
     // A TIFF libtiff reads, in blocks (tiles, or strips) of at most a
@@ -184,11 +185,7 @@ std::shared_ptr<const Raster> Raster::fromPixels(std::vector<float> pixels, int 
   r->transform_.lonSpanDeg = width * transform.lonStepDeg;
   r->nodata_ = nodata;
   r->pixels_ = std::move(pixels);
-  if (nodata) {
-    const float nd = static_cast<float>(*nodata);
-    for (auto& v : r->pixels_)
-      if (v == nd) v = kNaN;
-  }
+  nanWhereNodata(r->pixels_, nodata);
   return r;
 }
 
@@ -197,29 +194,18 @@ std::size_t Raster::memoryBytes() const {
 }
 
 float Raster::narrowAt(std::size_t i) const {
-  float v;
-  switch (detail::SampleKind(narrowKind_)) {
-    case detail::SampleKind::U8: v = float(narrow_[i]); break;
-    case detail::SampleKind::I8: v = float(std::int8_t(narrow_[i])); break;
-    case detail::SampleKind::U16: {
-      std::uint16_t u;
-      std::memcpy(&u, narrow_.data() + 2 * i, 2);
-      v = float(u);
-      break;
-    }
-    default: {
-      std::int16_t u;
-      std::memcpy(&u, narrow_.data() + 2 * i, 2);
-      v = float(u);
-    }
-  }
+  const auto kind = detail::SampleKind(narrowKind_);
+  float v = kNaN;
+  detail::toFloat(kind, narrow_.data() + i * detail::sampleBytes(kind), 1, &v);
   return nodata_ && v == static_cast<float>(*nodata_) ? kNaN : v;
 }
 
 std::vector<float> Raster::pixels() const {
   if (narrow_.empty()) return pixels_;
-  std::vector<float> out(narrow_.size() / detail::sampleBytes(detail::SampleKind(narrowKind_)));
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = narrowAt(i);
+  const auto kind = detail::SampleKind(narrowKind_);
+  std::vector<float> out(narrow_.size() / detail::sampleBytes(kind));
+  detail::toFloat(kind, narrow_.data(), out.size(), out.data());
+  nanWhereNodata(out, nodata_);
   return out;
 }
 
@@ -229,7 +215,7 @@ float Raster::pixel(int x, int y, int channel) const {
   channel = std::clamp(channel, 0, channels_ - 1);
   const std::size_t i = (std::size_t(y) * width_ + x) * channels_ + channel;
   if (!narrow_.empty()) return narrowAt(i);
-  if (inMemory()) return pixels_[i];
+  if (!pixels_.empty()) return pixels_[i];
   float v = kNaN;
   if (!cache_->read(x, x + 1, y, y + 1, channel, &v)) return kNaN;
   if (nodata_ && v == static_cast<float>(*nodata_)) return kNaN;
